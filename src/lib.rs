@@ -1,0 +1,23 @@
+//! aster-nl: Code_Aster-style command files for nonlinear modal analysis, with every
+//! result kept in an SQLite concept store.
+//!
+//! Modules, one concern each:
+//! - [`lang`]: the `.comm` language (pest grammar, evaluation to [`value::CommandCall`]s).
+//! - [`catalog`]: operator catalogs from `commands/` and validation into [`args::Args`].
+//! - [`store`]: the SQLite concept store (no numerics).
+//! - [`mesh`], [`model`]: meshes, models, element matrices and assembly.
+//! - [`linalg`]: sparse/dense linear algebra glue and eigen solvers over faer.
+//! - [`nnm`]: the nonlinear normal mode engine (EHMAN), pure numerics, no SQL.
+//! - [`ops`]: one thin file per operator.
+
+pub mod args;
+pub mod catalog;
+pub mod error;
+pub mod lang;
+pub mod linalg;
+pub mod mesh;
+pub mod model;
+pub mod nnm;
+pub mod ops;
+pub mod store;
+pub mod value;

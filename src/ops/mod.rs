@@ -1,0 +1,102 @@
+//! Operators: one thin file each, connecting the catalog (`Args`), the store and the
+//! numerics. An operator never does numerics inline and never writes SQL itself beyond
+//! calling the typed `store` API.
+//!
+//! The interpreter calls [`run`] inside one store transaction per call.
+
+use crate::args::Args;
+use crate::error::{Error, Result};
+use crate::store::Store;
+use std::collections::BTreeMap;
+use std::io::Write;
+use std::path::PathBuf;
+
+/// Outcome of one TEST_* check.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TestOutcome {
+    pub ok: bool,
+    /// The printed OK/NOOK line.
+    pub line: String,
+}
+
+/// Logical units (`UNITE=20`) mapped to files, Code_Aster style.
+#[derive(Clone, Debug, Default)]
+pub struct Units {
+    pub map: BTreeMap<i64, PathBuf>,
+    /// The command file: used to find `<stem>.mail`/`.msh`/`.med` beside it when a unit is
+    /// not mapped.
+    pub comm_file: Option<PathBuf>,
+}
+
+/// Everything an operator may use besides its arguments.
+pub struct OpContext<'a> {
+    pub store: &'a Store,
+    /// Operator name, e.g. `MODE_NON_LINE`.
+    pub op: &'a str,
+    /// Name the result is bound to (`MNL = ...`), if any.
+    pub result: Option<&'a str>,
+    /// `reuse=` concept, if any.
+    pub reuse: Option<&'a str>,
+    /// Source file and line of the call (recorded in the `concepts` table).
+    pub file: &'a str,
+    pub line: usize,
+    /// INFO level of the call (1 when the operator has no INFO keyword).
+    pub info: i64,
+    /// Where the operator prints (stdout for a run, a buffer in tests).
+    pub out: &'a mut dyn Write,
+    pub units: &'a Units,
+    /// Alarms the user silenced in DEBUT(IGNORE_ALARM=...).
+    pub ignored_alarms: &'a [String],
+    /// Tests run by TEST_* operators, in order.
+    pub tests: &'a mut Vec<TestOutcome>,
+    /// Concepts created by this call: (name, type). Filled by [`OpContext::create`].
+    pub created: Vec<(String, String)>,
+    /// Whether progress bars may be drawn (a terminal, not a test).
+    pub progress: bool,
+}
+
+impl OpContext<'_> {
+    /// The name of the result, or an error if the call was not assigned.
+    pub fn result_name(&self) -> Result<&str> {
+        self.result.ok_or_else(|| {
+            Error::validation(format!(
+                "{} produces a concept: assign it, e.g. X = {}(...)",
+                self.op, self.op
+            ))
+        })
+    }
+
+    /// Register a new concept of type `ty` named `name` in the store.
+    pub fn create(&mut self, name: &str, ty: &str) -> Result<()> {
+        self.store
+            .register_concept(name, ty, self.op, self.file, self.line)?;
+        self.created.push((name.to_string(), ty.to_string()));
+        Ok(())
+    }
+
+    /// Print an alarm (warning) unless the user silenced its id in DEBUT(IGNORE_ALARM=...).
+    pub fn alarm(&mut self, id: &str, message: &str) -> Result<()> {
+        if !self.ignored_alarms.iter().any(|a| a == id) {
+            writeln!(self.out, "<A> <{id}> {message}")?;
+        }
+        Ok(())
+    }
+
+    pub fn say(&mut self, text: &str) -> Result<()> {
+        writeln!(self.out, "{text}")?;
+        Ok(())
+    }
+}
+
+/// Signature of every operator.
+pub type OpFn = fn(&mut OpContext<'_>, &Args) -> Result<()>;
+
+/// The operator that implements `name`, if we have one. Operators handled by the
+/// interpreter itself (DEBUT, POURSUITE, FIN) are not listed here.
+pub fn lookup(name: &str) -> Option<OpFn> {
+    // One line per operator: "NAME" => module::run,
+    let f: OpFn = match name {
+        _ => return None,
+    };
+    Some(f)
+}

@@ -1,0 +1,131 @@
+//! Values of the command language after evaluation.
+//!
+//! These types are the contract between the language (`lang`), the catalogs
+//! (`catalog`) and the operators (`ops`): the evaluator turns source text into
+//! [`CommandCall`]s made of [`Value`]s, the validator checks them against a
+//! catalog and hands the operator an [`crate::args::Args`].
+
+use std::fmt;
+
+/// A position in a source file. `start`/`end` are byte offsets, `line`/`col` are 1-based.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Span {
+    pub start: usize,
+    pub end: usize,
+    pub line: usize,
+    pub col: usize,
+}
+
+/// A concept (a named result of an operator: mesh, model, matrix, table...).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ConceptRef {
+    pub name: String,
+    /// Code_Aster type name, e.g. `maillage_sdaster`, `matr_asse_depl_r`, `table_sdaster`.
+    pub ty: String,
+}
+
+/// One `KEY=value` of a call or of a factor keyword `_F(...)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Keyword {
+    pub name: String,
+    pub value: Value,
+    /// Span of the whole `KEY=value`.
+    pub span: Span,
+}
+
+/// An evaluated value.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    None,
+    Bool(bool),
+    Int(i64),
+    Real(f64),
+    Str(String),
+    /// A tuple or a list (Code_Aster does not distinguish them).
+    Seq(Vec<Value>),
+    /// A factor keyword occurrence `_F(K=v, ...)`.
+    Fact(Vec<Keyword>),
+    /// A concept bound to a Python name.
+    Concept(ConceptRef),
+    /// `CO('NAME')`: a concept a macro command creates as an extra output.
+    Co(String),
+}
+
+impl Value {
+    /// Short description of the kind of value, for error messages ("a real", "a text"...).
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            Value::None => "None",
+            Value::Bool(_) => "a boolean",
+            Value::Int(_) => "an integer",
+            Value::Real(_) => "a real",
+            Value::Str(_) => "a text",
+            Value::Seq(_) => "a list",
+            Value::Fact(_) => "a factor keyword _F(...)",
+            Value::Concept(_) => "a concept",
+            Value::Co(_) => "CO(...)",
+        }
+    }
+
+    pub fn as_f64(&self) -> Option<f64> {
+        match self {
+            Value::Int(i) => Some(*i as f64),
+            Value::Real(r) => Some(*r),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for Value {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Value::None => write!(f, "None"),
+            Value::Bool(b) => write!(f, "{}", if *b { "True" } else { "False" }),
+            Value::Int(i) => write!(f, "{i}"),
+            Value::Real(r) => write!(f, "{r:?}"),
+            Value::Str(s) => write!(f, "'{s}'"),
+            Value::Seq(items) => {
+                write!(f, "(")?;
+                for (i, v) in items.iter().enumerate() {
+                    if i > 0 {
+                        write!(f, ", ")?;
+                    }
+                    write!(f, "{v}")?;
+                }
+                if items.len() == 1 {
+                    write!(f, ",")?;
+                }
+                write!(f, ")")
+            }
+            Value::Fact(kws) => {
+                write!(f, "_F(")?;
+                for (i, k) in kws.iter().enumerate() {
+                    if i > 0 {
+                        write!(f, ", ")?;
+                    }
+                    write!(f, "{}={}", k.name, k.value)?;
+                }
+                write!(f, ")")
+            }
+            Value::Concept(c) => write!(f, "{}", c.name),
+            Value::Co(n) => write!(f, "CO('{n}')"),
+        }
+    }
+}
+
+/// One operator call, evaluated: `RESULT = OP(args)` or a bare `OP(args)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CommandCall {
+    /// Operator name, e.g. `MODE_NON_LINE`.
+    pub op: String,
+    /// Name the result is bound to (`MNL = ...`), if any.
+    pub result: Option<String>,
+    /// `reuse=NAME`: the concept the operator enriches (removed from `args`).
+    pub reuse: Option<ConceptRef>,
+    /// Keyword arguments in source order (without `reuse`).
+    pub args: Vec<Keyword>,
+    /// Span of the whole statement.
+    pub span: Span,
+    /// Span of the operator name.
+    pub op_span: Span,
+}
