@@ -8,11 +8,15 @@
 //! - [`mesh`], [`model`]: meshes, models, element matrices and assembly.
 //! - [`linalg`]: sparse/dense linear algebra glue and eigen solvers over faer.
 //! - [`nnm`]: the nonlinear normal mode engine (EHMAN), pure numerics, no SQL.
+//! - [`table`], [`function`]: in-memory tables and functions (filters, sorts, interpolation).
 //! - [`ops`]: one thin file per operator.
+//! - [`interp`]: runs a command file, one store transaction per operator.
 
 pub mod args;
 pub mod catalog;
 pub mod error;
+pub mod function;
+pub mod interp;
 pub mod lang;
 pub mod linalg;
 pub mod mesh;
@@ -20,4 +24,5 @@ pub mod model;
 pub mod nnm;
 pub mod ops;
 pub mod store;
+pub mod table;
 pub mod value;
