@@ -1,1 +1,443 @@
-//! (under construction)
+//! Runs a command file: evaluate statements, validate each operator call against its
+//! catalog, run it inside one store transaction, keep the score of TEST_* checks.
+//!
+//! `DEBUT`, `POURSUITE` and `FIN` are handled here because they open and close the store.
+//! Every other operator goes through [`crate::ops::lookup`].
+
+use crate::args::Args;
+use crate::catalog;
+use crate::error::{Error, Result};
+use crate::lang::{self, Env, Host, Source};
+use crate::ops::{self, OpContext, TestOutcome, Units};
+use crate::store::Store;
+use crate::value::{CommandCall, ConceptRef, Value};
+use std::collections::BTreeMap;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// How to run a file.
+pub struct RunOptions {
+    /// Database file; default `<case>.db` beside the command file.
+    pub db: Option<PathBuf>,
+    pub units: Units,
+    /// Draw progress bars (only when stderr is a terminal).
+    pub progress: bool,
+}
+
+/// What a run did, for the FIN summary and the exit code.
+#[derive(Debug, Default)]
+pub struct RunSummary {
+    /// Concepts created, in order: (name, type, operator).
+    pub created: Vec<(String, String, String)>,
+    pub tests: Vec<TestOutcome>,
+    /// Wall time per operator call: (operator, result name, time).
+    pub timings: Vec<(String, String, Duration)>,
+    /// Database used, if any was opened.
+    pub db: Option<PathBuf>,
+    /// The error that stopped the run, if any.
+    pub error: Option<Error>,
+    /// FIN() was reached.
+    pub finished: bool,
+}
+
+impl RunSummary {
+    pub fn nook_count(&self) -> usize {
+        self.tests.iter().filter(|t| !t.ok).count()
+    }
+    pub fn ok_count(&self) -> usize {
+        self.tests.iter().filter(|t| t.ok).count()
+    }
+}
+
+/// Alarms we know about; DEBUT(IGNORE_ALARM=...) names them.
+const DEBUT_NO_EFFECT: &[&str] = &[
+    "CODE",
+    "DEBUG",
+    "PAR_LOT",
+    "MEMOIRE",
+    "RESERVE_CPU",
+    "LANG",
+    "IMPR_MACRO",
+    "ERREUR",
+    "FORMAT_HDF",
+    "BASE",
+    "MESURE_TEMPS",
+    "HDF",
+    "INFO",
+];
+
+struct Runner<'o> {
+    file: String,
+    default_db: PathBuf,
+    units: Units,
+    progress: bool,
+    store: Option<Store>,
+    ignored_alarms: Vec<String>,
+    summary: RunSummary,
+    out: &'o mut dyn Write,
+}
+
+impl Runner<'_> {
+    fn store(&self) -> Result<&Store> {
+        self.store.as_ref().ok_or_else(|| {
+            Error::validation("no study is open")
+                .hint("a command file starts with DEBUT() (new study) or POURSUITE() (continue one)")
+        })
+    }
+
+    fn start_study(&mut self, call: &CommandCall, args: &Args) -> Result<Value> {
+        if self.store.is_some() {
+            return Err(Error::validation(format!(
+                "{} may only appear once, at the start of the file",
+                call.op
+            )));
+        }
+        let store = if call.op == "DEBUT" {
+            Store::create(&self.default_db)?
+        } else {
+            Store::open(&self.default_db)?
+        };
+        if call.op == "POURSUITE" {
+            let n = store.concepts()?.len();
+            writeln!(
+                self.out,
+                "POURSUITE: continuing {} with {n} concept(s)",
+                self.default_db.display()
+            )?;
+        }
+        self.summary.db = Some(self.default_db.clone());
+        self.store = Some(store);
+        if let Some(alarms) = args.texts("IGNORE_ALARM") {
+            self.ignored_alarms = alarms;
+        }
+        let no_effect: Vec<&str> = args
+            .simple
+            .iter()
+            .map(|(k, _, _)| k.as_str())
+            .chain(args.factor.iter().map(|(k, _, _)| k.as_str()))
+            .filter(|k| DEBUT_NO_EFFECT.contains(k))
+            .filter(|k| call.args.iter().any(|a| a.name == *k))
+            .collect();
+        if !no_effect.is_empty() {
+            writeln!(
+                self.out,
+                "{}: keyword(s) {} accepted for compatibility, no effect in aster-nl",
+                call.op,
+                no_effect.join(", ")
+            )?;
+        }
+        Ok(Value::None)
+    }
+
+    fn finish(&mut self) -> Result<Value> {
+        self.summary.finished = true;
+        let s = &self.summary;
+        let mut text = String::new();
+        text.push_str("\n==================== FIN ====================\n");
+        text.push_str(&format!("concepts created: {}\n", s.created.len()));
+        for (name, ty, op) in &s.created {
+            text.push_str(&format!("  {name:<16} {ty:<20} {op}\n"));
+        }
+        text.push_str(&format!(
+            "tests: {} OK, {} NOOK\n",
+            s.ok_count(),
+            s.nook_count()
+        ));
+        text.push_str("time per operator:\n");
+        let mut per_op: BTreeMap<&str, (usize, Duration)> = BTreeMap::new();
+        for (op, _, t) in &s.timings {
+            let e = per_op.entry(op.as_str()).or_default();
+            e.0 += 1;
+            e.1 += *t;
+        }
+        for (op, (n, t)) in per_op {
+            text.push_str(&format!(
+                "  {op:<18} {n:>4} call(s) {:>10.3} s\n",
+                t.as_secs_f64()
+            ));
+        }
+        if let Some(db) = &s.db {
+            text.push_str(&format!("results: {}\n", db.display()));
+        }
+        write!(self.out, "{text}")?;
+        Ok(Value::None)
+    }
+
+    fn run_operator(&mut self, call: &CommandCall, args: &Args) -> Result<Value> {
+        let op_fn = ops::lookup(&call.op).ok_or_else(|| {
+            Error::internal(format!(
+                "{} is in the catalog but aster-nl does not implement it yet",
+                call.op
+            ))
+        })?;
+        let store = self.store.as_ref().ok_or_else(|| {
+            Error::validation("no study is open").hint(
+                "a command file starts with DEBUT() (new study) or POURSUITE() (continue one)",
+            )
+        })?;
+        let info = args.int("INFO").unwrap_or(1);
+        let mut tests = Vec::new();
+        store.begin_op()?;
+        let started = Instant::now();
+        let mut ctx = OpContext {
+            store,
+            op: &call.op,
+            result: call.result.as_deref(),
+            reuse: call.reuse.as_ref().map(|c| c.name.as_str()),
+            file: &self.file,
+            line: call.span.line,
+            info,
+            out: &mut *self.out,
+            units: &self.units,
+            ignored_alarms: &self.ignored_alarms,
+            tests: &mut tests,
+            created: Vec::new(),
+            progress: self.progress,
+            value: None,
+        };
+        let outcome = op_fn(&mut ctx, args);
+        let created = std::mem::take(&mut ctx.created);
+        let value = ctx.value.take();
+        let outcome = outcome.and_then(|()| store.commit_op());
+        let elapsed = started.elapsed();
+        // TEST_* lines are printed by the operators; keep the score even if it failed later.
+        self.summary.tests.extend(tests);
+        if let Err(e) = outcome {
+            store.rollback_op();
+            return Err(e);
+        }
+        self.summary.timings.push((
+            call.op.clone(),
+            call.result.clone().unwrap_or_default(),
+            elapsed,
+        ));
+        for (name, ty) in &created {
+            self.summary
+                .created
+                .push((name.clone(), ty.clone(), call.op.clone()));
+        }
+        if let Some(v) = value {
+            return Ok(v);
+        }
+        let bound = call.result.as_ref().or(call.reuse.as_ref().map(|c| &c.name));
+        match bound {
+            Some(name) => {
+                let ty = created
+                    .iter()
+                    .find(|(n, _)| n == name)
+                    .map(|(_, t)| t.clone())
+                    .or_else(|| store.concept_type(name).ok().flatten());
+                Ok(match ty {
+                    Some(ty) => Value::Concept(ConceptRef {
+                        name: name.clone(),
+                        ty,
+                    }),
+                    None => Value::None,
+                })
+            }
+            None => Ok(Value::None),
+        }
+    }
+}
+
+impl Host for Runner<'_> {
+    fn is_operator(&self, name: &str) -> bool {
+        catalog::get(name).is_some()
+    }
+
+    fn operator_names(&self) -> Vec<String> {
+        catalog::operator_names()
+            .into_iter()
+            .map(str::to_string)
+            .collect()
+    }
+
+    fn resolve_name(&self, name: &str) -> Option<Value> {
+        let store = self.store.as_ref()?;
+        let ty = store.concept_type(name).ok().flatten()?;
+        Some(Value::Concept(ConceptRef {
+            name: name.to_string(),
+            ty,
+        }))
+    }
+
+    fn call(&mut self, call: CommandCall) -> Result<Value> {
+        if self.summary.finished {
+            return Ok(Value::None);
+        }
+        let args = catalog::validate(&call, &self.file).map_err(|errors| {
+            // Report every problem of the call; stop on the first.
+            let mut errors = errors.into_iter();
+            let first = errors.next().unwrap_or_else(|| Error::validation("invalid call"));
+            for e in errors {
+                let _ = writeln!(self.out, "{e}");
+            }
+            first
+        })?;
+        if self.store.is_none() && !matches!(call.op.as_str(), "DEBUT" | "POURSUITE") {
+            return Err(Error::validation(format!(
+                "{} before DEBUT() or POURSUITE()",
+                call.op
+            ))
+            .at(&self.file, call.op_span)
+            .hint("a command file starts with DEBUT() (new study) or POURSUITE() (continue one)"));
+        }
+        let result = match call.op.as_str() {
+            "DEBUT" | "POURSUITE" => self.start_study(&call, &args),
+            "FIN" => self.finish(),
+            _ => {
+                let _ = self.store()?;
+                self.run_operator(&call, &args)
+            }
+        };
+        result.map_err(|e| {
+            let e = e.keyword(call.op.clone());
+            e.at(&self.file, call.op_span)
+        })
+    }
+}
+
+/// Run a command file. Errors that stop the run are in `RunSummary::error`; the
+/// `Err` case is reserved for failures before anything ran (unreadable file).
+pub fn run_file(path: &Path, opts: RunOptions, out: &mut dyn Write) -> Result<RunSummary> {
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        Error::new(
+            crate::error::ErrorKind::Io,
+            format!("cannot read {}: {e}", path.display()),
+        )
+    })?;
+    let src = Source {
+        name: path.display().to_string(),
+        text,
+    };
+    let default_db = opts
+        .db
+        .clone()
+        .unwrap_or_else(|| path.with_extension("db"));
+    let mut units = opts.units;
+    units.comm_file.get_or_insert_with(|| path.to_path_buf());
+    run_source(&src, default_db, units, opts.progress, out)
+}
+
+/// Run source text (the file name in `src` is used in messages and in the `concepts` table).
+pub fn run_source(
+    src: &Source,
+    db: PathBuf,
+    units: Units,
+    progress: bool,
+    out: &mut dyn Write,
+) -> Result<RunSummary> {
+    let program = match lang::parse(src) {
+        Ok(p) => p,
+        Err(e) => {
+            return Ok(RunSummary {
+                error: Some(e),
+                ..RunSummary::default()
+            })
+        }
+    };
+    let mut runner = Runner {
+        file: src.name.clone(),
+        default_db: db,
+        units,
+        progress,
+        store: None,
+        ignored_alarms: Vec::new(),
+        summary: RunSummary::default(),
+        out,
+    };
+    let mut env = Env::default();
+    if let Err(e) = lang::execute(&program, src, &mut env, &mut runner) {
+        runner.summary.error = Some(e);
+    } else if !runner.summary.finished && runner.store.is_some() {
+        // Code_Aster closes the study at the end of the file even without FIN().
+        let _ = writeln!(runner.out, "note: no FIN() at the end of the file");
+    }
+    Ok(runner.summary)
+}
+
+/// A host for `check`: validates every call, runs nothing, collects all errors.
+struct Checker {
+    file: String,
+    errors: Vec<Error>,
+    /// Concepts the file would create: name -> type.
+    concepts: BTreeMap<String, String>,
+}
+
+impl Host for Checker {
+    fn is_operator(&self, name: &str) -> bool {
+        catalog::get(name).is_some()
+    }
+    fn operator_names(&self) -> Vec<String> {
+        catalog::operator_names()
+            .into_iter()
+            .map(str::to_string)
+            .collect()
+    }
+    fn resolve_name(&self, name: &str) -> Option<Value> {
+        self.concepts.get(name).map(|ty| {
+            Value::Concept(ConceptRef {
+                name: name.to_string(),
+                ty: ty.clone(),
+            })
+        })
+    }
+    fn call(&mut self, call: CommandCall) -> Result<Value> {
+        match catalog::validate(&call, &self.file) {
+            Ok(args) => {
+                for (name, ty) in catalog::co_outputs(&call.op, &args) {
+                    self.concepts.insert(name, ty);
+                }
+                let ty = catalog::result_type(&call.op, &args);
+                match (&call.result, ty) {
+                    (Some(name), Some(ty)) if !matches!(ty.as_str(), "R" | "I" | "TXM") => {
+                        self.concepts.insert(name.clone(), ty.clone());
+                        Ok(Value::Concept(ConceptRef {
+                            name: name.clone(),
+                            ty,
+                        }))
+                    }
+                    (_, Some(ty)) if ty == "R" => Ok(Value::Real(0.0)),
+                    (_, Some(ty)) if ty == "I" => Ok(Value::Int(0)),
+                    (_, Some(ty)) if ty == "TXM" => Ok(Value::Str(String::new())),
+                    _ => Ok(Value::None),
+                }
+            }
+            Err(errors) => {
+                self.errors.extend(errors);
+                // Keep going so that every error of the file is reported; bind the name to
+                // a concept of the type the operator would have produced.
+                let ty = catalog::get(&call.op).and_then(|d| d.result.clone());
+                match (&call.result, ty) {
+                    (Some(name), Some(ty)) => {
+                        self.concepts.insert(name.clone(), ty.clone());
+                        Ok(Value::Concept(ConceptRef {
+                            name: name.clone(),
+                            ty,
+                        }))
+                    }
+                    _ => Ok(Value::None),
+                }
+            }
+        }
+    }
+}
+
+/// Check a file without running it: every syntax and validation error, all together.
+pub fn check_source(src: &Source) -> Vec<Error> {
+    let program = match lang::parse(src) {
+        Ok(p) => p,
+        Err(e) => return vec![e],
+    };
+    let mut checker = Checker {
+        file: src.name.clone(),
+        errors: Vec::new(),
+        concepts: BTreeMap::new(),
+    };
+    let mut env = Env::default();
+    if let Err(e) = lang::execute(&program, src, &mut env, &mut checker) {
+        checker.errors.push(e);
+    }
+    checker.errors
+}

@@ -15,6 +15,7 @@
 pub mod args;
 pub mod catalog;
 pub mod error;
+pub mod export;
 pub mod function;
 pub mod interp;
 pub mod lang;

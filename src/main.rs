@@ -1,1 +1,184 @@
-fn main() {}
+//! The `aster-nl` command: a thin layer over the library.
+
+use aster_nl::error::{Error, ErrorKind};
+use aster_nl::interp::{self, RunOptions};
+use aster_nl::lang::{self, Source};
+use aster_nl::ops::Units;
+use aster_nl::{catalog, export, store};
+use clap::{Parser, Subcommand};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Exit codes: 0 all good, 1 a TEST_* was NOOK, 2 an error stopped the run or the check.
+const EXIT_NOOK: u8 = 1;
+const EXIT_ERROR: u8 = 2;
+
+#[derive(Parser)]
+#[command(name = "aster-nl", version, about = "Code_Aster-style command files for nonlinear modal analysis, results in SQLite")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a command file (.comm) or a Code_Aster export file (.export).
+    Run {
+        file: PathBuf,
+        /// Database file (default: <case>.db beside the command file).
+        #[arg(long)]
+        db: Option<PathBuf>,
+        /// Map a logical unit to a file, e.g. --unit 20=mesh.mail (repeatable).
+        #[arg(long = "unit", value_name = "N=PATH")]
+        units: Vec<String>,
+    },
+    /// Check a command file against the catalogs without running it; reports every error.
+    Check { file: PathBuf },
+    /// Print an operator's keywords (or the list of operators).
+    Catalog { operator: Option<String> },
+    /// List the concepts and SQL tables of a database.
+    Tables { db: PathBuf },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Run { file, db, units } => run(&file, db, &units),
+        Command::Check { file } => check(&file),
+        Command::Catalog { operator } => print_catalog(operator.as_deref()),
+        Command::Tables { db } => tables(&db),
+    }
+}
+
+fn fail(e: &Error, src: Option<&Source>) -> ExitCode {
+    eprintln!("{}", lang::render(e, src));
+    ExitCode::from(EXIT_ERROR)
+}
+
+fn parse_units(specs: &[String], base: &Path) -> Result<Units, Error> {
+    let mut units = Units::default();
+    for spec in specs {
+        let (n, path) = spec.split_once('=').ok_or_else(|| {
+            Error::new(ErrorKind::Io, format!("--unit {spec}: expected N=PATH, e.g. 20=mesh.mail"))
+        })?;
+        let n: i64 = n.trim().parse().map_err(|_| {
+            Error::new(ErrorKind::Io, format!("--unit {spec}: '{n}' is not a unit number"))
+        })?;
+        let p = PathBuf::from(path);
+        let p = if p.is_relative() && !p.exists() { base.join(p) } else { p };
+        units.map.insert(n, p);
+    }
+    Ok(units)
+}
+
+fn run(file: &Path, db: Option<PathBuf>, unit_specs: &[String]) -> ExitCode {
+    let cwd = PathBuf::from(".");
+    let mut units = match parse_units(unit_specs, &cwd) {
+        Ok(u) => u,
+        Err(e) => return fail(&e, None),
+    };
+    let comm = if file.extension().is_some_and(|e| e == "export") {
+        match export::read_export(file) {
+            Ok(exp) => {
+                for (n, p) in exp.units {
+                    units.map.entry(n).or_insert(p);
+                }
+                exp.comm
+            }
+            Err(e) => return fail(&e, None),
+        }
+    } else {
+        file.to_path_buf()
+    };
+    units.comm_file = Some(comm.clone());
+    let opts = RunOptions {
+        db,
+        units,
+        progress: std::io::stderr().is_terminal(),
+    };
+    let mut stdout = std::io::stdout();
+    let summary = match interp::run_file(&comm, opts, &mut stdout) {
+        Ok(s) => s,
+        Err(e) => return fail(&e, None),
+    };
+    if let Some(e) = &summary.error {
+        let src = std::fs::read_to_string(&comm).ok().map(|text| Source {
+            name: comm.display().to_string(),
+            text,
+        });
+        eprintln!("{}", lang::render(e, src.as_ref()));
+        if let Some(db) = &summary.db {
+            eprintln!(
+                "the run stopped; every concept created before the failing command is kept in {}",
+                db.display()
+            );
+        }
+        return ExitCode::from(EXIT_ERROR);
+    }
+    if summary.nook_count() > 0 {
+        eprintln!("{} test(s) NOOK", summary.nook_count());
+        return ExitCode::from(EXIT_NOOK);
+    }
+    ExitCode::SUCCESS
+}
+
+fn check(file: &Path) -> ExitCode {
+    let text = match std::fs::read_to_string(file) {
+        Ok(t) => t,
+        Err(e) => {
+            return fail(
+                &Error::new(ErrorKind::Io, format!("cannot read {}: {e}", file.display())),
+                None,
+            )
+        }
+    };
+    let src = Source {
+        name: file.display().to_string(),
+        text,
+    };
+    let errors = interp::check_source(&src);
+    if errors.is_empty() {
+        println!("{}: OK", file.display());
+        return ExitCode::SUCCESS;
+    }
+    for e in &errors {
+        eprintln!("{}", lang::render(e, Some(&src)));
+    }
+    eprintln!("{}: {} error(s)", file.display(), errors.len());
+    ExitCode::from(EXIT_ERROR)
+}
+
+fn print_catalog(op: Option<&str>) -> ExitCode {
+    match op {
+        None => {
+            print!("{}", catalog::summary());
+            ExitCode::SUCCESS
+        }
+        Some(op) => match catalog::describe(&op.to_uppercase()) {
+            Some(text) => {
+                print!("{text}");
+                ExitCode::SUCCESS
+            }
+            None => fail(
+                &Error::validation(format!("unknown operator '{op}'"))
+                    .hint("`aster-nl catalog` lists the operators"),
+                None,
+            ),
+        },
+    }
+}
+
+fn tables(db: &Path) -> ExitCode {
+    let s = match store::Store::open(db) {
+        Ok(s) => s,
+        Err(e) => return fail(&e, None),
+    };
+    match store::listing(&s) {
+        Ok(text) => {
+            print!("{text}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => fail(&e, None),
+    }
+}

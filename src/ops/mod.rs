@@ -53,6 +53,9 @@ pub struct OpContext<'a> {
     pub created: Vec<(String, String)>,
     /// Whether progress bars may be drawn (a terminal, not a test).
     pub progress: bool,
+    /// Set by operators whose result is a plain Python value (EXTR_TABLE with
+    /// TYPE_RESU='R', ...) rather than a concept.
+    pub value: Option<crate::value::Value>,
 }
 
 impl OpContext<'_> {

@@ -277,6 +277,34 @@ impl Store {
     }
 }
 
+/// Text listing of a database for `aster-nl tables`: concepts, then every SQL table with
+/// its row count.
+pub fn listing(store: &Store) -> Result<String> {
+    let mut text = String::from("concepts:\n");
+    for c in store.concepts()? {
+        text.push_str(&format!(
+            "  {:<16} {:<20} {:<16} {}:{}  {}\n",
+            c.name, c.ty, c.operator, c.file, c.line, c.created_at
+        ));
+    }
+    text.push_str("SQL tables:\n");
+    let names: Vec<String> = {
+        let mut stmt = store
+            .conn()
+            .prepare("SELECT name FROM sqlite_master WHERE type='table' ORDER BY name")?;
+        let rows = stmt.query_map([], |r| r.get(0))?;
+        rows.collect::<rusqlite::Result<Vec<String>>>()?
+    };
+    for name in names {
+        let quoted = name.replace('"', "\"\"");
+        let n: i64 = store
+            .conn()
+            .query_row(&format!("SELECT count(*) FROM \"{quoted}\""), [], |r| r.get(0))?;
+        text.push_str(&format!("  {name:<24} {n:>8} rows\n"));
+    }
+    Ok(text)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
