@@ -157,7 +157,7 @@ mod tests {
     #[test]
     fn line_index_counts_lines_and_characters() {
         let idx = LineIndex::new("ab\nçd e\n");
-        let s = idx.span(6, 7); // 'e': 'ç' is 2 bytes
+        let s = idx.span(7, 8); // 'e': 'ç' is 2 bytes
         assert_eq!((s.line, s.col), (2, 4));
         assert_eq!(idx.span(0, 1).line, 1);
         let s = idx.span(100, 200);
