@@ -14,10 +14,16 @@ impl Host for AnyOperator {
         name.chars().next().is_some_and(|c| c.is_ascii_uppercase())
     }
     fn call(&mut self, call: CommandCall) -> Result<Value> {
-        Ok(Value::Concept(ConceptRef { name: call.result.unwrap_or_default(), ty: "x".into() }))
+        Ok(Value::Concept(ConceptRef {
+            name: call.result.unwrap_or_default(),
+            ty: "x".into(),
+        }))
     }
     fn lookup_concept(&self, name: &str) -> Option<ConceptRef> {
-        Some(ConceptRef { name: name.into(), ty: "co".into() })
+        Some(ConceptRef {
+            name: name.into(),
+            ty: "co".into(),
+        })
     }
     fn print(&mut self, _text: &str) {}
 }
@@ -31,18 +37,82 @@ fn run(text: &str) -> bool {
         assert!(r.starts_with("error: "));
         if let Some(loc) = &e.location {
             assert!(loc.span.line >= 1 && loc.span.col >= 1, "{e}");
-            assert!(loc.span.start <= loc.span.end && loc.span.end <= text.len(), "{e}");
+            assert!(
+                loc.span.start <= loc.span.end && loc.span.end <= text.len(),
+                "{e}"
+            );
         }
     }
     result.is_ok()
 }
 
 const TOKENS: &[&str] = &[
-    "DEBUT", "FIN", "MAIL", "LIRE_MAILLAGE", "_F", "CO", "reuse", "x", "k", "i", "L", "math",
-    "sqrt", "pi", "range", "len", "max", "for", "in", "from", "import", "*", "as", "=", "+",
-    "-", "*", "/", "//", "%", "**", "+=", "(", ")", "[", "]", ",", ";", ":", ".", "1", "0",
-    "2.5", ".5", "1.e4", "2E-3", "99999999999999999999", "'a'", "\"b\"", "'''c'''", "#c", "\n",
-    "\n    ", "\n\t", "\\\n", " ", "True", "None", "def", "if", "{", "}", "'", "\"", "\\", "é",
+    "DEBUT",
+    "FIN",
+    "MAIL",
+    "LIRE_MAILLAGE",
+    "_F",
+    "CO",
+    "reuse",
+    "x",
+    "k",
+    "i",
+    "L",
+    "math",
+    "sqrt",
+    "pi",
+    "range",
+    "len",
+    "max",
+    "for",
+    "in",
+    "from",
+    "import",
+    "*",
+    "as",
+    "=",
+    "+",
+    "-",
+    "*",
+    "/",
+    "//",
+    "%",
+    "**",
+    "+=",
+    "(",
+    ")",
+    "[",
+    "]",
+    ",",
+    ";",
+    ":",
+    ".",
+    "1",
+    "0",
+    "2.5",
+    ".5",
+    "1.e4",
+    "2E-3",
+    "99999999999999999999",
+    "'a'",
+    "\"b\"",
+    "'''c'''",
+    "#c",
+    "\n",
+    "\n    ",
+    "\n\t",
+    "\\\n",
+    " ",
+    "True",
+    "None",
+    "def",
+    "if",
+    "{",
+    "}",
+    "'",
+    "\"",
+    "\\",
+    "é",
 ];
 
 fn token_soup() -> impl Strategy<Value = String> {

@@ -30,7 +30,9 @@ fn real(op: &str, r: f64) -> OpResult {
     if r.is_finite() {
         Ok(Value::Real(r))
     } else {
-        Err(format!("the result of '{op}' is not a finite number (overflow)"))
+        Err(format!(
+            "the result of '{op}' is not a finite number (overflow)"
+        ))
     }
 }
 
@@ -44,7 +46,10 @@ pub fn unary(op: UnOp, v: &Value) -> OpResult {
         (UnOp::Neg, Value::Real(r)) => Ok(Value::Real(-r)),
         (_, v) => match int_of(v) {
             Some(i) if op == UnOp::Plus => Ok(Value::Int(i)),
-            Some(i) => i.checked_neg().map(Value::Int).ok_or_else(|| "integer overflow in '-'".to_string()),
+            Some(i) => i
+                .checked_neg()
+                .map(Value::Int)
+                .ok_or_else(|| "integer overflow in '-'".to_string()),
             None => Err(format!(
                 "bad operand for unary {}: {}",
                 if op == UnOp::Neg { "-" } else { "+" },
@@ -70,8 +75,12 @@ pub fn binary(op: BinOp, a: &Value, b: &Value) -> OpResult {
             check_len(x.len() + y.len())?;
             Ok(Value::Seq(x.iter().chain(y).cloned().collect()))
         }
-        (BinOp::Mul, Value::Seq(_) | Value::Str(_), n) if int_of(n).is_some() => repeat(a, int_of(n)),
-        (BinOp::Mul, n, Value::Seq(_) | Value::Str(_)) if int_of(n).is_some() => repeat(b, int_of(n)),
+        (BinOp::Mul, Value::Seq(_) | Value::Str(_), n) if int_of(n).is_some() => {
+            repeat(a, int_of(n))
+        }
+        (BinOp::Mul, n, Value::Seq(_) | Value::Str(_)) if int_of(n).is_some() => {
+            repeat(b, int_of(n))
+        }
         (BinOp::Mod, Value::Str(_), _) => Err("string formatting with '%' is not supported".into()),
         _ => Err(format!(
             "unsupported operand types for '{}': {} and {}",
@@ -84,7 +93,9 @@ pub fn binary(op: BinOp, a: &Value, b: &Value) -> OpResult {
 
 fn check_len(n: usize) -> Result<(), String> {
     if n > MAX_SEQ_LEN {
-        Err(format!("the result would have {n} items, more than the limit {MAX_SEQ_LEN}"))
+        Err(format!(
+            "the result would have {n} items, more than the limit {MAX_SEQ_LEN}"
+        ))
     } else {
         Ok(())
     }
@@ -127,8 +138,12 @@ fn int_op(op: BinOp, x: i64, y: i64) -> OpResult {
         }
         BinOp::Mod => {
             let r = x.checked_rem(y).unwrap_or(0); // only MIN % -1, which is 0
-            // Python's remainder has the sign of the divisor.
-            Ok(Value::Int(if r != 0 && ((r < 0) != (y < 0)) { r + y } else { r }))
+                                                   // Python's remainder has the sign of the divisor.
+            Ok(Value::Int(if r != 0 && ((r < 0) != (y < 0)) {
+                r + y
+            } else {
+                r
+            }))
         }
         BinOp::Pow if y >= 0 => {
             let e = u32::try_from(y).map_err(|_| overflow(op))?;
@@ -149,7 +164,14 @@ fn real_op(op: BinOp, x: f64, y: f64) -> OpResult {
         BinOp::FloorDiv => real(s, (x / y).floor()),
         BinOp::Mod => {
             let r = x % y;
-            real(s, if r != 0.0 && ((r < 0.0) != (y < 0.0)) { r + y } else { r })
+            real(
+                s,
+                if r != 0.0 && ((r < 0.0) != (y < 0.0)) {
+                    r + y
+                } else {
+                    r
+                },
+            )
         }
         BinOp::Pow => {
             if x == 0.0 && y < 0.0 {
@@ -190,8 +212,14 @@ mod tests {
 
     #[test]
     fn errors_instead_of_panics() {
-        assert_eq!(binary(BinOp::Div, &Int(1), &Int(0)), Err("division by zero".into()));
-        assert_eq!(binary(BinOp::FloorDiv, &Int(i64::MIN), &Int(-1)), Err("integer overflow in '//'".into()));
+        assert_eq!(
+            binary(BinOp::Div, &Int(1), &Int(0)),
+            Err("division by zero".into())
+        );
+        assert_eq!(
+            binary(BinOp::FloorDiv, &Int(i64::MIN), &Int(-1)),
+            Err("integer overflow in '//'".into())
+        );
         assert!(binary(BinOp::Pow, &Int(9), &Int(99)).is_err());
         assert!(binary(BinOp::Pow, &Int(2), &Int(i64::MAX)).is_err());
         assert!(binary(BinOp::Pow, &Real(10.), &Int(400)).is_err());
@@ -207,9 +235,18 @@ mod tests {
     #[test]
     fn sequences_and_texts() {
         let t = Value::Seq(vec![Real(0.)]);
-        assert_eq!(binary(BinOp::Mul, &t, &Int(3)), Ok(Value::Seq(vec![Real(0.); 3])));
-        assert_eq!(binary(BinOp::Mul, &Int(2), &Value::Str("ab".into())), Ok(Value::Str("abab".into())));
-        assert_eq!(binary(BinOp::Add, &Value::Str("a".into()), &Value::Str("b".into())), Ok(Value::Str("ab".into())));
+        assert_eq!(
+            binary(BinOp::Mul, &t, &Int(3)),
+            Ok(Value::Seq(vec![Real(0.); 3]))
+        );
+        assert_eq!(
+            binary(BinOp::Mul, &Int(2), &Value::Str("ab".into())),
+            Ok(Value::Str("abab".into()))
+        );
+        assert_eq!(
+            binary(BinOp::Add, &Value::Str("a".into()), &Value::Str("b".into())),
+            Ok(Value::Str("ab".into()))
+        );
         assert_eq!(binary(BinOp::Mul, &t, &Int(-2)), Ok(Value::Seq(vec![])));
     }
 }

@@ -31,8 +31,15 @@ type R = std::result::Result<Value, String>;
 
 fn arity(f: &str, args: &[Value], min: usize, max: usize) -> Result<(), String> {
     if args.len() < min || args.len() > max {
-        let want = if min == max { format!("{min}") } else { format!("{min} to {max}") };
-        return Err(format!("{f}() takes {want} argument(s), got {}", args.len()));
+        let want = if min == max {
+            format!("{min}")
+        } else {
+            format!("{min} to {max}")
+        };
+        return Err(format!(
+            "{f}() takes {want} argument(s), got {}",
+            args.len()
+        ));
     }
     Ok(())
 }
@@ -45,7 +52,9 @@ fn finite(f: &str, x: f64) -> R {
     if x.is_finite() {
         Ok(Value::Real(x))
     } else {
-        Err(format!("{f}(): math range error (result is not a finite number)"))
+        Err(format!(
+            "{f}(): math range error (result is not a finite number)"
+        ))
     }
 }
 
@@ -59,8 +68,9 @@ fn domain(f: &str, ok: bool, x: f64) -> Result<(), String> {
 
 /// A real to an integer, as Python's int()/floor()/ceil() (which never overflow there).
 fn to_int(f: &str, x: f64) -> R {
-    // i64::MAX as f64 rounds up to 2^63, which is already out of range.
-    if x.is_finite() && x >= -9.223_372_036_854_775_808e18 && x < 9.223_372_036_854_775_808e18 {
+    // i64 holds [-2^63, 2^63); 2^63 is exact in f64 (i64::MAX is not).
+    let bound = 2f64.powi(63);
+    if (-bound..bound).contains(&x) {
         Ok(Value::Int(x as i64))
     } else {
         Err(format!("{f}(): {x} cannot be converted to an integer"))
@@ -144,7 +154,10 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
                 Value::Real(r) => Ok(Value::Real(r.abs())),
                 v => match num_of(v) {
                     Some(_) => arith::unary(super::ast::UnOp::Plus, v).and_then(|v| match v {
-                        Value::Int(i) => i.checked_abs().map(Value::Int).ok_or_else(|| "integer overflow in abs()".into()),
+                        Value::Int(i) => i
+                            .checked_abs()
+                            .map(Value::Int)
+                            .ok_or_else(|| "integer overflow in abs()".into()),
                         other => Ok(other),
                     }),
                     None => Err(format!("abs() needs a number, got {}", v.kind_name())),
@@ -184,7 +197,10 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
                     let r = (x * scale).round_ties_even() / scale;
                     Ok(Value::Real(if r.is_finite() { r } else { x }))
                 }
-                Some(v) => Err(format!("round() needs an integer number of digits, got {}", v.kind_name())),
+                Some(v) => Err(format!(
+                    "round() needs an integer number of digits, got {}",
+                    v.kind_name()
+                )),
             }
         }
         "min" | "max" => {
@@ -203,7 +219,8 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
                     best = Some((v, x));
                 }
             }
-            best.map(|(v, _)| v.clone()).ok_or_else(|| format!("{f}() of an empty list"))
+            best.map(|(v, _)| v.clone())
+                .ok_or_else(|| format!("{f}() of an empty list"))
         }
         "len" => {
             arity(f, args, 1, 1)?;
@@ -220,8 +237,13 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
             match args.first() {
                 None => Ok(Value::Seq(vec![])),
                 Some(Value::Seq(items)) => Ok(Value::Seq(items.clone())),
-                Some(Value::Str(s)) => Ok(Value::Seq(s.chars().map(|c| Value::Str(c.to_string())).collect())),
-                Some(v) => Err(format!("{f}() needs a list, a tuple or a text, got {}", v.kind_name())),
+                Some(Value::Str(s)) => Ok(Value::Seq(
+                    s.chars().map(|c| Value::Str(c.to_string())).collect(),
+                )),
+                Some(v) => Err(format!(
+                    "{f}() needs a list, a tuple or a text, got {}",
+                    v.kind_name()
+                )),
             }
         }
         "sum" => {
@@ -275,11 +297,20 @@ fn range(args: &[Value]) -> R {
     }
     // Number of items, computed in i128 so that no bound can overflow.
     let (s, e, st) = (i128::from(start), i128::from(stop), i128::from(step));
-    let count = if st > 0 { (e - s + st - 1).div_euclid(st) } else { (s - e - st - 1).div_euclid(-st) }.max(0);
-    if count > MAX_SEQ_LEN as i128 {
-        return Err(format!("range() would have {count} items, more than the limit {MAX_SEQ_LEN}"));
+    let count = if st > 0 {
+        (e - s + st - 1).div_euclid(st)
+    } else {
+        (s - e - st - 1).div_euclid(-st)
     }
-    let out = (0..count).map(|k| Value::Int((s + k * st) as i64)).collect();
+    .max(0);
+    if count > MAX_SEQ_LEN as i128 {
+        return Err(format!(
+            "range() would have {count} items, more than the limit {MAX_SEQ_LEN}"
+        ));
+    }
+    let out = (0..count)
+        .map(|k| Value::Int((s + k * st) as i64))
+        .collect();
     Ok(Value::Seq(out))
 }
 
@@ -310,7 +341,10 @@ mod tests {
         assert_eq!(call_math("log", &[Int(8), Int(2)]), Ok(Real(3.0)));
         assert_eq!(call_math("floor", &[Real(-1.5)]), Ok(Int(-2)));
         assert_eq!(call_math("ceil", &[Real(1.2)]), Ok(Int(2)));
-        assert_eq!(call_math("sqrt", &[Int(-1)]), Err("sqrt(): math domain error (argument -1)".into()));
+        assert_eq!(
+            call_math("sqrt", &[Int(-1)]),
+            Err("sqrt(): math domain error (argument -1)".into())
+        );
         assert!(call_math("exp", &[Real(1000.)]).is_err());
         assert!(call_math("acos", &[Real(1.5)]).is_err());
         assert!(call_math("floor", &[Real(1e300)]).is_err());
@@ -321,12 +355,24 @@ mod tests {
     fn builtins_like_python() {
         assert_eq!(call_builtin("int", &[Real(-2.7)]), Ok(Int(-2)));
         assert_eq!(call_builtin("round", &[Real(2.5)]), Ok(Int(2)));
-        assert_eq!(call_builtin("max", &[Int(1), Real(2.5), Int(2)]), Ok(Real(2.5)));
+        assert_eq!(
+            call_builtin("max", &[Int(1), Real(2.5), Int(2)]),
+            Ok(Real(2.5))
+        );
         assert_eq!(call_builtin("min", &[ints(&[3, 1, 2])]), Ok(Int(1)));
-        assert_eq!(call_builtin("sum", &[Seq(vec![Int(1), Real(0.5)])]), Ok(Real(1.5)));
+        assert_eq!(
+            call_builtin("sum", &[Seq(vec![Int(1), Real(0.5)])]),
+            Ok(Real(1.5))
+        );
         assert_eq!(call_builtin("len", &[ints(&[3, 1])]), Ok(Int(2)));
-        assert_eq!(call_builtin("str", &[Real(1.0)]), Ok(Value::Str("1.0".into())));
-        assert_eq!(call_builtin("float", &[Value::Str(" 2e3 ".into())]), Ok(Real(2000.)));
+        assert_eq!(
+            call_builtin("str", &[Real(1.0)]),
+            Ok(Value::Str("1.0".into()))
+        );
+        assert_eq!(
+            call_builtin("float", &[Value::Str(" 2e3 ".into())]),
+            Ok(Real(2000.))
+        );
         assert_eq!(call_builtin("abs", &[Int(-3)]), Ok(Int(3)));
         assert!(call_builtin("abs", &[Int(i64::MIN)]).is_err());
         assert!(call_builtin("max", &[Seq(vec![])]).is_err());

@@ -25,8 +25,17 @@ impl<'a> LineIndex<'a> {
         let end = floor_char(self.text, end.clamp(start, self.text.len()));
         let line = self.starts.partition_point(|&s| s <= start).max(1);
         let line_start = self.starts.get(line - 1).copied().unwrap_or(0);
-        let col = self.text.get(line_start..start).map_or(0, |s| s.chars().count()) + 1;
-        Span { start, end, line, col }
+        let col = self
+            .text
+            .get(line_start..start)
+            .map_or(0, |s| s.chars().count())
+            + 1;
+        Span {
+            start,
+            end,
+            line,
+            col,
+        }
     }
 }
 
@@ -85,7 +94,16 @@ pub fn render_styled(error: &Error, src: Option<&Source>, color: bool) -> String
             let num = sp.line.to_string();
             let pad = " ".repeat(num.len());
             // Tabs are shown as 4 spaces; the caret column follows.
-            let shown: String = text.chars().map(|c| if c == '\t' { "    ".to_string() } else { c.to_string() }).collect();
+            let shown: String = text
+                .chars()
+                .map(|c| {
+                    if c == '\t' {
+                        "    ".to_string()
+                    } else {
+                        c.to_string()
+                    }
+                })
+                .collect();
             let before: usize = text
                 .chars()
                 .take(sp.col.saturating_sub(1))
@@ -99,7 +117,11 @@ pub fn render_styled(error: &Error, src: Option<&Source>, color: bool) -> String
                 .min(line_chars.saturating_sub(sp.col.saturating_sub(1)))
                 .max(1);
             out.push_str(&format!(" {pad} {}\n", paint("34", "|")));
-            out.push_str(&format!(" {} {} {shown}\n", paint("34", &num), paint("34", "|")));
+            out.push_str(&format!(
+                " {} {} {shown}\n",
+                paint("34", &num),
+                paint("34", "|")
+            ));
             out.push_str(&format!(
                 " {pad} {} {}{}\n",
                 paint("34", "|"),
@@ -166,9 +188,14 @@ mod tests {
 
     #[test]
     fn caret_is_under_the_span() {
-        let src = Source { name: "f.comm".into(), text: "A = 1\nX = FOO(A=1)\n".into() };
+        let src = Source {
+            name: "f.comm".into(),
+            text: "A = 1\nX = FOO(A=1)\n".into(),
+        };
         let span = LineIndex::new(&src.text).span(10, 13);
-        let e = Error::input("unknown operator 'FOO'").at("f.comm", span).hint("did you mean 'FOX'?");
+        let e = Error::input("unknown operator 'FOO'")
+            .at("f.comm", span)
+            .hint("did you mean 'FOX'?");
         let r = render_plain(&e, Some(&src));
         let lines: Vec<&str> = r.lines().collect();
         assert_eq!(lines[0], "error: unknown operator 'FOO'");
@@ -182,22 +209,34 @@ mod tests {
 
     #[test]
     fn caret_after_tabs_and_without_source() {
-        let src = Source { name: "f.comm".into(), text: "\tX = y\n".into() };
+        let src = Source {
+            name: "f.comm".into(),
+            text: "\tX = y\n".into(),
+        };
         let span = LineIndex::new(&src.text).span(5, 6);
         let e = Error::input("name 'y' is not defined").at("f.comm", span);
         let r = render_plain(&e, Some(&src));
         assert!(r.contains("     X = y\n"), "{r}");
         assert!(r.contains("   |         ^\n"), "{r}");
         // Another file: location only.
-        let other = Source { name: "g.comm".into(), text: String::new() };
+        let other = Source {
+            name: "g.comm".into(),
+            text: String::new(),
+        };
         assert_eq!(render_plain(&e, Some(&other)).lines().count(), 2);
         assert_eq!(render_plain(&e, None).lines().count(), 2);
     }
 
     #[test]
     fn suggests_close_names() {
-        let names: Vec<String> = ["AFFE_MODELE", "AFFE_MATERIAU", "LIRE_MAILLAGE"].iter().map(|s| s.to_string()).collect();
-        assert_eq!(suggestions("AFFE_MODEL", &names), vec!["AFFE_MODELE".to_string()]);
+        let names: Vec<String> = ["AFFE_MODELE", "AFFE_MATERIAU", "LIRE_MAILLAGE"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        assert_eq!(
+            suggestions("AFFE_MODEL", &names),
+            vec!["AFFE_MODELE".to_string()]
+        );
         assert!(suggestions("XYZ", &names).is_empty());
         assert_eq!(edit_distance("kitten", "sitting"), 3);
     }

@@ -16,7 +16,12 @@ pub const MAX_STEPS: u64 = 10_000_000;
 const IMPORT_HINT: &str = "add `from math import *` at the top of the file";
 
 pub fn execute(program: &Program, src: &Source, env: &mut Env, host: &mut dyn Host) -> Result<()> {
-    let mut ev = Evaluator { file: &src.name, env, host, steps: 0 };
+    let mut ev = Evaluator {
+        file: &src.name,
+        env,
+        host,
+        steps: 0,
+    };
     ev.block(&program.stmts)
 }
 
@@ -26,6 +31,9 @@ struct Evaluator<'a> {
     host: &'a mut dyn Host,
     steps: u64,
 }
+
+/// Positional values (with their spans) and keywords of a call.
+type EvaluatedArgs = (Vec<(Value, Span)>, Vec<Keyword>);
 
 /// Where a call stands: operators may only be called by a statement.
 #[derive(Clone, Copy)]
@@ -40,7 +48,8 @@ enum Site<'n> {
 
 fn is_upper_name(n: &str) -> bool {
     n.chars().next().is_some_and(|c| c.is_ascii_uppercase())
-        && n.chars().all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
+        && n.chars()
+            .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
 }
 
 impl Evaluator<'_> {
@@ -61,7 +70,8 @@ impl Evaluator<'_> {
     fn stmt(&mut self, s: &Stmt) -> Result<()> {
         self.steps += 1;
         if self.steps > MAX_STEPS {
-            return Err(self.input(format!("more than {MAX_STEPS} statements executed"), s.span)
+            return Err(self
+                .input(format!("more than {MAX_STEPS} statements executed"), s.span)
                 .hint("a loop is probably far too long"));
         }
         match &s.kind {
@@ -91,7 +101,10 @@ impl Evaluator<'_> {
                     Value::Str(t) => t.chars().map(|c| Value::Str(c.to_string())).collect(),
                     v => {
                         return Err(self.input(
-                            format!("'for' needs a list, a tuple or a range, got {}", v.kind_name()),
+                            format!(
+                                "'for' needs a list, a tuple or a range, got {}",
+                                v.kind_name()
+                            ),
                             iter.span,
                         ))
                     }
@@ -134,7 +147,9 @@ impl Evaluator<'_> {
                     } else if MATH_FUNCS.contains(&n.text.as_str()) {
                         self.env.import_fn(&bound.text, &n.text);
                     } else {
-                        return Err(self.input(format!("cannot import '{}' from 'math'", n.text), n.span));
+                        return Err(
+                            self.input(format!("cannot import '{}' from 'math'", n.text), n.span)
+                        );
                     }
                 }
             }
@@ -198,14 +213,19 @@ impl Evaluator<'_> {
                 index(&b, &i).map_err(|m| self.input(m, e.span))
             }
             ExprKind::Attr(base, attr) => match &base.kind {
-                ExprKind::Name(m) if self.env.modules.contains(m) && !self.env.vars.contains_key(m) => {
+                ExprKind::Name(m)
+                    if self.env.modules.contains(m) && !self.env.vars.contains_key(m) =>
+                {
                     match builtins::math_const(&attr.text) {
                         Some(x) => Ok(Value::Real(x)),
                         None if MATH_FUNCS.contains(&attr.text.as_str()) => Err(self.syntax(
                             format!("'{m}.{}' is a function: call it", attr.text),
                             e.span,
                         )),
-                        None => Err(self.input(format!("module 'math' has no attribute '{}'", attr.text), attr.span)),
+                        None => Err(self.input(
+                            format!("module 'math' has no attribute '{}'", attr.text),
+                            attr.span,
+                        )),
                     }
                 }
                 _ => {
@@ -217,7 +237,7 @@ impl Evaluator<'_> {
     }
 
     /// Evaluates call arguments: positional values and keywords (duplicates refused).
-    fn args(&mut self, args: &[Arg]) -> Result<(Vec<(Value, Span)>, Vec<Keyword>)> {
+    fn args(&mut self, args: &[Arg]) -> Result<EvaluatedArgs> {
         let mut pos = Vec::new();
         let mut kws: Vec<Keyword> = Vec::new();
         for a in args {
@@ -230,7 +250,11 @@ impl Evaluator<'_> {
                             .input(format!("keyword '{}' is given twice", n.text), a.span)
                             .keyword(n.text.clone()));
                     }
-                    kws.push(Keyword { name: n.text.clone(), value: v, span: a.span });
+                    kws.push(Keyword {
+                        name: n.text.clone(),
+                        value: v,
+                        span: a.span,
+                    });
                 }
             }
         }
@@ -262,7 +286,10 @@ impl Evaluator<'_> {
             _ => {}
         }
         if let Some(v) = self.env.vars.get(name) {
-            return Err(self.input(format!("'{name}' is {}, not a function", v.kind_name()), func.span));
+            return Err(self.input(
+                format!("'{name}' is {}, not a function", v.kind_name()),
+                func.span,
+            ));
         }
         if let Some(target) = self.env.funcs.get(name).cloned() {
             let vals = self.positional(name, args)?;
@@ -279,7 +306,9 @@ impl Evaluator<'_> {
             return builtins::call_builtin(name, &vals).map_err(|m| self.input(m, span));
         }
         if MATH_FUNCS.contains(&name) {
-            return Err(self.input(format!("name '{name}' is not defined"), func.span).hint(IMPORT_HINT));
+            return Err(self
+                .input(format!("name '{name}' is not defined"), func.span)
+                .hint(IMPORT_HINT));
         }
         if self.host.is_operator(name) {
             return self.operator(name, func.span, args, site);
@@ -291,10 +320,12 @@ impl Evaluator<'_> {
             }
             return Err(err);
         }
-        Err(self.input(format!("name '{name}' is not defined"), func.span).hint(
-            "functions available: the operators, math functions after `from math import *`, \
+        Err(self
+            .input(format!("name '{name}' is not defined"), func.span)
+            .hint(
+                "functions available: the operators, math functions after `from math import *`, \
              and abs float int min max len range list tuple sum str round print",
-        ))
+            ))
     }
 
     /// Evaluates the arguments of a Python function: positional only.
@@ -311,7 +342,10 @@ impl Evaluator<'_> {
         if let ExprKind::Name(m) = &base.kind {
             if self.env.modules.contains(m) && !self.env.vars.contains_key(m) {
                 if !MATH_FUNCS.contains(&attr.text.as_str()) {
-                    return Err(self.input(format!("module 'math' has no function '{}'", attr.text), attr.span));
+                    return Err(self.input(
+                        format!("module 'math' has no function '{}'", attr.text),
+                        attr.span,
+                    ));
                 }
                 let vals = self.positional(&attr.text, args)?;
                 return builtins::call_math(&attr.text, &vals).map_err(|m| self.input(m, span));
@@ -325,23 +359,23 @@ impl Evaluator<'_> {
             }
         }
         Err(self
-            .syntax(format!("calling methods (.{}(...)) is not supported", attr.text), attr.span)
+            .syntax(
+                format!("calling methods (.{}(...)) is not supported", attr.text),
+                attr.span,
+            )
             .hint("only operators, math functions and a few builtins can be called"))
     }
 
-    fn operator(
-        &mut self,
-        op: &str,
-        op_span: Span,
-        args: &[Arg],
-        site: Site,
-    ) -> Result<Value> {
+    fn operator(&mut self, op: &str, op_span: Span, args: &[Arg], site: Site) -> Result<Value> {
         let (target, stmt_span) = match site {
             Site::Assign(t, s) => (Some(t.text.clone()), s),
             Site::Statement(s) => (None, s),
             Site::Nested => {
                 return Err(self
-                    .syntax(format!("operator '{op}' must be called in a statement of its own"), op_span)
+                    .syntax(
+                        format!("operator '{op}' must be called in a statement of its own"),
+                        op_span,
+                    )
                     .hint(format!("write X = {op}(...) on its own line, then use X")))
             }
         };
@@ -358,7 +392,10 @@ impl Evaluator<'_> {
                 Value::Concept(c) => reuse = Some(c),
                 v => {
                     return Err(self
-                        .input(format!("reuse= must name a concept, got {}", v.kind_name()), k.span)
+                        .input(
+                            format!("reuse= must name a concept, got {}", v.kind_name()),
+                            k.span,
+                        )
                         .keyword("reuse"))
                 }
             }
@@ -372,7 +409,10 @@ impl Evaluator<'_> {
             span: stmt_span,
             op_span,
         };
-        let value = self.host.call(call).map_err(|e| e.at(self.file, stmt_span))?;
+        let value = self
+            .host
+            .call(call)
+            .map_err(|e| e.at(self.file, stmt_span))?;
         // Macro commands create the CO('NAME') concepts: make them Python names too.
         for n in co_names {
             if let Some(c) = self.host.lookup_concept(&n) {
@@ -403,7 +443,12 @@ fn index(base: &Value, i: &Value) -> std::result::Result<Value, String> {
     let i = match i {
         Value::Int(i) => *i,
         Value::Bool(b) => i64::from(*b),
-        v => return Err(format!("an index must be an integer, got {}", v.kind_name())),
+        v => {
+            return Err(format!(
+                "an index must be an integer, got {}",
+                v.kind_name()
+            ))
+        }
     };
     let get = |len: usize| -> std::result::Result<usize, String> {
         let l = i64::try_from(len).unwrap_or(i64::MAX);
@@ -416,14 +461,19 @@ fn index(base: &Value, i: &Value) -> std::result::Result<Value, String> {
     match base {
         Value::Seq(items) => {
             let k = get(items.len())?;
-            items.get(k).cloned().ok_or_else(|| format!("index {i} is out of range"))
+            items
+                .get(k)
+                .cloned()
+                .ok_or_else(|| format!("index {i} is out of range"))
         }
         Value::Str(s) => {
             let chars: Vec<char> = s.chars().collect();
             let k = get(chars.len())?;
-            chars.get(k).map(|c| Value::Str(c.to_string())).ok_or_else(|| format!("index {i} is out of range"))
+            chars
+                .get(k)
+                .map(|c| Value::Str(c.to_string()))
+                .ok_or_else(|| format!("index {i} is out of range"))
         }
         v => Err(format!("{} cannot be indexed", v.kind_name())),
     }
 }
-

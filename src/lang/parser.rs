@@ -78,15 +78,19 @@ impl LineParser<'_> {
             return Err(self.err(msg, self.idx.span(s, e)).hint(SUPPORTED));
         }
         let text = self.src.text.get(l.start..l.end).unwrap_or("");
-        let mut pairs = CommParser::parse(Rule::line, text)
-            .map_err(|e| self.pest_error(e, l.start, text))?;
+        let mut pairs =
+            CommParser::parse(Rule::line, text).map_err(|e| self.pest_error(e, l.start, text))?;
         let line = pairs.next().and_then(|p| p.into_inner().next());
         let line = match line {
             Some(p) if p.as_rule() == Rule::for_stmt => self.for_header(p, l.start)?,
             Some(p) => Line::Simple(self.simple_stmts(p, l.start)?),
             None => return Err(self.err("empty statement", self.idx.span(l.start, l.end))),
         };
-        Ok(Parsed { indent: l.indent, start: l.start, line })
+        Ok(Parsed {
+            indent: l.indent,
+            start: l.start,
+            line,
+        })
     }
 
     fn pest_error(&self, e: pest::error::Error<Rule>, off: usize, text: &str) -> Error {
@@ -95,7 +99,10 @@ impl LineParser<'_> {
             pest::error::InputLocation::Span((s, _)) => s,
         };
         let at = off + pos;
-        let width = text.get(pos..).and_then(|t| t.chars().next()).map_or(0, char::len_utf8);
+        let width = text
+            .get(pos..)
+            .and_then(|t| t.chars().next())
+            .map_or(0, char::len_utf8);
         let span = self.idx.span(at, at + width);
         let found = match text.get(pos..).and_then(|t| t.chars().next()) {
             None => "the end of the statement".to_string(),
@@ -106,9 +113,17 @@ impl LineParser<'_> {
             pest::error::ErrorVariant::ParsingError { positives, .. } => expected_text(positives),
             pest::error::ErrorVariant::CustomError { message } => message.clone(),
         };
-        let mut err = self.err(format!("invalid syntax: expected {expected}, found {found}"), span);
-        if text.get(pos..).is_some_and(|t| t.starts_with("==")) {
+        let mut err = self.err(
+            format!("invalid syntax: expected {expected}, found {found}"),
+            span,
+        );
+        let next = text.get(pos..).unwrap_or("");
+        if next.starts_with("==") {
             err = err.hint("comparisons are not supported; a keyword is written KEY=value");
+        } else if expected.contains("','")
+            && next.starts_with(|c: char| c.is_alphanumeric() || c == '_' || c == '\'' || c == '"')
+        {
+            err = err.hint("a ',' may be missing");
         }
         err
     }
@@ -119,7 +134,10 @@ impl LineParser<'_> {
     }
 
     fn name(&self, p: &Pair<Rule>, off: usize) -> Name {
-        Name { text: p.as_str().to_string(), span: self.span(p, off) }
+        Name {
+            text: p.as_str().to_string(),
+            span: self.span(p, off),
+        }
     }
 
     fn for_header(&self, p: Pair<Rule>, off: usize) -> Result<Line> {
@@ -136,7 +154,12 @@ impl LineParser<'_> {
             }
         }
         match (var, iter) {
-            (Some(var), Some(iter)) => Ok(Line::For { var, iter, inline, span }),
+            (Some(var), Some(iter)) => Ok(Line::For {
+                var,
+                iter,
+                inline,
+                span,
+            }),
             _ => Err(Error::internal("malformed for statement").at(&self.src.name, span)),
         }
     }
@@ -152,7 +175,10 @@ impl LineParser<'_> {
         let kind = match rule {
             Rule::assign if inner.len() == 2 => {
                 let value = self.expr_list(inner.remove(1), off)?;
-                StmtKind::Assign { target: self.name(&inner[0], off), value }
+                StmtKind::Assign {
+                    target: self.name(&inner[0], off),
+                    value,
+                }
             }
             Rule::aug_assign if inner.len() == 3 => {
                 let op = match inner[1].as_str() {
@@ -162,13 +188,20 @@ impl LineParser<'_> {
                     _ => BinOp::Div,
                 };
                 let value = self.expr(inner.remove(2), off)?;
-                StmtKind::AugAssign { target: self.name(&inner[0], off), op, value }
+                StmtKind::AugAssign {
+                    target: self.name(&inner[0], off),
+                    op,
+                    value,
+                }
             }
             Rule::expr_stmt if inner.len() == 1 => {
                 let e = self.expr(inner.remove(0), off)?;
                 if !matches!(e.kind, ExprKind::Call { .. }) {
                     return Err(self
-                        .err("this statement does nothing: only calls may stand alone", e.span)
+                        .err(
+                            "this statement does nothing: only calls may stand alone",
+                            e.span,
+                        )
                         .hint("assign the value to a name (x = ...) or call an operator"));
                 }
                 StmtKind::Call(e)
@@ -210,7 +243,10 @@ impl LineParser<'_> {
     }
 
     fn import(&self, inner: Vec<Pair<Rule>>, off: usize, span: Span) -> Result<StmtKind> {
-        let items: Vec<Pair<Rule>> = inner.into_iter().filter(|q| q.as_rule() == Rule::import_as).collect();
+        let items: Vec<Pair<Rule>> = inner
+            .into_iter()
+            .filter(|q| q.as_rule() == Rule::import_as)
+            .collect();
         if items.len() != 1 {
             return Err(self.err("import one module per statement", span));
         }
@@ -255,7 +291,10 @@ impl LineParser<'_> {
     }
 
     fn join(&self, a: Span, b: Span) -> Span {
-        Span { end: b.end.max(a.end), ..a }
+        Span {
+            end: b.end.max(a.end),
+            ..a
+        }
     }
 
     /// `e1, e2, ...`: a tuple when there is a comma, else the expression itself.
@@ -270,11 +309,16 @@ impl LineParser<'_> {
             }
         }
         if !comma && items.len() == 1 {
-            return items.pop().ok_or_else(|| Error::internal("empty expression list"));
+            return items
+                .pop()
+                .ok_or_else(|| Error::internal("empty expression list"));
         }
         let refs: Vec<&Expr> = items.iter().collect();
         let depth_probe = self.mk(ExprKind::None, span, &refs)?;
-        Ok(Expr { kind: ExprKind::Tuple(items), ..depth_probe })
+        Ok(Expr {
+            kind: ExprKind::Tuple(items),
+            ..depth_probe
+        })
     }
 
     fn expr(&self, p: Pair<Rule>, off: usize) -> Result<Expr> {
@@ -282,7 +326,9 @@ impl LineParser<'_> {
         match p.as_rule() {
             Rule::expr | Rule::product => {
                 let mut it = p.into_inner();
-                let first = it.next().ok_or_else(|| self.err("empty expression", span))?;
+                let first = it
+                    .next()
+                    .ok_or_else(|| self.err("empty expression", span))?;
                 let mut acc = self.expr(first, off)?;
                 while let (Some(op), Some(rhs)) = (it.next(), it.next()) {
                     let op = match op.as_str() {
@@ -296,7 +342,10 @@ impl LineParser<'_> {
                     let rhs = self.expr(rhs, off)?;
                     let sp = self.join(acc.span, rhs.span);
                     let e = self.mk(ExprKind::None, sp, &[&acc, &rhs])?;
-                    acc = Expr { kind: ExprKind::Binary(op, Box::new(acc), Box::new(rhs)), ..e };
+                    acc = Expr {
+                        kind: ExprKind::Binary(op, Box::new(acc), Box::new(rhs)),
+                        ..e
+                    };
                 }
                 Ok(acc)
             }
@@ -321,10 +370,17 @@ impl LineParser<'_> {
     /// Applies unary signs (written at `signs`, outermost first) to `e`.
     fn apply_signs(&self, signs: &[Span], mut e: Expr, _off: usize) -> Result<Expr> {
         for s in signs.iter().rev() {
-            let op = if self.src.text.get(s.start..s.end) == Some("-") { UnOp::Neg } else { UnOp::Plus };
+            let op = if self.src.text.get(s.start..s.end) == Some("-") {
+                UnOp::Neg
+            } else {
+                UnOp::Plus
+            };
             let sp = self.join(*s, e.span);
             let probe = self.mk(ExprKind::None, sp, &[&e])?;
-            e = Expr { kind: ExprKind::Unary(op, Box::new(e)), ..probe };
+            e = Expr {
+                kind: ExprKind::Unary(op, Box::new(e)),
+                ..probe
+            };
         }
         Ok(e)
     }
@@ -342,14 +398,19 @@ impl LineParser<'_> {
                 _ => operands.push((std::mem::take(&mut signs), self.expr(q, off)?)),
             }
         }
-        let (last_signs, last) = operands.pop().ok_or_else(|| self.err("missing operand", span))?;
+        let (last_signs, last) = operands
+            .pop()
+            .ok_or_else(|| self.err("missing operand", span))?;
         let mut acc = last;
         let mut acc_signs = last_signs;
         while let Some((s, base)) = operands.pop() {
             let exponent = self.apply_signs(&acc_signs, acc, off)?;
             let sp = self.join(base.span, exponent.span);
             let probe = self.mk(ExprKind::None, sp, &[&base, &exponent])?;
-            acc = Expr { kind: ExprKind::Binary(BinOp::Pow, Box::new(base), Box::new(exponent)), ..probe };
+            acc = Expr {
+                kind: ExprKind::Binary(BinOp::Pow, Box::new(base), Box::new(exponent)),
+                ..probe
+            };
             acc_signs = s;
         }
         // The first operand of `power` never carries signs (they belong to `unary`).
@@ -359,7 +420,9 @@ impl LineParser<'_> {
     fn postfix(&self, p: Pair<Rule>, off: usize) -> Result<Expr> {
         let span = self.span(&p, off);
         let mut it = p.into_inner();
-        let first = it.next().ok_or_else(|| self.err("missing expression", span))?;
+        let first = it
+            .next()
+            .ok_or_else(|| self.err("missing expression", span))?;
         let mut acc = self.expr(first, off)?;
         for t in it {
             let tspan = self.span(&t, off);
@@ -368,23 +431,45 @@ impl LineParser<'_> {
                 Rule::call => {
                     let mut args = Vec::new();
                     for a in t.into_inner() {
-                        args.push(self.arg(a, off)?);
+                        if !matches!(a.as_rule(), Rule::comma | Rule::rpar) {
+                            args.push(self.arg(a, off)?);
+                        }
                     }
-                    let refs: Vec<&Expr> = std::iter::once(&acc).chain(args.iter().map(|a| &a.value)).collect();
+                    let refs: Vec<&Expr> = std::iter::once(&acc)
+                        .chain(args.iter().map(|a| &a.value))
+                        .collect();
                     let probe = self.mk(ExprKind::None, sp, &refs)?;
-                    acc = Expr { kind: ExprKind::Call { func: Box::new(acc), args }, ..probe };
+                    acc = Expr {
+                        kind: ExprKind::Call {
+                            func: Box::new(acc),
+                            args,
+                        },
+                        ..probe
+                    };
                 }
                 Rule::index => {
-                    let i = t.into_inner().next().ok_or_else(|| self.err("missing index", tspan))?;
+                    let i = t
+                        .into_inner()
+                        .next()
+                        .ok_or_else(|| self.err("missing index", tspan))?;
                     let i = self.expr(i, off)?;
                     let probe = self.mk(ExprKind::None, sp, &[&acc, &i])?;
-                    acc = Expr { kind: ExprKind::Index(Box::new(acc), Box::new(i)), ..probe };
+                    acc = Expr {
+                        kind: ExprKind::Index(Box::new(acc), Box::new(i)),
+                        ..probe
+                    };
                 }
                 _ => {
-                    let n = t.into_inner().next().ok_or_else(|| self.err("missing attribute", tspan))?;
+                    let n = t
+                        .into_inner()
+                        .next()
+                        .ok_or_else(|| self.err("missing attribute", tspan))?;
                     let n = self.name(&n, off);
                     let probe = self.mk(ExprKind::None, sp, &[&acc])?;
-                    acc = Expr { kind: ExprKind::Attr(Box::new(acc), n), ..probe };
+                    acc = Expr {
+                        kind: ExprKind::Attr(Box::new(acc), n),
+                        ..probe
+                    };
                 }
             }
         }
@@ -398,15 +483,29 @@ impl LineParser<'_> {
             let (Some(n), Some(v)) = (it.next(), it.next()) else {
                 return Err(Error::internal("malformed keyword").at(&self.src.name, span));
             };
-            Ok(Arg { name: Some(self.name(&n, off)), value: self.expr(v, off)?, span })
+            Ok(Arg {
+                name: Some(self.name(&n, off)),
+                value: self.expr(v, off)?,
+                span,
+            })
         } else {
-            Ok(Arg { name: None, value: self.expr(a, off)?, span })
+            Ok(Arg {
+                name: None,
+                value: self.expr(a, off)?,
+                span,
+            })
         }
     }
 
     fn primary(&self, p: Pair<Rule>, off: usize) -> Result<Expr> {
         let span = self.span(&p, off);
-        let leaf = |kind| Ok(Expr { kind, span, depth: 1 });
+        let leaf = |kind| {
+            Ok(Expr {
+                kind,
+                span,
+                depth: 1,
+            })
+        };
         match p.as_rule() {
             Rule::int => match p.as_str().parse::<i64>() {
                 Ok(i) => leaf(ExprKind::Int(i)),
@@ -437,6 +536,7 @@ impl LineParser<'_> {
                 for q in p.into_inner() {
                     match q.as_rule() {
                         Rule::comma => comma = true,
+                        Rule::rpar => {}
                         _ => items.push(self.expr(q, off)?),
                     }
                 }
@@ -444,17 +544,31 @@ impl LineParser<'_> {
                     // Keep the parentheses in the span: errors point at what was written.
                     let inner = items.pop().ok_or_else(|| self.err("empty", span))?;
                     let probe = self.mk(ExprKind::None, span, &[&inner])?;
-                    return Ok(Expr { span, depth: probe.depth, ..inner });
+                    return Ok(Expr {
+                        span,
+                        depth: probe.depth,
+                        ..inner
+                    });
                 }
                 let refs: Vec<&Expr> = items.iter().collect();
                 let probe = self.mk(ExprKind::None, span, &refs)?;
-                Ok(Expr { kind: ExprKind::Tuple(items), ..probe })
+                Ok(Expr {
+                    kind: ExprKind::Tuple(items),
+                    ..probe
+                })
             }
             Rule::list => {
-                let items = p.into_inner().map(|q| self.expr(q, off)).collect::<Result<Vec<_>>>()?;
+                let items = p
+                    .into_inner()
+                    .filter(|q| !matches!(q.as_rule(), Rule::comma | Rule::rbrack))
+                    .map(|q| self.expr(q, off))
+                    .collect::<Result<Vec<_>>>()?;
                 let refs: Vec<&Expr> = items.iter().collect();
                 let probe = self.mk(ExprKind::None, span, &refs)?;
-                Ok(Expr { kind: ExprKind::List(items), ..probe })
+                Ok(Expr {
+                    kind: ExprKind::List(items),
+                    ..probe
+                })
             }
             _ => self.expr(p, off),
         }
@@ -463,7 +577,13 @@ impl LineParser<'_> {
     // ---- blocks ------------------------------------------------------------------
 
     /// Statements of the block whose lines are indented by `indent`, from `pos`.
-    fn block(&self, lines: &[Parsed], pos: &mut usize, indent: usize, depth: usize) -> Result<Vec<Stmt>> {
+    fn block(
+        &self,
+        lines: &[Parsed],
+        pos: &mut usize,
+        indent: usize,
+        depth: usize,
+    ) -> Result<Vec<Stmt>> {
         let mut out = Vec::new();
         while let Some(l) = lines.get(*pos) {
             if l.indent < indent {
@@ -475,7 +595,12 @@ impl LineParser<'_> {
             *pos += 1;
             match &l.line {
                 Line::Simple(stmts) => out.extend(stmts.iter().cloned()),
-                Line::For { var, iter, inline, span } => {
+                Line::For {
+                    var,
+                    iter,
+                    inline,
+                    span,
+                } => {
                     let body = match inline {
                         Some(b) => b.clone(),
                         None => {
@@ -487,7 +612,9 @@ impl LineParser<'_> {
                             };
                             if depth >= MAX_BLOCK_DEPTH {
                                 return Err(self.err(
-                                    format!("loops are nested too deeply (more than {MAX_BLOCK_DEPTH})"),
+                                    format!(
+                                        "loops are nested too deeply (more than {MAX_BLOCK_DEPTH})"
+                                    ),
                                     *span,
                                 ));
                             }
@@ -504,7 +631,11 @@ impl LineParser<'_> {
                         }
                     };
                     out.push(Stmt {
-                        kind: StmtKind::For { var: var.clone(), iter: iter.clone(), body },
+                        kind: StmtKind::For {
+                            var: var.clone(),
+                            iter: iter.clone(),
+                            body,
+                        },
                         span: *span,
                     });
                 }
@@ -519,27 +650,56 @@ fn expected_text(positives: &[Rule]) -> String {
     let mut names: Vec<&str> = Vec::new();
     for r in positives {
         let n = match r {
-            Rule::expr | Rule::product | Rule::unary | Rule::power | Rule::postfix | Rule::real
-            | Rule::int | Rule::strings | Rule::string | Rule::constant | Rule::paren | Rule::list
-            | Rule::expr_list | Rule::sign => "an expression",
+            Rule::expr
+            | Rule::product
+            | Rule::unary
+            | Rule::power
+            | Rule::postfix
+            | Rule::real
+            | Rule::int
+            | Rule::strings
+            | Rule::string
+            | Rule::constant
+            | Rule::paren
+            | Rule::list
+            | Rule::expr_list
+            | Rule::sign => "an expression",
             Rule::name | Rule::kwarg => "a name",
             Rule::EOI => "the end of the statement (or ';')",
             Rule::add_op | Rule::mul_op | Rule::pow_op => "an operator",
             Rule::call | Rule::index | Rule::attr => "'(' '[' or '.'",
             Rule::comma => "','",
+            Rule::rpar => "')'",
+            Rule::rbrack => "']'",
             Rule::aug_op => "'='",
             Rule::star => "'*'",
             Rule::dotted => "a module name",
             Rule::kw_in => "'in'",
             Rule::kw_import => "'import'",
             Rule::kw_as => "'as'",
-            Rule::for_stmt | Rule::simple_stmts | Rule::assign | Rule::aug_assign | Rule::expr_stmt
-            | Rule::import_from | Rule::import_stmt | Rule::kw_for | Rule::kw_from => "a statement",
+            Rule::for_stmt
+            | Rule::simple_stmts
+            | Rule::assign
+            | Rule::aug_assign
+            | Rule::expr_stmt
+            | Rule::import_from
+            | Rule::import_stmt
+            | Rule::kw_for
+            | Rule::kw_from => "a statement",
             _ => "something else",
         };
         if !names.contains(&n) {
             names.push(n);
         }
+    }
+    // "an operator" and trailers are possible almost everywhere: name them only when
+    // nothing else was expected.
+    let weak = ["an operator", "'(' '[' or '.'"];
+    if names.iter().any(|n| !weak.contains(n)) {
+        names.retain(|n| !weak.contains(n));
+    }
+    if names.contains(&"an expression") {
+        names.retain(|n| *n != "a name");
     }
     if names.is_empty() {
         return "something else".into();
@@ -551,7 +711,11 @@ fn expected_text(positives: &[Rule]) -> String {
 fn unquote(lit: &str) -> String {
     let raw = lit.starts_with(['r', 'R']);
     let body = if raw { lit.get(1..).unwrap_or("") } else { lit };
-    let q = if body.starts_with("\"\"\"") || body.starts_with("'''") { 3 } else { 1 };
+    let q = if body.starts_with("\"\"\"") || body.starts_with("'''") {
+        3
+    } else {
+        1
+    };
     let inner = body.get(q..body.len().saturating_sub(q)).unwrap_or("");
     if raw {
         return inner.to_string();

@@ -31,8 +31,8 @@ pub struct ScanError {
 /// Python keywords (and constructs) the `.comm` subset does not support.
 const UNSUPPORTED: &[&str] = &[
     "def", "class", "while", "if", "elif", "else", "try", "except", "finally", "with", "return",
-    "yield", "lambda", "global", "nonlocal", "del", "pass", "break", "continue", "raise",
-    "assert", "async", "await", "and", "or", "not", "is",
+    "yield", "lambda", "global", "nonlocal", "del", "pass", "break", "continue", "raise", "assert",
+    "async", "await", "and", "or", "not", "is",
 ];
 
 /// The logical lines before the first lexical error, and that error if any. Lines are
@@ -46,7 +46,11 @@ pub fn scan(text: &str) -> (Vec<LogicalLine>, Option<ScanError>) {
         // Indentation of a new physical line.
         let mut indent = 0;
         while i < n && matches!(b[i], b' ' | b'\t' | b'\x0C') {
-            indent = if b[i] == b'\t' { (indent / 8 + 1) * 8 } else { indent + 1 };
+            indent = if b[i] == b'\t' {
+                (indent / 8 + 1) * 8
+            } else {
+                indent + 1
+            };
             i += 1;
         }
         if i >= n {
@@ -174,7 +178,12 @@ pub fn scan(text: &str) -> (Vec<LogicalLine>, Option<ScanError>) {
             };
             return (lines, Some(e));
         }
-        lines.push(LogicalLine { start, end, indent, unsupported });
+        lines.push(LogicalLine {
+            start,
+            end,
+            indent,
+            unsupported,
+        });
     }
     (lines, None)
 }
@@ -216,7 +225,10 @@ mod tests {
     fn texts(src: &str) -> Vec<(String, usize)> {
         let (lines, err) = scan(src);
         assert!(err.is_none(), "{err:?}");
-        lines.iter().map(|l| (src[l.start..l.end].to_string(), l.indent)).collect()
+        lines
+            .iter()
+            .map(|l| (src[l.start..l.end].to_string(), l.indent))
+            .collect()
     }
 
     #[test]

@@ -14,8 +14,17 @@ struct Recorder {
 }
 
 const OPS: &[&str] = &[
-    "DEBUT", "FIN", "LIRE_MAILLAGE", "AFFE_MODELE", "AFFE_MATERIAU", "AFFE_CARA_ELEM",
-    "ASSEMBLAGE", "MODE_NON_LINE", "CREA_TABLE", "TEST_TABLE", "FAIL",
+    "DEBUT",
+    "FIN",
+    "LIRE_MAILLAGE",
+    "AFFE_MODELE",
+    "AFFE_MATERIAU",
+    "AFFE_CARA_ELEM",
+    "ASSEMBLAGE",
+    "MODE_NON_LINE",
+    "CREA_TABLE",
+    "TEST_TABLE",
+    "FAIL",
 ];
 
 impl Host for Recorder {
@@ -37,7 +46,10 @@ impl Host for Recorder {
         OPS.iter().map(|s| s.to_string()).collect()
     }
     fn lookup_concept(&self, name: &str) -> Option<ConceptRef> {
-        Some(ConceptRef { name: name.into(), ty: "co".into() })
+        Some(ConceptRef {
+            name: name.into(),
+            ty: "co".into(),
+        })
     }
     fn print(&mut self, text: &str) {
         self.printed.push(text.to_string());
@@ -56,7 +68,9 @@ fn run_ok(text: &str) -> (Env, Recorder) {
 
 fn val(text: &str, name: &str) -> Value {
     let (env, _) = run_ok(text);
-    env.get(name).cloned().unwrap_or_else(|| panic!("{name} not bound"))
+    env.get(name)
+        .cloned()
+        .unwrap_or_else(|| panic!("{name} not bound"))
 }
 
 /// The error, checked to point at `line:col` of t.comm.
@@ -66,14 +80,20 @@ fn run_err(text: &str, line: usize, col: usize) -> Error {
         Ok(()) => panic!("no error for {text:?}"),
         Err(e) => e,
     };
-    let loc = e.location.clone().unwrap_or_else(|| panic!("no location: {e}"));
+    let loc = e
+        .location
+        .clone()
+        .unwrap_or_else(|| panic!("no location: {e}"));
     assert_eq!(loc.file, "t.comm");
     assert_eq!((loc.span.line, loc.span.col), (line, col), "{e}");
     e
 }
 
 fn kw<'a>(kws: &'a [Keyword], name: &str) -> &'a Value {
-    &kws.iter().find(|k| k.name == name).unwrap_or_else(|| panic!("no {name}")).value
+    &kws.iter()
+        .find(|k| k.name == name)
+        .unwrap_or_else(|| panic!("no {name}"))
+        .value
 }
 
 use Value::{Int, Real, Seq, Str};
@@ -83,8 +103,23 @@ use Value::{Int, Real, Seq, Str};
 #[test]
 fn numbers_in_every_python_form() {
     let (env, _) = run_ok("a=1\nb=1.\nc=.5\nd=1.e4\ne=2E-3\nf=-1\ng=1.5e+2\nh=007");
-    let got: Vec<Value> = ["a", "b", "c", "d", "e", "f", "g", "h"].iter().map(|n| env.get(n).cloned().unwrap()).collect();
-    assert_eq!(got, vec![Int(1), Real(1.), Real(0.5), Real(1.0e4), Real(2e-3), Int(-1), Real(150.), Int(7)]);
+    let got: Vec<Value> = ["a", "b", "c", "d", "e", "f", "g", "h"]
+        .iter()
+        .map(|n| env.get(n).cloned().unwrap())
+        .collect();
+    assert_eq!(
+        got,
+        vec![
+            Int(1),
+            Real(1.),
+            Real(0.5),
+            Real(1.0e4),
+            Real(2e-3),
+            Int(-1),
+            Real(150.),
+            Int(7)
+        ]
+    );
 }
 
 #[test]
@@ -96,7 +131,10 @@ fn strings_quotes_escapes_and_concatenation() {
     assert_eq!(val("s='ab' + 'cd'", "s"), Str("abcd".into()));
     assert_eq!(val("s='''x\ny'''", "s"), Str("x\ny".into()));
     assert_eq!(val(r"s=r'C:\d'", "s"), Str(r"C:\d".into()));
-    assert_eq!(val("s='#not a comment'  # a comment", "s"), Str("#not a comment".into()));
+    assert_eq!(
+        val("s='#not a comment'  # a comment", "s"),
+        Str("#not a comment".into())
+    );
 }
 
 #[test]
@@ -108,7 +146,10 @@ fn tuples_lists_and_trailing_commas() {
     assert_eq!(val("t=1, 2", "t"), Seq(vec![Int(1), Int(2)]));
     assert_eq!(val("t=(0.,)*3", "t"), Seq(vec![Real(0.); 3]));
     assert_eq!(val("t=[1]+[2]", "t"), Seq(vec![Int(1), Int(2)]));
-    assert_eq!(val("t=((1,2),[3])", "t"), Seq(vec![Seq(vec![Int(1), Int(2)]), Seq(vec![Int(3)])]));
+    assert_eq!(
+        val("t=((1,2),[3])", "t"),
+        Seq(vec![Seq(vec![Int(1), Int(2)]), Seq(vec![Int(3)])])
+    );
     assert_eq!(val("x=(5, 6, 7)\nt=x[0]+x[-1]", "t"), Int(12));
     assert_eq!(val("t=True", "t"), Value::Bool(true));
     assert_eq!(val("t=None", "t"), Value::None);
@@ -160,7 +201,10 @@ fn call_spans_and_keyword_spans() {
     let (_, host) = run_ok(text);
     let c = &host.calls[0];
     assert_eq!((c.span.line, c.span.col), (2, 1));
-    assert_eq!(&text[c.span.start..c.span.end], "MAIL = LIRE_MAILLAGE(UNITE=20,\n    FORMAT='ASTER')");
+    assert_eq!(
+        &text[c.span.start..c.span.end],
+        "MAIL = LIRE_MAILLAGE(UNITE=20,\n    FORMAT='ASTER')"
+    );
     assert_eq!((c.op_span.line, c.op_span.col), (2, 8));
     assert_eq!(&text[c.op_span.start..c.op_span.end], "LIRE_MAILLAGE");
     let f = &c.args[1];
@@ -178,26 +222,47 @@ fn factor_keywords_co_and_reuse() {
     let a = &host.calls[1];
     assert_eq!(a.result, None);
     assert_eq!(kw(&a.args, "NUME_DDL"), &Value::Co("NU".into()));
-    let Seq(items) = kw(&a.args, "MATR_ASSE") else { panic!("not a seq") };
-    let Value::Fact(f) = &items[0] else { panic!("not a fact") };
+    let Seq(items) = kw(&a.args, "MATR_ASSE") else {
+        panic!("not a seq")
+    };
+    let Value::Fact(f) = &items[0] else {
+        panic!("not a fact")
+    };
     assert_eq!(kw(f, "MATRICE"), &Value::Co("K".into()));
     // CO names become Python names once the macro has run.
     assert!(matches!(env.get("NU"), Some(Value::Concept(c)) if c.name == "NU"));
     let r = &host.calls[2];
     assert_eq!(r.reuse.as_ref().map(|c| c.name.as_str()), Some("M"));
     assert_eq!(r.args.len(), 1, "reuse is removed from args");
-    assert!(matches!(env.get("M2"), Some(Value::Concept(c)) if c.name == "M" && c.ty == "lire_maillage"));
+    assert!(
+        matches!(env.get("M2"), Some(Value::Concept(c)) if c.name == "M" && c.ty == "lire_maillage")
+    );
 }
 
 // ---- imports, math, builtins ------------------------------------------------------
 
 #[test]
 fn math_imports() {
-    assert_eq!(val("from math import *\nx=sqrt(16)+floor(pi)", "x"), Real(7.0));
-    assert_eq!(val("import math\nx=math.sqrt(4)*math.pi", "x"), Real(2.0 * std::f64::consts::PI));
-    assert_eq!(val("from math import pi, sqrt\nx=sqrt(pi*pi)", "x"), Real(std::f64::consts::PI));
-    assert_eq!(val("from math import (log,\n  e)\nx=log(e)", "x"), Real(1.0));
-    assert_eq!(val("from math import log10 as lg\nx=lg(1000)", "x"), Real(3.0));
+    assert_eq!(
+        val("from math import *\nx=sqrt(16)+floor(pi)", "x"),
+        Real(7.0)
+    );
+    assert_eq!(
+        val("import math\nx=math.sqrt(4)*math.pi", "x"),
+        Real(2.0 * std::f64::consts::PI)
+    );
+    assert_eq!(
+        val("from math import pi, sqrt\nx=sqrt(pi*pi)", "x"),
+        Real(std::f64::consts::PI)
+    );
+    assert_eq!(
+        val("from math import (log,\n  e)\nx=log(e)", "x"),
+        Real(1.0)
+    );
+    assert_eq!(
+        val("from math import log10 as lg\nx=lg(1000)", "x"),
+        Real(3.0)
+    );
     assert_eq!(val("from math import *\nx=log(8, 2)", "x"), Real(3.0));
     // code_aster imports of new-style files are accepted.
     assert_eq!(val("from code_aster.Commands import *\nx=1", "x"), Int(1));
@@ -232,7 +297,9 @@ fn for_loops_nested_and_inline() {
 
 #[test]
 fn loop_bodies_with_tabs_comments_and_blank_lines() {
-    let (env, _) = run_ok("n = 0\nfor i in 1, 2:\n\n\t# comment at another indentation\n\tn += i\n\n\tn += 1\nend=n");
+    let (env, _) = run_ok(
+        "n = 0\nfor i in 1, 2:\n\n\t# comment at another indentation\n\tn += i\n\n\tn += 1\nend=n",
+    );
     assert_eq!(env.get("end"), Some(&Int(5)));
 }
 
@@ -246,25 +313,42 @@ fn sample_study_from_the_brief() {
     assert_eq!(
         ops,
         vec![
-            "DEBUT", "LIRE_MAILLAGE", "AFFE_MODELE", "AFFE_CARA_ELEM", "ASSEMBLAGE", "MODE_NON_LINE",
-            "MODE_NON_LINE", "CREA_TABLE", "CREA_TABLE", "FIN"
+            "DEBUT",
+            "LIRE_MAILLAGE",
+            "AFFE_MODELE",
+            "AFFE_CARA_ELEM",
+            "ASSEMBLAGE",
+            "MODE_NON_LINE",
+            "MODE_NON_LINE",
+            "CREA_TABLE",
+            "CREA_TABLE",
+            "FIN"
         ]
     );
     // f0 = sqrt(k/m)/(2 pi) with k = 10, m = 1.
     let f0 = (10.0f64).sqrt() / (2.0 * std::f64::consts::PI);
     assert_eq!(env.get("f0"), Some(&Real(f0)));
     let debut = &host.calls[0];
-    assert_eq!(kw(&debut.args, "IGNORE_ALARM"), &Seq(vec![Str("SUPERVIS_1".into())]));
+    assert_eq!(
+        kw(&debut.args, "IGNORE_ALARM"),
+        &Seq(vec![Str("SUPERVIS_1".into())])
+    );
     let cara = &host.calls[3];
-    let Seq(discret) = kw(&cara.args, "DISCRET") else { panic!() };
+    let Seq(discret) = kw(&cara.args, "DISCRET") else {
+        panic!()
+    };
     assert_eq!(discret.len(), 2);
-    let Value::Fact(d0) = &discret[0] else { panic!() };
+    let Value::Fact(d0) = &discret[0] else {
+        panic!()
+    };
     assert_eq!(kw(d0, "VALE"), &Seq(vec![Real(10.0), Real(0.), Real(0.)]));
     assert!(matches!(kw(&cara.args, "MODELE"), Value::Concept(c) if c.name == "MODELE"));
     let mnl = &host.calls[6];
     assert_eq!(mnl.reuse.as_ref().map(|c| c.name.as_str()), Some("MNL"));
     let tab = &host.calls[8];
-    let Value::Fact(l) = kw(&tab.args, "LISTE") else { panic!() };
+    let Value::Fact(l) = kw(&tab.args, "LISTE") else {
+        panic!()
+    };
     assert_eq!(kw(l, "LISTE_R"), &Seq(vec![Real(1.0), Real(2.0)]));
 }
 
@@ -285,13 +369,17 @@ fn loops_and_lists_fixture() {
 #[test]
 fn duffing_fixture() {
     let (env, host) = run_ok(include_str!("../../tests/fixtures/duffing_oscillator.comm"));
-    let Some(Seq(chocs)) = env.get("CHOCS") else { panic!() };
+    let Some(Seq(chocs)) = env.get("CHOCS") else {
+        panic!()
+    };
     assert_eq!(chocs.len(), 2);
     let Value::Fact(c1) = &chocs[1] else { panic!() };
     assert_eq!(kw(c1, "RIGI_NOR"), &Real(1.0e5));
     assert_eq!(kw(c1, "JEU"), &Real(0.5e-3));
     let mnl = host.calls.iter().find(|c| c.op == "MODE_NON_LINE").unwrap();
-    let Value::Fact(e) = kw(&mnl.args, "ETAT_INIT") else { panic!() };
+    let Value::Fact(e) = kw(&mnl.args, "ETAT_INIT") else {
+        panic!()
+    };
     // omega/(2 pi) with omega = 2 pi 12.5; both roundings cancel to within 1 ulp.
     let Real(f) = kw(e, "FREQ") else { panic!() };
     assert!((f - 12.5).abs() <= 12.5 * f64::EPSILON, "{f}");
@@ -304,47 +392,109 @@ fn syntax_errors_are_located() {
     let e = run_err("a = 1\nb = (1 +\nc = 2", 2, 5);
     assert_eq!(e.message, "'(' was never closed");
     assert_eq!(e.kind, ErrorKind::Syntax);
-    assert_eq!(run_err("a = [1, 2)", 1, 10).message, "closing ')' does not match '['");
+    assert_eq!(
+        run_err("a = [1, 2)", 1, 10).message,
+        "closing ')' does not match '['"
+    );
     assert_eq!(run_err("a = 1)", 1, 6).message, "unmatched ')'");
-    assert_eq!(run_err("a = 1\ns = 'abc", 2, 5).message, "unterminated string");
-    let e = run_err("DEBUT()\nMAIL = LIRE_MAILLAGE(UNITE=20 FORMAT='ASTER')", 2, 31);
-    assert!(e.message.starts_with("invalid syntax: expected"), "{}", e.message);
+    assert_eq!(
+        run_err("a = 1\ns = 'abc", 2, 5).message,
+        "unterminated string"
+    );
+    let e = run_err(
+        "DEBUT()\nMAIL = LIRE_MAILLAGE(UNITE=20 FORMAT='ASTER')",
+        2,
+        31,
+    );
+    assert!(
+        e.message.starts_with("invalid syntax: expected"),
+        "{}",
+        e.message
+    );
     assert!(e.message.ends_with("found 'F'"), "{}", e.message);
     let e = run_err("x = 1 +", 1, 8);
-    assert_eq!(e.message, "invalid syntax: expected an expression, found the end of the statement");
+    assert_eq!(
+        e.message,
+        "invalid syntax: expected an expression, found the end of the statement"
+    );
     let e = run_err("DEBUT(A==1)", 1, 8);
     assert!(e.hint.unwrap().contains("comparisons"));
 }
 
 #[test]
 fn unsupported_constructs_are_named() {
-    assert_eq!(run_err("a = 1\ndef f(x):\n    return x", 2, 1).message, "'def' is not supported in .comm files");
-    assert_eq!(run_err("while True:\n    x = 1", 1, 1).message, "'while' is not supported in .comm files");
-    assert_eq!(run_err("class A: pass", 1, 1).message, "'class' is not supported in .comm files");
-    assert_eq!(run_err("f = lambda x: x", 1, 5).message, "'lambda' is not supported in .comm files");
-    assert_eq!(run_err("x = 1 if a else 2", 1, 7).message, "'if' is not supported in .comm files");
-    assert_eq!(run_err("x = a and b", 1, 7).message, "the operator 'and' is not supported");
-    assert_eq!(run_err("d = {'a': 1}", 1, 5).message, "dictionaries ({...}) are not supported");
+    assert_eq!(
+        run_err("a = 1\ndef f(x):\n    return x", 2, 1).message,
+        "'def' is not supported in .comm files"
+    );
+    assert_eq!(
+        run_err("while True:\n    x = 1", 1, 1).message,
+        "'while' is not supported in .comm files"
+    );
+    assert_eq!(
+        run_err("class A: pass", 1, 1).message,
+        "'class' is not supported in .comm files"
+    );
+    assert_eq!(
+        run_err("f = lambda x: x", 1, 5).message,
+        "'lambda' is not supported in .comm files"
+    );
+    assert_eq!(
+        run_err("x = 1 if a else 2", 1, 7).message,
+        "'if' is not supported in .comm files"
+    );
+    assert_eq!(
+        run_err("x = a and b", 1, 7).message,
+        "the operator 'and' is not supported"
+    );
+    assert_eq!(
+        run_err("d = {'a': 1}", 1, 5).message,
+        "dictionaries ({...}) are not supported"
+    );
     let e = run_err("import os", 1, 8);
     assert_eq!(e.message, "importing module 'os' is not supported");
-    assert_eq!(run_err("from numpy import array", 1, 6).message, "importing module 'numpy' is not supported");
+    assert_eq!(
+        run_err("from numpy import array", 1, 6).message,
+        "importing module 'numpy' is not supported"
+    );
     let e = run_err("x = 1\nx + 1", 2, 1);
-    assert_eq!(e.message, "this statement does nothing: only calls may stand alone");
+    assert_eq!(
+        e.message,
+        "this statement does nothing: only calls may stand alone"
+    );
     let e = run_err("L = [1]\nL.append(2)", 2, 3);
     assert_eq!(e.message, "calling methods (.append(...)) is not supported");
-    assert_eq!(run_err("x = (1).real", 1, 9).message, "attributes (x.name) are not supported");
+    assert_eq!(
+        run_err("x = (1).real", 1, 9).message,
+        "attributes (x.name) are not supported"
+    );
     let e = run_err("X = AFFE_MODELE(MAILLAGE=LIRE_MAILLAGE())", 1, 26);
-    assert_eq!(e.message, "operator 'LIRE_MAILLAGE' must be called in a statement of its own");
+    assert_eq!(
+        e.message,
+        "operator 'LIRE_MAILLAGE' must be called in a statement of its own"
+    );
 }
 
 #[test]
 fn indentation_errors() {
     assert_eq!(run_err("a = 1\n  b = 2", 2, 3).message, "unexpected indent");
-    assert_eq!(run_err("for i in (1,2):\nb = 2", 1, 1).message, "expected an indented block after 'for'");
-    assert_eq!(run_err("for i in (1,2):", 1, 1).message, "expected an indented block after 'for'");
+    assert_eq!(
+        run_err("for i in (1,2):\nb = 2", 1, 1).message,
+        "expected an indented block after 'for'"
+    );
+    assert_eq!(
+        run_err("for i in (1,2):", 1, 1).message,
+        "expected an indented block after 'for'"
+    );
     let e = run_err("for i in (1,2):\n    a = 1\n  b = 2", 3, 3);
-    assert_eq!(e.message, "unindent does not match any outer indentation level");
-    assert_eq!(run_err("for i in (1,2):\n    a = 1\n        b = 2", 3, 9).message, "unexpected indent");
+    assert_eq!(
+        e.message,
+        "unindent does not match any outer indentation level"
+    );
+    assert_eq!(
+        run_err("for i in (1,2):\n    a = 1\n        b = 2", 3, 9).message,
+        "unexpected indent"
+    );
 }
 
 #[test]
@@ -382,21 +532,63 @@ fn unknown_operator_suggests_close_names() {
 #[test]
 fn evaluation_errors_point_at_the_expression() {
     let e = run_err("a = 'a'\nDEBUT(X=a*1.5)", 2, 9);
-    assert_eq!(e.message, "unsupported operand types for '*': a text and a real");
-    assert_eq!(run_err("x = 1\ny = 2 + x/0", 2, 9).message, "division by zero");
+    assert_eq!(
+        e.message,
+        "unsupported operand types for '*': a text and a real"
+    );
+    assert_eq!(
+        run_err("x = 1\ny = 2 + x/0", 2, 9).message,
+        "division by zero"
+    );
     assert_eq!(run_err("x = 1.5 // 0.", 1, 5).message, "division by zero");
-    assert_eq!(run_err("x = 10**100", 1, 5).message, "integer overflow in '**'");
-    assert_eq!(run_err("x = 9223372036854775807 + 1", 1, 5).message, "integer overflow in '+'");
-    assert_eq!(run_err("x = 99999999999999999999", 1, 5).message, "integer literal is too large");
-    assert_eq!(run_err("x = 1e999", 1, 5).message, "real literal is out of range");
-    assert_eq!(run_err("x = 10.**400", 1, 5).message, "the result of '**' is not a finite number (overflow)");
-    assert_eq!(run_err("x = (1, 2)[2]", 1, 5).message, "index 2 is out of range (length 2)");
-    assert_eq!(run_err("x = range(10**8)", 1, 5).message, "range() would have 100000000 items, more than the limit 1000000");
-    assert_eq!(run_err("from math import *\nx = sqrt(-1)", 2, 5).message, "sqrt(): math domain error (argument -1)");
-    assert_eq!(run_err("for i in 3:\n    x = 1", 1, 10).message, "'for' needs a list, a tuple or a range, got an integer");
-    assert_eq!(run_err("x = 'a' % 2", 1, 5).message, "string formatting with '%' is not supported");
-    assert_eq!(run_err("x = -'a'", 1, 5).message, "bad operand for unary -: a text");
-    assert_eq!(run_err("x = len(1, 2)", 1, 5).message, "len() takes 1 argument(s), got 2");
+    assert_eq!(
+        run_err("x = 10**100", 1, 5).message,
+        "integer overflow in '**'"
+    );
+    assert_eq!(
+        run_err("x = 9223372036854775807 + 1", 1, 5).message,
+        "integer overflow in '+'"
+    );
+    assert_eq!(
+        run_err("x = 99999999999999999999", 1, 5).message,
+        "integer literal is too large"
+    );
+    assert_eq!(
+        run_err("x = 1e999", 1, 5).message,
+        "real literal is out of range"
+    );
+    assert_eq!(
+        run_err("x = 10.**400", 1, 5).message,
+        "the result of '**' is not a finite number (overflow)"
+    );
+    assert_eq!(
+        run_err("x = (1, 2)[2]", 1, 5).message,
+        "index 2 is out of range (length 2)"
+    );
+    assert_eq!(
+        run_err("x = range(10**8)", 1, 5).message,
+        "range() would have 100000000 items, more than the limit 1000000"
+    );
+    assert_eq!(
+        run_err("from math import *\nx = sqrt(-1)", 2, 5).message,
+        "sqrt(): math domain error (argument -1)"
+    );
+    assert_eq!(
+        run_err("for i in 3:\n    x = 1", 1, 10).message,
+        "'for' needs a list, a tuple or a range, got an integer"
+    );
+    assert_eq!(
+        run_err("x = 'a' % 2", 1, 5).message,
+        "string formatting with '%' is not supported"
+    );
+    assert_eq!(
+        run_err("x = -'a'", 1, 5).message,
+        "bad operand for unary -: a text"
+    );
+    assert_eq!(
+        run_err("x = len(1, 2)", 1, 5).message,
+        "len() takes 1 argument(s), got 2"
+    );
 }
 
 #[test]
@@ -404,10 +596,22 @@ fn call_errors() {
     let e = run_err("DEBUT(A=1,\n      A=2)", 2, 7);
     assert_eq!(e.message, "keyword 'A' is given twice");
     assert_eq!(e.keyword.as_deref(), Some("A"));
-    assert_eq!(run_err("x = _F(A=1, A=2)", 1, 13).message, "keyword 'A' is given twice");
-    assert_eq!(run_err("DEBUT(1)", 1, 7).message, "arguments of operator 'DEBUT' must be keywords");
-    assert_eq!(run_err("x = _F(1)", 1, 8).message, "_F(...) takes only keywords KEY=value");
-    assert_eq!(run_err("x = CO(1)", 1, 5).message, "CO() takes one text: CO('NAME')");
+    assert_eq!(
+        run_err("x = _F(A=1, A=2)", 1, 13).message,
+        "keyword 'A' is given twice"
+    );
+    assert_eq!(
+        run_err("DEBUT(1)", 1, 7).message,
+        "arguments of operator 'DEBUT' must be keywords"
+    );
+    assert_eq!(
+        run_err("x = _F(1)", 1, 8).message,
+        "_F(...) takes only keywords KEY=value"
+    );
+    assert_eq!(
+        run_err("x = CO(1)", 1, 5).message,
+        "CO() takes one text: CO('NAME')"
+    );
     let e = run_err("M = 1\nM = LIRE_MAILLAGE(reuse=M)", 2, 19);
     assert_eq!(e.message, "reuse= must name a concept, got an integer");
     let e = run_err("M = LIRE_MAILLAGE(reuse=N)", 1, 25);
@@ -421,23 +625,45 @@ fn call_errors() {
 #[test]
 fn resource_limits_are_errors() {
     let deep = format!("x = {}1{}", "(".repeat(70), ")".repeat(70));
-    assert_eq!(run_err(&deep, 1, 69).message, "brackets are nested too deeply (more than 64 levels)");
+    assert_eq!(
+        run_err(&deep, 1, 69).message,
+        "brackets are nested too deeply (more than 64 levels)"
+    );
     let long_sum = format!("x = 1{}", "+1".repeat(300));
-    assert!(run_err(&long_sum, 1, 5).message.starts_with("expression is too complex"));
+    assert!(run_err(&long_sum, 1, 5)
+        .message
+        .starts_with("expression is too complex"));
     // Right-folded chains fail where the depth limit is crossed, inside the expression.
-    for text in [format!("x = 2{}", "**2".repeat(300)), format!("x = {}1", "-".repeat(300))] {
+    for text in [
+        format!("x = 2{}", "**2".repeat(300)),
+        format!("x = {}1", "-".repeat(300)),
+    ] {
         let e = parse(&Source::new("t.comm", text)).unwrap_err();
-        assert!(e.message.starts_with("expression is too complex"), "{}", e.message);
+        assert!(
+            e.message.starts_with("expression is too complex"),
+            "{}",
+            e.message
+        );
         assert_eq!(e.location.map(|l| l.span.line), Some(1));
     }
-    let e = run_err("for i in range(1000000):\n    for j in range(1000000):\n        x = 1", 3, 9);
-    assert!(e.message.starts_with("more than 10000000 statements"), "{}", e.message);
+    let e = run_err(
+        "for i in range(1000000):\n    for j in range(1000000):\n        x = 1",
+        3,
+        9,
+    );
+    assert!(
+        e.message.starts_with("more than 10000000 statements"),
+        "{}",
+        e.message
+    );
     let mut nested = String::new();
     for d in 0..25 {
         nested.push_str(&format!("{}for i{d} in (1,):\n", " ".repeat(d)));
     }
     nested.push_str(&format!("{}x = 1\n", " ".repeat(25)));
-    assert!(run_err(&nested, 21, 21).message.starts_with("loops are nested too deeply"));
+    assert!(run_err(&nested, 21, 21)
+        .message
+        .starts_with("loops are nested too deeply"));
 }
 
 // ---- rendering ----------------------------------------------------------------------
