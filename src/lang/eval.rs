@@ -9,10 +9,6 @@ use super::{Env, Host, Source};
 use crate::error::{Error, Result};
 use crate::value::{CommandCall, Keyword, Span, Value};
 
-/// Most statements one execution may run (loops included): a runaway loop stops with an
-/// error instead of hanging.
-pub const MAX_STEPS: u64 = 10_000_000;
-
 const IMPORT_HINT: &str = "add `from math import *` at the top of the file";
 
 pub fn execute(program: &Program, src: &Source, env: &mut Env, host: &mut dyn Host) -> Result<()> {
@@ -21,6 +17,7 @@ pub fn execute(program: &Program, src: &Source, env: &mut Env, host: &mut dyn Ho
         env,
         host,
         steps: 0,
+        work: 0,
     };
     ev.block(&program.stmts)
 }
@@ -30,6 +27,7 @@ struct Evaluator<'a> {
     env: &'a mut Env,
     host: &'a mut dyn Host,
     steps: u64,
+    work: u64,
 }
 
 /// Positional values (with their spans) and keywords of a call.
@@ -60,6 +58,26 @@ impl Evaluator<'_> {
         Error::input(msg).at(self.file, span)
     }
 
+    /// Counts the items of a value just built; errors past `Limits::max_work`.
+    fn charge(&mut self, v: Value, span: Span) -> Result<Value> {
+        let n = match &v {
+            Value::Seq(items) => items.len(),
+            Value::Str(s) => s.len(),
+            _ => 0,
+        };
+        self.work += n as u64;
+        let max_work = self.env.limits.max_work;
+        if self.work > max_work {
+            return Err(self
+                .input(
+                    format!("more than {max_work} list items or characters built"),
+                    span,
+                )
+                .hint("a loop probably builds very long lists"));
+        }
+        Ok(v)
+    }
+
     fn block(&mut self, stmts: &[Stmt]) -> Result<()> {
         for s in stmts {
             self.stmt(s)?;
@@ -69,9 +87,10 @@ impl Evaluator<'_> {
 
     fn stmt(&mut self, s: &Stmt) -> Result<()> {
         self.steps += 1;
-        if self.steps > MAX_STEPS {
+        let max_steps = self.env.limits.max_steps;
+        if self.steps > max_steps {
             return Err(self
-                .input(format!("more than {MAX_STEPS} statements executed"), s.span)
+                .input(format!("more than {max_steps} statements executed"), s.span)
                 .hint("a loop is probably far too long"));
         }
         match &s.kind {
@@ -88,6 +107,7 @@ impl Evaluator<'_> {
                 let cur = self.name_value(&target.text, target.span)?;
                 let rhs = self.eval(value)?;
                 let v = arith::binary(*op, &cur, &rhs).map_err(|m| self.input(m, s.span))?;
+                let v = self.charge(v, s.span)?;
                 self.env.bind(&target.text, v);
             }
             StmtKind::Call(e) => {
@@ -204,7 +224,8 @@ impl Evaluator<'_> {
             ExprKind::Binary(op, a, b) => {
                 let x = self.eval(a)?;
                 let y = self.eval(b)?;
-                arith::binary(*op, &x, &y).map_err(|m| self.input(m, e.span))
+                let v = arith::binary(*op, &x, &y).map_err(|m| self.input(m, e.span))?;
+                self.charge(v, e.span)
             }
             ExprKind::Call { func, args } => self.call(func, args, e.span, Site::Nested),
             ExprKind::Index(base, idx) => {
@@ -303,7 +324,8 @@ impl Evaluator<'_> {
         }
         if BUILTINS.contains(&name) {
             let vals = self.positional(name, args)?;
-            return builtins::call_builtin(name, &vals).map_err(|m| self.input(m, span));
+            let v = builtins::call_builtin(name, &vals).map_err(|m| self.input(m, span))?;
+            return self.charge(v, span);
         }
         if MATH_FUNCS.contains(&name) {
             return Err(self

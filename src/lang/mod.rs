@@ -22,7 +22,6 @@ mod scan;
 
 pub use ast::Program;
 pub use diag::{render, render_plain, render_styled};
-pub use eval::MAX_STEPS;
 
 use crate::error::Result;
 use crate::value::{CommandCall, ConceptRef, Value};
@@ -60,9 +59,29 @@ pub fn run(src: &Source, env: &mut Env, host: &mut dyn Host) -> Result<()> {
     execute(&program, src, env, host)
 }
 
+/// Bounds on one execution, so that a runaway file stops with an error instead of hanging.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Limits {
+    /// Most statements run (loop bodies count once per iteration).
+    pub max_steps: u64,
+    /// Most list items and text characters built by `+`, `*` and builtins.
+    pub max_work: u64,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            max_steps: 10_000_000,
+            max_work: 100_000_000,
+        }
+    }
+}
+
 /// The Python names of a running file.
 #[derive(Clone, Debug, Default)]
 pub struct Env {
+    /// Execution bounds (defaults suit real studies).
+    pub limits: Limits,
     /// Variables (numbers, texts, tuples, concepts...).
     pub(crate) vars: HashMap<String, Value>,
     /// Imported math functions: bound name -> math function name.

@@ -165,10 +165,17 @@ impl LineParser<'_> {
     }
 
     fn simple_stmts(&self, p: Pair<Rule>, off: usize) -> Result<Vec<Stmt>> {
-        p.into_inner().map(|q| self.stmt(q, off)).collect()
+        let mut out = Vec::new();
+        for q in p.into_inner() {
+            if let Some(s) = self.stmt(q, off)? {
+                out.push(s);
+            }
+        }
+        Ok(out)
     }
 
-    fn stmt(&self, p: Pair<Rule>, off: usize) -> Result<Stmt> {
+    /// One statement; `None` for a lone string literal (a docstring, as in Python).
+    fn stmt(&self, p: Pair<Rule>, off: usize) -> Result<Option<Stmt>> {
         let span = self.span(&p, off);
         let rule = p.as_rule();
         let mut inner: Vec<Pair<Rule>> = p.into_inner().collect();
@@ -196,6 +203,9 @@ impl LineParser<'_> {
             }
             Rule::expr_stmt if inner.len() == 1 => {
                 let e = self.expr(inner.remove(0), off)?;
+                if matches!(e.kind, ExprKind::Str(_)) {
+                    return Ok(None);
+                }
                 if !matches!(e.kind, ExprKind::Call { .. }) {
                     return Err(self
                         .err(
@@ -210,7 +220,7 @@ impl LineParser<'_> {
             Rule::import_stmt => self.import(inner, off, span)?,
             _ => return Err(Error::internal("unexpected statement").at(&self.src.name, span)),
         };
-        Ok(Stmt { kind, span })
+        Ok(Some(Stmt { kind, span }))
     }
 
     fn import_from(&self, inner: Vec<Pair<Rule>>, off: usize) -> Result<StmtKind> {

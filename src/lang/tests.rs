@@ -75,8 +75,14 @@ fn val(text: &str, name: &str) -> Value {
 
 /// The error, checked to point at `line:col` of t.comm.
 fn run_err(text: &str, line: usize, col: usize) -> Error {
+    run_err_limited(text, line, col, Limits::default())
+}
+
+fn run_err_limited(text: &str, line: usize, col: usize, limits: Limits) -> Error {
     let src = Source::new("t.comm", text);
-    let e = match run(&src, &mut Env::new(), &mut Recorder::default()) {
+    let mut env = Env::new();
+    env.limits = limits;
+    let e = match run(&src, &mut env, &mut Recorder::default()) {
         Ok(()) => panic!("no error for {text:?}"),
         Err(e) => e,
     };
@@ -646,13 +652,18 @@ fn resource_limits_are_errors() {
         );
         assert_eq!(e.location.map(|l| l.span.line), Some(1));
     }
-    let e = run_err(
-        "for i in range(1000000):\n    for j in range(1000000):\n        x = 1",
+    let small = Limits {
+        max_steps: 1000,
+        ..Limits::default()
+    };
+    let e = run_err_limited(
+        "for i in range(100000):\n    for j in range(100000):\n        x = 1",
         3,
         9,
+        small,
     );
     assert!(
-        e.message.starts_with("more than 10000000 statements"),
+        e.message.starts_with("more than 1000 statements"),
         "{}",
         e.message
     );
@@ -664,6 +675,31 @@ fn resource_limits_are_errors() {
     assert!(run_err(&nested, 21, 21)
         .message
         .starts_with("loops are nested too deeply"));
+}
+
+#[test]
+fn copying_big_lists_in_a_loop_is_stopped() {
+    let small = Limits {
+        max_steps: 1000,
+        max_work: 10_000,
+    };
+    let e = run_err_limited(
+        "L = list(range(500))\nfor i in range(1000):\n    M = L + L",
+        3,
+        9,
+        small,
+    );
+    assert!(
+        e.message.starts_with("more than 10000 list items"),
+        "{}",
+        e.message
+    );
+}
+
+#[test]
+fn docstrings_are_ignored() {
+    let (env, _) = run_ok("\"\"\"Study of a beam.\n\nTwo modes.\"\"\"\nx = 1 ; 'note'");
+    assert_eq!(env.get("x"), Some(&Int(1)));
 }
 
 // ---- rendering ----------------------------------------------------------------------
