@@ -262,7 +262,17 @@ impl Evaluator<'_> {
         let mut pos = Vec::new();
         let mut kws: Vec<Keyword> = Vec::new();
         for a in args {
-            let v = self.eval(&a.value)?;
+            // Errors inside a keyword's value name it, with the path through factor
+            // keywords as Code_Aster writes it: CHOC/JEU.
+            let v = self.eval(&a.value).map_err(|mut e| {
+                if let Some(n) = &a.name {
+                    e.keyword = Some(match e.keyword.take() {
+                        Some(inner) => format!("{}/{inner}", n.text),
+                        None => n.text.clone(),
+                    });
+                }
+                e
+            })?;
             match &a.name {
                 None => pos.push((v, a.span)),
                 Some(n) => {

@@ -302,6 +302,41 @@ fn for_loops_nested_and_inline() {
 }
 
 #[test]
+fn inline_loop_bodies_indexing_and_reruns() {
+    let text = "L = [2, 4, 8]\nn = 0\nfor i in range(len(L) - 1): n += L[i+1] - L[i]; DEBUT(I=i)\nlast = L[-len(L)]";
+    let (env, host) = run_ok(text);
+    assert_eq!(env.get("n"), Some(&Int(6)));
+    assert_eq!(env.get("last"), Some(&Int(2)));
+    assert_eq!(host.calls.len(), 2);
+    // A parsed program can be executed again, with a fresh environment.
+    let src = Source::new("t.comm", text);
+    let program = parse(&src).unwrap();
+    let mut h = Recorder::default();
+    execute(&program, &src, &mut Env::new(), &mut h).unwrap();
+    execute(&program, &src, &mut Env::new(), &mut h).unwrap();
+    assert_eq!(h.calls.len(), 4);
+}
+
+#[test]
+fn parsing_alone_needs_no_host_and_keeps_statement_order() {
+    let p = parse(&Source::new(
+        "t.comm",
+        "DEBUT()\nfor i in (1,):\n    X = F(A=i)\nFIN()",
+    ))
+    .unwrap();
+    let kinds: Vec<&str> = p
+        .stmts
+        .iter()
+        .map(|s| match &s.kind {
+            ast::StmtKind::Call(_) => "call",
+            ast::StmtKind::For { body, .. } if body.len() == 1 => "for1",
+            _ => "other",
+        })
+        .collect();
+    assert_eq!(kinds, vec!["call", "for1", "call"]);
+}
+
+#[test]
 fn loop_bodies_with_tabs_comments_and_blank_lines() {
     let (env, _) = run_ok(
         "n = 0\nfor i in 1, 2:\n\n\t# comment at another indentation\n\tn += i\n\n\tn += 1\nend=n",
@@ -700,6 +735,18 @@ fn copying_big_lists_in_a_loop_is_stopped() {
 fn docstrings_are_ignored() {
     let (env, _) = run_ok("\"\"\"Study of a beam.\n\nTwo modes.\"\"\"\nx = 1 ; 'note'");
     assert_eq!(env.get("x"), Some(&Int(1)));
+}
+
+#[test]
+fn errors_in_keyword_values_name_the_keyword_path() {
+    let e = run_err("DEBUT(CHOC=(_F(A=1), _F(JEU=1/0)))", 1, 29);
+    assert_eq!(e.keyword.as_deref(), Some("CHOC/JEU"));
+    let e = run_err("DEBUT(AFFE=_F(GROUP_MA='A', GROUP_MA='B'))", 1, 29);
+    assert_eq!(e.keyword.as_deref(), Some("AFFE/GROUP_MA"));
+    let e = run_err("DEBUT(MAILLAGE=MAIL)", 1, 16);
+    assert_eq!(e.keyword.as_deref(), Some("MAILLAGE"));
+    // Not inside an operator call: no keyword.
+    assert_eq!(run_err("x = 1/0", 1, 5).keyword, None);
 }
 
 // ---- rendering ----------------------------------------------------------------------
