@@ -394,6 +394,18 @@ fn sample_study_from_the_brief() {
 }
 
 #[test]
+fn brief_sample_parses_and_reports_the_undefined_reused_concept() {
+    let text = include_str!("../../tests/fixtures/brief_sample.comm");
+    let program = parse(&Source::new("t.comm", text)).unwrap();
+    // DEBUT, import, k, m, MAIL, MODELE, CARA, ASSEMBLAGE, f0, MNL, for, FIN.
+    assert_eq!(program.stmts.len(), 12);
+    // MNL is reused before any MNL = ... : Python would raise NameError there too.
+    let e = run_err(text, 14, 25);
+    assert_eq!(e.message, "name 'MNL' is not defined");
+    assert_eq!(e.keyword.as_deref(), Some("reuse"));
+}
+
+#[test]
 fn loops_and_lists_fixture() {
     let (env, host) = run_ok(include_str!("../../tests/fixtures/loops_and_lists.comm"));
     assert_eq!(env.get("total"), Some(&Real(9.0)));
