@@ -1,1 +1,153 @@
-//! (under construction)
+//! The `.comm` command language: the Python subset of Code_Aster command files.
+//!
+//! [`parse`] turns a [`Source`] into a [`Program`] (syntax errors carry file, line and
+//! column); [`execute`] runs it, keeping Python variables in an [`Env`] and handing every
+//! operator call to a [`Host`] as a [`CommandCall`]; [`render`] shows an error with its
+//! source line and a caret.
+//!
+//! Layout: `scan` (logical lines, indentation, lexical errors) -> `parser` (pest grammar
+//! `grammar/comm.pest` -> `ast`) -> `eval` (with `arith` and `builtins`); `diag` renders.
+
+// `error::Error` (the shared contract) is large; every fallible function here returns it.
+// Boxing it is the integrator's call, so the lint is silenced for this module only.
+#![allow(clippy::result_large_err)]
+
+mod arith;
+pub mod ast;
+mod builtins;
+pub mod diag;
+mod eval;
+mod parser;
+mod scan;
+
+pub use ast::Program;
+pub use diag::{render, render_plain, render_styled};
+
+use crate::error::Result;
+use crate::value::{CommandCall, ConceptRef, Value};
+use std::collections::{HashMap, HashSet};
+
+/// A command file: `name` is the path shown in messages.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Source {
+    pub name: String,
+    pub text: String,
+}
+
+impl Source {
+    pub fn new(name: impl Into<String>, text: impl Into<String>) -> Self {
+        Source {
+            name: name.into(),
+            text: text.into(),
+        }
+    }
+}
+
+/// Parses a command file (no evaluation).
+pub fn parse(src: &Source) -> Result<Program> {
+    parser::parse(src)
+}
+
+/// Runs a parsed file. Stops at the first error, which names the file, line and column.
+pub fn execute(program: &Program, src: &Source, env: &mut Env, host: &mut dyn Host) -> Result<()> {
+    eval::execute(program, src, env, host)
+}
+
+/// Parses and runs a command file.
+pub fn run(src: &Source, env: &mut Env, host: &mut dyn Host) -> Result<()> {
+    let program = parse(src)?;
+    execute(&program, src, env, host)
+}
+
+/// Bounds on one execution, so that a runaway file stops with an error instead of hanging.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Limits {
+    /// Most statements run (loop bodies count once per iteration).
+    pub max_steps: u64,
+    /// Most list items and text characters built by `+`, `*` and builtins.
+    pub max_work: u64,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            max_steps: 10_000_000,
+            max_work: 100_000_000,
+        }
+    }
+}
+
+/// The Python names of a running file.
+#[derive(Clone, Debug, Default)]
+pub struct Env {
+    /// Execution bounds (defaults suit real studies).
+    pub limits: Limits,
+    /// Variables (numbers, texts, tuples, concepts...).
+    pub(crate) vars: HashMap<String, Value>,
+    /// Imported math functions: bound name -> math function name.
+    pub(crate) funcs: HashMap<String, String>,
+    /// Names bound to the `math` module (`import math [as m]`).
+    pub(crate) modules: HashSet<String>,
+}
+
+impl Env {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Binds a variable (a later assignment of the same name replaces it, and hides an
+    /// imported function or module of that name, as in Python).
+    pub fn bind(&mut self, name: &str, value: Value) {
+        self.funcs.remove(name);
+        self.modules.remove(name);
+        self.vars.insert(name.to_string(), value);
+    }
+
+    pub fn get(&self, name: &str) -> Option<&Value> {
+        self.vars.get(name)
+    }
+
+    /// Variable names, sorted.
+    pub fn names(&self) -> Vec<String> {
+        let mut v: Vec<String> = self.vars.keys().cloned().collect();
+        v.sort();
+        v
+    }
+
+    pub(crate) fn import_fn(&mut self, bound: &str, math_name: &str) {
+        self.vars.remove(bound);
+        self.modules.remove(bound);
+        self.funcs.insert(bound.to_string(), math_name.to_string());
+    }
+}
+
+/// What the language needs from the interpreter.
+pub trait Host {
+    /// Is `name` an operator (from the catalogs)? Calls to non-operators that are not
+    /// builtins are errors.
+    fn is_operator(&self, name: &str) -> bool;
+
+    /// Runs (or just validates) one operator call; returns the value to bind to the
+    /// result name (usually `Value::Concept`). An `Err` stops execution and [`execute`]
+    /// returns it (located at the call when it has no location yet).
+    fn call(&mut self, call: CommandCall) -> Result<Value>;
+
+    /// All operator names, for "did you mean" hints.
+    fn operator_names(&self) -> Vec<String> {
+        Vec::new()
+    }
+
+    /// The concept named `name` if it exists: after a call, every `CO('NAME')` of its
+    /// keywords that the host reports here becomes a Python name.
+    fn lookup_concept(&self, _name: &str) -> Option<ConceptRef> {
+        None
+    }
+
+    /// Output of `print(...)` in the command file.
+    fn print(&mut self, text: &str) {
+        println!("{text}");
+    }
+}
+
+#[cfg(test)]
+mod tests;

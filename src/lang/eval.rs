@@ -1,0 +1,511 @@
+//! Executes a [`Program`]: Python variables, arithmetic, `math`, `for` loops; every
+//! operator call becomes a [`CommandCall`] handed to the [`Host`].
+
+use super::arith;
+use super::ast::*;
+use super::builtins::{self, BUILTINS, MATH_FUNCS};
+use super::diag::{did_you_mean, suggestions};
+use super::{Env, Host, Source};
+use crate::error::{Error, Result};
+use crate::value::{CommandCall, Keyword, Span, Value};
+
+const IMPORT_HINT: &str = "add `from math import *` at the top of the file";
+
+pub fn execute(program: &Program, src: &Source, env: &mut Env, host: &mut dyn Host) -> Result<()> {
+    let mut ev = Evaluator {
+        file: &src.name,
+        env,
+        host,
+        steps: 0,
+        work: 0,
+    };
+    ev.block(&program.stmts)
+}
+
+struct Evaluator<'a> {
+    file: &'a str,
+    env: &'a mut Env,
+    host: &'a mut dyn Host,
+    steps: u64,
+    work: u64,
+}
+
+/// Positional values (with their spans) and keywords of a call.
+type EvaluatedArgs = (Vec<(Value, Span)>, Vec<Keyword>);
+
+/// Where a call stands: operators may only be called by a statement.
+#[derive(Clone, Copy)]
+enum Site<'n> {
+    /// Inside an expression.
+    Nested,
+    /// A call statement (its span).
+    Statement(Span),
+    /// The whole right-hand side of `NAME = ...` (target, statement span).
+    Assign(&'n Name, Span),
+}
+
+fn is_upper_name(n: &str) -> bool {
+    n.chars().next().is_some_and(|c| c.is_ascii_uppercase())
+        && n.chars()
+            .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
+}
+
+impl Evaluator<'_> {
+    fn syntax(&self, msg: impl Into<String>, span: Span) -> Error {
+        Error::syntax(msg).at(self.file, span)
+    }
+    fn input(&self, msg: impl Into<String>, span: Span) -> Error {
+        Error::input(msg).at(self.file, span)
+    }
+
+    /// Counts the items of a value just built; errors past `Limits::max_work`.
+    fn charge(&mut self, v: Value, span: Span) -> Result<Value> {
+        let n = match &v {
+            Value::Seq(items) => items.len(),
+            Value::Str(s) => s.len(),
+            _ => 0,
+        };
+        self.work += n as u64;
+        let max_work = self.env.limits.max_work;
+        if self.work > max_work {
+            return Err(self
+                .input(
+                    format!("more than {max_work} list items or characters built"),
+                    span,
+                )
+                .hint("a loop probably builds very long lists"));
+        }
+        Ok(v)
+    }
+
+    fn block(&mut self, stmts: &[Stmt]) -> Result<()> {
+        for s in stmts {
+            self.stmt(s)?;
+        }
+        Ok(())
+    }
+
+    fn stmt(&mut self, s: &Stmt) -> Result<()> {
+        self.steps += 1;
+        let max_steps = self.env.limits.max_steps;
+        if self.steps > max_steps {
+            return Err(self
+                .input(format!("more than {max_steps} statements executed"), s.span)
+                .hint("a loop is probably far too long"));
+        }
+        match &s.kind {
+            StmtKind::Assign { target, value } => {
+                let v = match &value.kind {
+                    ExprKind::Call { func, args } => {
+                        self.call(func, args, value.span, Site::Assign(target, s.span))?
+                    }
+                    _ => self.eval(value)?,
+                };
+                self.env.bind(&target.text, v);
+            }
+            StmtKind::AugAssign { target, op, value } => {
+                let cur = self.name_value(&target.text, target.span)?;
+                let rhs = self.eval(value)?;
+                let v = arith::binary(*op, &cur, &rhs).map_err(|m| self.input(m, s.span))?;
+                let v = self.charge(v, s.span)?;
+                self.env.bind(&target.text, v);
+            }
+            StmtKind::Call(e) => {
+                if let ExprKind::Call { func, args } = &e.kind {
+                    self.call(func, args, e.span, Site::Statement(s.span))?;
+                }
+            }
+            StmtKind::For { var, iter, body } => {
+                let items = match self.eval(iter)? {
+                    Value::Seq(items) => items,
+                    Value::Str(t) => t.chars().map(|c| Value::Str(c.to_string())).collect(),
+                    v => {
+                        return Err(self.input(
+                            format!(
+                                "'for' needs a list, a tuple or a range, got {}",
+                                v.kind_name()
+                            ),
+                            iter.span,
+                        ))
+                    }
+                };
+                for item in items {
+                    self.env.bind(&var.text, item);
+                    self.block(body)?;
+                }
+            }
+            StmtKind::ImportFrom { module, names } => self.import_from(module, names.as_deref())?,
+            StmtKind::Import { module, alias } => {
+                if module.text == "math" {
+                    self.env.modules.insert(alias.text.clone());
+                    self.env.vars.remove(&alias.text);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn import_from(&mut self, module: &Name, names: Option<&[(Name, Name)]>) -> Result<()> {
+        if module.text != "math" {
+            return Ok(()); // code_aster imports: every operator is already available
+        }
+        match names {
+            None => {
+                for f in MATH_FUNCS {
+                    self.env.import_fn(f, f);
+                }
+                for c in ["pi", "e", "tau"] {
+                    if let Some(x) = builtins::math_const(c) {
+                        self.env.bind(c, Value::Real(x));
+                    }
+                }
+            }
+            Some(list) => {
+                for (n, bound) in list {
+                    if let Some(x) = builtins::math_const(&n.text) {
+                        self.env.bind(&bound.text, Value::Real(x));
+                    } else if MATH_FUNCS.contains(&n.text.as_str()) {
+                        self.env.import_fn(&bound.text, &n.text);
+                    } else {
+                        return Err(
+                            self.input(format!("cannot import '{}' from 'math'", n.text), n.span)
+                        );
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The value of a bare name.
+    fn name_value(&self, n: &str, span: Span) -> Result<Value> {
+        if let Some(v) = self.env.vars.get(n) {
+            return Ok(v.clone());
+        }
+        if self.env.funcs.contains_key(n) || BUILTINS.contains(&n) {
+            return Err(self.syntax(format!("'{n}' is a function: call it, e.g. {n}(...)"), span));
+        }
+        if self.env.modules.contains(n) {
+            return Err(self.syntax(format!("module '{n}' cannot be used as a value"), span));
+        }
+        let mut err = self.input(format!("name '{n}' is not defined"), span);
+        if builtins::math_const(n).is_some() {
+            err = err.hint(IMPORT_HINT);
+        } else if self.host.is_operator(n) {
+            err = err.hint(format!("'{n}' is an operator: call it, e.g. X = {n}(...)"));
+        } else {
+            let vars: Vec<String> = self.env.vars.keys().cloned().collect();
+            if let Some(h) = did_you_mean(&suggestions(n, &vars)) {
+                err = err.hint(h);
+            }
+        }
+        Err(err)
+    }
+
+    fn eval(&mut self, e: &Expr) -> Result<Value> {
+        match &e.kind {
+            ExprKind::Int(i) => Ok(Value::Int(*i)),
+            ExprKind::Real(r) => Ok(Value::Real(*r)),
+            ExprKind::Str(s) => Ok(Value::Str(s.clone())),
+            ExprKind::Bool(b) => Ok(Value::Bool(*b)),
+            ExprKind::None => Ok(Value::None),
+            ExprKind::Name(n) => self.name_value(n, e.span),
+            ExprKind::Tuple(items) | ExprKind::List(items) => {
+                let mut out = Vec::with_capacity(items.len());
+                for i in items {
+                    out.push(self.eval(i)?);
+                }
+                Ok(Value::Seq(out))
+            }
+            ExprKind::Unary(op, x) => {
+                let v = self.eval(x)?;
+                arith::unary(*op, &v).map_err(|m| self.input(m, e.span))
+            }
+            ExprKind::Binary(op, a, b) => {
+                let x = self.eval(a)?;
+                let y = self.eval(b)?;
+                let v = arith::binary(*op, &x, &y).map_err(|m| self.input(m, e.span))?;
+                self.charge(v, e.span)
+            }
+            ExprKind::Call { func, args } => self.call(func, args, e.span, Site::Nested),
+            ExprKind::Index(base, idx) => {
+                let b = self.eval(base)?;
+                let i = self.eval(idx)?;
+                index(&b, &i).map_err(|m| self.input(m, e.span))
+            }
+            ExprKind::Attr(base, attr) => match &base.kind {
+                ExprKind::Name(m)
+                    if self.env.modules.contains(m) && !self.env.vars.contains_key(m) =>
+                {
+                    match builtins::math_const(&attr.text) {
+                        Some(x) => Ok(Value::Real(x)),
+                        None if MATH_FUNCS.contains(&attr.text.as_str()) => Err(self.syntax(
+                            format!("'{m}.{}' is a function: call it", attr.text),
+                            e.span,
+                        )),
+                        None => Err(self.input(
+                            format!("module 'math' has no attribute '{}'", attr.text),
+                            attr.span,
+                        )),
+                    }
+                }
+                _ => {
+                    self.eval(base)?;
+                    Err(self.syntax("attributes (x.name) are not supported", attr.span))
+                }
+            },
+        }
+    }
+
+    /// Evaluates call arguments: positional values and keywords (duplicates refused).
+    fn args(&mut self, args: &[Arg]) -> Result<EvaluatedArgs> {
+        let mut pos = Vec::new();
+        let mut kws: Vec<Keyword> = Vec::new();
+        for a in args {
+            // Errors inside a keyword's value name it, with the path through factor
+            // keywords as Code_Aster writes it: CHOC/JEU.
+            let v = self.eval(&a.value).map_err(|mut e| {
+                if let Some(n) = &a.name {
+                    e.keyword = Some(match e.keyword.take() {
+                        Some(inner) => format!("{}/{inner}", n.text),
+                        None => n.text.clone(),
+                    });
+                }
+                e
+            })?;
+            match &a.name {
+                None => pos.push((v, a.span)),
+                Some(n) => {
+                    if kws.iter().any(|k| k.name == n.text) {
+                        return Err(self
+                            .input(format!("keyword '{}' is given twice", n.text), a.span)
+                            .keyword(n.text.clone()));
+                    }
+                    kws.push(Keyword {
+                        name: n.text.clone(),
+                        value: v,
+                        span: a.span,
+                    });
+                }
+            }
+        }
+        Ok((pos, kws))
+    }
+
+    /// A call; `span` is the span of the call expression, `site` where it stands.
+    fn call(&mut self, func: &Expr, args: &[Arg], span: Span, site: Site) -> Result<Value> {
+        let name = match &func.kind {
+            ExprKind::Name(n) => n.as_str(),
+            ExprKind::Attr(base, attr) => return self.method_call(base, attr, args, span),
+            _ => return Err(self.syntax("only functions and operators can be called", func.span)),
+        };
+        match name {
+            "_F" => {
+                let (pos, kws) = self.args(args)?;
+                if let Some((_, s)) = pos.first() {
+                    return Err(self.syntax("_F(...) takes only keywords KEY=value", *s));
+                }
+                return Ok(Value::Fact(kws));
+            }
+            "CO" => {
+                let (pos, kws) = self.args(args)?;
+                return match (pos.as_slice(), kws.is_empty()) {
+                    ([(Value::Str(s), _)], true) => Ok(Value::Co(s.clone())),
+                    _ => Err(self.input("CO() takes one text: CO('NAME')", span)),
+                };
+            }
+            _ => {}
+        }
+        if let Some(v) = self.env.vars.get(name) {
+            return Err(self.input(
+                format!("'{name}' is {}, not a function", v.kind_name()),
+                func.span,
+            ));
+        }
+        if let Some(target) = self.env.funcs.get(name).cloned() {
+            let vals = self.positional(name, args)?;
+            return builtins::call_math(&target, &vals).map_err(|m| self.input(m, span));
+        }
+        if name == "print" {
+            let vals = self.positional(name, args)?;
+            let text: Vec<String> = vals.iter().map(builtins::to_text).collect();
+            self.host.print(&text.join(" "));
+            return Ok(Value::None);
+        }
+        if BUILTINS.contains(&name) {
+            let vals = self.positional(name, args)?;
+            let v = builtins::call_builtin(name, &vals).map_err(|m| self.input(m, span))?;
+            return self.charge(v, span);
+        }
+        if MATH_FUNCS.contains(&name) {
+            return Err(self
+                .input(format!("name '{name}' is not defined"), func.span)
+                .hint(IMPORT_HINT));
+        }
+        if self.host.is_operator(name) {
+            return self.operator(name, func.span, args, site);
+        }
+        if is_upper_name(name) {
+            let mut err = self.input(format!("unknown operator '{name}'"), func.span);
+            if let Some(h) = did_you_mean(&suggestions(name, &self.host.operator_names())) {
+                err = err.hint(h);
+            }
+            return Err(err);
+        }
+        Err(self
+            .input(format!("name '{name}' is not defined"), func.span)
+            .hint(
+                "functions available: the operators, math functions after `from math import *`, \
+             and abs float int min max len range list tuple sum str round print",
+            ))
+    }
+
+    /// Evaluates the arguments of a Python function: positional only.
+    fn positional(&mut self, f: &str, args: &[Arg]) -> Result<Vec<Value>> {
+        let (pos, kws) = self.args(args)?;
+        if let Some(k) = kws.first() {
+            return Err(self.syntax(format!("{f}() does not take keyword arguments"), k.span));
+        }
+        Ok(pos.into_iter().map(|(v, _)| v).collect())
+    }
+
+    /// `math.sqrt(x)`; any other `x.method(...)` is outside the subset.
+    fn method_call(&mut self, base: &Expr, attr: &Name, args: &[Arg], span: Span) -> Result<Value> {
+        if let ExprKind::Name(m) = &base.kind {
+            if self.env.modules.contains(m) && !self.env.vars.contains_key(m) {
+                if !MATH_FUNCS.contains(&attr.text.as_str()) {
+                    return Err(self.input(
+                        format!("module 'math' has no function '{}'", attr.text),
+                        attr.span,
+                    ));
+                }
+                let vals = self.positional(&attr.text, args)?;
+                return builtins::call_math(&attr.text, &vals).map_err(|m| self.input(m, span));
+            }
+            if !self.env.vars.contains_key(m) {
+                let mut err = self.input(format!("name '{m}' is not defined"), base.span);
+                if m == "math" {
+                    err = err.hint("add `import math` at the top of the file");
+                }
+                return Err(err);
+            }
+        }
+        Err(self
+            .syntax(
+                format!("calling methods (.{}(...)) is not supported", attr.text),
+                attr.span,
+            )
+            .hint("only operators, math functions and a few builtins can be called"))
+    }
+
+    fn operator(&mut self, op: &str, op_span: Span, args: &[Arg], site: Site) -> Result<Value> {
+        let (target, stmt_span) = match site {
+            Site::Assign(t, s) => (Some(t.text.clone()), s),
+            Site::Statement(s) => (None, s),
+            Site::Nested => {
+                return Err(self
+                    .syntax(
+                        format!("operator '{op}' must be called in a statement of its own"),
+                        op_span,
+                    )
+                    .hint(format!("write X = {op}(...) on its own line, then use X")))
+            }
+        };
+        let (pos, mut kws) = self.args(args)?;
+        if let Some((_, s)) = pos.first() {
+            return Err(self
+                .syntax(format!("arguments of operator '{op}' must be keywords"), *s)
+                .hint("write KEY=value"));
+        }
+        let mut reuse = None;
+        if let Some(i) = kws.iter().position(|k| k.name == "reuse") {
+            let k = kws.remove(i);
+            match k.value {
+                Value::Concept(c) => reuse = Some(c),
+                v => {
+                    return Err(self
+                        .input(
+                            format!("reuse= must name a concept, got {}", v.kind_name()),
+                            k.span,
+                        )
+                        .keyword("reuse"))
+                }
+            }
+        }
+        let co_names = co_names(&kws);
+        let call = CommandCall {
+            op: op.to_string(),
+            result: target,
+            reuse,
+            args: kws,
+            span: stmt_span,
+            op_span,
+        };
+        let value = self
+            .host
+            .call(call)
+            .map_err(|e| e.at(self.file, stmt_span))?;
+        // Macro commands create the CO('NAME') concepts: make them Python names too.
+        for n in co_names {
+            if let Some(c) = self.host.lookup_concept(&n) {
+                self.env.bind(&n, Value::Concept(c));
+            }
+        }
+        Ok(value)
+    }
+}
+
+/// Names of the `CO('NAME')` values found anywhere in the keywords.
+fn co_names(kws: &[Keyword]) -> Vec<String> {
+    fn walk(v: &Value, out: &mut Vec<String>) {
+        match v {
+            Value::Co(n) => out.push(n.clone()),
+            Value::Seq(items) => items.iter().for_each(|i| walk(i, out)),
+            Value::Fact(k) => k.iter().for_each(|k| walk(&k.value, out)),
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    kws.iter().for_each(|k| walk(&k.value, &mut out));
+    out
+}
+
+/// `seq[i]` with Python's negative indices.
+fn index(base: &Value, i: &Value) -> std::result::Result<Value, String> {
+    let i = match i {
+        Value::Int(i) => *i,
+        Value::Bool(b) => i64::from(*b),
+        v => {
+            return Err(format!(
+                "an index must be an integer, got {}",
+                v.kind_name()
+            ))
+        }
+    };
+    let get = |len: usize| -> std::result::Result<usize, String> {
+        let l = i64::try_from(len).unwrap_or(i64::MAX);
+        let k = if i < 0 { i.checked_add(l) } else { Some(i) };
+        match k {
+            Some(k) if (0..l).contains(&k) => usize::try_from(k).map_err(|_| String::new()),
+            _ => Err(format!("index {i} is out of range (length {len})")),
+        }
+    };
+    match base {
+        Value::Seq(items) => {
+            let k = get(items.len())?;
+            items
+                .get(k)
+                .cloned()
+                .ok_or_else(|| format!("index {i} is out of range"))
+        }
+        Value::Str(s) => {
+            let chars: Vec<char> = s.chars().collect();
+            let k = get(chars.len())?;
+            chars
+                .get(k)
+                .map(|c| Value::Str(c.to_string()))
+                .ok_or_else(|| format!("index {i} is out of range"))
+        }
+        v => Err(format!("{} cannot be indexed", v.kind_name())),
+    }
+}
