@@ -112,6 +112,9 @@ fn check_level(level: &Level, out: &mut Vec<String>) {
         for k in r.keywords.iter().filter(|k| !names.contains(&k.as_str())) {
             out.push(format!("{p}: rule {} names unknown keyword {k}", r.kind.name()));
         }
+        if let Some(w) = &r.when {
+            check_when(level, r.kind.name(), w, out);
+        }
     }
     for s in level.simp {
         let sp = format!("{p}/{}", s.name);

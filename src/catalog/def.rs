@@ -76,6 +76,9 @@ impl RuleKind {
 pub struct Rule {
     pub kind: RuleKind,
     pub keywords: Vec<String>,
+    /// The rule applies only under this condition (Code_Aster: a rule inside a BLOC).
+    #[serde(default)]
+    pub when: Option<When>,
 }
 
 /// Condition of a conditional keyword (Code_Aster `BLOC(condition=...)`): the keyword

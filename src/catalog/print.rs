@@ -30,7 +30,8 @@ pub(crate) fn range_label(s: &SimpDef) -> Option<String> {
 }
 
 pub(crate) fn rule_label(r: &Rule) -> String {
-    format!("{}({})", r.kind.name(), r.keywords.join(", "))
+    let cond = r.when.as_ref().map(|w| format!(" {}", when_text(w))).unwrap_or_default();
+    format!("{}({}){cond}", r.kind.name(), r.keywords.join(", "))
 }
 
 pub(crate) fn result_label(op: &OperatorDef) -> String {

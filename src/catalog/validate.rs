@@ -114,21 +114,38 @@ pub(crate) fn is_concept_type(t: &str) -> bool {
     !PLAIN_TYPES.contains(&t)
 }
 
-/// The value of a keyword at a level for `when` conditions: given, else its default.
-fn current_value<'v>(level: &'v Level, given: &[&'v Keyword], name: &str) -> Option<&'v Value> {
+/// How deep `when` conditions may chain (a conditional keyword controlling another one).
+const MAX_WHEN_DEPTH: usize = 4;
+
+/// The value of a keyword at a level for `when` conditions: given, else the default of its
+/// definition that is active.
+fn current_value<'v>(
+    level: &'v Level,
+    given: &[&'v Keyword],
+    name: &str,
+    depth: usize,
+) -> Option<&'v Value> {
     if let Some(k) = given.iter().find(|k| k.name == name) {
         return Some(&k.value);
     }
     level
         .simp
         .iter()
-        .find(|s| s.name == name && s.when.is_none())
+        .filter(|s| s.name == name)
+        .find(|s| when_active_at(s.when.as_ref(), level, given, depth + 1))
         .and_then(|s| s.default.as_ref())
 }
 
-fn when_active(when: Option<&When>, level: &Level, given: &[&Keyword]) -> bool {
+pub(crate) fn when_active(when: Option<&When>, level: &Level, given: &[&Keyword]) -> bool {
+    when_active_at(when, level, given, 0)
+}
+
+fn when_active_at(when: Option<&When>, level: &Level, given: &[&Keyword], depth: usize) -> bool {
     let Some(w) = when else { return true };
-    let Some(v) = current_value(level, given, &w.keyword) else {
+    if depth > MAX_WHEN_DEPTH {
+        return false;
+    }
+    let Some(v) = current_value(level, given, &w.keyword, depth) else {
         return false;
     };
     match &w.equals {
@@ -240,7 +257,10 @@ pub(crate) fn validate_level(
                 Statut::Mandatory => errors.push(missing(level, &def.name, def.when.as_ref(), span, file)),
                 Statut::Defaulted => {
                     if let Some(d) = &def.default {
-                        args.simple.push((def.name.clone(), d.clone(), span));
+                        // Normalized like a given value (a scalar default of a list keyword
+                        // becomes a one-element list).
+                        let v = check_simple(def, d).unwrap_or_else(|_| d.clone());
+                        args.simple.push((def.name.clone(), v, span));
                     }
                 }
                 Statut::Optional => {}
@@ -310,7 +330,7 @@ pub(crate) fn validate_level(
         .filter(|k| names.contains(&k.name.as_str()))
         .map(|k| (k.name.as_str(), k.span))
         .collect();
-    for rule in level.rules {
+    for rule in level.rules.iter().filter(|r| when_active(r.when.as_ref(), level, &given)) {
         check_rule(rule, level, &present, span, file, errors);
     }
     args
@@ -472,10 +492,11 @@ fn check_rule(
         .filter_map(|k| present.iter().find(|(n, _)| n == k).copied())
         .collect();
     let list = rule.keywords.join(", ");
+    let cond = rule.when.as_ref().map(|w| format!(" {}", when_text(w))).unwrap_or_default();
     let first = rule.keywords.first().map(String::as_str).unwrap_or("");
     let names_of = |v: &[(&str, Span)]| v.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(" and ");
     let err = |msg: String, kw: &str, at: Span| {
-        Error::validation(format!("{msg} (rule {}({list}))", rule.kind.name()))
+        Error::validation(format!("{msg} (rule {}({list}){cond})", rule.kind.name()))
             .at(file, at)
             .keyword(level.key(kw))
     };
