@@ -32,7 +32,10 @@ pub fn check_consistency() -> Vec<String> {
     for (file, text) in super::files() {
         if let Ok(op) = super::parse(file, text) {
             if format!("{}.toml", op.name) != *file {
-                out.push(format!("commands/{file}: operator {} in a file not named after it", op.name));
+                out.push(format!(
+                    "commands/{file}: operator {} in a file not named after it",
+                    op.name
+                ));
             }
         }
     }
@@ -42,13 +45,16 @@ pub fn check_consistency() -> Vec<String> {
     out
 }
 
-fn check_op(op: &OperatorDef, out: &mut Vec<String>) {
+pub(crate) fn check_op(op: &OperatorDef, out: &mut Vec<String>) {
     if let Some(t) = &op.result {
         check_type(&op.name, t, out);
     }
     if let Some(rf) = &op.result_from {
         if !op.simp.iter().any(|s| s.name == rf.keyword) {
-            out.push(format!("{}: result_from names unknown keyword {}", op.name, rf.keyword));
+            out.push(format!(
+                "{}: result_from names unknown keyword {}",
+                op.name, rf.keyword
+            ));
         }
         for t in rf.map.values() {
             if !["R", "I", "TXM"].contains(&t.as_str()) {
@@ -67,12 +73,18 @@ fn check_type(path: &str, t: &str, out: &mut Vec<String>) {
 
 fn check_when(level: &Level, name: &str, w: &When, out: &mut Vec<String>) {
     let Some(ctl) = level.simp.iter().find(|s| s.name == w.keyword) else {
-        out.push(format!("{}/{name}: `when` names unknown keyword {}", level.path, w.keyword));
+        out.push(format!(
+            "{}/{name}: `when` names unknown keyword {}",
+            level.path, w.keyword
+        ));
         return;
     };
     if let (Some(eq), Some(into)) = (&w.equals, &ctl.into) {
         for v in eq.iter().filter(|v| !into.iter().any(|a| value_eq(a, v))) {
-            out.push(format!("{}/{name}: `when` value {v} not allowed for {}", level.path, w.keyword));
+            out.push(format!(
+                "{}/{name}: `when` value {v} not allowed for {}",
+                level.path, w.keyword
+            ));
         }
     }
 }
@@ -95,22 +107,35 @@ fn check_level(level: &Level, out: &mut Vec<String>) {
         .simp
         .iter()
         .map(|s| (s.name.as_str(), s.when.as_ref()))
-        .chain(level.fact.iter().map(|f| (f.name.as_str(), f.when.as_ref())))
+        .chain(
+            level
+                .fact
+                .iter()
+                .map(|f| (f.name.as_str(), f.when.as_ref())),
+        )
         .collect();
     for (i, (n, w)) in entries.iter().enumerate() {
         for (m, v) in entries.iter().skip(i + 1) {
             if n == m && !disjoint(*w, *v) {
-                out.push(format!("{p}: keyword {n} defined twice (without disjoint `when`)"));
+                out.push(format!(
+                    "{p}: keyword {n} defined twice (without disjoint `when`)"
+                ));
             }
         }
     }
     let names = level.names();
     for r in level.rules {
         if r.keywords.len() < 2 {
-            out.push(format!("{p}: rule {} needs at least two keywords", r.kind.name()));
+            out.push(format!(
+                "{p}: rule {} needs at least two keywords",
+                r.kind.name()
+            ));
         }
         for k in r.keywords.iter().filter(|k| !names.contains(&k.as_str())) {
-            out.push(format!("{p}: rule {} names unknown keyword {k}", r.kind.name()));
+            out.push(format!(
+                "{p}: rule {} names unknown keyword {k}",
+                r.kind.name()
+            ));
         }
         if let Some(w) = &r.when {
             check_when(level, r.kind.name(), w, out);

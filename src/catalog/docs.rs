@@ -23,7 +23,11 @@ fn simp_row(out: &mut String, path: &str, s: &SimpDef) {
     if !s.doc.is_empty() {
         notes.push(s.doc.clone());
     }
-    let default = s.default.as_ref().map(|d| format!("`{d}`")).unwrap_or_default();
+    let default = s
+        .default
+        .as_ref()
+        .map(|d| format!("`{d}`"))
+        .unwrap_or_default();
     let _ = writeln!(
         out,
         "| `{path}{}` | {} | {} | {} | {} |",
@@ -69,7 +73,11 @@ fn op_section(out: &mut String, op: &OperatorDef) {
     }
     let _ = writeln!(out, "Result: {}\n", result_label(op));
     if !op.rules.is_empty() {
-        let rules: Vec<String> = op.rules.iter().map(|r| format!("`{}`", rule_label(r))).collect();
+        let rules: Vec<String> = op
+            .rules
+            .iter()
+            .map(|r| format!("`{}`", rule_label(r)))
+            .collect();
         let _ = writeln!(out, "Rules: {}\n", rules.join(", "));
     }
     let _ = writeln!(out, "| keyword | type | statut | default | notes |");

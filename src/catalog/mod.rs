@@ -14,7 +14,7 @@ pub use def::{FactDef, OperatorDef, Reuse, Rule, RuleKind, SimpDef, Statut, When
 pub use docs::markdown_reference;
 pub use print::{describe, summary};
 pub use suggest::closest;
-pub use validate::validate;
+pub use validate::{validate, validate_with};
 
 use crate::args::Args;
 use std::sync::OnceLock;
@@ -71,7 +71,11 @@ pub fn get(op: &str) -> Option<&'static OperatorDef> {
 /// `"I"`, `"TXM"` when the interpreter binds a plain Python value (e.g.
 /// `EXTR_TABLE(TYPE_RESU='R')`); `None` when the operator produces nothing.
 pub fn result_type(op: &str, args: &Args) -> Option<String> {
-    let def = get(op)?;
+    result_type_with(get(op)?, args)
+}
+
+/// [`result_type`] for a given catalog.
+pub fn result_type_with(def: &OperatorDef, args: &Args) -> Option<String> {
     if let Some(rf) = &def.result_from {
         if let Some(t) = args.text(&rf.keyword).and_then(|v| rf.map.get(v)) {
             return Some(t.clone());

@@ -1,7 +1,7 @@
 //! Plain-text help: `aster-nl catalog` (summary) and `aster-nl catalog OP` (describe).
 
 use super::def::{FactDef, OperatorDef, Reuse, Rule, SimpDef, Statut};
-use super::validate::{bounds_text, when_text};
+use super::validate::{bound_text, bounds_text, when_text};
 use std::fmt::Write;
 
 /// Types of a simple keyword as written in the catalog: `R`, `table_sdaster | table_container`.
@@ -15,22 +15,30 @@ pub(crate) fn type_label(s: &SimpDef) -> String {
 }
 
 pub(crate) fn into_label(s: &SimpDef) -> Option<String> {
-    s.into
-        .as_ref()
-        .map(|v| v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(", "))
+    s.into.as_ref().map(|v| {
+        v.iter()
+            .map(|x| x.to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    })
 }
 
 pub(crate) fn range_label(s: &SimpDef) -> Option<String> {
+    let t = |x: f64| bound_text(x, &s.types);
     match (s.val_min, s.val_max) {
         (None, None) => None,
-        (Some(a), None) => Some(format!(">= {a:?}")),
-        (None, Some(b)) => Some(format!("<= {b:?}")),
-        (Some(a), Some(b)) => Some(format!("{a:?} to {b:?}")),
+        (Some(a), None) => Some(format!(">= {}", t(a))),
+        (None, Some(b)) => Some(format!("<= {}", t(b))),
+        (Some(a), Some(b)) => Some(format!("{} to {}", t(a), t(b))),
     }
 }
 
 pub(crate) fn rule_label(r: &Rule) -> String {
-    let cond = r.when.as_ref().map(|w| format!(" {}", when_text(w))).unwrap_or_default();
+    let cond = r
+        .when
+        .as_ref()
+        .map(|w| format!(" {}", when_text(w)))
+        .unwrap_or_default();
     format!("{}({}){cond}", r.kind.name(), r.keywords.join(", "))
 }
 
@@ -59,7 +67,12 @@ pub(crate) fn result_label(op: &OperatorDef) -> String {
 }
 
 fn simp_text(out: &mut String, s: &SimpDef, indent: &str) {
-    let mut line = format!("{indent}{:<22} {}  [{}]", s.name, type_label(s), s.statut.label());
+    let mut line = format!(
+        "{indent}{:<22} {}  [{}]",
+        s.name,
+        type_label(s),
+        s.statut.label()
+    );
     if let Some(d) = &s.default {
         let _ = write!(line, "  default {d}");
     }
@@ -86,7 +99,11 @@ fn fact_text(out: &mut String, f: &FactDef, indent: &str) {
         "{indent}{} = _F(...)  [{}{}]  occurrences: {occ}",
         f.name,
         f.statut.label(),
-        if f.statut == Statut::Defaulted { ", created with its defaults" } else { "" }
+        if f.statut == Statut::Defaulted {
+            ", created with its defaults"
+        } else {
+            ""
+        }
     );
     let sub = format!("{indent}    ");
     if let Some(w) = &f.when {
@@ -127,9 +144,13 @@ pub fn describe(op: &str) -> Option<String> {
     Some(out)
 }
 
-/// First sentence-line of a doc string.
+/// First sentence of a doc string, for one-line listings.
 pub(crate) fn first_line(doc: &str) -> &str {
-    doc.lines().next().unwrap_or("")
+    let line = doc.lines().next().unwrap_or("");
+    match line.find(". ") {
+        Some(i) => &line[..=i],
+        None => line,
+    }
 }
 
 /// One line per operator: name and first line of its doc.

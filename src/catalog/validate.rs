@@ -61,6 +61,11 @@ pub fn validate(call: &CommandCall, file: &str) -> Result<Args, Vec<Error>> {
             .hint(suggest::hint(&call.op, &names));
         return Err(vec![e]);
     };
+    validate_with(op, call, file)
+}
+
+/// Validates a call against a given catalog (the embedded one is used by [`validate`]).
+pub fn validate_with(op: &OperatorDef, call: &CommandCall, file: &str) -> Result<Args, Vec<Error>> {
     let mut errors = Vec::new();
     let level = Level::of_op(op);
     let args = validate_level(&level, &call.args, call.span, file, &mut errors);
@@ -72,7 +77,13 @@ pub fn validate(call: &CommandCall, file: &str) -> Result<Args, Vec<Error>> {
     }
 }
 
-fn check_reuse(op: &OperatorDef, call: &CommandCall, args: &Args, file: &str, errors: &mut Vec<Error>) {
+fn check_reuse(
+    op: &OperatorDef,
+    call: &CommandCall,
+    args: &Args,
+    file: &str,
+    errors: &mut Vec<Error>,
+) {
     let key = format!("{}/reuse", op.name);
     match (op.reuse, &call.reuse) {
         (Reuse::No, Some(_)) => errors.push(
@@ -90,7 +101,7 @@ fn check_reuse(op: &OperatorDef, call: &CommandCall, args: &Args, file: &str, er
             .keyword(key),
         ),
         (Reuse::Optional | Reuse::Required, Some(c)) => {
-            if let Some(ty) = super::result_type(&op.name, args) {
+            if let Some(ty) = super::result_type_with(op, args) {
                 if ty != c.ty && is_concept_type(&ty) {
                     errors.push(
                         Error::validation(format!(
@@ -117,23 +128,24 @@ pub(crate) fn is_concept_type(t: &str) -> bool {
 /// How deep `when` conditions may chain (a conditional keyword controlling another one).
 const MAX_WHEN_DEPTH: usize = 4;
 
-/// The value of a keyword at a level for `when` conditions: given, else the default of its
-/// definition that is active.
+/// The value of a keyword at a level for `when` conditions: given, else its default, from
+/// the definition of that name that is active (a keyword given where it is not allowed
+/// does not count).
 fn current_value<'v>(
     level: &'v Level,
     given: &[&'v Keyword],
     name: &str,
     depth: usize,
 ) -> Option<&'v Value> {
-    if let Some(k) = given.iter().find(|k| k.name == name) {
-        return Some(&k.value);
-    }
-    level
+    let def = level
         .simp
         .iter()
         .filter(|s| s.name == name)
-        .find(|s| when_active_at(s.when.as_ref(), level, given, depth + 1))
-        .and_then(|s| s.default.as_ref())
+        .find(|s| when_active_at(s.when.as_ref(), level, given, depth + 1))?;
+    match given.iter().find(|k| k.name == name) {
+        Some(k) => Some(&k.value),
+        None => def.default.as_ref(),
+    }
 }
 
 pub(crate) fn when_active(when: Option<&When>, level: &Level, given: &[&Keyword]) -> bool {
@@ -178,7 +190,10 @@ pub(crate) fn when_text(w: &When) -> String {
         Some(v) => format!(
             "when {} is {}",
             w.keyword,
-            v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(" or ")
+            v.iter()
+                .map(|x| x.to_string())
+                .collect::<Vec<_>>()
+                .join(" or ")
         ),
     }
 }
@@ -222,7 +237,13 @@ pub(crate) fn validate_level(
         let simps = level.simp.iter().filter(|s| s.name == k.name);
         let whens: Vec<Option<&When>> = simps
             .map(|s| s.when.as_ref())
-            .chain(level.fact.iter().filter(|f| f.name == k.name).map(|f| f.when.as_ref()))
+            .chain(
+                level
+                    .fact
+                    .iter()
+                    .filter(|f| f.name == k.name)
+                    .map(|f| f.when.as_ref()),
+            )
             .collect();
         if !whens.is_empty() && !whens.iter().any(|w| when_active(*w, level, &given)) {
             let conds: Vec<String> = whens.iter().flatten().map(|w| when_text(w)).collect();
@@ -246,7 +267,9 @@ pub(crate) fn validate_level(
             Some(k) => match check_simple(def, &k.value) {
                 Ok(v) => args.simple.push((def.name.clone(), v, k.span)),
                 Err(msgs) => errors.extend(msgs.into_iter().map(|(m, h)| {
-                    let e = Error::validation(m).at(file, k.span).keyword(level.key(&def.name));
+                    let e = Error::validation(m)
+                        .at(file, k.span)
+                        .keyword(level.key(&def.name));
                     match h {
                         Some(h) => e.hint(h),
                         None => e,
@@ -254,7 +277,9 @@ pub(crate) fn validate_level(
                 })),
             },
             None => match def.statut {
-                Statut::Mandatory => errors.push(missing(level, &def.name, def.when.as_ref(), span, file)),
+                Statut::Mandatory => {
+                    errors.push(missing(level, &def.name, def.when.as_ref(), span, file))
+                }
                 Statut::Defaulted => {
                     if let Some(d) = &def.default {
                         // Normalized like a given value (a scalar default of a list keyword
@@ -315,7 +340,9 @@ pub(crate) fn validate_level(
                 args.factor.push((def.name.clone(), occ_args, k.span));
             }
             None => match def.statut {
-                Statut::Mandatory => errors.push(missing(level, &def.name, def.when.as_ref(), span, file)),
+                Statut::Mandatory => {
+                    errors.push(missing(level, &def.name, def.when.as_ref(), span, file))
+                }
                 Statut::Defaulted => {
                     let occ = validate_level(&child, &[], span, file, errors);
                     args.factor.push((def.name.clone(), vec![occ], span));
@@ -330,14 +357,20 @@ pub(crate) fn validate_level(
         .filter(|k| names.contains(&k.name.as_str()))
         .map(|k| (k.name.as_str(), k.span))
         .collect();
-    for rule in level.rules.iter().filter(|r| when_active(r.when.as_ref(), level, &given)) {
+    for rule in level
+        .rules
+        .iter()
+        .filter(|r| when_active(r.when.as_ref(), level, &given))
+    {
         check_rule(rule, level, &present, span, file, errors);
     }
     args
 }
 
 fn missing(level: &Level, name: &str, when: Option<&When>, span: Span, file: &str) -> Error {
-    let cond = when.map(|w| format!(" {}", when_text(w))).unwrap_or_default();
+    let cond = when
+        .map(|w| format!(" {}", when_text(w)))
+        .unwrap_or_default();
     Error::validation(format!("missing mandatory keyword {name}{cond}"))
         .at(file, span)
         .keyword(level.key(name))
@@ -348,6 +381,15 @@ pub(crate) fn bounds_text(min: usize, max: Option<usize>) -> String {
         Some(m) if m == min => format!("{min}"),
         Some(m) => format!("{min} to {m}"),
         None => format!("at least {min}"),
+    }
+}
+
+/// A numeric bound as the user would write it: `1` for an integer keyword, `1.0` for a real.
+pub(crate) fn bound_text(x: f64, types: &[String]) -> String {
+    if types.iter().all(|t| t == "I") && x.fract() == 0.0 && x.abs() < 1e15 {
+        format!("{}", x as i64)
+    } else {
+        format!("{x:?}")
     }
 }
 
@@ -413,7 +455,10 @@ fn check_item(def: &SimpDef, v: &Value) -> Option<Msg> {
                 format!("expected {expected}, got a text {v}"),
                 Some(format!("a concept is named without quotes: {s}")),
             ),
-            _ => (format!("expected {expected}, got {} {v}", v.kind_name()), None),
+            _ => (
+                format!("expected {expected}, got {} {v}", v.kind_name()),
+                None,
+            ),
         });
     }
     if let Some(into) = &def.into {
@@ -428,12 +473,24 @@ fn check_item(def: &SimpDef, v: &Value) -> Option<Msg> {
     if let Some(x) = v.as_f64() {
         if let Some(lo) = def.val_min {
             if x < lo {
-                return Some((format!("expected a value >= {lo:?}, got {v}"), None));
+                return Some((
+                    format!(
+                        "expected a value >= {}, got {v}",
+                        bound_text(lo, &def.types)
+                    ),
+                    None,
+                ));
             }
         }
         if let Some(hi) = def.val_max {
             if x > hi {
-                return Some((format!("expected a value <= {hi:?}, got {v}"), None));
+                return Some((
+                    format!(
+                        "expected a value <= {}, got {v}",
+                        bound_text(hi, &def.types)
+                    ),
+                    None,
+                ));
             }
         }
     }
@@ -451,7 +508,10 @@ pub(crate) fn check_simple(def: &SimpDef, v: &Value) -> Result<Value, Vec<Msg>> 
     let what = types_text(&def.types);
     if !def.is_list() && items.len() != 1 {
         return Err(vec![(
-            format!("expected a single value ({what}), got a list of {} values", items.len()),
+            format!(
+                "expected a single value ({what}), got a list of {} values",
+                items.len()
+            ),
             None,
         )]);
     }
@@ -492,7 +552,11 @@ fn check_rule(
         .filter_map(|k| present.iter().find(|(n, _)| n == k).copied())
         .collect();
     let list = rule.keywords.join(", ");
-    let cond = rule.when.as_ref().map(|w| format!(" {}", when_text(w))).unwrap_or_default();
+    let cond = rule
+        .when
+        .as_ref()
+        .map(|w| format!(" {}", when_text(w)))
+        .unwrap_or_default();
     let first = rule.keywords.first().map(String::as_str).unwrap_or("");
     let names_of = |v: &[(&str, Span)]| v.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(" and ");
     let err = |msg: String, kw: &str, at: Span| {
@@ -502,11 +566,23 @@ fn check_rule(
     };
     match rule.kind {
         RuleKind::UnParmi | RuleKind::AuMoinsUn if here.is_empty() => {
-            let what = if rule.kind == RuleKind::UnParmi { "exactly one" } else { "at least one" };
-            errors.push(err(format!("expected {what} of {list}, none given"), first, span));
+            let what = if rule.kind == RuleKind::UnParmi {
+                "exactly one"
+            } else {
+                "at least one"
+            };
+            errors.push(err(
+                format!("expected {what} of {list}, none given"),
+                first,
+                span,
+            ));
         }
         RuleKind::UnParmi | RuleKind::AuPlusUn | RuleKind::Exclus if here.len() > 1 => {
-            let what = if rule.kind == RuleKind::UnParmi { "exactly one" } else { "at most one" };
+            let what = if rule.kind == RuleKind::UnParmi {
+                "exactly one"
+            } else {
+                "at most one"
+            };
             let (n, s) = here[1];
             errors.push(err(
                 format!("expected {what} of {list}, got {}", names_of(&here)),
@@ -515,22 +591,38 @@ fn check_rule(
             ));
         }
         RuleKind::Ensemble if !here.is_empty() && here.len() < rule.keywords.len() => {
-            for k in rule.keywords.iter().filter(|k| !here.iter().any(|(n, _)| n == k)) {
+            for k in rule
+                .keywords
+                .iter()
+                .filter(|k| !here.iter().any(|(n, _)| n == k))
+            {
                 errors.push(err(
-                    format!("expected {k} too: {list} go together, got only {}", names_of(&here)),
+                    format!(
+                        "expected {k} too: {list} go together, got only {}",
+                        names_of(&here)
+                    ),
                     k,
                     span,
                 ));
             }
         }
         RuleKind::PresentPresent if here.first().is_some_and(|(n, _)| *n == first) => {
-            for k in rule.keywords.iter().skip(1).filter(|k| !here.iter().any(|(n, _)| n == k)) {
+            for k in rule
+                .keywords
+                .iter()
+                .skip(1)
+                .filter(|k| !here.iter().any(|(n, _)| n == k))
+            {
                 errors.push(err(format!("expected {k} since {first} is given"), k, span));
             }
         }
         RuleKind::PresentAbsent if here.first().is_some_and(|(n, _)| *n == first) => {
             for (n, s) in here.iter().skip(1) {
-                errors.push(err(format!("{n} is not allowed together with {first}"), n, *s));
+                errors.push(err(
+                    format!("{n} is not allowed together with {first}"),
+                    n,
+                    *s,
+                ));
             }
         }
         _ => {}
