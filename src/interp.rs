@@ -253,13 +253,13 @@ impl Host for Runner<'_> {
             .collect()
     }
 
-    fn resolve_name(&self, name: &str) -> Option<Value> {
+    fn lookup_concept(&self, name: &str) -> Option<ConceptRef> {
         let store = self.store.as_ref()?;
         let ty = store.concept_type(name).ok().flatten()?;
-        Some(Value::Concept(ConceptRef {
+        Some(ConceptRef {
             name: name.to_string(),
             ty,
-        }))
+        })
     }
 
     fn call(&mut self, call: CommandCall) -> Result<Value> {
@@ -375,18 +375,16 @@ impl Host for Checker {
             .map(str::to_string)
             .collect()
     }
-    fn resolve_name(&self, name: &str) -> Option<Value> {
-        self.concepts.get(name).map(|ty| {
-            Value::Concept(ConceptRef {
-                name: name.to_string(),
-                ty: ty.clone(),
-            })
+    fn lookup_concept(&self, name: &str) -> Option<ConceptRef> {
+        self.concepts.get(name).map(|ty| ConceptRef {
+            name: name.to_string(),
+            ty: ty.clone(),
         })
     }
     fn call(&mut self, call: CommandCall) -> Result<Value> {
         match catalog::validate(&call, &self.file) {
             Ok(args) => {
-                for (name, ty) in catalog::co_outputs(&call.op, &args) {
+                for (name, ty) in co_outputs(&args) {
                     self.concepts.insert(name, ty);
                 }
                 let ty = catalog::result_type(&call.op, &args);
@@ -440,4 +438,27 @@ pub fn check_source(src: &Source) -> Vec<Error> {
         checker.errors.push(e);
     }
     checker.errors
+}
+
+/// Concepts a macro command creates through `CO('NAME')` keywords, with their types (for
+/// `check`, which runs nothing). The type follows from the keyword, as in Code_Aster's
+/// ASSEMBLAGE: NUME_DDL gives a numbering, MATR_ASSE/MATRICE an assembled matrix.
+fn co_outputs(args: &Args) -> Vec<(String, String)> {
+    let mut out = Vec::new();
+    for (key, value, _) in &args.simple {
+        if let Value::Co(name) = value {
+            let ty = match key.as_str() {
+                "NUME_DDL" => "nume_ddl_sdaster",
+                "MATRICE" => "matr_asse_depl_r",
+                _ => "unknown",
+            };
+            out.push((name.clone(), ty.to_string()));
+        }
+    }
+    for (_, occurrences, _) in &args.factor {
+        for occ in occurrences {
+            out.extend(co_outputs(occ));
+        }
+    }
+    out
 }
