@@ -1,0 +1,23 @@
+//! TEST_FONCTION: VALEUR=_F(FONCTION, VALE_PARA, VALE_CALC / VALE_REFE...), repeatable.
+
+use super::testing::{checks_from_args, TestValue};
+use super::OpContext;
+use crate::args::Args;
+use crate::error::Result;
+use crate::store::function::load_function;
+
+pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    for v in args.facts_or_empty("VALEUR") {
+        let fc = v.req_concept("FONCTION")?;
+        let f = load_function(ctx.store, &fc.name).map_err(|e| e.keyword(v.key_path("FONCTION")))?;
+        let x = v.req_real("VALE_PARA")?;
+        let y = f.eval(x).map_err(|e| e.keyword(v.key_path("VALE_PARA")))?;
+        let outcomes = checks_from_args(v, &TestValue::R(y))?;
+        ctx.say(&format!(" ---- FONCTION {}  {}={x}", f.name, f.nom_para))?;
+        for o in outcomes {
+            ctx.say(&o.line)?;
+            ctx.tests.push(o);
+        }
+    }
+    Ok(())
+}
