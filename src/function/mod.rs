@@ -60,7 +60,7 @@ impl Interp {
             _ => v,
         }
     }
-    fn from_space(self, v: f64) -> f64 {
+    fn back_from_space(self, v: f64) -> f64 {
         match self {
             Interp::Log => v.exp(),
             _ => v,
@@ -109,7 +109,13 @@ pub struct Function {
 
 impl Function {
     /// A function with Code_Aster's defaults (LIN/LIN, EXCLU on both sides), checked.
-    pub fn new(name: &str, nom_para: &str, nom_resu: &str, x: Vec<f64>, y: Vec<f64>) -> Result<Function> {
+    pub fn new(
+        name: &str,
+        nom_para: &str,
+        nom_resu: &str,
+        x: Vec<f64>,
+        y: Vec<f64>,
+    ) -> Result<Function> {
         let f = Function {
             name: name.to_string(),
             nom_para: nom_para.to_string(),
@@ -139,7 +145,9 @@ impl Function {
             return Err(Error::input(format!("function {name} has no point")).keyword("VALE"));
         }
         if self.x.iter().chain(&self.y).any(|v| !v.is_finite()) {
-            return Err(Error::input(format!("function {name} has a non-finite value")).keyword("VALE"));
+            return Err(
+                Error::input(format!("function {name} has a non-finite value")).keyword("VALE"),
+            );
         }
         for (i, w) in self.x.windows(2).enumerate() {
             if let [a, b] = w {
@@ -167,7 +175,10 @@ impl Function {
             ))
             .keyword("INTERPOL"));
         }
-        for (side, p) in [("PROL_GAUCHE", self.prol_gauche), ("PROL_DROITE", self.prol_droite)] {
+        for (side, p) in [
+            ("PROL_GAUCHE", self.prol_gauche),
+            ("PROL_DROITE", self.prol_droite),
+        ] {
             if p == Prol::Lineaire && (self.x.len() < 2 || ix == Interp::Non || iy == Interp::Non) {
                 return Err(Error::input(format!(
                     "function {name}: {side}='LINEAIRE' needs at least two points and an interpolation other than 'NON'"
@@ -201,7 +212,10 @@ impl Function {
             _ => return Err(Error::input(format!("function {} has no point", self.name))),
         };
         if x.is_nan() {
-            return Err(Error::input(format!("function {}: cannot evaluate at NaN", self.name)));
+            return Err(Error::input(format!(
+                "function {}: cannot evaluate at NaN",
+                self.name
+            )));
         }
         let n = self.x.len();
         if x < first || x > last {
@@ -217,9 +231,15 @@ impl Function {
                     self.nom_para,
                     self.range_text()
                 ))
-                .hint(format!("give {side}='CONSTANT' or 'LINEAIRE' to extend the function"))),
+                .hint(format!(
+                    "give {side}='CONSTANT' or 'LINEAIRE' to extend the function"
+                ))),
                 Prol::Constant => {
-                    let end = if x < first { self.y.first() } else { self.y.get(n - 1) };
+                    let end = if x < first {
+                        self.y.first()
+                    } else {
+                        self.y.get(n - 1)
+                    };
                     end.copied().ok_or_else(|| self.mismatch())
                 }
                 Prol::Lineaire => self.segment(i, x),
@@ -242,7 +262,12 @@ impl Function {
     /// Interpolation (or extrapolation) on the segment [x(i), x(i+1)].
     fn segment(&self, i: usize, x: f64) -> Result<f64> {
         let (ix, iy) = self.interpol;
-        let (x0, x1, y0, y1) = match (self.x.get(i), self.x.get(i + 1), self.y.get(i), self.y.get(i + 1)) {
+        let (x0, x1, y0, y1) = match (
+            self.x.get(i),
+            self.x.get(i + 1),
+            self.y.get(i),
+            self.y.get(i + 1),
+        ) {
             (Some(a), Some(b), Some(c), Some(d)) => (*a, *b, *c, *d),
             _ => return Err(self.mismatch()),
         };
@@ -255,7 +280,7 @@ impl Function {
         let (u, u0, u1) = (ix.to_space(x), ix.to_space(x0), ix.to_space(x1));
         let (v0, v1) = (iy.to_space(y0), iy.to_space(y1));
         let t = (u - u0) / (u1 - u0);
-        Ok(iy.from_space(v0 + t * (v1 - v0)))
+        Ok(iy.back_from_space(v0 + t * (v1 - v0)))
     }
 }
 
@@ -265,7 +290,8 @@ mod tests {
 
     /// y = x² sampled at 1, 2, 4.
     fn square(interpol: (Interp, Interp)) -> Function {
-        let mut f = Function::new("F", "X", "Y", vec![1.0, 2.0, 4.0], vec![1.0, 4.0, 16.0]).unwrap();
+        let mut f =
+            Function::new("F", "X", "Y", vec![1.0, 2.0, 4.0], vec![1.0, 4.0, 16.0]).unwrap();
         f.interpol = interpol;
         f.check().unwrap();
         f
@@ -308,7 +334,10 @@ mod tests {
 
     #[test]
     fn one_interpol_value_applies_to_both_axes() {
-        assert_eq!(Interp::pair(&["LOG".into()]).unwrap(), (Interp::Log, Interp::Log));
+        assert_eq!(
+            Interp::pair(&["LOG".into()]).unwrap(),
+            (Interp::Log, Interp::Log)
+        );
         assert_eq!(Interp::pair(&[]).unwrap(), (Interp::Lin, Interp::Lin));
         assert_eq!(
             Interp::pair(&["LIN".into(), "LOG".into()]).unwrap(),
@@ -353,7 +382,11 @@ mod tests {
         assert!(Function::new("G", "X", "Y", vec![0.0, 1.0], vec![0.0]).is_err());
         let mut f = Function::new("G", "X", "Y", vec![0.0, 1.0], vec![1.0, 2.0]).unwrap();
         f.interpol = (Interp::Log, Interp::Lin);
-        assert!(f.check().unwrap_err().message.contains("positive abscissas"));
+        assert!(f
+            .check()
+            .unwrap_err()
+            .message
+            .contains("positive abscissas"));
         let mut f = Function::new("G", "X", "Y", vec![1.0], vec![1.0]).unwrap();
         f.prol_droite = Prol::Lineaire;
         assert!(f.check().is_err());

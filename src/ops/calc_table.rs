@@ -17,23 +17,29 @@ fn action(t: Table, a: &Args) -> Result<Table> {
             Ok(t)
         }
         "EXTR" => {
-            let names = a
-                .texts("NOM_PARA")
-                .ok_or_else(|| Error::validation("expected parameter names").keyword(a.key_path("NOM_PARA")))?;
-            t.extract(&names).map_err(|e| e.keyword(a.key_path("NOM_PARA")))
+            let names = a.texts("NOM_PARA").ok_or_else(|| {
+                Error::validation("expected parameter names").keyword(a.key_path("NOM_PARA"))
+            })?;
+            t.extract(&names)
+                .map_err(|e| e.keyword(a.key_path("NOM_PARA")))
         }
         "RENOMME" => match a.texts("NOM_PARA").as_deref() {
             Some([old, new]) => {
                 let mut t = t;
-                t.rename(old, new).map_err(|e| e.keyword(a.key_path("NOM_PARA")))?;
+                t.rename(old, new)
+                    .map_err(|e| e.keyword(a.key_path("NOM_PARA")))?;
                 Ok(t)
             }
-            _ => Err(Error::validation("RENOMME needs NOM_PARA=(old name, new name)")
-                .keyword(a.key_path("NOM_PARA"))),
+            _ => Err(
+                Error::validation("RENOMME needs NOM_PARA=(old name, new name)")
+                    .keyword(a.key_path("NOM_PARA")),
+            ),
         },
-        other => Err(Error::validation(format!("OPERATION '{other}' is not supported"))
-            .keyword(a.key_path("OPERATION"))
-            .hint("use 'FILTRE', 'TRI', 'EXTR' or 'RENOMME'")),
+        other => Err(
+            Error::validation(format!("OPERATION '{other}' is not supported"))
+                .keyword(a.key_path("OPERATION"))
+                .hint("use 'FILTRE', 'TRI', 'EXTR' or 'RENOMME'"),
+        ),
     }
 }
 

@@ -11,25 +11,38 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let mut cols = Vec::new();
     for l in args.facts_or_empty("LISTE") {
         let para = l.req_text("PARA")?.to_string();
-        let given = ["LISTE_R", "LISTE_I", "LISTE_K"].iter().filter(|k| l.has(k)).count();
+        let given = ["LISTE_R", "LISTE_I", "LISTE_K"]
+            .iter()
+            .filter(|k| l.has(k))
+            .count();
         if given != 1 {
-            return Err(Error::validation(format!("parameter {para}: give exactly one of LISTE_R, LISTE_I, LISTE_K"))
-                .keyword(l.path.clone()));
+            return Err(Error::validation(format!(
+                "parameter {para}: give exactly one of LISTE_R, LISTE_I, LISTE_K"
+            ))
+            .keyword(l.path.clone()));
         }
         let (kind, cells) = if l.has("LISTE_R") {
-            let v = l.reals("LISTE_R").ok_or_else(|| bad(l, "LISTE_R", "reals"))?;
+            let v = l
+                .reals("LISTE_R")
+                .ok_or_else(|| bad(l, "LISTE_R", "reals"))?;
             (ColKind::R, v.into_iter().map(Cell::R).collect::<Vec<_>>())
         } else if l.has("LISTE_I") {
-            let v = l.ints("LISTE_I").ok_or_else(|| bad(l, "LISTE_I", "integers"))?;
+            let v = l
+                .ints("LISTE_I")
+                .ok_or_else(|| bad(l, "LISTE_I", "integers"))?;
             (ColKind::I, v.into_iter().map(Cell::I).collect())
         } else {
-            let v = l.texts("LISTE_K").ok_or_else(|| bad(l, "LISTE_K", "texts"))?;
+            let v = l
+                .texts("LISTE_K")
+                .ok_or_else(|| bad(l, "LISTE_K", "texts"))?;
             (ColKind::K, v.into_iter().map(Cell::K).collect())
         };
         cols.push((Column { name: para, kind }, cells));
     }
     if cols.is_empty() {
-        return Err(Error::validation("CREA_TABLE needs at least one LISTE").keyword("CREA_TABLE/LISTE"));
+        return Err(
+            Error::validation("CREA_TABLE needs at least one LISTE").keyword("CREA_TABLE/LISTE")
+        );
     }
     let t = Table::from_columns(&titre(args).unwrap_or_default(), cols)
         .map_err(|e| e.keyword("CREA_TABLE/LISTE/PARA"))?;

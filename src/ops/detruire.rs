@@ -16,7 +16,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         .ok_or_else(|| Error::validation("expected concepts").keyword(occ.key_path("NOM")))?;
         for n in names {
             if ctx.store.concept_type(&n)?.is_none() {
-                return Err(Error::input(format!("{n} is not a concept of this study")).keyword(occ.key_path("NOM")));
+                return Err(Error::input(format!("{n} is not a concept of this study"))
+                    .keyword(occ.key_path("NOM")));
             }
             ctx.store.delete_concept(&n)?;
         }

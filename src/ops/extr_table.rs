@@ -34,7 +34,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         .map_err(|e| e.keyword("EXTR_TABLE/FILTRE"))?;
     let type_resu = args.req_text("TYPE_RESU")?;
     let wrong = |want: &str| {
-        Error::input(format!("the cell {para} holds {cell:?}, not {want}")).keyword("EXTR_TABLE/TYPE_RESU")
+        Error::input(format!("the cell {para} holds {cell:?}, not {want}"))
+            .keyword("EXTR_TABLE/TYPE_RESU")
     };
     match type_resu {
         "R" => ctx.value = Some(Value::Real(cell.as_f64().ok_or_else(|| wrong("a number"))?)),
@@ -47,10 +48,15 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             _ => return Err(wrong("a text")),
         },
         other => {
-            let target = cell.as_text().ok_or_else(|| wrong("a concept name"))?.to_string();
+            let target = cell
+                .as_text()
+                .ok_or_else(|| wrong("a concept name"))?
+                .to_string();
             let ty = ctx.store.concept_type(&target)?.ok_or_else(|| {
-                Error::input(format!("the cell {para} names {target}, which is not a concept of this study"))
-                    .keyword("EXTR_TABLE/NOM_PARA")
+                Error::input(format!(
+                    "the cell {para} names {target}, which is not a concept of this study"
+                ))
+                .keyword("EXTR_TABLE/NOM_PARA")
             })?;
             if ty != other.to_ascii_lowercase() {
                 return Err(Error::input(format!("{target} is a {ty}, not a {other}"))

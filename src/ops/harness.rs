@@ -13,6 +13,12 @@ pub struct Harness {
     pub tests: Vec<TestOutcome>,
 }
 
+impl Default for Harness {
+    fn default() -> Self {
+        Harness::new()
+    }
+}
+
 impl Harness {
     pub fn new() -> Harness {
         Harness {
@@ -25,7 +31,13 @@ impl Harness {
 
     /// Run `op` inside a transaction as the interpreter does; returns the plain value the
     /// operator handed back, if any.
-    pub fn run(&mut self, op: &str, result: Option<&str>, reuse: Option<&str>, args: &Args) -> Result<Option<Value>> {
+    pub fn run(
+        &mut self,
+        op: &str,
+        result: Option<&str>,
+        reuse: Option<&str>,
+        args: &Args,
+    ) -> Result<Option<Value>> {
         let f = lookup(op).ok_or_else(|| Error::internal(format!("no operator {op}")))?;
         self.store.begin_op()?;
         let mut ctx = OpContext {
@@ -67,8 +79,14 @@ impl Harness {
 pub fn args(path: &str, simple: Vec<(&str, Value)>, factor: Vec<(&str, Vec<Args>)>) -> Args {
     Args {
         path: path.to_string(),
-        simple: simple.into_iter().map(|(k, v)| (k.to_string(), v, Span::default())).collect(),
-        factor: factor.into_iter().map(|(k, v)| (k.to_string(), v, Span::default())).collect(),
+        simple: simple
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v, Span::default()))
+            .collect(),
+        factor: factor
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v, Span::default()))
+            .collect(),
     }
 }
 
@@ -89,7 +107,10 @@ pub fn seq(v: Vec<Value>) -> Value {
     Value::Seq(v)
 }
 pub fn concept(name: &str, ty: &str) -> Value {
-    Value::Concept(ConceptRef { name: name.to_string(), ty: ty.to_string() })
+    Value::Concept(ConceptRef {
+        name: name.to_string(),
+        ty: ty.to_string(),
+    })
 }
 pub fn table(name: &str) -> Value {
     concept(name, "table_sdaster")

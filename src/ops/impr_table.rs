@@ -15,7 +15,9 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         apply_tri(&mut t, tri)?;
     }
     if let Some(names) = args.texts("NOM_PARA") {
-        t = t.extract(&names).map_err(|e| e.keyword("IMPR_TABLE/NOM_PARA"))?;
+        t = t
+            .extract(&names)
+            .map_err(|e| e.keyword("IMPR_TABLE/NOM_PARA"))?;
     }
     let fmt = FormatR::parse(args.text("FORMAT_R").unwrap_or("E12.5"))?;
     let format = args.text("FORMAT").unwrap_or("TABLEAU");
@@ -30,9 +32,11 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         }
         "CSV" => csv(&t, fmt, args.text("SEPARATEUR").unwrap_or(",")),
         other => {
-            return Err(Error::validation(format!("FORMAT '{other}' is not supported"))
-                .keyword("IMPR_TABLE/FORMAT")
-                .hint("use 'TABLEAU' or 'CSV'"))
+            return Err(
+                Error::validation(format!("FORMAT '{other}' is not supported"))
+                    .keyword("IMPR_TABLE/FORMAT")
+                    .hint("use 'TABLEAU' or 'CSV'"),
+            )
         }
     };
     let unite = args.int("UNITE").unwrap_or(8);

@@ -13,14 +13,14 @@ pub mod extr_table;
 pub mod harness;
 pub mod impr_fonction;
 pub mod impr_table;
+#[cfg(test)]
+mod op_tests;
 pub mod output;
 pub mod recu_fonction;
 pub mod table_args;
 pub mod test_fonction;
 pub mod test_table;
 pub mod testing;
-#[cfg(test)]
-mod op_tests;
 
 use crate::args::Args;
 use crate::error::{Error, Result};
@@ -71,8 +71,8 @@ pub struct OpContext<'a> {
     pub created: Vec<(String, String)>,
     /// Whether progress bars may be drawn (a terminal, not a test).
     pub progress: bool,
-    /// A plain Python value returned by the operator instead of a concept (EXTR_TABLE with
-    /// TYPE_RESU='R'/'I'/'K'); the interpreter binds it to the result name.
+    /// Set by operators whose result is a plain Python value (EXTR_TABLE with
+    /// TYPE_RESU='R', ...) rather than a concept.
     pub value: Option<crate::value::Value>,
 }
 

@@ -13,9 +13,27 @@ fn crea(h: &mut Harness) {
         vec![(
             "LISTE",
             vec![
-                fact("CREA_TABLE/LISTE", vec![("PARA", k("NUME_ORDRE")), ("LISTE_I", seq(vec![i(1), i(2), i(3)]))]),
-                fact("CREA_TABLE/LISTE", vec![("PARA", k("FREQ")), ("LISTE_R", seq(vec![r(1.5), r(2.5), r(3.5)]))]),
-                fact("CREA_TABLE/LISTE", vec![("PARA", k("NOM")), ("LISTE_K", seq(vec![k("a"), k("b"), k("c")]))]),
+                fact(
+                    "CREA_TABLE/LISTE",
+                    vec![
+                        ("PARA", k("NUME_ORDRE")),
+                        ("LISTE_I", seq(vec![i(1), i(2), i(3)])),
+                    ],
+                ),
+                fact(
+                    "CREA_TABLE/LISTE",
+                    vec![
+                        ("PARA", k("FREQ")),
+                        ("LISTE_R", seq(vec![r(1.5), r(2.5), r(3.5)])),
+                    ],
+                ),
+                fact(
+                    "CREA_TABLE/LISTE",
+                    vec![
+                        ("PARA", k("NOM")),
+                        ("LISTE_K", seq(vec![k("a"), k("b"), k("c")])),
+                    ],
+                ),
             ],
         )],
     );
@@ -30,7 +48,11 @@ fn filtre(para: &str, v: Value) -> Args {
 fn crea_table_is_a_queryable_sql_table() {
     let mut h = Harness::new();
     crea(&mut h);
-    let mut q = h.store.conn().prepare("SELECT NUME_ORDRE, FREQ FROM TAB").unwrap();
+    let mut q = h
+        .store
+        .conn()
+        .prepare("SELECT NUME_ORDRE, FREQ FROM TAB")
+        .unwrap();
     let got: Vec<(i64, f64)> = q
         .query_map([], |row| Ok((row.get(0)?, row.get(1)?)))
         .unwrap()
@@ -57,7 +79,10 @@ fn test_table_ok_and_nook() {
     );
     h.run("TEST_TABLE", None, None, &a).unwrap();
     // Non-regression 2.5 vs 2.5: OK. Reference 2.6: |2.5-2.6|/2.6 = 3.85e-2 > 1e-3: NOOK.
-    assert_eq!(h.tests.iter().map(|t| t.ok).collect::<Vec<_>>(), vec![true, false]);
+    assert_eq!(
+        h.tests.iter().map(|t| t.ok).collect::<Vec<_>>(),
+        vec![true, false]
+    );
     assert!(h.tests[1].line.contains("3.85E+00%"), "{}", h.tests[1].line);
     let out = h.output();
     assert!(out.contains("---- TABLE TAB  FREQ  NUME_ORDRE=2"), "{out}");
@@ -66,20 +91,40 @@ fn test_table_ok_and_nook() {
     // TYPE_TEST SOMM over the whole column: 1.5 + 2.5 + 3.5 = 7.5; MAX of NUME_ORDRE = 3.
     let a = args(
         "TEST_TABLE",
-        vec![("TABLE", table("TAB")), ("NOM_PARA", k("FREQ")), ("TYPE_TEST", k("SOMM")), ("VALE_CALC", r(7.5))],
+        vec![
+            ("TABLE", table("TAB")),
+            ("NOM_PARA", k("FREQ")),
+            ("TYPE_TEST", k("SOMM")),
+            ("VALE_CALC", r(7.5)),
+        ],
         vec![],
     );
     h.run("TEST_TABLE", None, None, &a).unwrap();
     let a = args(
         "TEST_TABLE",
-        vec![("TABLE", table("TAB")), ("NOM_PARA", k("NUME_ORDRE")), ("TYPE_TEST", k("MAX")), ("VALE_CALC_I", i(3))],
+        vec![
+            ("TABLE", table("TAB")),
+            ("NOM_PARA", k("NUME_ORDRE")),
+            ("TYPE_TEST", k("MAX")),
+            ("VALE_CALC_I", i(3)),
+        ],
         vec![],
     );
     h.run("TEST_TABLE", None, None, &a).unwrap();
     let a = args(
         "TEST_TABLE",
-        vec![("TABLE", table("TAB")), ("NOM_PARA", k("NOM")), ("VALE_CALC_K", k("c"))],
-        vec![("FILTRE", vec![fact("FILTRE", vec![("NOM_PARA", k("FREQ")), ("CRIT_COMP", k("MAXI"))])])],
+        vec![
+            ("TABLE", table("TAB")),
+            ("NOM_PARA", k("NOM")),
+            ("VALE_CALC_K", k("c")),
+        ],
+        vec![(
+            "FILTRE",
+            vec![fact(
+                "FILTRE",
+                vec![("NOM_PARA", k("FREQ")), ("CRIT_COMP", k("MAXI"))],
+            )],
+        )],
     );
     h.run("TEST_TABLE", None, None, &a).unwrap();
     assert_eq!(h.tests.len(), 5);
@@ -88,7 +133,11 @@ fn test_table_ok_and_nook() {
     // Without FILTRE, three rows remain: a clear error.
     let a = args(
         "TEST_TABLE",
-        vec![("TABLE", table("TAB")), ("NOM_PARA", k("FREQ")), ("VALE_CALC", r(2.5))],
+        vec![
+            ("TABLE", table("TAB")),
+            ("NOM_PARA", k("FREQ")),
+            ("VALE_CALC", r(2.5)),
+        ],
         vec![],
     );
     let err = h.run("TEST_TABLE", None, None, &a).unwrap_err();
@@ -101,10 +150,16 @@ fn impr_table_to_stdout_and_to_a_unit() {
     crea(&mut h);
     let a = args(
         "IMPR_TABLE",
-        vec![("TABLE", table("TAB")), ("NOM_PARA", seq(vec![k("NUME_ORDRE"), k("FREQ")]))],
+        vec![
+            ("TABLE", table("TAB")),
+            ("NOM_PARA", seq(vec![k("NUME_ORDRE"), k("FREQ")])),
+        ],
         vec![(
             "TRI",
-            vec![fact("TRI", vec![("NOM_PARA", k("FREQ")), ("ORDRE", k("DECROISSANT"))])],
+            vec![fact(
+                "TRI",
+                vec![("NOM_PARA", k("FREQ")), ("ORDRE", k("DECROISSANT"))],
+            )],
         )],
     );
     h.run("IMPR_TABLE", None, None, &a).unwrap();
@@ -122,15 +177,30 @@ fn impr_table_to_stdout_and_to_a_unit() {
     h.units.map.insert(29, path.clone());
     let a = args(
         "IMPR_TABLE",
-        vec![("TABLE", table("TAB")), ("UNITE", i(29)), ("FORMAT", k("CSV")), ("SEPARATEUR", k(";"))],
+        vec![
+            ("TABLE", table("TAB")),
+            ("UNITE", i(29)),
+            ("FORMAT", k("CSV")),
+            ("SEPARATEUR", k(";")),
+        ],
         vec![(
             "FILTRE",
-            vec![fact("FILTRE", vec![("NOM_PARA", k("FREQ")), ("CRIT_COMP", k("GT")), ("VALE", r(2.0))])],
+            vec![fact(
+                "FILTRE",
+                vec![
+                    ("NOM_PARA", k("FREQ")),
+                    ("CRIT_COMP", k("GT")),
+                    ("VALE", r(2.0)),
+                ],
+            )],
         )],
     );
     h.run("IMPR_TABLE", None, None, &a).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
-    assert_eq!(text, "NUME_ORDRE;FREQ;NOM\n2;2.50000E+00;b\n3;3.50000E+00;c\n");
+    assert_eq!(
+        text,
+        "NUME_ORDRE;FREQ;NOM\n2;2.50000E+00;b\n3;3.50000E+00;c\n"
+    );
 }
 
 #[test]
@@ -144,10 +214,25 @@ fn calc_table_applies_actions_in_order() {
         vec![(
             "ACTION",
             vec![
-                act(vec![("OPERATION", k("FILTRE")), ("NOM_PARA", k("NUME_ORDRE")), ("CRIT_COMP", k("GE")), ("VALE_I", i(2))]),
-                act(vec![("OPERATION", k("TRI")), ("NOM_PARA", k("FREQ")), ("ORDRE", k("DECROISSANT"))]),
-                act(vec![("OPERATION", k("EXTR")), ("NOM_PARA", seq(vec![k("NOM"), k("FREQ")]))]),
-                act(vec![("OPERATION", k("RENOMME")), ("NOM_PARA", seq(vec![k("FREQ"), k("FREQ_HZ")]))]),
+                act(vec![
+                    ("OPERATION", k("FILTRE")),
+                    ("NOM_PARA", k("NUME_ORDRE")),
+                    ("CRIT_COMP", k("GE")),
+                    ("VALE_I", i(2)),
+                ]),
+                act(vec![
+                    ("OPERATION", k("TRI")),
+                    ("NOM_PARA", k("FREQ")),
+                    ("ORDRE", k("DECROISSANT")),
+                ]),
+                act(vec![
+                    ("OPERATION", k("EXTR")),
+                    ("NOM_PARA", seq(vec![k("NOM"), k("FREQ")])),
+                ]),
+                act(vec![
+                    ("OPERATION", k("RENOMME")),
+                    ("NOM_PARA", seq(vec![k("FREQ"), k("FREQ_HZ")])),
+                ]),
             ],
         )],
     );
@@ -157,13 +242,23 @@ fn calc_table_applies_actions_in_order() {
     use crate::table::Cell;
     assert_eq!(
         t.rows,
-        vec![vec![Cell::K("c".into()), Cell::R(3.5)], vec![Cell::K("b".into()), Cell::R(2.5)]]
+        vec![
+            vec![Cell::K("c".into()), Cell::R(3.5)],
+            vec![Cell::K("b".into()), Cell::R(2.5)]
+        ]
     );
     // reuse: TAB enriched in place.
     let a = args(
         "CALC_TABLE",
         vec![("TABLE", table("TAB"))],
-        vec![("ACTION", vec![act(vec![("OPERATION", k("FILTRE")), ("NOM_PARA", k("NOM")), ("VALE_K", k("a"))])])],
+        vec![(
+            "ACTION",
+            vec![act(vec![
+                ("OPERATION", k("FILTRE")),
+                ("NOM_PARA", k("NOM")),
+                ("VALE_K", k("a")),
+            ])],
+        )],
     );
     h.run("CALC_TABLE", Some("TAB"), Some("TAB"), &a).unwrap();
     assert_eq!(load_table(&h.store, "TAB").unwrap().nrows(), 1);
@@ -180,8 +275,20 @@ fn extr_table_sub_table_and_values() {
         vec![(
             "LISTE",
             vec![
-                fact("CREA_TABLE/LISTE", vec![("PARA", k("NUME_ORDRE")), ("LISTE_I", seq(vec![i(1), i(2)]))]),
-                fact("CREA_TABLE/LISTE", vec![("PARA", k("NOM_SD")), ("LISTE_K", seq(vec![k("TAB"), k("NOPE")]))]),
+                fact(
+                    "CREA_TABLE/LISTE",
+                    vec![
+                        ("PARA", k("NUME_ORDRE")),
+                        ("LISTE_I", seq(vec![i(1), i(2)])),
+                    ],
+                ),
+                fact(
+                    "CREA_TABLE/LISTE",
+                    vec![
+                        ("PARA", k("NOM_SD")),
+                        ("LISTE_K", seq(vec![k("TAB"), k("NOPE")])),
+                    ],
+                ),
             ],
         )],
     );
@@ -189,39 +296,82 @@ fn extr_table_sub_table_and_values() {
     assert_eq!(links(&h.store, "CONT").unwrap().len(), 1);
     let a = args(
         "EXTR_TABLE",
-        vec![("TABLE", table("CONT")), ("TYPE_RESU", k("TABLE_SDASTER")), ("NOM_PARA", k("NOM_SD"))],
+        vec![
+            ("TABLE", table("CONT")),
+            ("TYPE_RESU", k("TABLE_SDASTER")),
+            ("NOM_PARA", k("NOM_SD")),
+        ],
         vec![("FILTRE", vec![filtre("NUME_ORDRE", i(1))])],
     );
     h.run("EXTR_TABLE", Some("SUB"), None, &a).unwrap();
-    assert_eq!(load_table(&h.store, "SUB").unwrap(), load_table(&h.store, "TAB").unwrap());
+    assert_eq!(
+        load_table(&h.store, "SUB").unwrap(),
+        load_table(&h.store, "TAB").unwrap()
+    );
 
     let a = args(
         "EXTR_TABLE",
-        vec![("TABLE", table("TAB")), ("TYPE_RESU", k("R")), ("NOM_PARA", k("FREQ"))],
+        vec![
+            ("TABLE", table("TAB")),
+            ("TYPE_RESU", k("R")),
+            ("NOM_PARA", k("FREQ")),
+        ],
         vec![("FILTRE", vec![filtre("NUME_ORDRE", i(3))])],
     );
-    assert_eq!(h.run("EXTR_TABLE", Some("x"), None, &a).unwrap(), Some(Value::Real(3.5)));
+    assert_eq!(
+        h.run("EXTR_TABLE", Some("x"), None, &a).unwrap(),
+        Some(Value::Real(3.5))
+    );
     let a = args(
         "EXTR_TABLE",
-        vec![("TABLE", table("TAB")), ("TYPE_RESU", k("K")), ("NOM_PARA", k("NOM"))],
+        vec![
+            ("TABLE", table("TAB")),
+            ("TYPE_RESU", k("K")),
+            ("NOM_PARA", k("NOM")),
+        ],
         vec![("FILTRE", vec![filtre("NUME_ORDRE", i(3))])],
     );
-    assert_eq!(h.run("EXTR_TABLE", Some("x"), None, &a).unwrap(), Some(Value::Str("c".into())));
+    assert_eq!(
+        h.run("EXTR_TABLE", Some("x"), None, &a).unwrap(),
+        Some(Value::Str("c".into()))
+    );
     // Two rows left: refused.
     let a = args(
         "EXTR_TABLE",
-        vec![("TABLE", table("TAB")), ("TYPE_RESU", k("R")), ("NOM_PARA", k("FREQ"))],
-        vec![("FILTRE", vec![fact("FILTRE", vec![("NOM_PARA", k("FREQ")), ("CRIT_COMP", k("GT")), ("VALE", r(2.0))])])],
+        vec![
+            ("TABLE", table("TAB")),
+            ("TYPE_RESU", k("R")),
+            ("NOM_PARA", k("FREQ")),
+        ],
+        vec![(
+            "FILTRE",
+            vec![fact(
+                "FILTRE",
+                vec![
+                    ("NOM_PARA", k("FREQ")),
+                    ("CRIT_COMP", k("GT")),
+                    ("VALE", r(2.0)),
+                ],
+            )],
+        )],
     );
     let err = h.run("EXTR_TABLE", Some("x"), None, &a).unwrap_err();
     assert!(err.message.contains("2 rows remain"), "{err}");
     // A cell naming no concept.
     let a = args(
         "EXTR_TABLE",
-        vec![("TABLE", table("CONT")), ("TYPE_RESU", k("TABLE_SDASTER")), ("NOM_PARA", k("NOM_SD"))],
+        vec![
+            ("TABLE", table("CONT")),
+            ("TYPE_RESU", k("TABLE_SDASTER")),
+            ("NOM_PARA", k("NOM_SD")),
+        ],
         vec![("FILTRE", vec![filtre("NUME_ORDRE", i(2))])],
     );
-    assert!(h.run("EXTR_TABLE", Some("S2"), None, &a).unwrap_err().message.contains("NOPE"));
+    assert!(h
+        .run("EXTR_TABLE", Some("S2"), None, &a)
+        .unwrap_err()
+        .message
+        .contains("NOPE"));
     assert!(h.store.concept_type("S2").unwrap().is_none());
 }
 
@@ -233,8 +383,20 @@ fn history(h: &mut Harness) {
         vec![(
             "LISTE",
             vec![
-                fact("CREA_TABLE/LISTE", vec![("PARA", k("INST")), ("LISTE_R", seq(vec![r(0.0), r(2.0), r(1.0)]))]),
-                fact("CREA_TABLE/LISTE", vec![("PARA", k("DEPL")), ("LISTE_R", seq(vec![r(0.0), r(8.0), r(2.0)]))]),
+                fact(
+                    "CREA_TABLE/LISTE",
+                    vec![
+                        ("PARA", k("INST")),
+                        ("LISTE_R", seq(vec![r(0.0), r(2.0), r(1.0)])),
+                    ],
+                ),
+                fact(
+                    "CREA_TABLE/LISTE",
+                    vec![
+                        ("PARA", k("DEPL")),
+                        ("LISTE_R", seq(vec![r(0.0), r(8.0), r(2.0)])),
+                    ],
+                ),
             ],
         )],
     );
@@ -247,7 +409,11 @@ fn recu_fonction_then_test_fonction() {
     history(&mut h);
     let recu = args(
         "RECU_FONCTION",
-        vec![("TABLE", table("H")), ("PARA_X", k("INST")), ("PARA_Y", k("DEPL"))],
+        vec![
+            ("TABLE", table("H")),
+            ("PARA_X", k("INST")),
+            ("PARA_Y", k("DEPL")),
+        ],
         vec![],
     );
     let err = h.run("RECU_FONCTION", Some("F"), None, &recu).unwrap_err();
@@ -255,7 +421,13 @@ fn recu_fonction_then_test_fonction() {
     let tri = args(
         "CALC_TABLE",
         vec![("TABLE", table("H"))],
-        vec![("ACTION", vec![fact("ACTION", vec![("OPERATION", k("TRI")), ("NOM_PARA", k("INST"))])])],
+        vec![(
+            "ACTION",
+            vec![fact(
+                "ACTION",
+                vec![("OPERATION", k("TRI")), ("NOM_PARA", k("INST"))],
+            )],
+        )],
     );
     h.run("CALC_TABLE", Some("H"), Some("H"), &tri).unwrap();
     h.run("RECU_FONCTION", Some("F"), None, &recu).unwrap();
@@ -268,7 +440,10 @@ fn recu_fonction_then_test_fonction() {
             vec![fact(
                 "TEST_FONCTION/VALEUR",
                 vec![
-                    ("FONCTION", crate::ops::harness::concept("F", "fonction_sdaster")),
+                    (
+                        "FONCTION",
+                        crate::ops::harness::concept("F", "fonction_sdaster"),
+                    ),
                     ("VALE_PARA", r(1.5)),
                     ("VALE_CALC", r(5.0)),
                     ("VALE_REFE", r(5.0)),
@@ -292,7 +467,10 @@ fn defi_fonction_log_and_impr() {
         "DEFI_FONCTION",
         vec![
             ("NOM_PARA", k("FREQ")),
-            ("VALE", seq(vec![r(1.0), r(1.0), r(2.0), r(4.0), r(4.0), r(16.0)])),
+            (
+                "VALE",
+                seq(vec![r(1.0), r(1.0), r(2.0), r(4.0), r(4.0), r(16.0)]),
+            ),
             ("INTERPOL", seq(vec![k("LOG")])),
             ("PROL_DROITE", k("LINEAIRE")),
         ],
@@ -314,19 +492,36 @@ fn defi_fonction_log_and_impr() {
         )
     };
     // 3 → 9 inside; 8 → 64 by LINEAIRE prolongation of the power law; 3 → 9.5 must fail.
-    let t = args("TEST_FONCTION", vec![], vec![("VALEUR", vec![val(3.0, 9.0), val(8.0, 64.0), val(3.0, 9.5)])]);
+    let t = args(
+        "TEST_FONCTION",
+        vec![],
+        vec![("VALEUR", vec![val(3.0, 9.0), val(8.0, 64.0), val(3.0, 9.5)])],
+    );
     h.run("TEST_FONCTION", None, None, &t).unwrap();
-    assert_eq!(h.tests.iter().map(|t| t.ok).collect::<Vec<_>>(), vec![true, true, false]);
+    assert_eq!(
+        h.tests.iter().map(|t| t.ok).collect::<Vec<_>>(),
+        vec![true, true, false]
+    );
     // Left of the range with EXCLU: an error naming the function and its range.
-    let t = args("TEST_FONCTION", vec![], vec![("VALEUR", vec![val(0.5, 0.25)])]);
+    let t = args(
+        "TEST_FONCTION",
+        vec![],
+        vec![("VALEUR", vec![val(0.5, 0.25)])],
+    );
     let err = h.run("TEST_FONCTION", None, None, &t).unwrap_err();
-    assert!(err.message.contains("function F") && err.message.contains("[1, 4]"), "{err}");
+    assert!(
+        err.message.contains("function F") && err.message.contains("[1, 4]"),
+        "{err}"
+    );
 
     h.out.clear();
     let p = args(
         "IMPR_FONCTION",
         vec![],
-        vec![("COURBE", vec![fact("IMPR_FONCTION/COURBE", vec![("FONCTION", f.clone())])])],
+        vec![(
+            "COURBE",
+            vec![fact("IMPR_FONCTION/COURBE", vec![("FONCTION", f.clone())])],
+        )],
     );
     h.run("IMPR_FONCTION", None, None, &p).unwrap();
     let expected = concat!(
@@ -338,10 +533,32 @@ fn defi_fonction_log_and_impr() {
     );
     assert_eq!(h.output(), expected);
 
-    let bad = args("DEFI_FONCTION", vec![("NOM_PARA", k("X")), ("VALE", seq(vec![r(1.0), r(2.0), r(3.0)]))], vec![]);
-    assert!(h.run("DEFI_FONCTION", Some("G"), None, &bad).unwrap_err().message.contains("pairs"));
-    let bad = args("DEFI_FONCTION", vec![("NOM_PARA", k("X")), ("VALE", seq(vec![r(1.0), r(2.0), r(0.0), r(3.0)]))], vec![]);
-    assert!(h.run("DEFI_FONCTION", Some("G"), None, &bad).unwrap_err().message.contains("strictly increasing"));
+    let bad = args(
+        "DEFI_FONCTION",
+        vec![
+            ("NOM_PARA", k("X")),
+            ("VALE", seq(vec![r(1.0), r(2.0), r(3.0)])),
+        ],
+        vec![],
+    );
+    assert!(h
+        .run("DEFI_FONCTION", Some("G"), None, &bad)
+        .unwrap_err()
+        .message
+        .contains("pairs"));
+    let bad = args(
+        "DEFI_FONCTION",
+        vec![
+            ("NOM_PARA", k("X")),
+            ("VALE", seq(vec![r(1.0), r(2.0), r(0.0), r(3.0)])),
+        ],
+        vec![],
+    );
+    assert!(h
+        .run("DEFI_FONCTION", Some("G"), None, &bad)
+        .unwrap_err()
+        .message
+        .contains("strictly increasing"));
     assert!(h.store.concept_type("G").unwrap().is_none());
 }
 
@@ -352,11 +569,25 @@ fn detruire_drops_the_sql_table() {
     let count = |h: &Harness| -> i64 {
         h.store
             .conn()
-            .query_row("SELECT count(*) FROM sqlite_master WHERE name = 'TAB'", [], |r| r.get(0))
+            .query_row(
+                "SELECT count(*) FROM sqlite_master WHERE name = 'TAB'",
+                [],
+                |r| r.get(0),
+            )
             .unwrap()
     };
     assert_eq!(count(&h), 1);
-    let a = args("DETRUIRE", vec![], vec![("CONCEPT", vec![fact("DETRUIRE/CONCEPT", vec![("NOM", seq(vec![table("TAB")]))])])]);
+    let a = args(
+        "DETRUIRE",
+        vec![],
+        vec![(
+            "CONCEPT",
+            vec![fact(
+                "DETRUIRE/CONCEPT",
+                vec![("NOM", seq(vec![table("TAB")]))],
+            )],
+        )],
+    );
     h.run("DETRUIRE", None, None, &a).unwrap();
     assert_eq!(count(&h), 0);
     assert!(h.store.concept_type("TAB").unwrap().is_none());
@@ -369,7 +600,13 @@ fn a_table_named_like_an_internal_table_is_refused_and_rolled_back() {
     let a = args(
         "CREA_TABLE",
         vec![],
-        vec![("LISTE", vec![fact("CREA_TABLE/LISTE", vec![("PARA", k("A")), ("LISTE_I", seq(vec![i(1)]))])])],
+        vec![(
+            "LISTE",
+            vec![fact(
+                "CREA_TABLE/LISTE",
+                vec![("PARA", k("A")), ("LISTE_I", seq(vec![i(1)]))],
+            )],
+        )],
     );
     let err = h.run("CREA_TABLE", Some("CONCEPTS"), None, &a).unwrap_err();
     assert!(err.message.contains("cannot be named CONCEPTS"), "{err}");

@@ -26,7 +26,9 @@ pub fn write_unit(ctx: &mut OpContext<'_>, unite: i64, text: &str) -> Result<()>
         return Ok(());
     }
     if unite <= 0 {
-        return Err(Error::validation(format!("UNITE={unite} is not a logical unit")).keyword("UNITE"));
+        return Err(
+            Error::validation(format!("UNITE={unite} is not a logical unit")).keyword("UNITE"),
+        );
     }
     let path = unit_path(ctx.units, unite);
     let mut f = std::fs::OpenOptions::new()

@@ -18,13 +18,20 @@ fn column(t: &Table, table: &str, para: &str, key: &str) -> Result<Vec<f64>> {
         .enumerate()
         .map(|(i, c)| {
             if c.is_null() {
-                return Err(Error::input(format!("table {table}: row {} has no value of {para}", i + 1))
-                    .keyword(format!("RECU_FONCTION/{key}"))
-                    .hint(format!("drop empty rows with FILTRE=_F(NOM_PARA='{para}', CRIT_COMP='NON_VIDE')")));
+                return Err(Error::input(format!(
+                    "table {table}: row {} has no value of {para}",
+                    i + 1
+                ))
+                .keyword(format!("RECU_FONCTION/{key}"))
+                .hint(format!(
+                    "drop empty rows with FILTRE=_F(NOM_PARA='{para}', CRIT_COMP='NON_VIDE')"
+                )));
             }
             c.as_f64().ok_or_else(|| {
-                Error::input(format!("table {table}: {para} holds texts, a function needs numbers"))
-                    .keyword(format!("RECU_FONCTION/{key}"))
+                Error::input(format!(
+                    "table {table}: {para} holds texts, a function needs numbers"
+                ))
+                .keyword(format!("RECU_FONCTION/{key}"))
             })
         })
         .collect()

@@ -83,9 +83,9 @@ pub fn ordre(a: &Args) -> Result<Ordre> {
 
 /// Apply one TRI-like occurrence (NOM_PARA, ORDRE) to `t`.
 pub fn apply_tri(t: &mut Table, a: &Args) -> Result<()> {
-    let keys = a
-        .texts("NOM_PARA")
-        .ok_or_else(|| Error::validation("expected parameter names").keyword(a.key_path("NOM_PARA")))?;
+    let keys = a.texts("NOM_PARA").ok_or_else(|| {
+        Error::validation("expected parameter names").keyword(a.key_path("NOM_PARA"))
+    })?;
     sort(t, &keys, ordre(a)?).map_err(|e| e.keyword(a.key_path("NOM_PARA")))
 }
 
@@ -93,8 +93,10 @@ pub fn apply_tri(t: &mut Table, a: &Args) -> Result<()> {
 pub fn load_table_arg(ctx: &OpContext<'_>, args: &Args, key: &str) -> Result<(ConceptRef, Table)> {
     let c = args.req_concept(key)?;
     if !TABLE_TYPES.contains(&c.ty.as_str()) {
-        return Err(Error::validation(format!("{} is a {}, not a table", c.name, c.ty))
-            .keyword(args.key_path(key)));
+        return Err(
+            Error::validation(format!("{} is a {}, not a table", c.name, c.ty))
+                .keyword(args.key_path(key)),
+        );
     }
     let t = load_table(ctx.store, &c.name).map_err(|e| e.keyword(args.key_path(key)))?;
     Ok((c.clone(), t))

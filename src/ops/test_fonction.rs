@@ -9,7 +9,8 @@ use crate::store::function::load_function;
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     for v in args.facts_or_empty("VALEUR") {
         let fc = v.req_concept("FONCTION")?;
-        let f = load_function(ctx.store, &fc.name).map_err(|e| e.keyword(v.key_path("FONCTION")))?;
+        let f =
+            load_function(ctx.store, &fc.name).map_err(|e| e.keyword(v.key_path("FONCTION")))?;
         let x = v.req_real("VALE_PARA")?;
         let y = f.eval(x).map_err(|e| e.keyword(v.key_path("VALE_PARA")))?;
         let outcomes = checks_from_args(v, &TestValue::R(y))?;

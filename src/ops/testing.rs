@@ -87,7 +87,15 @@ fn fmt_tol(x: f64) -> String {
     format!("{rounded}")
 }
 
-fn line(ok: bool, kind: &str, reference: &TestValue, computed: &TestValue, err: &str, tol: &str, note: &str) -> String {
+fn line(
+    ok: bool,
+    kind: &str,
+    reference: &TestValue,
+    computed: &TestValue,
+    err: &str,
+    tol: &str,
+    note: &str,
+) -> String {
     format!(
         " {:<4} {:<15} {:>16} {:>16} {:>11} {:>9}{}",
         if ok { "OK" } else { "NOOK" },
@@ -102,14 +110,21 @@ fn line(ok: bool, kind: &str, reference: &TestValue, computed: &TestValue, err: 
 
 /// Compare `computed` with `reference`. `reference_kind` is printed: `NON_REGRESSION` for
 /// VALE_CALC, the REFERENCE keyword for VALE_REFE.
-pub fn check(computed: &TestValue, reference: &TestValue, reference_kind: &str, tol: Tolerance) -> TestOutcome {
+pub fn check(
+    computed: &TestValue,
+    reference: &TestValue,
+    reference_kind: &str,
+    tol: Tolerance,
+) -> TestOutcome {
     let mk = |ok: bool, err: String, tol: String, note: &str| TestOutcome {
         ok,
         line: line(ok, reference_kind, reference, computed, &err, &tol, note),
     };
     match (computed, reference) {
         (TestValue::K(c), TestValue::K(r)) => mk(c == r, "-".into(), "-".into(), ""),
-        (TestValue::I(c), TestValue::I(r)) => mk(c == r, c.abs_diff(*r).to_string(), "0".into(), ""),
+        (TestValue::I(c), TestValue::I(r)) => {
+            mk(c == r, c.abs_diff(*r).to_string(), "0".into(), "")
+        }
         (TestValue::K(_), _) | (_, TestValue::K(_)) => mk(
             false,
             "-".into(),
@@ -133,7 +148,12 @@ pub fn check(computed: &TestValue, reference: &TestValue, reference_kind: &str, 
             // `<=` is false for NaN: a NaN result is NOOK.
             let ok = err <= tol_v;
             if relative {
-                mk(ok, format!("{}%", format_e(err * 100.0, 2)), format!("{}%", fmt_tol(tol_v * 100.0)), note)
+                mk(
+                    ok,
+                    format!("{}%", format_e(err * 100.0, 2)),
+                    format!("{}%", fmt_tol(tol_v * 100.0)),
+                    note,
+                )
             } else {
                 mk(ok, format_e(err, 2), fmt_tol(tol_v), note)
             }
@@ -194,19 +214,25 @@ pub fn checks_from_args(args: &Args, computed: &TestValue) -> Result<Vec<TestOut
                 .hint("use 'RELATIF' or 'ABSOLU'")
         })?,
     };
-    let positive = |key: &str, default: f64| -> Result<f64> {
-        match args.value(key) {
-            None | Some(Value::None) => Ok(default),
-            Some(_) => match args.real(key) {
-                Some(x) if x >= 0.0 && x.is_finite() => Ok(x),
-                _ => Err(Error::validation("expected a non-negative real").keyword(args.key_path(key))),
-            },
-        }
-    };
+    let positive =
+        |key: &str, default: f64| -> Result<f64> {
+            match args.value(key) {
+                None | Some(Value::None) => Ok(default),
+                Some(_) => match args.real(key) {
+                    Some(x) if x >= 0.0 && x.is_finite() => Ok(x),
+                    _ => Err(Error::validation("expected a non-negative real")
+                        .keyword(args.key_path(key))),
+                },
+            }
+        };
     let ordre_grandeur = positive("ORDRE_GRANDEUR", 1.0)?;
     let mut out = Vec::new();
     if let Some(calc) = given(args, "VALE_CALC")? {
-        let tol = Tolerance { critere, precision: positive("TOLE_MACHINE", TOLE_MACHINE)?, ordre_grandeur };
+        let tol = Tolerance {
+            critere,
+            precision: positive("TOLE_MACHINE", TOLE_MACHINE)?,
+            ordre_grandeur,
+        };
         out.push(check(computed, &calc, "NON_REGRESSION", tol));
     }
     let refe = given(args, "VALE_REFE")?;
@@ -217,13 +243,20 @@ pub fn checks_from_args(args: &Args, computed: &TestValue) -> Result<Vec<TestOut
                     .keyword(args.key_path("REFERENCE"))
                     .hint(format!("use one of {}", REFERENCES.join(", "))));
             }
-            let tol = Tolerance { critere, precision: positive("PRECISION", PRECISION_REFE)?, ordre_grandeur };
+            let tol = Tolerance {
+                critere,
+                precision: positive("PRECISION", PRECISION_REFE)?,
+                ordre_grandeur,
+            };
             out.push(check(computed, &refe, kind, tol));
         }
         (Some(_), None) => {
             return Err(Error::validation("VALE_REFE needs REFERENCE")
                 .keyword(args.key_path("REFERENCE"))
-                .hint(format!("say where the reference comes from: {}", REFERENCES.join(", "))))
+                .hint(format!(
+                    "say where the reference comes from: {}",
+                    REFERENCES.join(", ")
+                )))
         }
         (None, Some(_)) => {
             return Err(Error::validation("REFERENCE is given without VALE_REFE")
@@ -255,7 +288,17 @@ mod tests {
         assert!(o.ok);
         // |0.6467 - 0.646693927| / 0.646693927 = 9.39e-6 = 9.39E-04 %.
         let words: Vec<&str> = o.line.split_whitespace().collect();
-        assert_eq!(words, vec!["OK", "ANALYTIQUE", "0.646693927", "0.646700000", "9.39E-04%", "0.1%"]);
+        assert_eq!(
+            words,
+            vec![
+                "OK",
+                "ANALYTIQUE",
+                "0.646693927",
+                "0.646700000",
+                "9.39E-04%",
+                "0.1%"
+            ]
+        );
         assert!(o.line.starts_with(" OK  "));
     }
 
@@ -276,26 +319,60 @@ mod tests {
         let o = check(&TestValue::R(5e-4), &TestValue::R(0.0), "ANALYTIQUE", t);
         assert!(o.ok && o.line.contains("compared absolutely"), "{}", o.line);
         assert!(!check(&TestValue::R(2e-3), &TestValue::R(0.0), "ANALYTIQUE", t).ok);
-        let t = Tolerance { ordre_grandeur: 10.0, ..t };
+        let t = Tolerance {
+            ordre_grandeur: 10.0,
+            ..t
+        };
         assert!(check(&TestValue::R(2e-3), &TestValue::R(0.0), "ANALYTIQUE", t).ok);
     }
 
     #[test]
     fn absolute_integer_and_text() {
-        let t = Tolerance { critere: Critere::Absolu, precision: 0.01, ordre_grandeur: 1.0 };
-        assert!(check(&TestValue::R(100.009), &TestValue::R(100.0), "AUTRE_ASTER", t).ok);
-        assert!(!check(&TestValue::R(100.011), &TestValue::R(100.0), "AUTRE_ASTER", t).ok);
+        let t = Tolerance {
+            critere: Critere::Absolu,
+            precision: 0.01,
+            ordre_grandeur: 1.0,
+        };
+        assert!(
+            check(
+                &TestValue::R(100.009),
+                &TestValue::R(100.0),
+                "AUTRE_ASTER",
+                t
+            )
+            .ok
+        );
+        assert!(
+            !check(
+                &TestValue::R(100.011),
+                &TestValue::R(100.0),
+                "AUTRE_ASTER",
+                t
+            )
+            .ok
+        );
         let r = Tolerance::relative(0.5);
         assert!(check(&TestValue::I(3), &TestValue::I(3), "NON_REGRESSION", r).ok);
         assert!(!check(&TestValue::I(3), &TestValue::I(4), "NON_REGRESSION", r).ok);
-        assert!(check(&TestValue::K("OUI".into()), &TestValue::K("OUI".into()), "NON_DEFINI", r).ok);
+        assert!(
+            check(
+                &TestValue::K("OUI".into()),
+                &TestValue::K("OUI".into()),
+                "NON_DEFINI",
+                r
+            )
+            .ok
+        );
         assert!(!check(&TestValue::K("1".into()), &TestValue::I(1), "NON_DEFINI", r).ok);
     }
 
     fn args(simple: Vec<(&str, Value)>) -> Args {
         Args {
             path: "TEST_TABLE".into(),
-            simple: simple.into_iter().map(|(k, v)| (k.to_string(), v, Span::default())).collect(),
+            simple: simple
+                .into_iter()
+                .map(|(k, v)| (k.to_string(), v, Span::default()))
+                .collect(),
             factor: vec![],
         }
     }
@@ -316,7 +393,10 @@ mod tests {
         let a = args(vec![("VALE_CALC", Value::Real(2.00001))]);
         assert!(!checks_from_args(&a, &TestValue::R(2.0)).unwrap()[0].ok);
         let a = args(vec![("VALE_REFE", Value::Real(2.0))]);
-        assert!(checks_from_args(&a, &TestValue::R(2.0)).unwrap_err().message.contains("REFERENCE"));
+        assert!(checks_from_args(&a, &TestValue::R(2.0))
+            .unwrap_err()
+            .message
+            .contains("REFERENCE"));
         assert!(checks_from_args(&args(vec![]), &TestValue::R(2.0)).is_err());
     }
 }

@@ -27,7 +27,8 @@ mod tests {
     #[test]
     fn round_trip() {
         let s = Store::in_memory().unwrap();
-        s.register_concept("F", "fonction_sdaster", "DEFI_FONCTION", "t.comm", 1).unwrap();
+        s.register_concept("F", "fonction_sdaster", "DEFI_FONCTION", "t.comm", 1)
+            .unwrap();
         let mut f = Function::new("F", "FREQ", "AMOR", vec![1.0, 2.0], vec![0.1, 0.3]).unwrap();
         f.interpol = (Interp::Lin, Interp::Log);
         f.prol_droite = Prol::Constant;

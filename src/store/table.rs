@@ -109,7 +109,9 @@ pub fn check_table_name(store: &Store, name: &str) -> Result<()> {
         // The only SQL object a table concept may meet is its own earlier version.
         let own = o == name && is_table_concept(store, name)?;
         if !own {
-            return Err(clash(format!("the database already holds an SQL object '{o}'")));
+            return Err(clash(format!(
+                "the database already holds an SQL object '{o}'"
+            )));
         }
     }
     Ok(())
@@ -128,7 +130,9 @@ fn rowid_alias(columns: &[Column]) -> Result<&'static str> {
     ["rowid", "_rowid_", "oid"]
         .into_iter()
         .find(|a| !columns.iter().any(|c| c.name.eq_ignore_ascii_case(a)))
-        .ok_or_else(|| Error::store("a table cannot have parameters named ROWID, _ROWID_ and OID at once"))
+        .ok_or_else(|| {
+            Error::store("a table cannot have parameters named ROWID, _ROWID_ and OID at once")
+        })
 }
 
 /// Save `t` as the table concept `concept` (already registered in `concepts`), replacing
@@ -142,7 +146,10 @@ pub fn save_table(store: &Store, concept: &str, t: &Table) -> Result<()> {
         )));
     }
     for (i, c) in t.columns.iter().enumerate() {
-        if t.columns[..i].iter().any(|d| d.name.eq_ignore_ascii_case(&c.name)) {
+        if t.columns[..i]
+            .iter()
+            .any(|d| d.name.eq_ignore_ascii_case(&c.name))
+        {
             return Err(Error::store(format!(
                 "table {concept} has two parameters named {} (SQL column names ignore case)",
                 c.name
@@ -201,7 +208,9 @@ pub fn save_table(store: &Store, concept: &str, t: &Table) -> Result<()> {
             }
         }
     } else if !t.rows.is_empty() {
-        return Err(Error::internal(format!("table {concept} has rows but no column")));
+        return Err(Error::internal(format!(
+            "table {concept} has rows but no column"
+        )));
     }
     Ok(())
 }
@@ -217,12 +226,10 @@ pub fn load_table(store: &Store, concept: &str) -> Result<Table> {
             |r| r.get(0),
         )
         .optional()?;
-    let title = title.ok_or_else(|| {
-        Error::store(format!("{concept} is not a table stored in this database"))
-    })?;
-    let mut stmt = conn.prepare(
-        "SELECT name, kind FROM table_columns WHERE concept = ?1 ORDER BY position",
-    )?;
+    let title = title
+        .ok_or_else(|| Error::store(format!("{concept} is not a table stored in this database")))?;
+    let mut stmt =
+        conn.prepare("SELECT name, kind FROM table_columns WHERE concept = ?1 ORDER BY position")?;
     let raw: Vec<(String, String)> = stmt
         .query_map(params![concept], |r| Ok((r.get(0)?, r.get(1)?)))?
         .collect::<rusqlite::Result<_>>()?;
@@ -230,7 +237,9 @@ pub fn load_table(store: &Store, concept: &str) -> Result<Table> {
         .into_iter()
         .map(|(name, kind)| {
             let kind = ColKind::parse(&kind).ok_or_else(|| {
-                Error::store(format!("table {concept}: parameter {name} has unknown kind '{kind}'"))
+                Error::store(format!(
+                    "table {concept}: parameter {name} has unknown kind '{kind}'"
+                ))
             })?;
             Ok(Column { name, kind })
         })
@@ -312,7 +321,10 @@ pub fn drop_table_data(store: &Store, concept: &str) -> Result<()> {
     let conn = store.conn();
     conn.execute_batch(&format!("DROP TABLE IF EXISTS {}", quote_ident(concept)))?;
     for t in ["table_meta", "table_columns", "table_links"] {
-        conn.execute(&format!("DELETE FROM {t} WHERE concept = ?1"), params![concept])?;
+        conn.execute(
+            &format!("DELETE FROM {t} WHERE concept = ?1"),
+            params![concept],
+        )?;
     }
     Ok(())
 }
@@ -325,7 +337,8 @@ mod tests {
     fn store_with(names: &[&str]) -> Store {
         let s = Store::in_memory().unwrap();
         for n in names {
-            s.register_concept(n, "table_sdaster", "CREA_TABLE", "t.comm", 1).unwrap();
+            s.register_concept(n, "table_sdaster", "CREA_TABLE", "t.comm", 1)
+                .unwrap();
         }
         s
     }
@@ -338,7 +351,10 @@ mod tests {
         save_table(&s, "TAB", &t).unwrap();
         assert_eq!(load_table(&s, "TAB").unwrap(), t);
         // The table is queryable with plain SQL, in row order.
-        let mut q = s.conn().prepare("SELECT NUME_ORDRE, FREQ FROM TAB").unwrap();
+        let mut q = s
+            .conn()
+            .prepare("SELECT NUME_ORDRE, FREQ FROM TAB")
+            .unwrap();
         let got: Vec<(i64, f64)> = q
             .query_map([], |r| Ok((r.get(0)?, r.get(1)?)))
             .unwrap()
@@ -348,7 +364,11 @@ mod tests {
         // M1 is a concept: its cell is a link; M2 is not one.
         assert_eq!(
             links(&s, "TAB").unwrap(),
-            vec![Link { row: 0, column: "NOM_SD".into(), target: "M1".into() }]
+            vec![Link {
+                row: 0,
+                column: "NOM_SD".into(),
+                target: "M1".into()
+            }]
         );
     }
 
@@ -362,7 +382,11 @@ mod tests {
         s.delete_concept("TAB").unwrap();
         let n: i64 = s
             .conn()
-            .query_row("SELECT count(*) FROM sqlite_master WHERE name='TAB'", [], |r| r.get(0))
+            .query_row(
+                "SELECT count(*) FROM sqlite_master WHERE name='TAB'",
+                [],
+                |r| r.get(0),
+            )
             .unwrap();
         assert_eq!(n, 0);
         let n: i64 = s

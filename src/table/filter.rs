@@ -136,7 +136,11 @@ impl Filter {
             .map_err(|e| e.keyword("FILTRE/NOM_PARA"))?;
         let kind = t.columns.get(j).map(|c| c.kind).unwrap_or(ColKind::K);
         self.check_values(kind)?;
-        let cells: Vec<&Cell> = t.rows.iter().map(|r| r.get(j).unwrap_or(&Cell::Null)).collect();
+        let cells: Vec<&Cell> = t
+            .rows
+            .iter()
+            .map(|r| r.get(j).unwrap_or(&Cell::Null))
+            .collect();
         let keep: Vec<usize> = match self.crit {
             CritComp::Vide => indices(&cells, |c| c.is_null()),
             CritComp::NonVide => indices(&cells, |c| !c.is_null()),
@@ -243,10 +247,13 @@ impl Filter {
         let want_max = matches!(self.crit, CritComp::Maxi | CritComp::AbsMaxi);
         // Texts: lexicographic extreme (MAXI/MINI only make sense that way).
         if cells.iter().any(|c| matches!(c, Cell::K(_))) {
-            let best = cells
-                .iter()
-                .filter_map(|c| c.as_text())
-                .reduce(|a, b| if (b > a) == want_max { b } else { a });
+            let best = cells.iter().filter_map(|c| c.as_text()).reduce(|a, b| {
+                if (b > a) == want_max {
+                    b
+                } else {
+                    a
+                }
+            });
             return indices(cells, |c| c.as_text().is_some() && c.as_text() == best);
         }
         let best = cells
@@ -330,16 +337,29 @@ mod tests {
     #[test]
     fn comparisons_and_emptiness() {
         let t = sample();
-        let run = |crit, v: Vec<Cell>, para: &str| ordres(&Filter::new(para, crit, v).apply(&t).unwrap());
+        let run =
+            |crit, v: Vec<Cell>, para: &str| ordres(&Filter::new(para, crit, v).apply(&t).unwrap());
         assert_eq!(run(CritComp::Gt, vec![Cell::R(12.5)], "FREQ"), vec![3]);
         assert_eq!(run(CritComp::Ge, vec![Cell::R(12.5)], "FREQ"), vec![1, 3]);
         assert_eq!(run(CritComp::Lt, vec![Cell::I(2)], "NUME_ORDRE"), vec![1]);
-        assert_eq!(run(CritComp::Le, vec![Cell::I(2)], "NUME_ORDRE"), vec![1, 2]);
-        assert_eq!(run(CritComp::Ne, vec![Cell::I(2)], "NUME_ORDRE"), vec![1, 3]);
-        assert_eq!(run(CritComp::Eq, vec![Cell::I(1), Cell::I(3)], "NUME_ORDRE"), vec![1, 3]);
+        assert_eq!(
+            run(CritComp::Le, vec![Cell::I(2)], "NUME_ORDRE"),
+            vec![1, 2]
+        );
+        assert_eq!(
+            run(CritComp::Ne, vec![Cell::I(2)], "NUME_ORDRE"),
+            vec![1, 3]
+        );
+        assert_eq!(
+            run(CritComp::Eq, vec![Cell::I(1), Cell::I(3)], "NUME_ORDRE"),
+            vec![1, 3]
+        );
         assert_eq!(run(CritComp::Vide, vec![], "NOM_SD"), vec![3]);
         assert_eq!(run(CritComp::NonVide, vec![], "NOM_SD"), vec![1, 2]);
-        assert_eq!(run(CritComp::Eq, vec![Cell::K("M2".into())], "NOM_SD"), vec![2]);
+        assert_eq!(
+            run(CritComp::Eq, vec![Cell::K("M2".into())], "NOM_SD"),
+            vec![2]
+        );
     }
 
     #[test]

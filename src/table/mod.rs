@@ -84,7 +84,10 @@ impl Cell {
     pub fn fits(&self, kind: ColKind) -> bool {
         matches!(
             (self, kind),
-            (Cell::Null, _) | (Cell::R(_), ColKind::R) | (Cell::I(_), ColKind::I) | (Cell::K(_), ColKind::K)
+            (Cell::Null, _)
+                | (Cell::R(_), ColKind::R)
+                | (Cell::I(_), ColKind::I)
+                | (Cell::K(_), ColKind::K)
         )
     }
 }
@@ -299,14 +302,26 @@ pub(crate) mod tests {
             "",
             vec![
                 (
-                    Column { name: "A".into(), kind: ColKind::I },
+                    Column {
+                        name: "A".into(),
+                        kind: ColKind::I,
+                    },
                     vec![Cell::I(1), Cell::I(2)],
                 ),
-                (Column { name: "B".into(), kind: ColKind::R }, vec![Cell::R(0.5)]),
+                (
+                    Column {
+                        name: "B".into(),
+                        kind: ColKind::R,
+                    },
+                    vec![Cell::R(0.5)],
+                ),
             ],
         )
         .unwrap();
-        assert_eq!(t.rows, vec![vec![Cell::I(1), Cell::R(0.5)], vec![Cell::I(2), Cell::Null]]);
+        assert_eq!(
+            t.rows,
+            vec![vec![Cell::I(1), Cell::R(0.5)], vec![Cell::I(2), Cell::Null]]
+        );
     }
 
     #[test]

@@ -182,7 +182,7 @@ mod tests {
         assert_eq!(f.format(0.0), " 0.00000E+00");
         assert_eq!(f.format(1.5e-7), " 1.50000E-07");
         assert_eq!(f.format(2.0e100), "2.00000E+100");
-        assert_eq!(FormatR::parse("F8.3").unwrap().format(3.14159), "   3.142");
+        assert_eq!(FormatR::parse("F8.3").unwrap().format(1.23456), "   1.235");
         assert!(FormatR::parse("X12.5").is_err());
         assert!(FormatR::parse("E12").is_err());
     }

@@ -72,15 +72,25 @@ mod tests {
         t.add_column("A", ColKind::I).unwrap();
         t.add_column("B", ColKind::R).unwrap();
         t.add_column("TAG", ColKind::K).unwrap();
-        for (a, b, tag) in [(2, 1.0, "p"), (1, 5.0, "q"), (2, 0.5, "r"), (1, 5.0, "s"), (0, f64::NAN, "t")] {
+        for (a, b, tag) in [
+            (2, 1.0, "p"),
+            (1, 5.0, "q"),
+            (2, 0.5, "r"),
+            (1, 5.0, "s"),
+            (0, f64::NAN, "t"),
+        ] {
             let b = if b.is_nan() { Cell::Null } else { Cell::R(b) };
-            t.push_row(vec![Cell::I(a), b, Cell::K(tag.into())]).unwrap();
+            t.push_row(vec![Cell::I(a), b, Cell::K(tag.into())])
+                .unwrap();
         }
         t
     }
 
     fn tags(t: &Table) -> String {
-        t.rows.iter().filter_map(|r| r.get(2).and_then(|c| c.as_text())).collect()
+        t.rows
+            .iter()
+            .filter_map(|r| r.get(2).and_then(|c| c.as_text()))
+            .collect()
     }
 
     #[test]
