@@ -203,7 +203,8 @@ fn given(args: &Args, prefix: &str) -> Result<Option<TestValue>> {
 }
 
 /// Run the checks asked by one TEST_* occurrence (keywords VALE_CALC[_I|_K],
-/// VALE_REFE[_I|_K], REFERENCE, CRITERE, PRECISION, TOLE_MACHINE, ORDRE_GRANDEUR) on the
+/// VALE_REFE[_I|_K], REFERENCE, CRITERE, PRECISION, TOLE_MACHINE, ORDRE_GRANDEUR,
+/// VALE_ABS) on the
 /// computed value: one outcome for VALE_CALC, one for VALE_REFE.
 pub fn checks_from_args(args: &Args, computed: &TestValue) -> Result<Vec<TestOutcome>> {
     let critere = match args.text("CRITERE") {
@@ -226,6 +227,19 @@ pub fn checks_from_args(args: &Args, computed: &TestValue) -> Result<Vec<TestOut
             }
         };
     let ordre_grandeur = positive("ORDRE_GRANDEUR", 1.0)?;
+    // VALE_ABS='OUI': the absolute value of the computed value is tested.
+    let abs_value;
+    let computed = match (args.text("VALE_ABS"), computed) {
+        (Some("OUI"), TestValue::R(x)) => {
+            abs_value = TestValue::R(x.abs());
+            &abs_value
+        }
+        (Some("OUI"), TestValue::I(i)) => {
+            abs_value = TestValue::I(i.abs());
+            &abs_value
+        }
+        _ => computed,
+    };
     let mut out = Vec::new();
     if let Some(calc) = given(args, "VALE_CALC")? {
         let tol = Tolerance {
@@ -390,6 +404,12 @@ mod tests {
         assert_eq!(out.len(), 2);
         assert!(out[0].ok && out[0].line.contains("NON_REGRESSION"));
         assert!(out[1].ok && out[1].line.contains("ANALYTIQUE"));
+        // VALE_ABS='OUI' tests |-2| = 2.
+        let a = args(vec![
+            ("VALE_CALC", Value::Real(2.0)),
+            ("VALE_ABS", Value::Str("OUI".into())),
+        ]);
+        assert!(checks_from_args(&a, &TestValue::R(-2.0)).unwrap()[0].ok);
         let a = args(vec![("VALE_CALC", Value::Real(2.00001))]);
         assert!(!checks_from_args(&a, &TestValue::R(2.0)).unwrap()[0].ok);
         let a = args(vec![("VALE_REFE", Value::Real(2.0))]);

@@ -3,14 +3,16 @@
 //! Semantics (those of Code_Aster's table filters):
 //! - `EQ`/`NE` on reals compare with a tolerance: CRITERE `RELATIF` keeps
 //!   `|x - v| <= PRECISION * |v|` (so a reference 0 means exact equality), `ABSOLU` keeps
-//!   `|x - v| <= PRECISION`. Integers and texts compare exactly. With several values, `EQ`
-//!   keeps a row equal to any of them, `NE` one equal to none of them.
-//! - `GT`, `LT`, `GE`, `LE` compare numbers, or texts in lexicographic order.
+//!   `|x - v| <= PRECISION`. Integers compare exactly, texts after trimming blanks. With
+//!   several values, `EQ` keeps a row equal to any of them, `NE` one equal to none of them.
+//! - `GT`, `LT`, `GE`, `LE` compare numbers, or texts in lexicographic order; with several
+//!   values `GT`/`GE` compare with the smallest, `LT`/`LE` with the largest.
 //! - `VIDE` keeps empty cells, `NON_VIDE` the others.
-//! - `MAXI`, `MINI`, `ABS_MAXI`, `ABS_MINI` keep the rows holding the extreme value of the
-//!   column (all of them when tied).
+//! - `MAXI`, `MINI`, `MAXI_ABS`, `MINI_ABS` keep the rows holding the extreme value of the
+//!   column (all of them when tied). `ABS_MAXI`/`ABS_MINI` are accepted as aliases.
 //!
-//! Empty cells never satisfy a comparison (only `VIDE`).
+//! Empty cells satisfy only `VIDE` and `NE` (an empty cell differs from any value, as in
+//! Code_Aster's tables).
 
 use super::{Cell, ColKind, Table};
 use crate::error::{Error, Result};
@@ -45,14 +47,14 @@ impl CritComp {
             "NON_VIDE" => CritComp::NonVide,
             "MAXI" => CritComp::Maxi,
             "MINI" => CritComp::Mini,
-            "ABS_MAXI" => CritComp::AbsMaxi,
-            "ABS_MINI" => CritComp::AbsMini,
+            "MAXI_ABS" | "ABS_MAXI" => CritComp::AbsMaxi,
+            "MINI_ABS" | "ABS_MINI" => CritComp::AbsMini,
             _ => return None,
         })
     }
     pub const NAMES: &'static [&'static str] = &[
-        "EQ", "NE", "GT", "LT", "GE", "LE", "VIDE", "NON_VIDE", "MAXI", "MINI", "ABS_MAXI",
-        "ABS_MINI",
+        "EQ", "NE", "GT", "LT", "GE", "LE", "VIDE", "NON_VIDE", "MAXI", "MINI", "MAXI_ABS",
+        "MINI_ABS",
     ];
     /// Whether the criterion compares with given values.
     pub fn needs_value(self) -> bool {
@@ -123,8 +125,8 @@ impl Filter {
             CritComp::NonVide => return format!("{} NON_VIDE", self.nom_para),
             CritComp::Maxi => return format!("{} MAXI", self.nom_para),
             CritComp::Mini => return format!("{} MINI", self.nom_para),
-            CritComp::AbsMaxi => return format!("{} ABS_MAXI", self.nom_para),
-            CritComp::AbsMini => return format!("{} ABS_MINI", self.nom_para),
+            CritComp::AbsMaxi => return format!("{} MAXI_ABS", self.nom_para),
+            CritComp::AbsMini => return format!("{} MINI_ABS", self.nom_para),
         };
         format!("{}{}{}", self.nom_para, op, vals.join("|"))
     }
@@ -148,13 +150,8 @@ impl Filter {
                 self.extreme(&cells)
             }
             _ => {
-                let mut keep = Vec::new();
-                for (i, c) in cells.iter().enumerate() {
-                    if !c.is_null() && self.compare(c)? {
-                        keep.push(i);
-                    }
-                }
-                keep
+                let bound = self.bound();
+                indices(&cells, |c| self.compare(c, bound))
             }
         };
         Ok(t.with_rows(&keep))
@@ -171,12 +168,6 @@ impl Filter {
             ))
             .keyword("FILTRE/VALE")
             .hint("give VALE (reals), VALE_I (integers) or VALE_K (texts)"));
-        }
-        if self.values.len() > 1 && !matches!(self.crit, CritComp::Eq | CritComp::Ne) {
-            return Err(Error::validation(
-                "several values are only allowed with CRIT_COMP='EQ' or 'NE'",
-            )
-            .keyword("FILTRE/VALE"));
         }
         for v in &self.values {
             let ok = match kind {
@@ -201,28 +192,39 @@ impl Filter {
         Ok(())
     }
 
-    /// Whether a non-empty cell passes a comparison criterion.
-    fn compare(&self, c: &Cell) -> Result<bool> {
-        let mut any = false;
-        for v in &self.values {
-            let hit = match self.crit {
-                CritComp::Eq => self.equal(c, v),
-                CritComp::Ne => self.equal(c, v),
-                CritComp::Gt => order(c, v) == Some(Ordering::Greater),
-                CritComp::Lt => order(c, v) == Some(Ordering::Less),
-                CritComp::Ge => matches!(order(c, v), Some(Ordering::Greater | Ordering::Equal)),
-                CritComp::Le => matches!(order(c, v), Some(Ordering::Less | Ordering::Equal)),
-                _ => false,
-            };
-            any |= hit;
+    /// The value GT/GE (smallest) or LT/LE (largest) compare with.
+    fn bound(&self) -> Option<&Cell> {
+        let want = match self.crit {
+            CritComp::Gt | CritComp::Ge => Ordering::Less,
+            _ => Ordering::Greater,
+        };
+        self.values
+            .iter()
+            .reduce(|a, b| if order(b, a) == Some(want) { b } else { a })
+    }
+
+    /// Whether a cell passes a comparison criterion.
+    fn compare(&self, c: &Cell, bound: Option<&Cell>) -> bool {
+        let any_equal = || !c.is_null() && self.values.iter().any(|v| self.equal(c, v));
+        let cmp = || match (c.is_null(), bound) {
+            (false, Some(b)) => order(c, b),
+            _ => None,
+        };
+        match self.crit {
+            CritComp::Eq => any_equal(),
+            CritComp::Ne => !any_equal(),
+            CritComp::Gt => cmp() == Some(Ordering::Greater),
+            CritComp::Lt => cmp() == Some(Ordering::Less),
+            CritComp::Ge => matches!(cmp(), Some(Ordering::Greater | Ordering::Equal)),
+            CritComp::Le => matches!(cmp(), Some(Ordering::Less | Ordering::Equal)),
+            _ => false,
         }
-        Ok(if self.crit == CritComp::Ne { !any } else { any })
     }
 
     fn equal(&self, c: &Cell, v: &Cell) -> bool {
         match (c, v) {
             (Cell::I(a), Cell::I(b)) => a == b,
-            (Cell::K(a), Cell::K(b)) => a == b,
+            (Cell::K(a), Cell::K(b)) => a.trim() == b.trim(),
             _ => match (c.as_f64(), v.as_f64()) {
                 (Some(x), Some(r)) => {
                     let tol = match self.critere {
@@ -353,6 +355,24 @@ mod tests {
         assert_eq!(
             run(CritComp::Eq, vec![Cell::I(1), Cell::I(3)], "NUME_ORDRE"),
             vec![1, 3]
+        );
+        // An empty cell differs from any value.
+        assert_eq!(
+            run(CritComp::Ne, vec![Cell::K("M1".into())], "NOM_SD"),
+            vec![2, 3]
+        );
+        // Several values: GT compares with the smallest, LE with the largest.
+        assert_eq!(
+            run(CritComp::Gt, vec![Cell::R(20.0), Cell::R(0.0)], "FREQ"),
+            vec![1, 3]
+        );
+        assert_eq!(
+            run(CritComp::Le, vec![Cell::R(20.0), Cell::R(0.0)], "FREQ"),
+            vec![1, 2]
+        );
+        assert_eq!(
+            run(CritComp::Eq, vec![Cell::K(" M2 ".into())], "NOM_SD"),
+            vec![2]
         );
         assert_eq!(run(CritComp::Vide, vec![], "NOM_SD"), vec![3]);
         assert_eq!(run(CritComp::NonVide, vec![], "NOM_SD"), vec![1, 2]);
