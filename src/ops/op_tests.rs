@@ -164,11 +164,13 @@ fn impr_table_to_stdout_and_to_a_unit() {
     );
     h.run("IMPR_TABLE", None, None, &a).unwrap();
     let expected = concat!(
-        "#\n#three modes\n",
+        "#\n#--------------------------------------------------------------------------------\n#\n",
+        "#three modes\n",
         "NUME_ORDRE   FREQ\n",
         "           3  3.50000E+00\n",
         "           2  2.50000E+00\n",
         "           1  1.50000E+00\n",
+        "\n",
     );
     assert_eq!(h.output(), expected);
 
@@ -525,11 +527,13 @@ fn defi_fonction_log_and_impr() {
     );
     h.run("IMPR_FONCTION", None, None, &p).unwrap();
     let expected = concat!(
-        "#\n#FONCTION F\n",
+        "#\n#--------------------------------------------------------------------------------\n#\n",
+        "#FONCTION F\n",
         "FREQ         TOUTRESU\n",
         " 1.00000E+00  1.00000E+00\n",
         " 2.00000E+00  4.00000E+00\n",
         " 4.00000E+00  1.60000E+01\n",
+        "\n",
     );
     assert_eq!(h.output(), expected);
 

@@ -84,8 +84,9 @@ fn cell_string(c: &Cell, fmt: FormatR) -> String {
     }
 }
 
-/// FORMAT='TABLEAU': `#` then one `#` line per title line, the parameter names, the rows.
-/// Numbers are right-aligned, texts and names left-aligned, empty cells are `-`.
+/// FORMAT='TABLEAU': the `#` header, one `#` line per title line, the parameter names,
+/// the rows, a blank line. Numbers are right-aligned, texts, names and empty cells (`-`)
+/// left-aligned, columns at least as wide as the real format.
 pub fn tableau(t: &Table, title: &str, fmt: FormatR, sep: &str) -> String {
     let cells: Vec<Vec<String>> = t
         .rows
@@ -109,7 +110,8 @@ pub fn tableau(t: &Table, title: &str, fmt: FormatR, sep: &str) -> String {
                 .unwrap_or(0)
         })
         .collect();
-    let mut out = String::from("#\n");
+    // Code_Aster's header: "#", a rule of 80 dashes, "#", then the title lines.
+    let mut out = format!("#\n#{}\n#\n", "-".repeat(80));
     for line in title.lines() {
         out.push('#');
         out.push_str(line);
@@ -124,6 +126,10 @@ pub fn tableau(t: &Table, title: &str, fmt: FormatR, sep: &str) -> String {
     out.push_str(header.join(sep).trim_end());
     out.push('\n');
     for (row, strs) in t.rows.iter().zip(&cells) {
+        // Like Code_Aster, a row with only empty cells is not printed.
+        if row.iter().all(Cell::is_null) {
+            continue;
+        }
         let line: Vec<String> = row
             .iter()
             .zip(strs)
@@ -136,6 +142,8 @@ pub fn tableau(t: &Table, title: &str, fmt: FormatR, sep: &str) -> String {
         out.push_str(line.join(sep).trim_end());
         out.push('\n');
     }
+    // A blank line closes the table, so successive prints to one unit stay apart.
+    out.push('\n');
     out
 }
 
@@ -189,14 +197,18 @@ mod tests {
 
     #[test]
     fn tableau_aligns_columns() {
-        let t = sample();
+        let mut t = sample();
+        // An all-empty row is not printed.
+        t.rows.push(vec![Cell::Null, Cell::Null, Cell::Null]);
         let s = tableau(&t, "modes\nsecond line", FormatR::default(), " ");
         let expected = concat!(
-            "#\n#modes\n#second line\n",
+            "#\n#--------------------------------------------------------------------------------\n#\n",
+            "#modes\n#second line\n",
             "NUME_ORDRE   FREQ         NOM_SD\n",
             "           1  1.25000E+01 M1\n",
             "           2 -4.00000E+01 M2\n",
             "           3  2.50000E+01 -\n",
+            "\n",
         );
         assert_eq!(s, expected);
     }
