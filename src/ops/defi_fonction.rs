@@ -1,5 +1,6 @@
-//! DEFI_FONCTION: a function of one parameter from points (VALE = x1, y1, x2, y2, ... or
-//! VALE_PARA + VALE_FONC), with INTERPOL, PROL_GAUCHE, PROL_DROITE.
+//! DEFI_FONCTION: a function of one parameter from points (VALE = x1, y1, x2, y2, ...,
+//! VALE_PARA + VALE_FONC, or ABSCISSE + ORDONNEE), with INTERPOL, PROL_GAUCHE,
+//! PROL_DROITE and VERIF ('CROISSANT': increasing abscissas required; 'NON': sorted).
 
 use super::OpContext;
 use crate::args::Args;
@@ -27,6 +28,19 @@ pub fn apply_options(f: &mut Function, args: &Args) -> Result<()> {
     f.check().map_err(|e| e.keyword(args.path.clone()))
 }
 
+fn reals(args: &Args, key: &str) -> Result<Vec<f64>> {
+    args.reals(key)
+        .ok_or_else(|| Error::validation("expected a list of reals").keyword(args.key_path(key)))
+}
+
+/// Points sorted by abscissa (stable: equal abscissas keep their order and are then
+/// refused by the strict-increase check).
+fn sort_points(x: Vec<f64>, y: Vec<f64>) -> (Vec<f64>, Vec<f64>) {
+    let mut pts: Vec<(f64, f64)> = x.into_iter().zip(y).collect();
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    pts.into_iter().unzip()
+}
+
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let name = ctx.result_name()?.to_string();
     let (x, y) = if args.has("VALE") {
@@ -43,16 +57,24 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         }
         v.chunks_exact(2).map(|p| (p[0], p[1])).unzip()
     } else if args.has("VALE_PARA") {
-        let x = args.reals("VALE_PARA").ok_or_else(|| {
-            Error::validation("expected a list of reals").keyword("DEFI_FONCTION/VALE_PARA")
-        })?;
-        let y = args.reals("VALE_FONC").ok_or_else(|| {
-            Error::validation("expected a list of reals").keyword("DEFI_FONCTION/VALE_FONC")
-        })?;
-        (x, y)
+        (reals(args, "VALE_PARA")?, reals(args, "VALE_FONC")?)
+    } else if args.has("ABSCISSE") {
+        (reals(args, "ABSCISSE")?, reals(args, "ORDONNEE")?)
     } else {
-        return Err(Error::validation("give VALE or VALE_PARA with VALE_FONC")
-            .keyword("DEFI_FONCTION/VALE"));
+        return Err(Error::validation(
+            "give VALE, VALE_PARA with VALE_FONC, or ABSCISSE with ORDONNEE",
+        )
+        .keyword("DEFI_FONCTION/VALE"));
+    };
+    // VERIF='NON': Code_Aster sorts the points by abscissa instead of refusing them.
+    let (x, y) = match args.text("VERIF").unwrap_or("CROISSANT") {
+        "CROISSANT" => (x, y),
+        "NON" => sort_points(x, y),
+        other => {
+            return Err(Error::validation(format!("unknown VERIF '{other}'"))
+                .keyword("DEFI_FONCTION/VERIF")
+                .hint("use 'CROISSANT' or 'NON'"))
+        }
     };
     let mut f = Function {
         name: name.clone(),

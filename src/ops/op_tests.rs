@@ -564,6 +564,21 @@ fn defi_fonction_log_and_impr() {
         .message
         .contains("strictly increasing"));
     assert!(h.store.concept_type("G").unwrap().is_none());
+    // VERIF='NON' sorts the points: (0, 3), (1, 2) → G(0.5) = 2.5.
+    let ok = args(
+        "DEFI_FONCTION",
+        vec![
+            ("NOM_PARA", k("X")),
+            ("ABSCISSE", seq(vec![r(1.0), r(0.0)])),
+            ("ORDONNEE", seq(vec![r(2.0), r(3.0)])),
+            ("VERIF", k("NON")),
+        ],
+        vec![],
+    );
+    h.run("DEFI_FONCTION", Some("G"), None, &ok).unwrap();
+    let g = crate::store::function::load_function(&h.store, "G").unwrap();
+    assert_eq!((g.x.clone(), g.y.clone()), (vec![0.0, 1.0], vec![3.0, 2.0]));
+    assert_eq!(g.eval(0.5).unwrap(), 2.5);
 }
 
 #[test]
