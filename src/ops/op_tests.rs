@@ -315,7 +315,7 @@ fn extr_table_sub_table_and_values() {
         "EXTR_TABLE",
         vec![
             ("TABLE", table("TAB")),
-            ("TYPE_RESU", k("R")),
+            ("TYPE_RESU", k("REEL")),
             ("NOM_PARA", k("FREQ")),
         ],
         vec![("FILTRE", vec![filtre("NUME_ORDRE", i(3))])],
@@ -336,6 +336,19 @@ fn extr_table_sub_table_and_values() {
     assert_eq!(
         h.run("EXTR_TABLE", Some("x"), None, &a).unwrap(),
         Some(Value::Str("c".into()))
+    );
+    let a = args(
+        "EXTR_TABLE",
+        vec![
+            ("TABLE", table("TAB")),
+            ("TYPE_RESU", k("ENTIER")),
+            ("NOM_PARA", k("NUME_ORDRE")),
+        ],
+        vec![("FILTRE", vec![filtre("NUME_ORDRE", i(2))])],
+    );
+    assert_eq!(
+        h.run("EXTR_TABLE", Some("x"), None, &a).unwrap(),
+        Some(Value::Int(2))
     );
     // Two rows left: refused.
     let a = args(
