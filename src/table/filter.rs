@@ -392,6 +392,33 @@ mod tests {
         assert_eq!(run(CritComp::AbsMini), vec![1]);
     }
 
+    use proptest::prelude::*;
+
+    proptest! {
+        /// EQ and NE split a table in two: every row is in exactly one of them, empty
+        /// cells included (they go to NE), whatever the value and the precision.
+        #[test]
+        fn eq_and_ne_partition_the_rows(
+            xs in prop::collection::vec(prop::option::of(-10.0f64..10.0), 0..20),
+            v in -10.0f64..10.0,
+            precision in 0.0f64..0.5,
+            absolu in any::<bool>(),
+        ) {
+            let mut t = Table::new("");
+            t.add_column("X", ColKind::R).unwrap();
+            for x in &xs {
+                t.push_row(vec![x.map(Cell::R).unwrap_or(Cell::Null)]).unwrap();
+            }
+            let mut f = Filter::eq("X", Cell::R(v));
+            f.precision = precision;
+            f.critere = if absolu { Critere::Absolu } else { Critere::Relatif };
+            let eq = f.apply(&t).unwrap().nrows();
+            f.crit = CritComp::Ne;
+            let ne = f.apply(&t).unwrap().nrows();
+            prop_assert_eq!(eq + ne, xs.len());
+        }
+    }
+
     #[test]
     fn wrong_value_type_is_a_clear_error() {
         let t = sample();

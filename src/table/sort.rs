@@ -108,6 +108,39 @@ mod tests {
         assert_eq!(tags(&t), "tsrqp");
     }
 
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Sorting gives a permutation of the rows, ordered on the key, and rows with equal
+        /// keys keep their original order (checked through a row id column).
+        #[test]
+        fn sort_is_an_ordered_stable_permutation(
+            keys in prop::collection::vec(prop::option::of(-3i64..3), 0..30),
+            down in any::<bool>(),
+        ) {
+            let mut t = Table::new("");
+            t.add_column("K", ColKind::I).unwrap();
+            t.add_column("ID", ColKind::I).unwrap();
+            for (id, k) in keys.iter().enumerate() {
+                let c = k.map(Cell::I).unwrap_or(Cell::Null);
+                t.push_row(vec![c, Cell::I(id as i64)]).unwrap();
+            }
+            let ordre = if down { Ordre::Decroissant } else { Ordre::Croissant };
+            sort(&mut t, &["K".into()], ordre).unwrap();
+            let mut ids: Vec<i64> = t.rows.iter().map(|r| match r[1] { Cell::I(i) => i, _ => -1 }).collect();
+            for w in t.rows.windows(2) {
+                let o = cmp_cells(&w[0][0], &w[1][0]);
+                let o = if down { o.reverse() } else { o };
+                prop_assert!(o != Ordering::Greater);
+                if o == Ordering::Equal {
+                    prop_assert!(w[0][1].as_f64() < w[1][1].as_f64());
+                }
+            }
+            ids.sort();
+            prop_assert_eq!(ids, (0..keys.len() as i64).collect::<Vec<_>>());
+        }
+    }
+
     #[test]
     fn unknown_key_is_an_error() {
         let mut t = table();
