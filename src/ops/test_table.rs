@@ -7,62 +7,22 @@ use super::testing::{checks_from_args, TestValue};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::table::aggregate::{aggregate, Aggregate};
 use crate::table::filter::apply_all;
-use crate::table::{Cell, ColKind, Table};
+use crate::table::{Cell, Table};
 
 /// The value TYPE_TEST computes over the non-empty cells of `para`.
-pub fn type_test(t: &Table, para: &str, kind: &str) -> Result<TestValue> {
-    let col = t.column(para).ok_or_else(|| {
-        t.req_col(para)
-            .err()
-            .unwrap_or_else(|| Error::internal("column"))
+fn type_test(t: &Table, para: &str, kind: &str) -> Result<TestValue> {
+    let agg = Aggregate::parse(kind).ok_or_else(|| {
+        Error::validation(format!("unknown TYPE_TEST '{kind}'"))
+            .keyword("TEST_TABLE/TYPE_TEST")
+            .hint("use 'SOMM_ABS', 'SOMM', 'MAX' or 'MIN'")
     })?;
-    let cells: Vec<&Cell> = t
-        .column_cells(para)?
-        .into_iter()
-        .filter(|c| !c.is_null())
-        .collect();
-    if col.kind == ColKind::K {
-        return Err(
-            Error::input(format!("TYPE_TEST needs numbers, {para} holds texts"))
-                .keyword("TEST_TABLE/TYPE_TEST"),
-        );
+    match aggregate(t, para, agg).map_err(|e| e.keyword("TEST_TABLE/TYPE_TEST"))? {
+        Cell::I(i) => Ok(TestValue::I(i)),
+        Cell::R(x) => Ok(TestValue::R(x)),
+        other => Err(Error::internal(format!("aggregate gave {other:?}"))),
     }
-    if cells.is_empty() && matches!(kind, "MAX" | "MIN") {
-        return Err(
-            Error::input(format!("{para} has no value to take the {kind} of"))
-                .keyword("TEST_TABLE/FILTRE"),
-        );
-    }
-    if col.kind == ColKind::I {
-        let v: Vec<i64> = cells
-            .iter()
-            .filter_map(|c| if let Cell::I(i) = c { Some(*i) } else { None })
-            .collect();
-        let r = match kind {
-            "SOMM_ABS" => v.iter().map(|x| x.abs()).sum(),
-            "SOMM" => v.iter().sum(),
-            "MAX" => v.iter().copied().max().unwrap_or(0),
-            "MIN" => v.iter().copied().min().unwrap_or(0),
-            other => return Err(unknown(other)),
-        };
-        return Ok(TestValue::I(r));
-    }
-    let v: Vec<f64> = cells.iter().filter_map(|c| c.as_f64()).collect();
-    let r = match kind {
-        "SOMM_ABS" => v.iter().map(|x| x.abs()).sum(),
-        "SOMM" => v.iter().sum(),
-        "MAX" => v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-        "MIN" => v.iter().copied().fold(f64::INFINITY, f64::min),
-        other => return Err(unknown(other)),
-    };
-    Ok(TestValue::R(r))
-}
-
-fn unknown(k: &str) -> Error {
-    Error::validation(format!("unknown TYPE_TEST '{k}'"))
-        .keyword("TEST_TABLE/TYPE_TEST")
-        .hint("use 'SOMM_ABS', 'SOMM', 'MAX' or 'MIN'")
 }
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {

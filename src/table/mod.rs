@@ -6,6 +6,7 @@
 //! [`filter`] (CRIT_COMP), [`sort`] (TRI), [`print`] (TABLEAU / CSV). No SQL here: the
 //! persistence lives in `store::table`.
 
+pub mod aggregate;
 pub mod filter;
 pub mod print;
 pub mod sort;
