@@ -432,6 +432,7 @@ fn recu_fonction_then_test_fonction() {
         vec![],
     );
     let err = h.run("RECU_FONCTION", Some("F"), None, &recu).unwrap_err();
+    assert!(err.message.contains("1 comes after 2"), "{err}");
     assert!(err.hint.unwrap().contains("OPERATION='TRI'"));
     let tri = args(
         "CALC_TABLE",
@@ -643,4 +644,59 @@ fn a_table_named_like_an_internal_table_is_refused_and_rolled_back() {
     let err = h.run("CREA_TABLE", Some("CONCEPTS"), None, &a).unwrap_err();
     assert!(err.message.contains("cannot be named CONCEPTS"), "{err}");
     assert!(h.store.concepts().unwrap().is_empty());
+}
+
+#[test]
+fn recu_fonction_skips_rows_empty_in_both_parameters() {
+    let mut h = Harness::new();
+    let liste = |para: &str, key: &str, v: Value| {
+        fact("CREA_TABLE/LISTE", vec![("PARA", k(para)), (key, v)])
+    };
+    // Row 3 has only a TAG: skipped. Row 3 of T2 has INST but no DEPL: refused.
+    let a = args(
+        "CREA_TABLE",
+        vec![],
+        vec![(
+            "LISTE",
+            vec![
+                liste("INST", "LISTE_R", seq(vec![r(0.0), r(1.0)])),
+                liste("DEPL", "LISTE_R", seq(vec![r(0.0), r(3.0)])),
+                liste("TAG", "LISTE_K", seq(vec![k("a"), k("b"), k("c")])),
+            ],
+        )],
+    );
+    h.run("CREA_TABLE", Some("T1"), None, &a).unwrap();
+    let recu = |t: &str| {
+        args(
+            "RECU_FONCTION",
+            vec![
+                ("TABLE", table(t)),
+                ("PARA_X", k("INST")),
+                ("PARA_Y", k("DEPL")),
+            ],
+            vec![],
+        )
+    };
+    h.run("RECU_FONCTION", Some("F"), None, &recu("T1"))
+        .unwrap();
+    let f = crate::store::function::load_function(&h.store, "F").unwrap();
+    assert_eq!((f.x, f.y), (vec![0.0, 1.0], vec![0.0, 3.0]));
+
+    let a = args(
+        "CREA_TABLE",
+        vec![],
+        vec![(
+            "LISTE",
+            vec![
+                liste("INST", "LISTE_R", seq(vec![r(0.0), r(1.0), r(2.0)])),
+                liste("DEPL", "LISTE_R", seq(vec![r(0.0), r(3.0)])),
+            ],
+        )],
+    );
+    h.run("CREA_TABLE", Some("T2"), None, &a).unwrap();
+    let err = h
+        .run("RECU_FONCTION", Some("G"), None, &recu("T2"))
+        .unwrap_err();
+    assert!(err.message.contains("row 3 has no value of DEPL"), "{err}");
+    assert!(err.hint.unwrap().contains("NON_VIDE"));
 }

@@ -1,5 +1,6 @@
 //! RECU_FONCTION (from a table): the function PARA_Y(PARA_X) built from two columns of a
-//! table after FILTRE, taking the rows in table order (abscissas must increase).
+//! table after FILTRE, taking the rows in table order (abscissas must increase strictly,
+//! as DEFI_FONCTION requires; sort the table with CALC_TABLE TRI otherwise).
 
 use super::defi_fonction::apply_options;
 use super::table_args::{filters, load_table_arg};
@@ -9,14 +10,28 @@ use crate::error::{Error, Result};
 use crate::function::{Function, Interp, Prol};
 use crate::store::function::save_function;
 use crate::table::filter::apply_all;
-use crate::table::Table;
+use crate::table::{Cell, Table};
 
-fn column(t: &Table, table: &str, para: &str, key: &str) -> Result<Vec<f64>> {
-    t.column_cells(para)
-        .map_err(|e| e.keyword(format!("RECU_FONCTION/{key}")))?
-        .into_iter()
-        .enumerate()
-        .map(|(i, c)| {
+/// The points (PARA_X, PARA_Y) of the rows, in table order. As in Code_Aster, where the
+/// two-column extract of a table loses its all-empty rows, rows empty in both parameters
+/// are skipped; a row with only one of them is an error.
+fn points(t: &Table, table: &str, px: &str, py: &str) -> Result<(Vec<f64>, Vec<f64>)> {
+    let jx = t
+        .req_col(px)
+        .map_err(|e| e.keyword("RECU_FONCTION/PARA_X"))?;
+    let jy = t
+        .req_col(py)
+        .map_err(|e| e.keyword("RECU_FONCTION/PARA_Y"))?;
+    let (mut x, mut y) = (Vec::new(), Vec::new());
+    for (i, row) in t.rows.iter().enumerate() {
+        let (cx, cy) = (
+            row.get(jx).unwrap_or(&Cell::Null),
+            row.get(jy).unwrap_or(&Cell::Null),
+        );
+        if cx.is_null() && cy.is_null() {
+            continue;
+        }
+        for (c, para, key) in [(cx, px, "PARA_X"), (cy, py, "PARA_Y")] {
             if c.is_null() {
                 return Err(Error::input(format!(
                     "table {table}: row {} has no value of {para}",
@@ -24,17 +39,29 @@ fn column(t: &Table, table: &str, para: &str, key: &str) -> Result<Vec<f64>> {
                 ))
                 .keyword(format!("RECU_FONCTION/{key}"))
                 .hint(format!(
-                    "drop empty rows with FILTRE=_F(NOM_PARA='{para}', CRIT_COMP='NON_VIDE')"
+                    "drop such rows with FILTRE=_F(NOM_PARA='{para}', CRIT_COMP='NON_VIDE')"
                 )));
             }
-            c.as_f64().ok_or_else(|| {
-                Error::input(format!(
+        }
+        match (cx.as_f64(), cy.as_f64()) {
+            (Some(a), Some(b)) => {
+                x.push(a);
+                y.push(b);
+            }
+            _ => {
+                let (para, key) = if cx.as_f64().is_none() {
+                    (px, "PARA_X")
+                } else {
+                    (py, "PARA_Y")
+                };
+                return Err(Error::input(format!(
                     "table {table}: {para} holds texts, a function needs numbers"
                 ))
-                .keyword(format!("RECU_FONCTION/{key}"))
-            })
-        })
-        .collect()
+                .keyword(format!("RECU_FONCTION/{key}")));
+            }
+        }
+    }
+    Ok((x, y))
 }
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
@@ -43,14 +70,11 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let t = apply_all(&t, &filters(args, "FILTRE")?)?;
     let px = args.req_text("PARA_X")?;
     let py = args.req_text("PARA_Y")?;
-    let x = column(&t, &c.name, px, "PARA_X")?;
-    let y = column(&t, &c.name, py, "PARA_Y")?;
-    if let Some(k) = x.windows(2).position(|w| w[1] <= w[0]) {
+    let (x, y) = points(&t, &c.name, px, py)?;
+    if let Some(w) = x.windows(2).find(|w| w[1] <= w[0]) {
         return Err(Error::input(format!(
-            "table {}: {px} must increase strictly along the rows, but row {} does not exceed row {}",
-            c.name,
-            k + 2,
-            k + 1
+            "table {}: {px} must increase strictly along the rows, but {} comes after {}",
+            c.name, w[1], w[0]
         ))
         .keyword("RECU_FONCTION/PARA_X")
         .hint(format!(
