@@ -472,6 +472,31 @@ fn recu_fonction_then_test_fonction() {
     assert_eq!(h.tests.len(), 2);
     assert!(h.tests.iter().all(|t| t.ok), "{:?}", h.tests);
     assert!(h.output().contains("---- FONCTION F  INST=1.5"));
+    // NOM_PARA must be the function's parameter.
+    let bad = args(
+        "TEST_FONCTION",
+        vec![],
+        vec![(
+            "VALEUR",
+            vec![fact(
+                "TEST_FONCTION/VALEUR",
+                vec![
+                    (
+                        "FONCTION",
+                        crate::ops::harness::concept("F", "fonction_sdaster"),
+                    ),
+                    ("NOM_PARA", k("FREQ")),
+                    ("VALE_PARA", r(1.5)),
+                    ("VALE_CALC", r(5.0)),
+                ],
+            )],
+        )],
+    );
+    let err = h.run("TEST_FONCTION", None, None, &bad).unwrap_err();
+    assert!(
+        err.message.contains("function of INST, not of FREQ"),
+        "{err}"
+    );
 }
 
 #[test]
