@@ -8,6 +8,10 @@
 //! - `table_links(concept, row, column, target)`: the cells that name another concept
 //!   (sub-tables, mode shapes...), `row` 0-based.
 //!
+//! Per-row objects a table owns (a sub-table per mode, say) are concepts named
+//! [`sub_concept_name`] (`PARENT.COLUMN.0001`): deleting the table deletes them. Create the
+//! table's own concept before them (a reassigned name first drops the old owned objects).
+//!
 //! Naming rule (docs/store.md): SQL names are case-insensitive, so a table concept may not
 //! be named like one of our internal tables ([`INTERNAL_TABLES`], any case) nor like any
 //! other non-table SQL object of the file, nor start with `sqlite_`: such names are
@@ -311,12 +315,32 @@ pub fn links(store: &Store, concept: &str) -> Result<Vec<Link>> {
     Ok(v)
 }
 
+/// Name of the per-row object a table owns: `PARENT.COLUMN.0001` for row 1 (rows count
+/// from 1 like NUME_ORDRE). A dot cannot appear in a Python name, so these never clash
+/// with the user's concepts; the owning table's deletion deletes them.
+pub fn sub_concept_name(parent: &str, column: &str, row: usize) -> String {
+    format!("{parent}.{column}.{:04}", row + 1)
+}
+
+/// Whether `target` is a per-row object owned by the table `parent`.
+fn is_owned(parent: &str, target: &str) -> bool {
+    target
+        .strip_prefix(parent)
+        .is_some_and(|rest| rest.starts_with('.'))
+}
+
 /// Remove the SQL table and metadata of `concept` if it is a table concept (called by
-/// `Store::drop_typed_data`). Does nothing for other concepts.
+/// `Store::drop_typed_data`), and the per-row objects it owns ([`sub_concept_name`]).
+/// Does nothing for other concepts.
 pub fn drop_table_data(store: &Store, concept: &str) -> Result<()> {
     ensure_schema(store)?;
     if !is_table_concept(store, concept)? {
         return Ok(());
+    }
+    for l in links(store, concept)? {
+        if is_owned(concept, &l.target) && store.concept_type(&l.target)?.is_some() {
+            store.delete_concept(&l.target)?;
+        }
     }
     let conn = store.conn();
     conn.execute_batch(&format!("DROP TABLE IF EXISTS {}", quote_ident(concept)))?;
@@ -394,6 +418,40 @@ mod tests {
             .query_row("SELECT count(*) FROM table_columns", [], |r| r.get(0))
             .unwrap();
         assert_eq!(n, 0);
+    }
+
+    #[test]
+    fn owned_sub_tables_go_with_their_table() {
+        let s = store_with(&["MNL", "OTHER"]);
+        let sub = sub_concept_name("MNL", "COEF_MODE", 0);
+        assert_eq!(sub, "MNL.COEF_MODE.0001");
+        s.register_concept(&sub, "table_sdaster", "MODE_NON_LINE", "t.comm", 1)
+            .unwrap();
+        save_table(&s, &sub, &sample()).unwrap();
+        save_table(&s, "OTHER", &sample()).unwrap();
+        let mut t = Table::new("");
+        t.add_column("NUME_ORDRE", ColKind::I).unwrap();
+        t.add_column("COEF_MODE", ColKind::K).unwrap();
+        t.add_column("VOISIN", ColKind::K).unwrap();
+        t.push_row(vec![
+            Cell::I(1),
+            Cell::K(sub.clone()),
+            Cell::K("OTHER".into()),
+        ])
+        .unwrap();
+        save_table(&s, "MNL", &t).unwrap();
+        // The sub-table is a real SQL table too, queryable by its quoted name.
+        let n: i64 = s
+            .conn()
+            .query_row("SELECT count(*) FROM \"MNL.COEF_MODE.0001\"", [], |r| {
+                r.get(0)
+            })
+            .unwrap();
+        assert_eq!(n, 3);
+        s.delete_concept("MNL").unwrap();
+        assert!(s.concept_type(&sub).unwrap().is_none());
+        // OTHER is referred to, not owned: it stays.
+        assert_eq!(load_table(&s, "OTHER").unwrap(), sample());
     }
 
     #[test]
