@@ -162,7 +162,18 @@ pub fn save_table(store: &Store, concept: &str, t: &Table) -> Result<()> {
         }
     }
     rowid_alias(&t.columns)?;
-    drop_table_data(store, concept)?;
+    // Saving again (CALC_TABLE reuse) keeps the owned per-row objects the new rows still
+    // name and deletes the others.
+    let old_owned: Vec<String> = if is_table_concept(store, concept)? {
+        links(store, concept)?
+            .into_iter()
+            .map(|l| l.target)
+            .filter(|tg| is_owned(concept, tg))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    drop_sql(store, concept)?;
     let conn = store.conn();
     let table = quote_ident(concept);
     let cols: Vec<String> = t
@@ -215,6 +226,15 @@ pub fn save_table(store: &Store, concept: &str, t: &Table) -> Result<()> {
         return Err(Error::internal(format!(
             "table {concept} has rows but no column"
         )));
+    }
+    let kept: std::collections::HashSet<String> = links(store, concept)?
+        .into_iter()
+        .map(|l| l.target)
+        .collect();
+    for tg in old_owned {
+        if !kept.contains(&tg) && store.concept_type(&tg)?.is_some() {
+            store.delete_concept(&tg)?;
+        }
     }
     Ok(())
 }
@@ -342,6 +362,11 @@ pub fn drop_table_data(store: &Store, concept: &str) -> Result<()> {
             store.delete_concept(&l.target)?;
         }
     }
+    drop_sql(store, concept)
+}
+
+/// The SQL table and metadata of a table concept, without its owned objects.
+fn drop_sql(store: &Store, concept: &str) -> Result<()> {
     let conn = store.conn();
     conn.execute_batch(&format!("DROP TABLE IF EXISTS {}", quote_ident(concept)))?;
     for t in ["table_meta", "table_columns", "table_links"] {
@@ -448,10 +473,25 @@ mod tests {
             })
             .unwrap();
         assert_eq!(n, 3);
+        // Saving MNL again (CALC_TABLE reuse) keeps the objects its rows still name...
+        save_table(&s, "MNL", &t).unwrap();
+        assert!(s.concept_type(&sub).unwrap().is_some());
+        // ...and deleting MNL deletes them.
         s.delete_concept("MNL").unwrap();
         assert!(s.concept_type(&sub).unwrap().is_none());
         // OTHER is referred to, not owned: it stays.
         assert_eq!(load_table(&s, "OTHER").unwrap(), sample());
+        // Saving a version of MNL whose rows no longer name the object deletes it.
+        s.register_concept("MNL", "table_container", "MODE_NON_LINE", "t.comm", 2)
+            .unwrap();
+        s.register_concept(&sub, "table_sdaster", "MODE_NON_LINE", "t.comm", 2)
+            .unwrap();
+        save_table(&s, &sub, &sample()).unwrap();
+        save_table(&s, "MNL", &t).unwrap();
+        let mut emptied = t.clone();
+        emptied.rows.clear();
+        save_table(&s, "MNL", &emptied).unwrap();
+        assert!(s.concept_type(&sub).unwrap().is_none());
     }
 
     #[test]
