@@ -1,7 +1,8 @@
-//! IMPR_TABLE: print a table (FORMAT 'TABLEAU' or 'CSV') after FILTRE, TRI and NOM_PARA.
+//! IMPR_TABLE: print a table (FORMAT 'TABLEAU' or 'CSV') after FILTRE, TRI and NOM_PARA;
+//! TITRE replaces the table's title in the TABLEAU header.
 
 use super::output::write_unit;
-use super::table_args::{apply_tri, filters, load_table_arg};
+use super::table_args::{apply_tri, filters, load_table_arg, titre};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
@@ -23,7 +24,9 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let format = args.text("FORMAT").unwrap_or("TABLEAU");
     let text = match format {
         "TABLEAU" => {
-            let title = if t.title.is_empty() {
+            let title = if let Some(titre) = titre(args) {
+                titre
+            } else if t.title.is_empty() {
                 format!("ASTER CONCEPT {} DE TYPE {}", c.name, c.ty.to_uppercase())
             } else {
                 t.title.clone()
