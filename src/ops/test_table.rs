@@ -3,7 +3,7 @@
 
 use super::extr_table::single_cell;
 use super::table_args::{filters, load_table_arg};
-use super::testing::{checks_from_args, TestValue};
+use super::testing::{checks_from_args, header_line, TestValue};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
@@ -56,6 +56,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         .map(|k| format!(" {k}"))
         .unwrap_or_default();
     ctx.say(format!(" ---- TABLE {}  {para}{what}  {}", c.name, sel.join(" ")).trim_end())?;
+    ctx.say(&header_line())?;
     for o in outcomes {
         ctx.say(&o.line)?;
         ctx.tests.push(o);

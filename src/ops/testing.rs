@@ -87,6 +87,15 @@ fn fmt_tol(x: f64) -> String {
     format!("{rounded}")
 }
 
+/// The column labels printed above the OK/NOOK lines of one test occurrence, aligned
+/// with them.
+pub fn header_line() -> String {
+    format!(
+        " {:<4} {:<15} {:>16} {:>16} {:>11} {:>9}",
+        "", "REFERENCE", "VALE_REFE", "VALE_CALC", "ERREUR", "TOLE"
+    )
+}
+
 fn line(
     ok: bool,
     kind: &str,
