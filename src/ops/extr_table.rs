@@ -1,7 +1,7 @@
-//! EXTR_TABLE: one value of a table, after FILTRE (exactly one row must remain). TYPE_RESU
-//! 'REEL' (or 'R'), 'ENTIER' (or 'I'), 'K' hands back a plain value (`ctx.value`); 'TABLE_SDASTER' (or
-//! 'TABLE_CONTAINER', 'FONCTION_SDASTER') copies the concept the cell names (a per-row
-//! object) into the result.
+//! EXTR_TABLE: one value of a table, after FILTRE (exactly one row must remain).
+//! TYPE_RESU 'REEL' (or 'R'), 'ENTIER' (or 'I'), 'K' hands back a plain value
+//! (`ctx.value`); 'TABLE_SDASTER' (or 'TABLE_CONTAINER', 'FONCTION_SDASTER') copies the
+//! concept the cell names (a per-row object) into the result.
 
 use super::table_args::{create_table, filters, load_table_arg};
 use super::OpContext;
@@ -34,7 +34,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         .map_err(|e| e.keyword("EXTR_TABLE/FILTRE"))?;
     let type_resu = args.req_text("TYPE_RESU")?;
     let wrong = |want: &str| {
-        Error::input(format!("the cell {para} holds {cell:?}, not {want}"))
+        Error::input(format!("the cell {para} holds {cell}, not {want}"))
             .keyword("EXTR_TABLE/TYPE_RESU")
     };
     match type_resu {

@@ -113,7 +113,7 @@ impl Filter {
 
     /// Short text for messages and test headers: `NUME_ORDRE=1`, `FREQ>2.0`, ...
     pub fn describe(&self) -> String {
-        let vals: Vec<String> = self.values.iter().map(cell_text).collect();
+        let vals: Vec<String> = self.values.iter().map(|c| c.to_string()).collect();
         let op = match self.crit {
             CritComp::Eq => "=",
             CritComp::Ne => "!=",
@@ -182,8 +182,7 @@ impl Filter {
                 };
                 return Err(Error::validation(format!(
                     "parameter {} holds {what}: cannot compare it with {}",
-                    self.nom_para,
-                    cell_text(v)
+                    self.nom_para, v
                 ))
                 .keyword("FILTRE")
                 .hint(format!("use {kw}")));
@@ -294,15 +293,6 @@ pub(crate) fn order(a: &Cell, b: &Cell) -> Option<Ordering> {
         (Cell::I(x), Cell::I(y)) => Some(x.cmp(y)),
         (Cell::K(x), Cell::K(y)) => Some(x.cmp(y)),
         _ => a.as_f64()?.partial_cmp(&b.as_f64()?),
-    }
-}
-
-fn cell_text(c: &Cell) -> String {
-    match c {
-        Cell::Null => "-".into(),
-        Cell::R(r) => format!("{r}"),
-        Cell::I(i) => format!("{i}"),
-        Cell::K(s) => format!("'{s}'"),
     }
 }
 

@@ -93,6 +93,18 @@ impl Cell {
     }
 }
 
+/// For messages: `-` (empty), `12.5`, `3`, `'M1'`.
+impl std::fmt::Display for Cell {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Cell::Null => write!(f, "-"),
+            Cell::R(r) => write!(f, "{r}"),
+            Cell::I(i) => write!(f, "{i}"),
+            Cell::K(s) => write!(f, "'{s}'"),
+        }
+    }
+}
+
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Table {
     pub title: String,
@@ -170,7 +182,7 @@ impl Table {
         for (c, col) in row.iter().zip(&self.columns) {
             if !c.fits(col.kind) {
                 return Err(Error::input(format!(
-                    "parameter {} holds {}, got {:?}",
+                    "parameter {} holds {}, got {}",
                     col.name,
                     col.kind.describe(),
                     c
