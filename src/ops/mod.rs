@@ -4,6 +4,24 @@
 //!
 //! The interpreter calls [`run`] inside one store transaction per call.
 
+pub mod calc_table;
+pub mod crea_table;
+pub mod defi_fonction;
+pub mod detruire;
+pub mod extr_table;
+#[cfg(test)]
+pub mod harness;
+pub mod impr_fonction;
+pub mod impr_table;
+#[cfg(test)]
+mod op_tests;
+pub mod output;
+pub mod recu_fonction;
+pub mod table_args;
+pub mod test_fonction;
+pub mod test_table;
+pub mod testing;
+
 use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::store::Store;
@@ -99,6 +117,16 @@ pub type OpFn = fn(&mut OpContext<'_>, &Args) -> Result<()>;
 pub fn lookup(name: &str) -> Option<OpFn> {
     // One line per operator: "NAME" => module::run,
     let f: OpFn = match name {
+        "CALC_TABLE" => calc_table::run,
+        "CREA_TABLE" => crea_table::run,
+        "DEFI_FONCTION" => defi_fonction::run,
+        "DETRUIRE" => detruire::run,
+        "EXTR_TABLE" => extr_table::run,
+        "IMPR_FONCTION" => impr_fonction::run,
+        "IMPR_TABLE" => impr_table::run,
+        "RECU_FONCTION" => recu_fonction::run,
+        "TEST_FONCTION" => test_fonction::run,
+        "TEST_TABLE" => test_table::run,
         _ => return None,
     };
     Some(f)

@@ -1,0 +1,117 @@
+//! Test support: run operators on an in-memory store with hand-built `Args`.
+
+use super::{lookup, OpContext, TestOutcome, Units};
+use crate::args::Args;
+use crate::error::{Error, Result};
+use crate::store::Store;
+use crate::value::{ConceptRef, Span, Value};
+
+pub struct Harness {
+    pub store: Store,
+    pub out: Vec<u8>,
+    pub units: Units,
+    pub tests: Vec<TestOutcome>,
+}
+
+impl Default for Harness {
+    fn default() -> Self {
+        Harness::new()
+    }
+}
+
+impl Harness {
+    pub fn new() -> Harness {
+        Harness {
+            store: Store::in_memory().expect("in-memory store"),
+            out: Vec::new(),
+            units: Units::default(),
+            tests: Vec::new(),
+        }
+    }
+
+    /// Run `op` inside a transaction as the interpreter does; returns the plain value the
+    /// operator handed back, if any.
+    pub fn run(
+        &mut self,
+        op: &str,
+        result: Option<&str>,
+        reuse: Option<&str>,
+        args: &Args,
+    ) -> Result<Option<Value>> {
+        let f = lookup(op).ok_or_else(|| Error::internal(format!("no operator {op}")))?;
+        self.store.begin_op()?;
+        let mut ctx = OpContext {
+            store: &self.store,
+            op,
+            result,
+            reuse,
+            file: "test.comm",
+            line: 1,
+            info: 1,
+            out: &mut self.out,
+            units: &self.units,
+            ignored_alarms: &[],
+            tests: &mut self.tests,
+            created: Vec::new(),
+            progress: false,
+            value: None,
+        };
+        let r = f(&mut ctx, args);
+        let value = ctx.value.take();
+        match r {
+            Ok(()) => {
+                self.store.commit_op()?;
+                Ok(value)
+            }
+            Err(e) => {
+                self.store.rollback_op();
+                Err(e)
+            }
+        }
+    }
+
+    pub fn output(&self) -> String {
+        String::from_utf8_lossy(&self.out).into_owned()
+    }
+}
+
+/// Build `Args` by hand: simple keywords and factor keywords.
+pub fn args(path: &str, simple: Vec<(&str, Value)>, factor: Vec<(&str, Vec<Args>)>) -> Args {
+    Args {
+        path: path.to_string(),
+        simple: simple
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v, Span::default()))
+            .collect(),
+        factor: factor
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v, Span::default()))
+            .collect(),
+    }
+}
+
+pub fn fact(path: &str, simple: Vec<(&str, Value)>) -> Args {
+    args(path, simple, vec![])
+}
+
+pub fn k(s: &str) -> Value {
+    Value::Str(s.to_string())
+}
+pub fn r(x: f64) -> Value {
+    Value::Real(x)
+}
+pub fn i(x: i64) -> Value {
+    Value::Int(x)
+}
+pub fn seq(v: Vec<Value>) -> Value {
+    Value::Seq(v)
+}
+pub fn concept(name: &str, ty: &str) -> Value {
+    Value::Concept(ConceptRef {
+        name: name.to_string(),
+        ty: ty.to_string(),
+    })
+}
+pub fn table(name: &str) -> Value {
+    concept(name, "table_sdaster")
+}

@@ -1,0 +1,98 @@
+//! RECU_FONCTION (from a table): the function PARA_Y(PARA_X) built from two columns of a
+//! table after FILTRE, taking the rows in table order (abscissas must increase strictly,
+//! as DEFI_FONCTION requires; sort the table with CALC_TABLE TRI otherwise).
+
+use super::defi_fonction::apply_options;
+use super::table_args::{filters, load_table_arg};
+use super::OpContext;
+use crate::args::Args;
+use crate::error::{Error, Result};
+use crate::function::{Function, Interp, Prol};
+use crate::store::function::save_function;
+use crate::table::filter::apply_all;
+use crate::table::{Cell, Table};
+
+/// The points (PARA_X, PARA_Y) of the rows, in table order. As in Code_Aster, where the
+/// two-column extract of a table loses its all-empty rows, rows empty in both parameters
+/// are skipped; a row with only one of them is an error.
+fn points(t: &Table, table: &str, px: &str, py: &str) -> Result<(Vec<f64>, Vec<f64>)> {
+    let jx = t
+        .req_col(px)
+        .map_err(|e| e.keyword("RECU_FONCTION/PARA_X"))?;
+    let jy = t
+        .req_col(py)
+        .map_err(|e| e.keyword("RECU_FONCTION/PARA_Y"))?;
+    let (mut x, mut y) = (Vec::new(), Vec::new());
+    for (i, row) in t.rows.iter().enumerate() {
+        let (cx, cy) = (
+            row.get(jx).unwrap_or(&Cell::Null),
+            row.get(jy).unwrap_or(&Cell::Null),
+        );
+        if cx.is_null() && cy.is_null() {
+            continue;
+        }
+        for (c, para, key) in [(cx, px, "PARA_X"), (cy, py, "PARA_Y")] {
+            if c.is_null() {
+                return Err(Error::input(format!(
+                    "table {table}: row {} has no value of {para}",
+                    i + 1
+                ))
+                .keyword(format!("RECU_FONCTION/{key}"))
+                .hint(format!(
+                    "drop such rows with FILTRE=_F(NOM_PARA='{para}', CRIT_COMP='NON_VIDE')"
+                )));
+            }
+        }
+        match (cx.as_f64(), cy.as_f64()) {
+            (Some(a), Some(b)) => {
+                x.push(a);
+                y.push(b);
+            }
+            _ => {
+                let (para, key) = if cx.as_f64().is_none() {
+                    (px, "PARA_X")
+                } else {
+                    (py, "PARA_Y")
+                };
+                return Err(Error::input(format!(
+                    "table {table}: {para} holds texts, a function needs numbers"
+                ))
+                .keyword(format!("RECU_FONCTION/{key}")));
+            }
+        }
+    }
+    Ok((x, y))
+}
+
+pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    let name = ctx.result_name()?.to_string();
+    let (c, t) = load_table_arg(ctx, args, "TABLE")?;
+    let t = apply_all(&t, &filters(args, "FILTRE")?)?;
+    let px = args.req_text("PARA_X")?;
+    let py = args.req_text("PARA_Y")?;
+    let (x, y) = points(&t, &c.name, px, py)?;
+    if let Some(w) = x.windows(2).find(|w| w[1] <= w[0]) {
+        return Err(Error::input(format!(
+            "table {}: {px} must increase strictly along the rows, but {} comes after {}",
+            c.name, w[1], w[0]
+        ))
+        .keyword("RECU_FONCTION/PARA_X")
+        .hint(format!(
+            "sort the table first: CALC_TABLE(TABLE={}, ACTION=_F(OPERATION='TRI', NOM_PARA='{px}'))",
+            c.name
+        )));
+    }
+    let mut f = Function {
+        name: name.clone(),
+        nom_para: args.text("NOM_PARA").unwrap_or(px).to_string(),
+        nom_resu: args.text("NOM_RESU").unwrap_or(py).to_string(),
+        x,
+        y,
+        interpol: (Interp::Lin, Interp::Lin),
+        prol_gauche: Prol::Exclu,
+        prol_droite: Prol::Exclu,
+    };
+    apply_options(&mut f, args)?;
+    ctx.create(&name, "fonction_sdaster")?;
+    save_function(ctx.store, &name, &f)
+}

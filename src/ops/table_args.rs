@@ -1,0 +1,114 @@
+//! Reading the table keywords shared by several operators (FILTRE, TRI, TABLE) from
+//! `Args`, and loading/saving the table concepts they name.
+
+use super::OpContext;
+use crate::args::Args;
+use crate::error::{Error, Result};
+use crate::store::table::{load_table, save_table};
+use crate::table::filter::{CritComp, Critere, Filter, DEFAULT_PRECISION};
+use crate::table::sort::{sort, Ordre};
+use crate::table::{Cell, Table};
+use crate::value::{ConceptRef, Value};
+
+/// Concept types that are tables.
+pub const TABLE_TYPES: &[&str] = &["table_sdaster", "table_container"];
+
+fn items(v: Option<&Value>) -> Vec<&Value> {
+    match v {
+        None | Some(Value::None) => Vec::new(),
+        Some(Value::Seq(items)) => items.iter().collect(),
+        Some(v) => vec![v],
+    }
+}
+
+/// One FILTRE (or CALC_TABLE ACTION FILTRE) occurrence: NOM_PARA, CRIT_COMP (default EQ),
+/// VALE | VALE_I | VALE_K, CRITERE (default RELATIF), PRECISION (default 1e-3).
+pub fn filter_from(a: &Args) -> Result<Filter> {
+    let nom_para = a.req_text("NOM_PARA")?;
+    let crit_s = a.text("CRIT_COMP").unwrap_or("EQ");
+    let crit = CritComp::parse(crit_s).ok_or_else(|| {
+        Error::validation(format!("unknown CRIT_COMP '{crit_s}'"))
+            .keyword(a.key_path("CRIT_COMP"))
+            .hint(format!("use one of {}", CritComp::NAMES.join(", ")))
+    })?;
+    let mut values = Vec::new();
+    for key in ["VALE", "VALE_I", "VALE_K"] {
+        for v in items(a.value(key)) {
+            values.push(match v {
+                Value::Int(i) => Cell::I(*i),
+                Value::Real(r) => Cell::R(*r),
+                Value::Str(s) => Cell::K(s.clone()),
+                other => {
+                    return Err(Error::validation(format!(
+                        "expected a value to compare with, got {}",
+                        other.kind_name()
+                    ))
+                    .keyword(a.key_path(key)))
+                }
+            });
+        }
+    }
+    let critere = match a.text("CRITERE") {
+        None => Critere::Relatif,
+        Some(s) => Critere::parse(s).ok_or_else(|| {
+            Error::validation(format!("unknown CRITERE '{s}'"))
+                .keyword(a.key_path("CRITERE"))
+                .hint("use 'RELATIF' or 'ABSOLU'")
+        })?,
+    };
+    let precision = a.real("PRECISION").unwrap_or(DEFAULT_PRECISION);
+    Ok(Filter {
+        nom_para: nom_para.to_string(),
+        crit,
+        values,
+        critere,
+        precision,
+    })
+}
+
+/// All occurrences of the factor keyword `key` (usually FILTRE).
+pub fn filters(args: &Args, key: &str) -> Result<Vec<Filter>> {
+    args.facts_or_empty(key).iter().map(filter_from).collect()
+}
+
+/// ORDRE (default CROISSANT).
+pub fn ordre(a: &Args) -> Result<Ordre> {
+    let s = a.text("ORDRE").unwrap_or("CROISSANT");
+    Ordre::parse(s).ok_or_else(|| {
+        Error::validation(format!("unknown ORDRE '{s}'"))
+            .keyword(a.key_path("ORDRE"))
+            .hint("use 'CROISSANT' or 'DECROISSANT'")
+    })
+}
+
+/// Apply one TRI-like occurrence (NOM_PARA, ORDRE) to `t`.
+pub fn apply_tri(t: &mut Table, a: &Args) -> Result<()> {
+    let keys = a.texts("NOM_PARA").ok_or_else(|| {
+        Error::validation("expected parameter names").keyword(a.key_path("NOM_PARA"))
+    })?;
+    sort(t, &keys, ordre(a)?).map_err(|e| e.keyword(a.key_path("NOM_PARA")))
+}
+
+/// The table concept given to `key` (usually TABLE), loaded.
+pub fn load_table_arg(ctx: &OpContext<'_>, args: &Args, key: &str) -> Result<(ConceptRef, Table)> {
+    let c = args.req_concept(key)?;
+    if !TABLE_TYPES.contains(&c.ty.as_str()) {
+        return Err(
+            Error::validation(format!("{} is a {}, not a table", c.name, c.ty))
+                .keyword(args.key_path(key)),
+        );
+    }
+    let t = load_table(ctx.store, &c.name).map_err(|e| e.keyword(args.key_path(key)))?;
+    Ok((c.clone(), t))
+}
+
+/// Register the concept `name` of type `ty` and save `t` under it.
+pub fn create_table(ctx: &mut OpContext<'_>, name: &str, ty: &str, t: &Table) -> Result<()> {
+    ctx.create(name, ty)?;
+    save_table(ctx.store, name, t)
+}
+
+/// A title given as TITRE (a text or several lines).
+pub fn titre(args: &Args) -> Option<String> {
+    args.texts("TITRE").map(|l| l.join("\n"))
+}

@@ -1,0 +1,431 @@
+//! The comparison behind every TEST_* operator (TEST_TABLE, TEST_FONCTION, TEST_RESU...),
+//! with Code_Aster's semantics:
+//!
+//! - `VALE_CALC` is a non-regression value: compared with the tolerance `TOLE_MACHINE`
+//!   (default 1e-6), reference type `NON_REGRESSION`.
+//! - `VALE_REFE` is a reference value of type `REFERENCE` (`ANALYTIQUE`, `SOURCE_EXTERNE`,
+//!   `AUTRE_ASTER`, `NON_DEFINI`), compared with `PRECISION` (default 1e-3).
+//! - Both may be given: two checks, two lines.
+//! - `CRITERE='RELATIF'` (default) compares `|calc - ref| / |ref|`, `'ABSOLU'` compares
+//!   `|calc - ref|`. When the reference is 0, a relative error means nothing: like
+//!   Code_Aster we then compare absolutely, with the tolerance times `ORDRE_GRANDEUR`
+//!   (default 1), and the printed line says so.
+//! - Integers (`VALE_CALC_I`, `VALE_REFE_I`) and texts (`_K`) must be equal exactly.
+//!
+//! Each check gives a [`TestOutcome`] whose line reads like Code_Aster's:
+//! ` OK   ANALYTIQUE      0.646693927     0.646700000   9.39E-04%      0.1%`.
+
+use super::TestOutcome;
+use crate::args::Args;
+use crate::error::{Error, Result};
+use crate::table::filter::Critere;
+use crate::table::print::format_e;
+use crate::value::Value;
+
+/// A computed or reference value.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TestValue {
+    R(f64),
+    I(i64),
+    K(String),
+}
+
+/// Code_Aster's default TOLE_MACHINE for non-regression values.
+pub const TOLE_MACHINE: f64 = 1.0e-6;
+/// Code_Aster's default PRECISION for reference values.
+pub const PRECISION_REFE: f64 = 1.0e-3;
+/// Allowed REFERENCE values.
+pub const REFERENCES: &[&str] = &["ANALYTIQUE", "SOURCE_EXTERNE", "AUTRE_ASTER", "NON_DEFINI"];
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tolerance {
+    pub critere: Critere,
+    pub precision: f64,
+    /// Scale of the absolute comparison used when a relative one meets a zero reference.
+    pub ordre_grandeur: f64,
+}
+
+impl Tolerance {
+    pub fn relative(precision: f64) -> Tolerance {
+        Tolerance {
+            critere: Critere::Relatif,
+            precision,
+            ordre_grandeur: 1.0,
+        }
+    }
+}
+
+/// Nine significant digits, fixed notation for moderate magnitudes (like the example
+/// lines of Code_Aster's test reports), scientific otherwise.
+fn fmt_real(x: f64) -> String {
+    if x == 0.0 {
+        return "0.0".to_string();
+    }
+    if !x.is_finite() {
+        return format!("{x}");
+    }
+    let mag = x.abs().log10().floor();
+    if (-4.0..9.0).contains(&mag) {
+        let decimals = (8.0 - mag).max(0.0) as usize;
+        format!("{x:.decimals$}")
+    } else {
+        format_e(x, 8)
+    }
+}
+
+fn fmt_value(v: &TestValue) -> String {
+    match v {
+        TestValue::R(x) => fmt_real(*x),
+        TestValue::I(i) => i.to_string(),
+        TestValue::K(s) => format!("'{s}'"),
+    }
+}
+
+/// Shortest decimal text of a tolerance after rounding away binary noise (1e-3*100 → 0.1).
+fn fmt_tol(x: f64) -> String {
+    let rounded: f64 = format!("{x:.12e}").parse().unwrap_or(x);
+    format!("{rounded}")
+}
+
+/// The column labels printed above the OK/NOOK lines of one test occurrence, aligned
+/// with them.
+pub fn header_line() -> String {
+    format!(
+        " {:<4} {:<15} {:>16} {:>16} {:>11} {:>9}",
+        "", "REFERENCE", "VALE_REFE", "VALE_CALC", "ERREUR", "TOLE"
+    )
+}
+
+fn line(
+    ok: bool,
+    kind: &str,
+    reference: &TestValue,
+    computed: &TestValue,
+    err: &str,
+    tol: &str,
+    note: &str,
+) -> String {
+    format!(
+        " {:<4} {:<15} {:>16} {:>16} {:>11} {:>9}{}",
+        if ok { "OK" } else { "NOOK" },
+        kind,
+        fmt_value(reference),
+        fmt_value(computed),
+        err,
+        tol,
+        note
+    )
+}
+
+/// Compare `computed` with `reference`. `reference_kind` is printed: `NON_REGRESSION` for
+/// VALE_CALC, the REFERENCE keyword for VALE_REFE.
+pub fn check(
+    computed: &TestValue,
+    reference: &TestValue,
+    reference_kind: &str,
+    tol: Tolerance,
+) -> TestOutcome {
+    let mk = |ok: bool, err: String, tol: String, note: &str| TestOutcome {
+        ok,
+        line: line(ok, reference_kind, reference, computed, &err, &tol, note),
+    };
+    match (computed, reference) {
+        (TestValue::K(c), TestValue::K(r)) => mk(c == r, "-".into(), "-".into(), ""),
+        (TestValue::I(c), TestValue::I(r)) => {
+            mk(c == r, c.abs_diff(*r).to_string(), "0".into(), "")
+        }
+        (TestValue::K(_), _) | (_, TestValue::K(_)) => mk(
+            false,
+            "-".into(),
+            "-".into(),
+            "  (a text cannot be compared with a number)",
+        ),
+        _ => {
+            let c = num(computed);
+            let r = num(reference);
+            let diff = (c - r).abs();
+            let (err, tol_v, relative, note) = match tol.critere {
+                Critere::Relatif if r != 0.0 => (diff / r.abs(), tol.precision, true, ""),
+                Critere::Relatif => (
+                    diff,
+                    tol.precision * tol.ordre_grandeur,
+                    false,
+                    "  (reference 0: compared absolutely)",
+                ),
+                Critere::Absolu => (diff, tol.precision, false, ""),
+            };
+            // `<=` is false for NaN: a NaN result is NOOK.
+            let ok = err <= tol_v;
+            if relative {
+                mk(
+                    ok,
+                    format!("{}%", format_e(err * 100.0, 2)),
+                    format!("{}%", fmt_tol(tol_v * 100.0)),
+                    note,
+                )
+            } else {
+                mk(ok, format_e(err, 2), fmt_tol(tol_v), note)
+            }
+        }
+    }
+}
+
+fn num(v: &TestValue) -> f64 {
+    match v {
+        TestValue::R(x) => *x,
+        TestValue::I(i) => *i as f64,
+        TestValue::K(_) => f64::NAN,
+    }
+}
+
+/// The value given to VALE_CALC / VALE_CALC_I / VALE_CALC_K (prefix `VALE_CALC`) or to
+/// the `VALE_REFE` family, if any.
+fn given(args: &Args, prefix: &str) -> Result<Option<TestValue>> {
+    let wrong = |key: &str, what: &str| {
+        Error::validation(format!("expected {what}")).keyword(args.key_path(key))
+    };
+    if args.has(prefix) {
+        // An integer written for a real keyword is a real.
+        return match args.value(prefix) {
+            Some(Value::Seq(v)) if v.len() > 1 => Err(wrong(prefix, "one value")),
+            _ => args
+                .real(prefix)
+                .map(|x| Some(TestValue::R(x)))
+                .ok_or_else(|| wrong(prefix, "a real")),
+        };
+    }
+    let ki = format!("{prefix}_I");
+    if args.has(&ki) {
+        return args
+            .int(&ki)
+            .map(|x| Some(TestValue::I(x)))
+            .ok_or_else(|| wrong(&ki, "an integer"));
+    }
+    let kk = format!("{prefix}_K");
+    if args.has(&kk) {
+        return args
+            .text(&kk)
+            .map(|x| Some(TestValue::K(x.to_string())))
+            .ok_or_else(|| wrong(&kk, "a text"));
+    }
+    Ok(None)
+}
+
+/// Run the checks asked by one TEST_* occurrence (keywords VALE_CALC[_I|_K],
+/// VALE_REFE[_I|_K], REFERENCE, CRITERE, PRECISION, TOLE_MACHINE, ORDRE_GRANDEUR,
+/// VALE_ABS) on the
+/// computed value: one outcome for VALE_CALC, one for VALE_REFE.
+pub fn checks_from_args(args: &Args, computed: &TestValue) -> Result<Vec<TestOutcome>> {
+    let critere = match args.text("CRITERE") {
+        None => Critere::Relatif,
+        Some(s) => Critere::parse(s).ok_or_else(|| {
+            Error::validation(format!("unknown CRITERE '{s}'"))
+                .keyword(args.key_path("CRITERE"))
+                .hint("use 'RELATIF' or 'ABSOLU'")
+        })?,
+    };
+    let positive =
+        |key: &str, default: f64| -> Result<f64> {
+            match args.value(key) {
+                None | Some(Value::None) => Ok(default),
+                Some(_) => match args.real(key) {
+                    Some(x) if x >= 0.0 && x.is_finite() => Ok(x),
+                    _ => Err(Error::validation("expected a non-negative real")
+                        .keyword(args.key_path(key))),
+                },
+            }
+        };
+    let ordre_grandeur = positive("ORDRE_GRANDEUR", 1.0)?;
+    // VALE_ABS='OUI': the absolute value of the computed value is tested.
+    let abs_value;
+    let computed = match (args.text("VALE_ABS"), computed) {
+        (Some("OUI"), TestValue::R(x)) => {
+            abs_value = TestValue::R(x.abs());
+            &abs_value
+        }
+        (Some("OUI"), TestValue::I(i)) => {
+            abs_value = TestValue::I(i.abs());
+            &abs_value
+        }
+        _ => computed,
+    };
+    let mut out = Vec::new();
+    if let Some(calc) = given(args, "VALE_CALC")? {
+        let tol = Tolerance {
+            critere,
+            precision: positive("TOLE_MACHINE", TOLE_MACHINE)?,
+            ordre_grandeur,
+        };
+        out.push(check(computed, &calc, "NON_REGRESSION", tol));
+    }
+    let refe = given(args, "VALE_REFE")?;
+    match (refe, args.text("REFERENCE")) {
+        (Some(refe), Some(kind)) => {
+            if !REFERENCES.contains(&kind) {
+                return Err(Error::validation(format!("unknown REFERENCE '{kind}'"))
+                    .keyword(args.key_path("REFERENCE"))
+                    .hint(format!("use one of {}", REFERENCES.join(", "))));
+            }
+            let tol = Tolerance {
+                critere,
+                precision: positive("PRECISION", PRECISION_REFE)?,
+                ordre_grandeur,
+            };
+            out.push(check(computed, &refe, kind, tol));
+        }
+        (Some(_), None) => {
+            return Err(Error::validation("VALE_REFE needs REFERENCE")
+                .keyword(args.key_path("REFERENCE"))
+                .hint(format!(
+                    "say where the reference comes from: {}",
+                    REFERENCES.join(", ")
+                )))
+        }
+        (None, Some(_)) => {
+            return Err(Error::validation("REFERENCE is given without VALE_REFE")
+                .keyword(args.key_path("VALE_REFE")))
+        }
+        (None, None) => {}
+    }
+    if out.is_empty() {
+        return Err(Error::validation("nothing to test")
+            .keyword(args.path.clone())
+            .hint("give VALE_CALC (non-regression) and/or VALE_REFE with REFERENCE"));
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::value::Span;
+
+    #[test]
+    fn relative_check_prints_like_code_aster() {
+        let o = check(
+            &TestValue::R(0.6467),
+            &TestValue::R(0.646693927),
+            "ANALYTIQUE",
+            Tolerance::relative(1e-3),
+        );
+        assert!(o.ok);
+        // |0.6467 - 0.646693927| / 0.646693927 = 9.39e-6 = 9.39E-04 %.
+        let words: Vec<&str> = o.line.split_whitespace().collect();
+        assert_eq!(
+            words,
+            vec![
+                "OK",
+                "ANALYTIQUE",
+                "0.646693927",
+                "0.646700000",
+                "9.39E-04%",
+                "0.1%"
+            ]
+        );
+        assert!(o.line.starts_with(" OK  "));
+    }
+
+    #[test]
+    fn relative_boundary_and_nook() {
+        // 1.0011 vs 1: relative error 1.1e-3 > 1e-3 → NOOK; 1.0009 → OK.
+        let t = Tolerance::relative(1e-3);
+        assert!(!check(&TestValue::R(1.0011), &TestValue::R(1.0), "ANALYTIQUE", t).ok);
+        let o = check(&TestValue::R(1.0011), &TestValue::R(1.0), "ANALYTIQUE", t);
+        assert!(o.line.starts_with(" NOOK"));
+        assert!(check(&TestValue::R(1.0009), &TestValue::R(1.0), "ANALYTIQUE", t).ok);
+        assert!(!check(&TestValue::R(f64::NAN), &TestValue::R(1.0), "ANALYTIQUE", t).ok);
+    }
+
+    #[test]
+    fn zero_reference_is_compared_absolutely() {
+        let t = Tolerance::relative(1e-3);
+        let o = check(&TestValue::R(5e-4), &TestValue::R(0.0), "ANALYTIQUE", t);
+        assert!(o.ok && o.line.contains("compared absolutely"), "{}", o.line);
+        assert!(!check(&TestValue::R(2e-3), &TestValue::R(0.0), "ANALYTIQUE", t).ok);
+        let t = Tolerance {
+            ordre_grandeur: 10.0,
+            ..t
+        };
+        assert!(check(&TestValue::R(2e-3), &TestValue::R(0.0), "ANALYTIQUE", t).ok);
+    }
+
+    #[test]
+    fn absolute_integer_and_text() {
+        let t = Tolerance {
+            critere: Critere::Absolu,
+            precision: 0.01,
+            ordre_grandeur: 1.0,
+        };
+        assert!(
+            check(
+                &TestValue::R(100.009),
+                &TestValue::R(100.0),
+                "AUTRE_ASTER",
+                t
+            )
+            .ok
+        );
+        assert!(
+            !check(
+                &TestValue::R(100.011),
+                &TestValue::R(100.0),
+                "AUTRE_ASTER",
+                t
+            )
+            .ok
+        );
+        let r = Tolerance::relative(0.5);
+        assert!(check(&TestValue::I(3), &TestValue::I(3), "NON_REGRESSION", r).ok);
+        assert!(!check(&TestValue::I(3), &TestValue::I(4), "NON_REGRESSION", r).ok);
+        assert!(
+            check(
+                &TestValue::K("OUI".into()),
+                &TestValue::K("OUI".into()),
+                "NON_DEFINI",
+                r
+            )
+            .ok
+        );
+        assert!(!check(&TestValue::K("1".into()), &TestValue::I(1), "NON_DEFINI", r).ok);
+    }
+
+    fn args(simple: Vec<(&str, Value)>) -> Args {
+        Args {
+            path: "TEST_TABLE".into(),
+            simple: simple
+                .into_iter()
+                .map(|(k, v)| (k.to_string(), v, Span::default()))
+                .collect(),
+            factor: vec![],
+        }
+    }
+
+    #[test]
+    fn calc_and_refe_give_two_checks() {
+        let a = args(vec![
+            ("VALE_CALC", Value::Real(2.0000015)),
+            ("VALE_REFE", Value::Real(2.001)),
+            ("REFERENCE", Value::Str("ANALYTIQUE".into())),
+        ]);
+        let out = checks_from_args(&a, &TestValue::R(2.0)).unwrap();
+        // Non-regression: 7.5e-7 > 1e-6? no: 1.5e-6/2.0000015 = 7.5e-7 <= 1e-6 → OK.
+        // Reference: 1e-3/2.001 = 5.0e-4 <= 1e-3 → OK.
+        assert_eq!(out.len(), 2);
+        assert!(out[0].ok && out[0].line.contains("NON_REGRESSION"));
+        assert!(out[1].ok && out[1].line.contains("ANALYTIQUE"));
+        // VALE_ABS='OUI' tests |-2| = 2.
+        let a = args(vec![
+            ("VALE_CALC", Value::Real(2.0)),
+            ("VALE_ABS", Value::Str("OUI".into())),
+        ]);
+        assert!(checks_from_args(&a, &TestValue::R(-2.0)).unwrap()[0].ok);
+        let a = args(vec![("VALE_CALC", Value::Real(2.00001))]);
+        assert!(!checks_from_args(&a, &TestValue::R(2.0)).unwrap()[0].ok);
+        let a = args(vec![("VALE_REFE", Value::Real(2.0))]);
+        assert!(checks_from_args(&a, &TestValue::R(2.0))
+            .unwrap_err()
+            .message
+            .contains("REFERENCE"));
+        assert!(checks_from_args(&args(vec![]), &TestValue::R(2.0)).is_err());
+    }
+}
