@@ -73,7 +73,13 @@ mod tests {
 
     #[test]
     fn duplicates_sum_and_reduction_drops_rows() {
-        let t = consolidate(vec![(1, 1, 2.0), (0, 0, 1.0), (1, 1, 3.0), (2, 0, 4.0), (0, 2, 4.0)]);
+        let t = consolidate(vec![
+            (1, 1, 2.0),
+            (0, 0, 1.0),
+            (1, 1, 3.0),
+            (2, 0, 4.0),
+            (0, 2, 4.0),
+        ]);
         assert_eq!(t, vec![(0, 0, 1.0), (0, 2, 4.0), (1, 1, 5.0), (2, 0, 4.0)]);
         let r = reduced(3, &t, &[false, true, false]).unwrap().to_dense();
         assert_eq!((r.nrows(), r.ncols()), (2, 2));

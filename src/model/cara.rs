@@ -178,10 +178,7 @@ fn positive(occ: &Args, name: &str, v: f64) -> Result<f64> {
     if v > 0.0 && v.is_finite() {
         Ok(v)
     } else {
-        Err(
-            Error::input(format!("{name} must be positive, got {v}"))
-                .keyword(occ.key_path("VALE")),
-        )
+        Err(Error::input(format!("{name} must be positive, got {v}")).keyword(occ.key_path("VALE")))
     }
 }
 
@@ -201,16 +198,15 @@ pub fn section_from_args(occ: &Args) -> Result<Section> {
         }
     };
     if let Some((bad, _)) = vals.iter().find(|(k, _)| !allowed.contains(&k.as_str())) {
-        return Err(Error::input(format!(
-            "CARA {bad} is not available for SECTION='{kind}'"
-        ))
-        .keyword(occ.key_path("CARA"))
-        .hint(format!("expected among {}", allowed.join(", "))));
+        return Err(
+            Error::input(format!("CARA {bad} is not available for SECTION='{kind}'"))
+                .keyword(occ.key_path("CARA"))
+                .hint(format!("expected among {}", allowed.join(", "))),
+        );
     }
     let need = |n: &str| {
         get(n).ok_or_else(|| {
-            Error::input(format!("SECTION='{kind}' needs CARA '{n}'"))
-                .keyword(occ.key_path("CARA"))
+            Error::input(format!("SECTION='{kind}' needs CARA '{n}'")).keyword(occ.key_path("CARA"))
         })
     };
     let s = match kind.as_str() {
@@ -221,10 +217,8 @@ pub fn section_from_args(occ: &Args) -> Result<Section> {
                 Some(ep) => {
                     let ep = positive(occ, "EP", ep)?;
                     if ep > r {
-                        return Err(Error::input(format!(
-                            "EP = {ep} is larger than R = {r}"
-                        ))
-                        .keyword(occ.key_path("VALE")));
+                        return Err(Error::input(format!("EP = {ep} is larger than R = {r}"))
+                            .keyword(occ.key_path("VALE")));
                     }
                     r - ep
                 }
@@ -255,7 +249,9 @@ pub fn section_from_args(occ: &Args) -> Result<Section> {
             // Torsion constant of a solid rectangle (Roark), a >= b:
             // J = a b³ [1/3 − 0.21 (b/a)(1 − b⁴/(12 a⁴))], within ~0.5 % of the series.
             let (a, b) = if hy >= hz { (hy, hz) } else { (hz, hy) };
-            let jx = a * b.powi(3) * (1.0 / 3.0 - 0.21 * (b / a) * (1.0 - b.powi(4) / (12.0 * a.powi(4))));
+            let jx = a
+                * b.powi(3)
+                * (1.0 / 3.0 - 0.21 * (b / a) * (1.0 - b.powi(4) / (12.0 * a.powi(4))));
             Section {
                 kind,
                 a: hy * hz,
@@ -288,14 +284,18 @@ pub fn bar_section_from_args(occ: &Args) -> Result<Section> {
                 iz: 0.0,
                 jx: 0.0,
             }),
-            _ => Err(Error::input("BARRE with SECTION='GENERALE' needs CARA='A' alone")
-                .keyword(occ.key_path("CARA"))),
+            _ => Err(
+                Error::input("BARRE with SECTION='GENERALE' needs CARA='A' alone")
+                    .keyword(occ.key_path("CARA")),
+            ),
         };
     }
     if kind != "CERCLE" {
-        return Err(Error::input(format!("SECTION {kind} is not supported for BARRE"))
-            .keyword(occ.key_path("SECTION"))
-            .hint("use GENERALE (CARA='A') or CERCLE (CARA='R')"));
+        return Err(
+            Error::input(format!("SECTION {kind} is not supported for BARRE"))
+                .keyword(occ.key_path("SECTION"))
+                .hint("use GENERALE (CARA='A') or CERCLE (CARA='R')"),
+        );
     }
     section_from_args(occ)
 }
@@ -347,16 +347,22 @@ impl CaraElem {
                 .hint("supported: K_T_D_N K_T_D_L K_TR_D_N K_TR_D_L K_T_N K_T_L K_TR_N K_TR_L, M_T_D_N M_T_D_L M_TR_D_N M_T_N M_T_L M_TR_N M_TR_L, A_... like K_...")
         })?;
         if occ.text("SYME").is_some_and(|s| s != "OUI") {
-            return Err(Error::input("only symmetric discrete matrices are supported")
-                .keyword(occ.key_path("SYME"))
-                .hint("use SYME='OUI'"));
+            return Err(
+                Error::input("only symmetric discrete matrices are supported")
+                    .keyword(occ.key_path("SYME"))
+                    .hint("use SYME='OUI'"),
+            );
         }
         let repere = match occ.text("REPERE").unwrap_or("GLOBAL") {
             "LOCAL" => Repere::Local,
             _ => Repere::Global,
         };
         let values = occ.reals("VALE").unwrap_or_default();
-        let discrete = [Modelisation::DisT, Modelisation::DisTr, Modelisation::Dis2dT];
+        let discrete = [
+            Modelisation::DisT,
+            Modelisation::DisTr,
+            Modelisation::Dis2dT,
+        ];
         for c in cells_of(model, mesh, occ, &discrete, "DISCRET")? {
             let (Some(cell), Some(el)) = (mesh.cells.get(c), model.element_of(c)) else {
                 continue;
@@ -514,9 +520,11 @@ fn orientation_from_args(occ: &Args) -> Result<Orientation> {
             v.len()
         ))
         .keyword(occ.key_path("VALE"))),
-        _ => Err(Error::input(format!("ORIENTATION CARA {cara} is not supported"))
-            .keyword(occ.key_path("CARA"))
-            .hint("use VECT_Y or ANGL_VRIL")),
+        _ => Err(
+            Error::input(format!("ORIENTATION CARA {cara} is not supported"))
+                .keyword(occ.key_path("CARA"))
+                .hint("use VECT_Y or ANGL_VRIL"),
+        ),
     }
 }
 

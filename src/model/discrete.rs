@@ -39,11 +39,7 @@ pub fn discrete_matrix(dv: &DiscreteValue, nd: usize, frame: Option<&Frame>) -> 
             // M = [[m I, −m S], [m S, J + m (|c|² I − c cᵀ)]].
             let mass = v(0);
             let c = [v(1), v(2), v(3)];
-            let j = [
-                [v(4), v(7), v(8)],
-                [v(7), v(5), v(9)],
-                [v(8), v(9), v(6)],
-            ];
+            let j = [[v(4), v(7), v(8)], [v(7), v(5), v(9)], [v(8), v(9), v(6)]];
             let s = [[0.0, -c[2], c[1]], [c[2], 0.0, -c[0]], [-c[1], c[0], 0.0]];
             let c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
             for i in 0..3 {
@@ -92,7 +88,11 @@ mod tests {
 
     #[test]
     fn segment_spring_is_k_minus_k() {
-        let m = discrete_matrix(&dv("K_T_D_L", vec![10.0, 2.0, 3.0], Repere::Global), 3, None);
+        let m = discrete_matrix(
+            &dv("K_T_D_L", vec![10.0, 2.0, 3.0], Repere::Global),
+            3,
+            None,
+        );
         assert_eq!(m[0], 10.0);
         assert_eq!(m[3], -10.0);
         assert_eq!(m[6 + 1 + 6 * 3 + 3], 2.0); // row 4 col 4 (node 2, DY)
@@ -104,7 +104,11 @@ mod tests {
         // A spring k along the local axis of a segment at 45° in XY gives the global
         // block k n nᵀ with n = (1,1,0)/√2: all four XY entries k/2.
         let f = segment_frame([0.0; 3], [1.0, 1.0, 0.0], None).unwrap();
-        let m = discrete_matrix(&dv("K_T_D_L", vec![4.0, 0.0, 0.0], Repere::Local), 3, Some(&f));
+        let m = discrete_matrix(
+            &dv("K_T_D_L", vec![4.0, 0.0, 0.0], Repere::Local),
+            3,
+            Some(&f),
+        );
         for (r, c) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
             assert!((m[r * 6 + c] - 2.0).abs() < 1e-14);
             assert!((m[r * 6 + c + 3] + 2.0).abs() < 1e-14);
@@ -134,7 +138,11 @@ mod tests {
 
     #[test]
     fn symmetric_form_column_order() {
-        let m = discrete_matrix(&dv("K_T_N", vec![1., 2., 3., 4., 5., 6.], Repere::Global), 3, None);
+        let m = discrete_matrix(
+            &dv("K_T_N", vec![1., 2., 3., 4., 5., 6.], Repere::Global),
+            3,
+            None,
+        );
         assert_eq!(m, vec![1., 2., 4., 2., 3., 5., 4., 5., 6.]);
     }
 }

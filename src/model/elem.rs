@@ -1,6 +1,8 @@
 //! Elementary matrices (CALC_MATR_ELEM): one dense matrix per model element, in global axes.
 
-use super::beam::{bar_mass, bar_stiffness_local, beam_mass_local, beam_stiffness_local, BeamProps};
+use super::beam::{
+    bar_mass, bar_stiffness_local, beam_mass_local, beam_stiffness_local, BeamProps,
+};
 use super::cara::{CaraElem, Repere};
 use super::discrete::discrete_matrix;
 use super::dof::Cmp;
@@ -135,7 +137,12 @@ fn frame_of(inp: &ElemInputs<'_>, e: &ModelElement, p: &[[f64; 3]]) -> Result<Fr
         return Err(Error::internal("segment without two nodes"));
     };
     segment_frame(*a, *b, orientation).map_err(|m| {
-        let name = inp.mesh.cells.get(e.cell).map(|c| c.name.as_str()).unwrap_or("?");
+        let name = inp
+            .mesh
+            .cells
+            .get(e.cell)
+            .map(|c| c.name.as_str())
+            .unwrap_or("?");
         Error::input(format!("cell {name}: {m}")).keyword("AFFE_CARA_ELEM/ORIENTATION")
     })
 }

@@ -111,7 +111,10 @@ impl Model {
             let m = Modelisation::parse(name).ok_or_else(|| {
                 Error::input(format!("unknown MODELISATION {name}"))
                     .keyword(occ.key_path("MODELISATION"))
-                    .hint(format!("expected one of {}", Modelisation::NAMES.join(", ")))
+                    .hint(format!(
+                        "expected one of {}",
+                        Modelisation::NAMES.join(", ")
+                    ))
             })?;
             let cells = model_select_cells(mesh, mesh_name, occ)?;
             let mut assigned = 0;

@@ -147,8 +147,12 @@ mod tests {
     #[test]
     fn vect_y_and_twist_agree() {
         // Element along X: default y = Y, a 90° twist gives y = Z, as VECT_Y=(0,0,1).
-        let a = segment_frame([0.0; 3], [2.0, 0.0, 0.0], Some(&Orientation::AnglVril(90.0)))
-            .unwrap();
+        let a = segment_frame(
+            [0.0; 3],
+            [2.0, 0.0, 0.0],
+            Some(&Orientation::AnglVril(90.0)),
+        )
+        .unwrap();
         let b = segment_frame(
             [0.0; 3],
             [2.0, 0.0, 0.0],
@@ -160,6 +164,11 @@ mod tests {
                 assert!((a[i][j] - b[i][j]).abs() < 1e-14);
             }
         }
-        assert!(segment_frame([0.0; 3], [1.0, 0.0, 0.0], Some(&Orientation::VectY([2.0, 0.0, 0.0]))).is_err());
+        assert!(segment_frame(
+            [0.0; 3],
+            [1.0, 0.0, 0.0],
+            Some(&Orientation::VectY([2.0, 0.0, 0.0]))
+        )
+        .is_err());
     }
 }

@@ -35,7 +35,9 @@ impl DofNumbering {
     }
 
     pub fn index_of(&self, node: &str, cmp: Cmp) -> Option<usize> {
-        self.dofs.iter().position(|d| d.node == node && d.cmp == cmp)
+        self.dofs
+            .iter()
+            .position(|d| d.node == node && d.cmp == cmp)
     }
 
     /// (node, component) -> index, for assembly.

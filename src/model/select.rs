@@ -92,7 +92,10 @@ pub fn describe_cells(mesh: &Mesh, cells: &[usize]) -> String {
     } else {
         String::new()
     };
-    let mut groups: Vec<String> = cells.iter().flat_map(|&c| groups_of_cell(mesh, c)).collect();
+    let mut groups: Vec<String> = cells
+        .iter()
+        .flat_map(|&c| groups_of_cell(mesh, c))
+        .collect();
     groups.sort();
     groups.dedup();
     let g = if groups.is_empty() {

@@ -102,7 +102,9 @@ pub(crate) fn gen_eig(k: &SparseColMat<usize, f64>, m: &SparseColMat<usize, f64>
     let (u, d) = (evd.U(), evd.S().column_vector());
     assert!(d[0] > 0.0, "mass matrix not positive definite");
     let w = Mat::from_fn(n, n, |i, j| {
-        (0..n).map(|p| u[(i, p)] * u[(j, p)] / d[p].sqrt()).sum::<f64>()
+        (0..n)
+            .map(|p| u[(i, p)] * u[(j, p)] / d[p].sqrt())
+            .sum::<f64>()
     });
     let a = &w * &kd * &w;
     let a = Mat::from_fn(n, n, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
@@ -123,19 +125,31 @@ struct Built {
     cara: CaraElem,
 }
 
-fn build(mesh: Mesh, affe: Vec<Args>, cara_args: Args, mat: Option<(f64, f64, f64)>) -> Result<Built> {
+fn build(
+    mesh: Mesh,
+    affe: Vec<Args>,
+    cara_args: Args,
+    mat: Option<(f64, f64, f64)>,
+) -> Result<Built> {
     let model = Model::build("MA", &mesh, &affe)?;
     let field = mat.map(|(e, nu, rho)| {
         let m = Material::from_args(&with_facts(
             fact("DEFI_MATERIAU", vec![]),
             "ELAS",
-            vec![fact("DEFI_MATERIAU/ELAS", vec![("E", r(e)), ("NU", r(nu)), ("RHO", r(rho))])],
+            vec![fact(
+                "DEFI_MATERIAU/ELAS",
+                vec![("E", r(e)), ("NU", r(nu)), ("RHO", r(rho))],
+            )],
         ))
         .unwrap();
         MaterialField::build(
             "MA",
             &mesh,
-            &[(fact("AFFE_MATERIAU/AFFE", vec![("TOUT", s("OUI"))]), "STEEL".into(), m)],
+            &[(
+                fact("AFFE_MATERIAU/AFFE", vec![("TOUT", s("OUI"))]),
+                "STEEL".into(),
+                m,
+            )],
         )
         .unwrap()
     });
@@ -151,7 +165,11 @@ use crate::error::Result;
 
 /// K and M assembled with the given kinematic loads (CINE eliminated at assembly, MECA
 /// through the element matrices and the numbering).
-fn assemble_km(b: &Built, cine: &[KinematicLoad], meca: &[KinematicLoad]) -> Result<(AssembledMatrix, AssembledMatrix)> {
+fn assemble_km(
+    b: &Built,
+    cine: &[KinematicLoad],
+    meca: &[KinematicLoad],
+) -> Result<(AssembledMatrix, AssembledMatrix)> {
     let inp = ElemInputs {
         model_name: "MO",
         model: &b.model,
@@ -175,19 +193,32 @@ fn assemble_km(b: &Built, cine: &[KinematicLoad], meca: &[KinematicLoad]) -> Res
 }
 
 fn load(b: &Built, kind: LoadKind, occ: Vec<Vec<(&str, Value)>>) -> Result<KinematicLoad> {
-    let occ: Vec<Args> = occ.into_iter().map(|o| fact("AFFE_CHAR/DDL_IMPO", o)).collect();
+    let occ: Vec<Args> = occ
+        .into_iter()
+        .map(|o| fact("AFFE_CHAR/DDL_IMPO", o))
+        .collect();
     KinematicLoad::build(kind, "MO", &b.model, &b.mesh, &occ)
 }
 
 fn dis_t_all() -> Vec<Args> {
     vec![fact(
         "AFFE_MODELE/AFFE",
-        vec![("TOUT", s("OUI")), ("PHENOMENE", s("MECANIQUE")), ("MODELISATION", s("DIS_T"))],
+        vec![
+            ("TOUT", s("OUI")),
+            ("PHENOMENE", s("MECANIQUE")),
+            ("MODELISATION", s("DIS_T")),
+        ],
     )]
 }
 
 /// Chain of n masses m joined by springs k: n+1 springs (fixed-fixed) or n (fixed-free).
-fn chain(n: usize, k: f64, m: f64, fixed_free: bool, kind: LoadKind) -> (AssembledMatrix, AssembledMatrix) {
+fn chain(
+    n: usize,
+    k: f64,
+    m: f64,
+    fixed_free: bool,
+    kind: LoadKind,
+) -> (AssembledMatrix, AssembledMatrix) {
     let nseg = if fixed_free { n } else { n + 1 };
     let mesh = line_mesh(nseg, [0.0; 3], [nseg as f64, 0.0, 0.0]);
     // masses on interior nodes (and on the free end for fixed-free)
@@ -203,15 +234,27 @@ fn chain(n: usize, k: f64, m: f64, fixed_free: bool, kind: LoadKind) -> (Assembl
         vec![
             fact(
                 "AFFE_CARA_ELEM/DISCRET",
-                vec![("GROUP_MA", s("LINE")), ("CARA", s("K_T_D_L")), ("VALE", reals(&[k, 0.0, 0.0]))],
+                vec![
+                    ("GROUP_MA", s("LINE")),
+                    ("CARA", s("K_T_D_L")),
+                    ("VALE", reals(&[k, 0.0, 0.0])),
+                ],
             ),
             fact(
                 "AFFE_CARA_ELEM/DISCRET",
-                vec![("GROUP_MA", s("PTS")), ("CARA", s("K_T_D_N")), ("VALE", reals(&[0.0, 0.0, 0.0]))],
+                vec![
+                    ("GROUP_MA", s("PTS")),
+                    ("CARA", s("K_T_D_N")),
+                    ("VALE", reals(&[0.0, 0.0, 0.0])),
+                ],
             ),
             fact(
                 "AFFE_CARA_ELEM/DISCRET",
-                vec![("GROUP_MA", s(mass_group)), ("CARA", s("M_T_D_N")), ("VALE", reals(&[m]))],
+                vec![
+                    ("GROUP_MA", s(mass_group)),
+                    ("CARA", s("M_T_D_N")),
+                    ("VALE", reals(&[m])),
+                ],
             ),
         ],
     );
@@ -240,9 +283,14 @@ fn spring_chain_fixed_fixed_matches_closed_form() {
     let w = omegas(&kk, &mm);
     for (j, wj) in w.iter().enumerate() {
         let jj = (j + 1) as f64;
-        let exact = 2.0 * (k / m).sqrt() * (jj * std::f64::consts::PI / (2.0 * (n as f64 + 1.0))).sin();
+        let exact =
+            2.0 * (k / m).sqrt() * (jj * std::f64::consts::PI / (2.0 * (n as f64 + 1.0))).sin();
         // The discrete chain is exactly this system: only round-off separates them.
-        assert!((wj - exact).abs() < 1e-10 * exact, "mode {}: {wj} vs {exact}", j + 1);
+        assert!(
+            (wj - exact).abs() < 1e-10 * exact,
+            "mode {}: {wj} vs {exact}",
+            j + 1
+        );
     }
 }
 
@@ -254,9 +302,14 @@ fn spring_chain_fixed_free_matches_closed_form() {
     assert_eq!(w.len(), n);
     for (j, wj) in w.iter().enumerate() {
         let jj = (j + 1) as f64;
-        let exact = 2.0 * (k / m).sqrt()
+        let exact = 2.0
+            * (k / m).sqrt()
             * ((2.0 * jj - 1.0) * std::f64::consts::PI / (2.0 * (2.0 * n as f64 + 1.0))).sin();
-        assert!((wj - exact).abs() < 1e-10 * exact, "mode {}: {wj} vs {exact}", j + 1);
+        assert!(
+            (wj - exact).abs() < 1e-10 * exact,
+            "mode {}: {wj} vs {exact}",
+            j + 1
+        );
     }
 }
 
@@ -269,7 +322,10 @@ fn char_cine_and_char_meca_give_identical_reduced_matrices() {
     assert!(kc.numbering.eliminated.iter().all(|e| !e));
     assert!(km.numbering.eliminated.iter().any(|e| *e));
     for (a, b) in [(&kc, &km), (&mc, &mm)] {
-        let (ra, rb) = (a.reduced().unwrap().to_dense(), b.reduced().unwrap().to_dense());
+        let (ra, rb) = (
+            a.reduced().unwrap().to_dense(),
+            b.reduced().unwrap().to_dense(),
+        );
         assert_eq!(ra, rb);
         assert_eq!(a.free_dofs(), b.free_dofs());
     }
@@ -307,7 +363,11 @@ fn beam(n: usize, dir: [f64; 3], len: f64) -> Built {
     let mesh = line_mesh(n, [0.0; 3], p1);
     let affe = vec![fact(
         "AFFE_MODELE/AFFE",
-        vec![("GROUP_MA", s("LINE")), ("PHENOMENE", s("MECANIQUE")), ("MODELISATION", s("POU_D_E"))],
+        vec![
+            ("GROUP_MA", s("LINE")),
+            ("PHENOMENE", s("MECANIQUE")),
+            ("MODELISATION", s("POU_D_E")),
+        ],
     )];
     let cara = with_facts(
         fact("AFFE_CARA_ELEM", vec![]),
@@ -348,12 +408,25 @@ fn planar(b: &Built, ends: Vec<Vec<(&str, Value)>>) -> Vec<f64> {
     omegas(&k, &m)
 }
 
-const CANTILEVER_BL: [f64; 5] = [1.875104068711961, 4.694091132974175, 7.854757438237613, 10.995540734875467, 14.137168391046471];
+const CANTILEVER_BL: [f64; 5] = [
+    1.875104068711961,
+    4.694091132974175,
+    7.854757438237613,
+    10.995540734875467,
+    14.137168391046471,
+];
 
 fn cantilever_errors(n: usize) -> Vec<f64> {
     let len = 2.0;
     let b = beam(n, [1.0, 0.0, 0.0], len);
-    let w = planar(&b, vec![vec![("GROUP_NO", s("LEFT")), ("DY", r(0.0)), ("DRZ", r(0.0))]]);
+    let w = planar(
+        &b,
+        vec![vec![
+            ("GROUP_NO", s("LEFT")),
+            ("DY", r(0.0)),
+            ("DRZ", r(0.0)),
+        ]],
+    );
     CANTILEVER_BL
         .iter()
         .zip(&w)
@@ -370,7 +443,13 @@ fn cantilever_beam_converges_like_h4() {
     let e16 = cantilever_errors(16);
     for j in 0..5 {
         // The consistent-mass Hermite beam bounds frequencies from above.
-        assert!(e16[j] > 0.0 && e8[j] > e16[j], "mode {}: {} {}", j + 1, e8[j], e16[j]);
+        assert!(
+            e16[j] > 0.0 && e8[j] > e16[j],
+            "mode {}: {} {}",
+            j + 1,
+            e8[j],
+            e16[j]
+        );
     }
     // Measured with 16 elements: mode 1 within 1.3e-7, mode 5 within 4.1e-4; halving h
     // divides the errors by 15.9, 15.7, 15.3 for modes 1-3 (h⁴, the asymptotic 16 being
@@ -378,7 +457,11 @@ fn cantilever_beam_converges_like_h4() {
     assert!(e16[0] < 2e-7 && e16[4] < 5e-4, "{e16:?}");
     for j in 0..3 {
         let ratio = e8[j] / e16[j];
-        assert!(ratio > 14.0 && ratio < 17.0, "mode {}: ratio {ratio}", j + 1);
+        assert!(
+            ratio > 14.0 && ratio < 17.0,
+            "mode {}: ratio {ratio}",
+            j + 1
+        );
     }
 }
 
@@ -406,16 +489,30 @@ fn simply_supported_beam_matches_j_pi_squared() {
         // Measured: e ≈ 0.068 (j h / L)⁴ (4.2e-7 for mode 1 with 20 elements, 1.1e-4
         // for mode 4): the error follows (j h)⁴; bound it by 5e-7 j⁴ at 20 elements.
         let jj = (j + 1) as f64;
-        assert!(e20[j] > 0.0 && e20[j] < 5e-7 * jj.powi(4), "mode {}: {}", j + 1, e20[j]);
+        assert!(
+            e20[j] > 0.0 && e20[j] < 5e-7 * jj.powi(4),
+            "mode {}: {}",
+            j + 1,
+            e20[j]
+        );
         let ratio = e10[j] / e20[j];
-        assert!(ratio > 14.0 && ratio < 17.0, "mode {}: ratio {ratio}", j + 1);
+        assert!(
+            ratio > 14.0 && ratio < 17.0,
+            "mode {}: ratio {ratio}",
+            j + 1
+        );
     }
 }
 
 /// All DOFs free except a clamped end: the spectrum must not depend on the beam direction.
 fn clamped_spectrum(dir: [f64; 3]) -> Vec<f64> {
     let b = beam(6, dir, 2.0);
-    let l = load(&b, LoadKind::Meca, vec![vec![("GROUP_NO", s("LEFT")), ("LIAISON", s("ENCASTRE"))]]).unwrap();
+    let l = load(
+        &b,
+        LoadKind::Meca,
+        vec![vec![("GROUP_NO", s("LEFT")), ("LIAISON", s("ENCASTRE"))]],
+    )
+    .unwrap();
     let (k, m) = assemble_km(&b, &[], &[l]).unwrap();
     omegas(&k, &m)
 }
@@ -430,7 +527,13 @@ fn beam_spectrum_is_invariant_under_rotation() {
     for j in 0..a.len() {
         // Round-off of the rotations, relative to the largest frequency of the spectrum.
         let tol = 1e-9 * a[a.len() - 1];
-        assert!((a[j] - b[j]).abs() < tol && (a[j] - v[j]).abs() < tol, "mode {j}: {} {} {}", a[j], b[j], v[j]);
+        assert!(
+            (a[j] - b[j]).abs() < tol && (a[j] - v[j]).abs() < tol,
+            "mode {j}: {} {} {}",
+            a[j],
+            b[j],
+            v[j]
+        );
     }
     // Circular section: bending modes come in equal pairs; first pair = cantilever mode 1.
     let exact = CANTILEVER_BL[0].powi(2) * beam_scale(2.0);
@@ -451,7 +554,11 @@ fn free_free_beam_has_six_rigid_body_modes() {
         // eigenvalue relative to the first elastic one here).
         assert!(l.abs() < 1e-6 * w7 * w7, "rigid eigenvalue {l}");
     }
-    assert!((lam[6].sqrt() - w7).abs() < 1e-4 * w7, "{} vs {w7}", lam[6].sqrt());
+    assert!(
+        (lam[6].sqrt() - w7).abs() < 1e-4 * w7,
+        "{} vs {w7}",
+        lam[6].sqrt()
+    );
 }
 
 #[test]
@@ -463,14 +570,23 @@ fn bar_axial_modes_fixed_free() {
         let mesh = line_mesh(n, [0.0; 3], [0.0, len, 0.0]);
         let affe = vec![fact(
             "AFFE_MODELE/AFFE",
-            vec![("GROUP_MA", s("LINE")), ("PHENOMENE", s("MECANIQUE")), ("MODELISATION", s("BARRE"))],
+            vec![
+                ("GROUP_MA", s("LINE")),
+                ("PHENOMENE", s("MECANIQUE")),
+                ("MODELISATION", s("BARRE")),
+            ],
         )];
         let cara = with_facts(
             fact("AFFE_CARA_ELEM", vec![]),
             "BARRE",
             vec![fact(
                 "AFFE_CARA_ELEM/BARRE",
-                vec![("GROUP_MA", s("LINE")), ("SECTION", s("GENERALE")), ("CARA", s("A")), ("VALE", r(1e-3))],
+                vec![
+                    ("GROUP_MA", s("LINE")),
+                    ("SECTION", s("GENERALE")),
+                    ("CARA", s("A")),
+                    ("VALE", r(1e-3)),
+                ],
             )],
         );
         let b = build(mesh, affe, cara, Some((E, 0.3, RHO))).unwrap();
@@ -508,7 +624,9 @@ fn discret(v: Vec<Vec<(&str, Value)>>) -> Args {
     with_facts(
         fact("AFFE_CARA_ELEM", vec![]),
         "DISCRET",
-        v.into_iter().map(|o| fact("AFFE_CARA_ELEM/DISCRET", o)).collect(),
+        v.into_iter()
+            .map(|o| fact("AFFE_CARA_ELEM/DISCRET", o))
+            .collect(),
     )
 }
 
@@ -519,7 +637,10 @@ fn wrong_cell_kind_for_cara_is_refused() {
         ("CARA", s("K_T_D_L")),
         ("VALE", reals(&[1.0, 1.0, 1.0])),
     ]]));
-    assert!(e.contains("K_T_D_L is for SEG2 cells but cell P1 is a POI1"), "{e}");
+    assert!(
+        e.contains("K_T_D_L is for SEG2 cells but cell P1 is a POI1"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -539,7 +660,10 @@ fn discrete_without_characteristic_names_the_group() {
         ("CARA", s("K_T_D_L")),
         ("VALE", reals(&[1.0, 1.0, 1.0])),
     ]]));
-    assert!(e.contains("without stiffness nor mass: cells P1, P2, P3 (GROUP_MA INNER, PTS)"), "{e}");
+    assert!(
+        e.contains("without stiffness nor mass: cells P1, P2, P3 (GROUP_MA INNER, PTS)"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -557,7 +681,10 @@ fn beam_without_material_or_rho_is_refused() {
     let mut b = beam(2, [1.0, 0.0, 0.0], 1.0);
     b.field = None;
     let e = assemble_km(&b, &[], &[]).unwrap_err().to_string();
-    assert!(e.contains("no material with ELAS on cells S1, S2 (GROUP_MA LINE)"), "{e}");
+    assert!(
+        e.contains("no material with ELAS on cells S1, S2 (GROUP_MA LINE)"),
+        "{e}"
+    );
     let mut b = beam(2, [1.0, 0.0, 0.0], 1.0);
     if let Some(f) = b.field.as_mut() {
         for m in f.materials.values_mut() {
@@ -575,11 +702,25 @@ fn blocking_a_missing_component_is_refused() {
     let (kk, _) = chain(2, 1.0, 1.0, false, LoadKind::Cine);
     let _ = kk;
     let mesh = line_mesh(2, [0.0; 3], [2.0, 0.0, 0.0]);
-    let cara = discret(vec![vec![("GROUP_MA", s("LINE")), ("CARA", s("K_T_D_L")), ("VALE", reals(&[1.0, 1.0, 1.0]))],
-        vec![("GROUP_MA", s("PTS")), ("CARA", s("M_T_D_N")), ("VALE", reals(&[1.0]))]]);
+    let cara = discret(vec![
+        vec![
+            ("GROUP_MA", s("LINE")),
+            ("CARA", s("K_T_D_L")),
+            ("VALE", reals(&[1.0, 1.0, 1.0])),
+        ],
+        vec![
+            ("GROUP_MA", s("PTS")),
+            ("CARA", s("M_T_D_N")),
+            ("VALE", reals(&[1.0])),
+        ],
+    ]);
     let b = build(mesh, dis_t_all(), cara, None).unwrap();
-    let e = load(&b, LoadKind::Meca, vec![vec![("NOEUD", seq(vec![s("N2")])), ("DRX", r(0.0))]])
-        .unwrap_err()
-        .to_string();
+    let e = load(
+        &b,
+        LoadKind::Meca,
+        vec![vec![("NOEUD", seq(vec![s("N2")])), ("DRX", r(0.0))]],
+    )
+    .unwrap_err()
+    .to_string();
     assert!(e.contains("component DRX does not exist on node N2"), "{e}");
 }

@@ -4,6 +4,17 @@
 //!
 //! The interpreter calls [`run`] inside one store transaction per call.
 
+pub mod affe_cara_elem;
+pub mod affe_char_cine;
+pub mod affe_char_meca;
+pub mod affe_materiau;
+pub mod affe_modele;
+pub mod asse_matrice;
+pub mod assemblage;
+pub mod calc_matr_elem;
+pub mod defi_materiau;
+pub mod nume_ddl;
+
 use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::store::Store;
@@ -96,6 +107,16 @@ pub type OpFn = fn(&mut OpContext<'_>, &Args) -> Result<()>;
 pub fn lookup(name: &str) -> Option<OpFn> {
     // One line per operator: "NAME" => module::run,
     let f: OpFn = match name {
+        "AFFE_MODELE" => affe_modele::run,
+        "DEFI_MATERIAU" => defi_materiau::run,
+        "AFFE_MATERIAU" => affe_materiau::run,
+        "AFFE_CARA_ELEM" => affe_cara_elem::run,
+        "AFFE_CHAR_CINE" => affe_char_cine::run,
+        "AFFE_CHAR_MECA" => affe_char_meca::run,
+        "CALC_MATR_ELEM" => calc_matr_elem::run,
+        "NUME_DDL" => nume_ddl::run,
+        "ASSE_MATRICE" => asse_matrice::run,
+        "ASSEMBLAGE" => assemblage::run,
         _ => return None,
     };
     Some(f)

@@ -12,6 +12,9 @@
 //! Each operator runs inside one transaction ([`Store::begin_op`] / [`Store::commit_op`] /
 //! [`Store::rollback_op`]): an operator that fails leaves the file exactly as before.
 
+pub mod matrix;
+pub mod model;
+
 use crate::error::{Error, Result};
 use rusqlite::{params, Connection, OptionalExtension};
 use serde::{de::DeserializeOwned, Serialize};
@@ -247,7 +250,7 @@ impl Store {
     /// Delete the rows a concept owns in the typed tables. Each typed submodule adds its
     /// own cleanup here.
     fn drop_typed_data(&self, name: &str) -> Result<()> {
-        let _ = name;
+        matrix::drop_data(self, name)?;
         Ok(())
     }
 

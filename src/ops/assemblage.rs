@@ -1,0 +1,75 @@
+//! ASSEMBLAGE macro: element matrices, numbering and assembled matrices in one call; the
+//! numbering and each matrix are new concepts named by CO('...').
+
+use super::calc_matr_elem::Inputs;
+use super::OpContext;
+use crate::args::Args;
+use crate::error::{Error, Result};
+use crate::model::{assemble, ElemMatrices, KinematicLoad, LoadKind, MatrixKind};
+use crate::store::matrix::{load_numbering, save_matrix, save_numbering};
+use crate::store::model::{load_load, load_mesh, same_model};
+
+pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    let inputs = Inputs::from_args(args)?;
+    let occs = args.facts_or_empty("MATR_ASSE");
+    let mut wanted = Vec::new();
+    for occ in occs {
+        let co = occ.co("MATRICE").ok_or_else(|| {
+            Error::validation("expected CO('NAME')").keyword(occ.key_path("MATRICE"))
+        })?;
+        let option = occ.req_text("OPTION")?;
+        let kind = MatrixKind::parse(option).ok_or_else(|| {
+            Error::validation(format!("OPTION {option} is not supported"))
+                .keyword(occ.key_path("OPTION"))
+                .hint("use RIGI_MECA or MASS_MECA")
+        })?;
+        wanted.push((co.to_string(), kind));
+    }
+    // Element matrices of each requested kind (the stiffness defines the numbering, as in
+    // Code_Aster, whatever the order of MATR_ASSE).
+    let mut elems: Vec<(String, ElemMatrices)> = Vec::new();
+    for (co, kind) in &wanted {
+        elems.push((co.clone(), inputs.elem_matrices(ctx.store, *kind)?));
+    }
+    let (num_name, num) = match (args.co("NUME_DDL"), args.concept("NUME_DDL")) {
+        (Some(co), _) => {
+            let base = match elems.iter().find(|(_, m)| m.kind == MatrixKind::RigiMeca) {
+                Some((_, m)) => m.clone(),
+                None => inputs.elem_matrices(ctx.store, MatrixKind::RigiMeca)?,
+            };
+            let mesh = load_mesh(ctx.store, &base.mesh)?;
+            let num = crate::model::DofNumbering::from_elem_matrices(&mesh, &[&base])?;
+            ctx.create(co, "nume_ddl_sdaster")?;
+            save_numbering(ctx.store, co, &num)?;
+            (co.to_string(), num)
+        }
+        (None, Some(c)) => (c.name.clone(), load_numbering(ctx.store, &c.name)?),
+        (None, None) => {
+            return Err(
+                Error::validation("NUME_DDL is required (CO('NAME') or a numbering)")
+                    .keyword("ASSEMBLAGE/NUME_DDL"),
+            )
+        }
+    };
+    let mut cine = Vec::new();
+    for c in args.concepts("CHAR_CINE").unwrap_or_default() {
+        let l = load_load(ctx.store, &c.name)?;
+        same_model("CHAR_CINE", &c.name, &l.model, &inputs.model)
+            .map_err(|e| e.keyword("CHAR_CINE"))?;
+        if l.kind != LoadKind::Cine {
+            return Err(
+                Error::input(format!("{} is not an AFFE_CHAR_CINE load", c.name))
+                    .keyword("CHAR_CINE"),
+            );
+        }
+        cine.push(l);
+    }
+    let crefs: Vec<&KinematicLoad> = cine.iter().collect();
+    let mesh = load_mesh(ctx.store, &num.mesh)?;
+    for (co, m) in &elems {
+        let a = assemble(&num, &mesh, &[m], &crefs)?;
+        ctx.create(co, "matr_asse_depl_r")?;
+        save_matrix(ctx.store, co, &a, &num_name)?;
+    }
+    Ok(())
+}
