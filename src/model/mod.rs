@@ -26,4 +26,4 @@ pub use material::{Material, MaterialField};
 pub use numbering::DofNumbering;
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
