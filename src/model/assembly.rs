@@ -33,6 +33,15 @@ impl AssembledMatrix {
             .collect()
     }
 
+    /// Reduced index of the DOF (node, component), if it exists and is free.
+    pub fn reduced_index_of(&self, node: &str, cmp: super::Cmp) -> Option<usize> {
+        let full = self.numbering.index_of(node, cmp)?;
+        if self.eliminated.get(full).copied().unwrap_or(false) {
+            return None;
+        }
+        Some(self.eliminated[..full].iter().filter(|e| !**e).count())
+    }
+
     /// The matrix restricted to the free DOFs.
     pub fn reduced(&self) -> Result<SparseColMat<usize, f64>> {
         sparse::reduced(self.size(), &self.triplets, &self.eliminated)

@@ -724,3 +724,174 @@ fn blocking_a_missing_component_is_refused() {
     .to_string();
     assert!(e.contains("component DRX does not exist on node N2"), "{e}");
 }
+
+// ---------- 2D and rotational discrete elements ----------
+
+#[test]
+fn two_d_chain_with_discret_2d() {
+    // 2D_DIS_T: 3 masses between 4 springs along X (fixed-fixed), DY blocked everywhere.
+    let (n, k, m) = (3, 4.0, 0.25);
+    let mesh = line_mesh(n + 1, [0.0; 3], [4.0, 0.0, 0.0]);
+    let affe = vec![fact(
+        "AFFE_MODELE/AFFE",
+        vec![
+            ("TOUT", s("OUI")),
+            ("PHENOMENE", s("MECANIQUE")),
+            ("MODELISATION", s("2D_DIS_T")),
+        ],
+    )];
+    let d = |g: &str, cara: &str, v: &[f64]| {
+        fact(
+            "AFFE_CARA_ELEM/DISCRET_2D",
+            vec![("GROUP_MA", s(g)), ("CARA", s(cara)), ("VALE", reals(v))],
+        )
+    };
+    let cara = with_facts(
+        fact("AFFE_CARA_ELEM", vec![]),
+        "DISCRET_2D",
+        vec![d("LINE", "K_T_D_L", &[k, 0.0]), d("PTS", "M_T_D_N", &[m])],
+    );
+    let b = build(mesh, affe, cara, None).unwrap();
+    let l = load(
+        &b,
+        LoadKind::Cine,
+        vec![
+            vec![("TOUT", s("OUI")), ("DY", r(0.0))],
+            vec![("GROUP_NO", s("LEFT")), ("DX", r(0.0))],
+            vec![("GROUP_NO", s("RIGHT")), ("DX", r(0.0))],
+        ],
+    )
+    .unwrap();
+    let (kk, mm) = assemble_km(&b, &[l], &[]).unwrap();
+    assert_eq!(kk.size(), 2 * (n + 2));
+    let w = omegas(&kk, &mm);
+    for (j, wj) in w.iter().enumerate() {
+        let exact = 2.0
+            * (k / m).sqrt()
+            * (((j + 1) as f64) * std::f64::consts::PI / (2.0 * (n as f64 + 1.0))).sin();
+        assert!(
+            (wj - exact).abs() < 1e-10 * exact,
+            "mode {}: {wj} vs {exact}",
+            j + 1
+        );
+    }
+    // The second node's DX is the first free DOF.
+    assert_eq!(kk.reduced_index_of("N2", Cmp::Dx), Some(0));
+    assert_eq!(kk.reduced_index_of("N1", Cmp::Dx), None);
+}
+
+#[test]
+fn dis_tr_torsion_oscillator_with_offset_mass() {
+    // One node N2 tied to clamped N1 by K_TR_D_L; a point mass m at CDG (0, 0, h) on N2
+    // plus Ixx at the CDG. Only DY and DRX free: the 2×2 problem
+    // K = diag(ky, krx), M = [[m, −m h], [−m h, Ixx + m h²]] has the eigenvalues below.
+    let (ky, krx, m, h, ixx) = (50.0, 7.0, 2.0, 0.3, 0.1);
+    let mesh = line_mesh(1, [0.0; 3], [1.0, 0.0, 0.0]);
+    let affe = vec![fact(
+        "AFFE_MODELE/AFFE",
+        vec![
+            ("TOUT", s("OUI")),
+            ("PHENOMENE", s("MECANIQUE")),
+            ("MODELISATION", s("DIS_TR")),
+        ],
+    )];
+    let mut g = mesh.clone();
+    g.cell_groups.push(Group {
+        name: "TIP".into(),
+        members: vec![2],
+    });
+    let d = |gr: &str, cara: &str, v: &[f64]| {
+        fact(
+            "AFFE_CARA_ELEM/DISCRET",
+            vec![("GROUP_MA", s(gr)), ("CARA", s(cara)), ("VALE", reals(v))],
+        )
+    };
+    let cara = with_facts(
+        fact("AFFE_CARA_ELEM", vec![]),
+        "DISCRET",
+        vec![
+            d("LINE", "K_TR_D_L", &[1.0, ky, 1.0, krx, 1.0, 1.0]),
+            d("PTS", "K_TR_D_N", &[0.0; 6]),
+            d(
+                "TIP",
+                "M_TR_D_N",
+                &[m, 0.0, 0.0, h, ixx, 1.0, 1.0, 0.0, 0.0, 0.0],
+            ),
+            d("LINE", "M_TR_D_L", &[1.0, 1.0, 1.0, 1.0]),
+        ],
+    );
+    // M_TR_D_L is not supported: a clear error.
+    let e = build(g.clone(), affe.clone(), cara, None)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        e.contains("unknown or unsupported discrete CARA M_TR_D_L"),
+        "{e}"
+    );
+    let cara = with_facts(
+        fact("AFFE_CARA_ELEM", vec![]),
+        "DISCRET",
+        vec![
+            d("LINE", "K_TR_D_L", &[1.0, ky, 1.0, krx, 1.0, 1.0]),
+            d("PTS", "K_TR_D_N", &[0.0; 6]),
+            d(
+                "TIP",
+                "M_TR_D_N",
+                &[m, 0.0, 0.0, h, ixx, 1.0, 1.0, 0.0, 0.0, 0.0],
+            ),
+        ],
+    );
+    let b = build(g, affe, cara, None).unwrap();
+    let l = load(
+        &b,
+        LoadKind::Meca,
+        vec![
+            vec![("GROUP_NO", s("LEFT")), ("LIAISON", s("ENCASTRE"))],
+            vec![
+                ("GROUP_NO", s("RIGHT")),
+                ("DX", r(0.0)),
+                ("DZ", r(0.0)),
+                ("DRY", r(0.0)),
+                ("DRZ", r(0.0)),
+            ],
+        ],
+    )
+    .unwrap();
+    let (kk, mm) = assemble_km(&b, &[], &[l]).unwrap();
+    let lam = gen_eig(&kk.reduced().unwrap(), &mm.reduced().unwrap());
+    // det(K − λM) = 0: a λ² + b λ + c with a = m Ixx (m² h² cancels), b = −(ky (Ixx + m h²)
+    // + krx m), c = ky krx.
+    let a = m * ixx;
+    let bq = -(ky * (ixx + m * h * h) + krx * m);
+    let c = ky * krx;
+    let disc = (bq * bq - 4.0 * a * c).sqrt();
+    let exact = [(-bq - disc) / (2.0 * a), (-bq + disc) / (2.0 * a)];
+    assert_eq!(lam.len(), 2);
+    for j in 0..2 {
+        assert!(
+            (lam[j] - exact[j]).abs() < 1e-10 * exact[j],
+            "{lam:?} vs {exact:?}"
+        );
+    }
+}
+
+#[test]
+fn numbering_from_model_and_loads_equals_numbering_from_matrices() {
+    let (km, _) = chain(3, 2.0, 1.0, false, LoadKind::Meca);
+    // Rebuild the same chain's model-side numbering directly.
+    let mesh = line_mesh(4, [0.0; 3], [4.0, 0.0, 0.0]);
+    let model = Model::build("MA", &mesh, &dis_t_all()).unwrap();
+    let occ: Vec<Args> = vec![
+        fact(
+            "X",
+            vec![("TOUT", s("OUI")), ("DY", r(0.0)), ("DZ", r(0.0))],
+        ),
+        fact("X", vec![("GROUP_NO", s("LEFT")), ("DX", r(0.0))]),
+        fact("X", vec![("GROUP_NO", s("RIGHT")), ("DX", r(0.0))]),
+    ];
+    let l = KinematicLoad::build(LoadKind::Meca, "MO", &model, &mesh, &occ).unwrap();
+    let num = DofNumbering::from_model("MO", &model, &mesh, &[&l]).unwrap();
+    assert_eq!(num.dofs, km.numbering.dofs);
+    assert_eq!(num.eliminated, km.numbering.eliminated);
+}
