@@ -12,6 +12,7 @@ use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum LoadKind {
@@ -48,6 +49,9 @@ impl KinematicLoad {
     ) -> Result<KinematicLoad> {
         let carried = model.node_components(mesh);
         let mut blocked: Vec<BlockedDof> = Vec::new();
+        // (node index, component) -> position in `blocked`: TOUT='OUI' on a large mesh
+        // must not scan the list for every DOF.
+        let mut seen: HashMap<(usize, Cmp), usize> = HashMap::new();
         for occ in occurrences {
             let nodes = model_select_nodes(mesh, &model.mesh, occ)?;
             let encastre = occ.text("LIAISON") == Some("ENCASTRE");
@@ -88,12 +92,10 @@ impl KinematicLoad {
                             cmps.iter().map(|c| c.name()).collect::<Vec<_>>().join(" ")
                         )));
                     }
-                    if let Some(b) = blocked
-                        .iter_mut()
-                        .find(|b| b.node == node.name && b.cmp == c)
-                    {
+                    if let Some(b) = seen.get(&(n, c)).and_then(|&i| blocked.get_mut(i)) {
                         b.value = v;
                     } else {
+                        seen.insert((n, c), blocked.len());
                         blocked.push(BlockedDof {
                             node: node.name.clone(),
                             cmp: c,
