@@ -145,4 +145,31 @@ mod tests {
         );
         assert_eq!(m, vec![1., 2., 4., 2., 3., 5., 4., 5., 6.]);
     }
+
+    proptest::proptest! {
+        /// Any segment direction and local spring values: the global matrix is symmetric,
+        /// a rigid translation of both nodes produces no force, and the trace (invariant
+        /// under rotation) is that of the local matrix, 2 (kx + ky + kz).
+        #[test]
+        fn local_spring_rotation_invariants(
+            dx in -1.0f64..1.0, dy in -1.0f64..1.0, dz in -1.0f64..1.0,
+            kx in 0.0f64..100.0, ky in 0.0f64..100.0, kz in 0.0f64..100.0,
+            tx in -1.0f64..1.0, ty in -1.0f64..1.0, tz in -1.0f64..1.0,
+        ) {
+            proptest::prop_assume!((dx * dx + dy * dy + dz * dz).sqrt() > 1e-3);
+            let f = segment_frame([0.0; 3], [dx, dy, dz], None).unwrap();
+            let m = discrete_matrix(&dv("K_T_D_L", vec![kx, ky, kz], Repere::Local), 3, Some(&f));
+            let scale = 1e-12 * (kx + ky + kz + 1.0);
+            for i in 0..6 {
+                for j in 0..6 {
+                    proptest::prop_assert!((m[i * 6 + j] - m[j * 6 + i]).abs() < scale);
+                }
+                let t = [tx, ty, tz, tx, ty, tz];
+                let force: f64 = (0..6).map(|j| m[i * 6 + j] * t[j]).sum();
+                proptest::prop_assert!(force.abs() < 10.0 * scale);
+            }
+            let trace: f64 = (0..6).map(|i| m[i * 6 + i]).sum();
+            proptest::prop_assert!((trace - 2.0 * (kx + ky + kz)).abs() < 10.0 * scale);
+        }
+    }
 }
