@@ -42,6 +42,26 @@ impl AssembledMatrix {
         Some(self.eliminated[..full].iter().filter(|e| !**e).count())
     }
 
+    /// A vector on the free DOFs (e.g. a mode shape) written in the full numbering, zero on
+    /// the eliminated DOFs. Errors if its length is not the number of free DOFs.
+    pub fn expand(&self, reduced: &[f64]) -> Result<Vec<f64>> {
+        let free = self.free_dofs();
+        if reduced.len() != free.len() {
+            return Err(Error::internal(format!(
+                "vector of {} values for {} free DOFs",
+                reduced.len(),
+                free.len()
+            )));
+        }
+        let mut full = vec![0.0; self.size()];
+        for (&i, &v) in free.iter().zip(reduced) {
+            if let Some(x) = full.get_mut(i) {
+                *x = v;
+            }
+        }
+        Ok(full)
+    }
+
     /// The matrix restricted to the free DOFs.
     pub fn reduced(&self) -> Result<SparseColMat<usize, f64>> {
         sparse::reduced(self.size(), &self.triplets, &self.eliminated)

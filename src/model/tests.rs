@@ -350,6 +350,11 @@ fn numbering_is_node_then_component_order() {
         .map(|&i| format!("{}:{}", kk.numbering.dofs[i].node, kk.numbering.dofs[i].cmp))
         .collect();
     assert_eq!(free, ["N2:DX", "N3:DX"]);
+    let full = kk.expand(&[1.5, -2.0]).unwrap();
+    assert_eq!(full.len(), 12);
+    assert_eq!((full[3], full[6]), (1.5, -2.0));
+    assert_eq!(full.iter().filter(|v| **v != 0.0).count(), 2);
+    assert!(kk.expand(&[1.0]).is_err());
 }
 
 // ---------- beams ----------

@@ -77,3 +77,48 @@ pub fn same_model(what: &str, concept: &str, found: &str, expected: &str) -> Res
         )))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::beam::{beam_mass_local, beam_stiffness_local, BeamProps};
+    use crate::model::elem::{ElemMatrix, MatrixKind};
+
+    #[test]
+    fn element_matrices_round_trip_bit_exactly() {
+        // Real beam values (irrational-looking doubles) must come back bit for bit, so a
+        // matrix assembled from stored element matrices equals one assembled fresh.
+        let p = BeamProps {
+            e: 2.1e11,
+            g: 2.1e11 / 2.6,
+            a: 3.0e-4 / 7.0,
+            iy: 1.0 / 3.0e7,
+            iz: 2.0 / 3.0e7,
+            jx: 1.0e-7 / 3.0,
+        };
+        let mut values = beam_stiffness_local(&p, 0.1 / 3.0);
+        values.extend(beam_mass_local(7800.0, p.a, p.iy, p.iz, 0.1 / 3.0));
+        let m = ElemMatrices {
+            kind: MatrixKind::RigiMeca,
+            model: "MO".into(),
+            mesh: "MA".into(),
+            elements: vec![ElemMatrix {
+                cell: 0,
+                dofs: vec![],
+                values,
+            }],
+            load_names: vec![],
+            loads: vec![],
+        };
+        let store = Store::in_memory().unwrap();
+        store
+            .register_concept("KEL", "matr_elem_depl_r", "CALC_MATR_ELEM", "t.comm", 1)
+            .unwrap();
+        save_elem_matrices(&store, "KEL", &m).unwrap();
+        let back = load_elem_matrices(&store, "KEL").unwrap();
+        let bits = |x: &ElemMatrices| -> Vec<u64> {
+            x.elements[0].values.iter().map(|v| v.to_bits()).collect()
+        };
+        assert_eq!(bits(&back), bits(&m));
+    }
+}
