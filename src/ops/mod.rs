@@ -21,6 +21,16 @@ pub mod table_args;
 pub mod test_fonction;
 pub mod test_table;
 pub mod testing;
+pub mod affe_cara_elem;
+pub mod affe_char_cine;
+pub mod affe_char_meca;
+pub mod affe_materiau;
+pub mod affe_modele;
+pub mod asse_matrice;
+pub mod assemblage;
+pub mod calc_matr_elem;
+pub mod defi_materiau;
+pub mod nume_ddl;
 
 use crate::args::Args;
 use crate::error::{Error, Result};
@@ -127,6 +137,16 @@ pub fn lookup(name: &str) -> Option<OpFn> {
         "RECU_FONCTION" => recu_fonction::run,
         "TEST_FONCTION" => test_fonction::run,
         "TEST_TABLE" => test_table::run,
+        "AFFE_MODELE" => affe_modele::run,
+        "DEFI_MATERIAU" => defi_materiau::run,
+        "AFFE_MATERIAU" => affe_materiau::run,
+        "AFFE_CARA_ELEM" => affe_cara_elem::run,
+        "AFFE_CHAR_CINE" => affe_char_cine::run,
+        "AFFE_CHAR_MECA" => affe_char_meca::run,
+        "CALC_MATR_ELEM" => calc_matr_elem::run,
+        "NUME_DDL" => nume_ddl::run,
+        "ASSE_MATRICE" => asse_matrice::run,
+        "ASSEMBLAGE" => assemblage::run,
         _ => return None,
     };
     Some(f)

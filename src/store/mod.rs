@@ -14,6 +14,8 @@
 
 pub mod function;
 pub mod table;
+pub mod matrix;
+pub mod model;
 
 use crate::error::{Error, Result};
 use rusqlite::{params, Connection, OptionalExtension};
@@ -251,6 +253,7 @@ impl Store {
     /// own cleanup here.
     fn drop_typed_data(&self, name: &str) -> Result<()> {
         table::drop_table_data(self, name)?;
+        matrix::drop_data(self, name)?;
         Ok(())
     }
 

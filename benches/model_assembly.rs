@@ -1,0 +1,135 @@
+//! Element matrices + numbering + assembly + reduction of a 3D beam of 5000 POU_D_E
+//! elements (30 006 DOFs), the path every modal / MODE_NON_LINE run takes once.
+
+use aster_nl::args::Args;
+use aster_nl::mesh::{Cell, CellKind, Group, Mesh, Node};
+use aster_nl::model::{
+    assemble, compute_elem_matrices, CaraElem, DofNumbering, ElemInputs, KinematicLoad, LoadKind,
+    Material, MaterialField, MatrixKind, Model,
+};
+use aster_nl::value::{Span, Value};
+use criterion::{criterion_group, criterion_main, Criterion};
+use std::hint::black_box;
+
+fn fact(path: &str, kv: Vec<(&str, Value)>) -> Args {
+    let mut a = Args::new(path);
+    for (k, v) in kv {
+        a.simple.push((k.to_string(), v, Span::default()));
+    }
+    a
+}
+fn s(x: &str) -> Value {
+    Value::Str(x.into())
+}
+
+fn bench(c: &mut Criterion) {
+    let n = 5000;
+    let mesh = Mesh {
+        dim: 3,
+        nodes: (0..=n)
+            .map(|i| Node {
+                name: format!("N{i}"),
+                coords: [i as f64 * 0.01, 0.0, 0.0],
+            })
+            .collect(),
+        cells: (0..n)
+            .map(|i| Cell {
+                name: format!("S{i}"),
+                kind: CellKind::Seg2,
+                nodes: vec![i, i + 1],
+            })
+            .collect(),
+        node_groups: vec![Group {
+            name: "LEFT".into(),
+            members: vec![0],
+        }],
+        cell_groups: vec![],
+    };
+    let model = Model::build(
+        "MA",
+        &mesh,
+        &[fact(
+            "AFFE",
+            vec![
+                ("TOUT", s("OUI")),
+                ("PHENOMENE", s("MECANIQUE")),
+                ("MODELISATION", s("POU_D_E")),
+            ],
+        )],
+    )
+    .unwrap();
+    let mut cara_args = Args::new("AFFE_CARA_ELEM");
+    cara_args.factor.push((
+        "POUTRE".into(),
+        vec![fact(
+            "POUTRE",
+            vec![
+                ("TOUT", s("OUI")),
+                ("SECTION", s("CERCLE")),
+                ("CARA", s("R")),
+                ("VALE", Value::Real(0.01)),
+            ],
+        )],
+        Span::default(),
+    ));
+    let cara = CaraElem::build("MO", &model, &mesh, &cara_args).unwrap();
+    let mut mat_args = Args::new("DEFI_MATERIAU");
+    mat_args.factor.push((
+        "ELAS".into(),
+        vec![fact(
+            "ELAS",
+            vec![
+                ("E", Value::Real(2e11)),
+                ("NU", Value::Real(0.3)),
+                ("RHO", Value::Real(7800.0)),
+            ],
+        )],
+        Span::default(),
+    ));
+    let mat = Material::from_args(&mat_args).unwrap();
+    let field = MaterialField::build(
+        "MA",
+        &mesh,
+        &[(fact("AFFE", vec![("TOUT", s("OUI"))]), "S".into(), mat)],
+    )
+    .unwrap();
+    let clamp = KinematicLoad::build(
+        LoadKind::Cine,
+        "MO",
+        &model,
+        &mesh,
+        &[fact(
+            "MECA_IMPO",
+            vec![
+                ("GROUP_NO", s("LEFT")),
+                ("DX", Value::Real(0.0)),
+                ("DY", Value::Real(0.0)),
+                ("DZ", Value::Real(0.0)),
+                ("DRX", Value::Real(0.0)),
+                ("DRY", Value::Real(0.0)),
+                ("DRZ", Value::Real(0.0)),
+            ],
+        )],
+    )
+    .unwrap();
+    let inp = ElemInputs {
+        model_name: "MO",
+        model: &model,
+        mesh: &mesh,
+        field: Some(&field),
+        cara: Some(&cara),
+    };
+    c.bench_function("beam_5000_K_and_M_assembled_reduced", |b| {
+        b.iter(|| {
+            let ke = compute_elem_matrices(MatrixKind::RigiMeca, &inp, vec![]).unwrap();
+            let me = compute_elem_matrices(MatrixKind::MassMeca, &inp, vec![]).unwrap();
+            let num = DofNumbering::from_elem_matrices(&mesh, &[&ke]).unwrap();
+            let k = assemble(&num, &mesh, &[&ke], &[&clamp]).unwrap();
+            let m = assemble(&num, &mesh, &[&me], &[&clamp]).unwrap();
+            black_box((k.reduced().unwrap(), m.reduced().unwrap()))
+        })
+    });
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,129 @@
+//! Assembly (ASSE_MATRICE): element matrices -> global sparse triplets on a numbering,
+//! with the DOFs eliminated by AFFE_CHAR_MECA (numbering) and AFFE_CHAR_CINE.
+
+use super::elem::{ElemMatrices, MatrixKind};
+use super::loads::KinematicLoad;
+use super::numbering::DofNumbering;
+use crate::error::{Error, Result};
+use crate::linalg::sparse;
+use crate::mesh::Mesh;
+use faer::sparse::SparseColMat;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct AssembledMatrix {
+    pub numbering: DofNumbering,
+    pub kind: MatrixKind,
+    /// (row, col, value) in the full numbering, one entry per position (duplicates summed),
+    /// sorted by (row, col); both triangles stored.
+    pub triplets: Vec<(usize, usize, f64)>,
+    /// DOFs eliminated: the numbering's (AFFE_CHAR_MECA) and AFFE_CHAR_CINE's.
+    pub eliminated: Vec<bool>,
+}
+
+impl AssembledMatrix {
+    pub fn size(&self) -> usize {
+        self.numbering.len()
+    }
+
+    /// Full indices of the free DOFs, in order: reduced index i is full index
+    /// `free_dofs()[i]`.
+    pub fn free_dofs(&self) -> Vec<usize> {
+        (0..self.size())
+            .filter(|&i| !self.eliminated.get(i).copied().unwrap_or(false))
+            .collect()
+    }
+
+    /// Reduced index of the DOF (node, component), if it exists and is free.
+    pub fn reduced_index_of(&self, node: &str, cmp: super::Cmp) -> Option<usize> {
+        let full = self.numbering.index_of(node, cmp)?;
+        if self.eliminated.get(full).copied().unwrap_or(false) {
+            return None;
+        }
+        Some(self.eliminated[..full].iter().filter(|e| !**e).count())
+    }
+
+    /// A vector on the free DOFs (e.g. a mode shape) written in the full numbering, zero on
+    /// the eliminated DOFs. Errors if its length is not the number of free DOFs.
+    pub fn expand(&self, reduced: &[f64]) -> Result<Vec<f64>> {
+        let free = self.free_dofs();
+        if reduced.len() != free.len() {
+            return Err(Error::internal(format!(
+                "vector of {} values for {} free DOFs",
+                reduced.len(),
+                free.len()
+            )));
+        }
+        let mut full = vec![0.0; self.size()];
+        for (&i, &v) in free.iter().zip(reduced) {
+            if let Some(x) = full.get_mut(i) {
+                *x = v;
+            }
+        }
+        Ok(full)
+    }
+
+    /// The matrix restricted to the free DOFs.
+    pub fn reduced(&self) -> Result<SparseColMat<usize, f64>> {
+        sparse::reduced(self.size(), &self.triplets, &self.eliminated)
+    }
+
+    /// The full matrix (eliminated DOFs included).
+    pub fn full(&self) -> Result<SparseColMat<usize, f64>> {
+        sparse::from_triplets(self.size(), self.size(), &self.triplets)
+    }
+}
+
+/// Assemble element matrices (all of the same kind) on `numbering`; `cine` are the
+/// AFFE_CHAR_CINE loads whose DOFs are eliminated on top of the numbering's.
+pub fn assemble(
+    numbering: &DofNumbering,
+    mesh: &Mesh,
+    mats: &[&ElemMatrices],
+    cine: &[&KinematicLoad],
+) -> Result<AssembledMatrix> {
+    let first = mats
+        .first()
+        .ok_or_else(|| Error::input("no element matrix given").keyword("MATR_ELEM"))?;
+    let kind = first.kind;
+    if let Some(other) = mats.iter().find(|m| m.kind != kind) {
+        return Err(Error::input(format!(
+            "cannot add {} and {} element matrices",
+            kind.aster_name(),
+            other.kind.aster_name()
+        ))
+        .keyword("MATR_ELEM"));
+    }
+    let map = numbering.index_map();
+    let mut raw = Vec::new();
+    for m in mats {
+        for e in &m.elements {
+            let mut idx = Vec::with_capacity(e.dofs.len());
+            for &(n, c) in &e.dofs {
+                let name = mesh.nodes.get(n).map(|x| x.name.as_str()).unwrap_or("?");
+                let i = map.get(&(name, c)).ok_or_else(|| {
+                    Error::input(format!(
+                        "DOF {c} of node {name} is not in the numbering (model {})",
+                        numbering.model
+                    ))
+                    .keyword("NUME_DDL")
+                    .hint("build NUME_DDL from the same model as the element matrices")
+                })?;
+                idx.push(*i);
+            }
+            let n = idx.len();
+            for (a, &r) in idx.iter().enumerate() {
+                for (b, &c) in idx.iter().enumerate() {
+                    let v = e.values.get(a * n + b).copied().unwrap_or(0.0);
+                    raw.push((r, c, v));
+                }
+            }
+        }
+    }
+    let eliminated = numbering.mark(cine)?;
+    Ok(AssembledMatrix {
+        numbering: numbering.clone(),
+        kind,
+        triplets: sparse::consolidate(raw),
+        eliminated,
+    })
+}

@@ -1,0 +1,169 @@
+//! The finite element model (AFFE_MODELE): which modelisation each cell carries.
+
+use super::dof::Cmp;
+use super::select::model_select_cells;
+use crate::args::Args;
+use crate::error::{Error, Result};
+use crate::mesh::{CellKind, Mesh};
+use serde::{Deserialize, Serialize};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// Mechanical modelisations we support (Code_Aster names in [`Modelisation::aster_name`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Modelisation {
+    /// DIS_T: discrete element, 3 translations per node (POI1, SEG2).
+    DisT,
+    /// DIS_TR: discrete element, 3 translations and 3 rotations per node (POI1, SEG2).
+    DisTr,
+    /// 2D_DIS_T: discrete element in the plane, DX DY (POI1, SEG2).
+    Dis2dT,
+    /// POU_D_E: 3D Euler-Bernoulli beam (SEG2).
+    PouDE,
+    /// BARRE: truss bar, axial stiffness only (SEG2).
+    Barre,
+}
+
+impl Modelisation {
+    pub const NAMES: [&'static str; 5] = ["DIS_T", "DIS_TR", "2D_DIS_T", "POU_D_E", "BARRE"];
+
+    pub fn parse(name: &str) -> Option<Modelisation> {
+        Some(match name {
+            "DIS_T" => Modelisation::DisT,
+            "DIS_TR" => Modelisation::DisTr,
+            "2D_DIS_T" => Modelisation::Dis2dT,
+            "POU_D_E" => Modelisation::PouDE,
+            "BARRE" => Modelisation::Barre,
+            _ => return None,
+        })
+    }
+
+    pub fn aster_name(self) -> &'static str {
+        match self {
+            Modelisation::DisT => "DIS_T",
+            Modelisation::DisTr => "DIS_TR",
+            Modelisation::Dis2dT => "2D_DIS_T",
+            Modelisation::PouDE => "POU_D_E",
+            Modelisation::Barre => "BARRE",
+        }
+    }
+
+    /// Components carried by every node of an element.
+    pub fn components(self) -> &'static [Cmp] {
+        match self {
+            Modelisation::DisT | Modelisation::Barre => &[Cmp::Dx, Cmp::Dy, Cmp::Dz],
+            Modelisation::Dis2dT => &[Cmp::Dx, Cmp::Dy],
+            Modelisation::DisTr | Modelisation::PouDE => &Cmp::ALL,
+        }
+    }
+
+    /// Cell kinds this modelisation has an element for.
+    pub fn cell_kinds(self) -> &'static [CellKind] {
+        match self {
+            Modelisation::DisT | Modelisation::DisTr | Modelisation::Dis2dT => {
+                &[CellKind::Poi1, CellKind::Seg2]
+            }
+            Modelisation::PouDE | Modelisation::Barre => &[CellKind::Seg2],
+        }
+    }
+
+    pub fn is_discrete(self) -> bool {
+        matches!(
+            self,
+            Modelisation::DisT | Modelisation::DisTr | Modelisation::Dis2dT
+        )
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ModelElement {
+    /// Index into `Mesh::cells`.
+    pub cell: usize,
+    pub modelisation: Modelisation,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Model {
+    /// Name of the mesh concept.
+    pub mesh: String,
+    /// One element per modelled cell, sorted by cell index.
+    pub elements: Vec<ModelElement>,
+}
+
+impl Model {
+    /// AFFE_MODELE: every AFFE occurrence assigns a modelisation to its cells; a later
+    /// occurrence overrides an earlier one on the same cell. As in Code_Aster, cells whose
+    /// type has no element for the modelisation are skipped (TOUT='OUI' on a mixed mesh),
+    /// but an occurrence that assigns no cell at all is an error.
+    pub fn build(mesh_name: &str, mesh: &Mesh, affe: &[Args]) -> Result<Model> {
+        let mut by_cell: BTreeMap<usize, Modelisation> = BTreeMap::new();
+        for occ in affe {
+            let phen = occ.text("PHENOMENE").unwrap_or("MECANIQUE");
+            if phen != "MECANIQUE" {
+                return Err(Error::input(format!("phenomenon {phen} is not supported"))
+                    .keyword(occ.key_path("PHENOMENE"))
+                    .hint("only PHENOMENE='MECANIQUE' is available"));
+            }
+            let names = occ.texts("MODELISATION").unwrap_or_default();
+            let [name] = names.as_slice() else {
+                return Err(Error::input("expected exactly one MODELISATION")
+                    .keyword(occ.key_path("MODELISATION")));
+            };
+            let m = Modelisation::parse(name).ok_or_else(|| {
+                Error::input(format!("unknown MODELISATION {name}"))
+                    .keyword(occ.key_path("MODELISATION"))
+                    .hint(format!(
+                        "expected one of {}",
+                        Modelisation::NAMES.join(", ")
+                    ))
+            })?;
+            let cells = model_select_cells(mesh, mesh_name, occ)?;
+            let mut assigned = 0;
+            for c in cells {
+                let Some(cell) = mesh.cells.get(c) else {
+                    continue;
+                };
+                if m.cell_kinds().contains(&cell.kind) {
+                    by_cell.insert(c, m);
+                    assigned += 1;
+                }
+            }
+            if assigned == 0 {
+                let kinds: Vec<&str> = m.cell_kinds().iter().map(|k| k.aster_name()).collect();
+                return Err(Error::input(format!(
+                    "MODELISATION {name} assigned no element: none of the selected cells is a {}",
+                    kinds.join(" or ")
+                ))
+                .keyword(occ.key_path("MODELISATION")));
+            }
+        }
+        Ok(Model {
+            mesh: mesh_name.to_string(),
+            elements: by_cell
+                .into_iter()
+                .map(|(cell, modelisation)| ModelElement { cell, modelisation })
+                .collect(),
+        })
+    }
+
+    pub fn element_of(&self, cell: usize) -> Option<&ModelElement> {
+        self.elements
+            .binary_search_by_key(&cell, |e| e.cell)
+            .ok()
+            .and_then(|i| self.elements.get(i))
+    }
+
+    /// Components carried by each node of the model (node index -> components).
+    pub fn node_components(&self, mesh: &Mesh) -> BTreeMap<usize, BTreeSet<Cmp>> {
+        let mut out: BTreeMap<usize, BTreeSet<Cmp>> = BTreeMap::new();
+        for e in &self.elements {
+            if let Some(cell) = mesh.cells.get(e.cell) {
+                for &n in &cell.nodes {
+                    out.entry(n)
+                        .or_default()
+                        .extend(e.modelisation.components().iter().copied());
+                }
+            }
+        }
+        out
+    }
+}

@@ -1,0 +1,119 @@
+//! Kinematic conditions: AFFE_CHAR_CINE (MECA_IMPO) and AFFE_CHAR_MECA (DDL_IMPO).
+//!
+//! Both are applied by eliminating the blocked DOFs (Code_Aster dualises AFFE_CHAR_MECA
+//! with Lagrange multipliers; for homogeneous conditions both give the same modes).
+//! Imposed values are stored as given; modal analysis only uses which DOFs are blocked
+//! (the operators warn when a value is nonzero).
+
+use super::dof::Cmp;
+use super::fe_model::Model;
+use super::select::model_select_nodes;
+use crate::args::Args;
+use crate::error::{Error, Result};
+use crate::mesh::Mesh;
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum LoadKind {
+    /// AFFE_CHAR_CINE: eliminated at assembly (ASSE_MATRICE CHAR_CINE).
+    Cine,
+    /// AFFE_CHAR_MECA: part of the numbering (NUME_DDL / CALC_MATR_ELEM CHARGE).
+    Meca,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BlockedDof {
+    pub node: String,
+    pub cmp: Cmp,
+    pub value: f64,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct KinematicLoad {
+    pub kind: LoadKind,
+    pub model: String,
+    /// In definition order; a DOF given twice keeps its last value.
+    pub blocked: Vec<BlockedDof>,
+}
+
+impl KinematicLoad {
+    /// Build from the MECA_IMPO (Cine) or DDL_IMPO (Meca) occurrences. Every component
+    /// must be carried by the node in the model, as Code_Aster requires.
+    pub fn build(
+        kind: LoadKind,
+        model_name: &str,
+        model: &Model,
+        mesh: &Mesh,
+        occurrences: &[Args],
+    ) -> Result<KinematicLoad> {
+        let carried = model.node_components(mesh);
+        let mut blocked: Vec<BlockedDof> = Vec::new();
+        // (node index, component) -> position in `blocked`: TOUT='OUI' on a large mesh
+        // must not scan the list for every DOF.
+        let mut seen: HashMap<(usize, Cmp), usize> = HashMap::new();
+        for occ in occurrences {
+            let nodes = model_select_nodes(mesh, &model.mesh, occ)?;
+            let encastre = occ.text("LIAISON") == Some("ENCASTRE");
+            let given: Vec<(Cmp, f64)> = Cmp::ALL
+                .iter()
+                .filter_map(|&c| occ.real(c.name()).map(|v| (c, v)))
+                .collect();
+            if given.is_empty() && !encastre {
+                return Err(Error::input("no component given")
+                    .keyword(occ.path.clone())
+                    .hint("give at least one of DX DY DZ DRX DRY DRZ (or LIAISON='ENCASTRE')"));
+            }
+            for n in nodes {
+                let Some(node) = mesh.nodes.get(n) else {
+                    continue;
+                };
+                let Some(cmps) = carried.get(&n) else {
+                    return Err(Error::input(format!(
+                        "node {} carries no DOF in model {model_name}",
+                        node.name
+                    ))
+                    .keyword(occ.path.clone())
+                    .hint("block only nodes of modelled cells"));
+                };
+                let mut these = given.clone();
+                if encastre {
+                    these.extend(cmps.iter().map(|&c| (c, 0.0)));
+                }
+                for (c, v) in these {
+                    if !cmps.contains(&c) {
+                        return Err(Error::input(format!(
+                            "component {c} does not exist on node {} in model {model_name}",
+                            node.name
+                        ))
+                        .keyword(occ.key_path(c.name()))
+                        .hint(format!(
+                            "the node carries {}",
+                            cmps.iter().map(|c| c.name()).collect::<Vec<_>>().join(" ")
+                        )));
+                    }
+                    if let Some(b) = seen.get(&(n, c)).and_then(|&i| blocked.get_mut(i)) {
+                        b.value = v;
+                    } else {
+                        seen.insert((n, c), blocked.len());
+                        blocked.push(BlockedDof {
+                            node: node.name.clone(),
+                            cmp: c,
+                            value: v,
+                        });
+                    }
+                }
+            }
+        }
+        Ok(KinematicLoad {
+            kind,
+            model: model_name.to_string(),
+            blocked,
+        })
+    }
+
+    /// Blocked DOFs with a nonzero imposed value (ignored by modal analysis).
+    pub fn nonzero(&self) -> Vec<&BlockedDof> {
+        self.blocked.iter().filter(|b| b.value != 0.0).collect()
+    }
+}

@@ -1,0 +1,102 @@
+//! CALC_MATR_ELEM: element matrices RIGI_MECA / MASS_MECA.
+
+use super::OpContext;
+use crate::args::Args;
+use crate::error::{Error, Result};
+use crate::model::{
+    compute_elem_matrices, ElemInputs, ElemMatrices, KinematicLoad, LoadKind, MatrixKind,
+};
+use crate::store::model::{
+    load_cara_elem, load_load, load_material_field, load_model_and_mesh, same_model,
+    save_elem_matrices,
+};
+use crate::store::Store;
+
+pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    let name = ctx.result_name()?.to_string();
+    let option = args.req_text("OPTION")?;
+    let kind = MatrixKind::parse(option).ok_or_else(|| {
+        Error::validation(format!("OPTION {option} is not supported"))
+            .keyword("CALC_MATR_ELEM/OPTION")
+            .hint("use RIGI_MECA or MASS_MECA")
+    })?;
+    let inputs = Inputs::from_args(args)?;
+    let mats = inputs.elem_matrices(ctx.store, kind)?;
+    ctx.create(&name, "matr_elem_depl_r")?;
+    save_elem_matrices(ctx.store, &name, &mats)
+}
+
+/// Concept names shared by CALC_MATR_ELEM and ASSEMBLAGE.
+pub(crate) struct Inputs {
+    pub model: String,
+    pub cham_mater: Option<String>,
+    pub cara_elem: Option<String>,
+    pub charges: Vec<String>,
+}
+
+impl Inputs {
+    pub(crate) fn from_args(args: &Args) -> Result<Inputs> {
+        Ok(Inputs {
+            model: args.req_concept("MODELE")?.name.clone(),
+            cham_mater: args.concept("CHAM_MATER").map(|c| c.name.clone()),
+            cara_elem: args.concept("CARA_ELEM").map(|c| c.name.clone()),
+            charges: args
+                .concepts("CHARGE")
+                .unwrap_or_default()
+                .into_iter()
+                .map(|c| c.name)
+                .collect(),
+        })
+    }
+
+    /// The AFFE_CHAR_MECA loads of CHARGE, checked against the model.
+    pub(crate) fn loads(&self, store: &Store) -> Result<Vec<(String, KinematicLoad)>> {
+        let mut out = Vec::new();
+        for c in &self.charges {
+            let l = load_load(store, c)?;
+            same_model("load", c, &l.model, &self.model).map_err(|e| e.keyword("CHARGE"))?;
+            if l.kind != LoadKind::Meca {
+                return Err(Error::input(format!("{c} is not an AFFE_CHAR_MECA load"))
+                    .keyword("CHARGE")
+                    .hint("AFFE_CHAR_CINE loads go to CHAR_CINE"));
+            }
+            out.push((c.clone(), l));
+        }
+        Ok(out)
+    }
+
+    pub(crate) fn elem_matrices(&self, store: &Store, kind: MatrixKind) -> Result<ElemMatrices> {
+        let (model, mesh) = load_model_and_mesh(store, &self.model)?;
+        let field = match &self.cham_mater {
+            Some(n) => {
+                let f = load_material_field(store, n)?;
+                if f.mesh != model.mesh {
+                    return Err(Error::input(format!(
+                        "CHAM_MATER {n} is on mesh {}, the model on {}",
+                        f.mesh, model.mesh
+                    ))
+                    .keyword("CHAM_MATER"));
+                }
+                Some(f)
+            }
+            None => None,
+        };
+        let cara = match &self.cara_elem {
+            Some(n) => {
+                let c = load_cara_elem(store, n)?;
+                same_model("CARA_ELEM", n, &c.model, &self.model)
+                    .map_err(|e| e.keyword("CARA_ELEM"))?;
+                Some(c)
+            }
+            None => None,
+        };
+        let inp = ElemInputs {
+            model_name: &self.model,
+            model: &model,
+            mesh: &mesh,
+            field: field.as_ref(),
+            cara: cara.as_ref(),
+        };
+        compute_elem_matrices(kind, &inp, self.loads(store)?)
+    }
+}
