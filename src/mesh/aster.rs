@@ -513,3 +513,172 @@ fn resolve_groups(
     }
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str =
+        "TITRE\n t\nFINSF\nCOOR_3D\n N1 0 0 0\n N2 1 0 0\nFINSF\nSEG2\n M1 N1 N2\nFINSF\nFIN\n";
+
+    /// Parse `text`, expect an error and return (line, message).
+    fn fails(text: &str) -> (usize, String) {
+        let e = parse(text, "t.mail").expect_err("the file should be refused");
+        assert_eq!(e.kind, crate::error::ErrorKind::Input);
+        let loc = e.location.clone().expect("errors carry a location");
+        assert_eq!(loc.file, "t.mail");
+        (loc.span.line, e.to_string())
+    }
+
+    #[test]
+    fn good_file_reads() {
+        let m = parse(GOOD, "t.mail").unwrap();
+        assert_eq!(m.dim, 3);
+        assert_eq!(m.nodes.len(), 2);
+        assert_eq!(m.cells[0].nodes, vec![0, 1]);
+        assert_eq!(m.cells[0].kind, CellKind::Seg2);
+    }
+
+    #[test]
+    fn group_order_is_kept_and_repeats_dropped() {
+        let t = "COOR_2D\n A 0 0\n B 1 0\n C 2 0\nFINSF\nGROUP_NO NOM=G\n C A\n C B\nFINSF\nFIN\n";
+        let m = parse(t, "t.mail").unwrap();
+        assert_eq!(m.node_group("G").unwrap().members, vec![2, 0, 1]);
+        assert_eq!(m.dim, 2);
+    }
+
+    #[test]
+    fn blocks_may_reference_later_blocks() {
+        let t = "GROUP_MA\n G M1\nFINSF\nSEG2\n M1 N1 N2\nFINSF\nCOOR_3D\n N1 0 0 0\n N2 1 0 0\nFINSF\nFIN\n";
+        let m = parse(t, "t.mail").unwrap();
+        assert_eq!(m.cell_group("G").unwrap().members, vec![0]);
+    }
+
+    #[test]
+    fn missing_fin_is_truncation() {
+        let (line, msg) = fails(&GOOD.replace("FIN\n", ""));
+        assert_eq!(line, 10);
+        assert!(msg.contains("without FIN"), "{msg}");
+    }
+
+    #[test]
+    fn missing_finsf_at_end_of_file() {
+        let (line, msg) = fails("COOR_3D\n N1 0 0 0\n N2 1 0 0\n");
+        assert_eq!(line, 3);
+        assert!(
+            msg.contains("COOR_3D opened at line 1 has no FINSF"),
+            "{msg}"
+        );
+    }
+
+    #[test]
+    fn missing_finsf_before_next_block() {
+        let (line, msg) = fails("COOR_3D\n N1 0 0 0\nSEG2\n M1 N1 N1\nFINSF\nFIN\n");
+        assert_eq!(line, 3);
+        assert!(msg.contains("no FINSF before 'SEG2'"), "{msg}");
+    }
+
+    #[test]
+    fn unknown_cell_type() {
+        let (line, msg) = fails(&GOOD.replace("SEG2", "SEG7"));
+        assert_eq!(line, 8);
+        assert!(
+            msg.contains("unknown cell type or block keyword 'SEG7'"),
+            "{msg}"
+        );
+    }
+
+    #[test]
+    fn undefined_node_in_cell() {
+        let (line, msg) = fails(&GOOD.replace("M1 N1 N2", "M1 N1\n N9"));
+        assert_eq!(line, 10);
+        assert!(msg.contains("node N9 (of cell M1) is not defined"), "{msg}");
+    }
+
+    #[test]
+    fn undefined_node_in_group() {
+        let (line, msg) = fails(&GOOD.replace("FIN\n", "GROUP_NO\n G\n N1 N7\nFINSF\nFIN\n"));
+        assert_eq!(line, 13);
+        assert!(msg.contains("node N7 (member of GROUP_NO G)"), "{msg}");
+    }
+
+    #[test]
+    fn undefined_cell_in_group() {
+        let (line, msg) = fails(&GOOD.replace("FIN\n", "GROUP_MA NOM=G\n M2\nFINSF\nFIN\n"));
+        assert_eq!(line, 12);
+        assert!(msg.contains("cell M2 (member of GROUP_MA G)"), "{msg}");
+    }
+
+    #[test]
+    fn duplicate_node() {
+        let (line, msg) = fails(&GOOD.replace(" N2 1 0 0", " N1 1 0 0"));
+        assert_eq!(line, 6);
+        assert!(
+            msg.contains("node N1 is defined twice (first at line 5)"),
+            "{msg}"
+        );
+    }
+
+    #[test]
+    fn duplicate_cell() {
+        let (line, msg) = fails(&GOOD.replace(" M1 N1 N2\n", " M1 N1 N2\n M1 N2 N1\n"));
+        assert_eq!(line, 10);
+        assert!(
+            msg.contains("cell M1 is defined twice (first at line 9)"),
+            "{msg}"
+        );
+    }
+
+    #[test]
+    fn duplicate_group() {
+        let extra = "GROUP_NO\n G N1\nFINSF\nGROUP_NO NOM=G\n N2\nFINSF\nFIN\n";
+        let (line, msg) = fails(&GOOD.replace("FIN\n", extra));
+        assert_eq!(line, 14);
+        assert!(
+            msg.contains("GROUP_NO G is defined twice (first at line 12)"),
+            "{msg}"
+        );
+    }
+
+    #[test]
+    fn too_many_nodes_for_cell() {
+        let (line, msg) = fails(&GOOD.replace("M1 N1 N2", "M1 N1 N2 N1"));
+        assert_eq!(line, 9);
+        assert!(
+            msg.contains("SEG2 cell M1: expected 2 node name(s)"),
+            "{msg}"
+        );
+    }
+
+    #[test]
+    fn too_few_nodes_before_finsf() {
+        let (line, msg) = fails(&GOOD.replace("M1 N1 N2", "M1 N1"));
+        assert_eq!(line, 9);
+        assert!(msg.contains("found 1 words before FINSF"), "{msg}");
+    }
+
+    #[test]
+    fn too_few_nodes_then_next_entry() {
+        // M1 lacks a node; M2 on the next line must not be taken for it silently.
+        let (line, msg) = fails(&GOOD.replace("M1 N1 N2", "M1 N1\n M2 N1 N2"));
+        assert_eq!(line, 9);
+        assert!(msg.contains("SEG2 cell M1"), "{msg}");
+    }
+
+    #[test]
+    fn bad_number() {
+        let (line, msg) = fails(&GOOD.replace("N2 1 0 0", "N2 1 0,5 0"));
+        assert_eq!(line, 6);
+        assert!(msg.contains("'0,5' is not a number"), "{msg}");
+        let (line, msg) = fails(&GOOD.replace("N2 1 0 0", "N2 1 x 0"));
+        assert_eq!(line, 6);
+        assert!(msg.contains("'x' is not a number"), "{msg}");
+    }
+
+    #[test]
+    fn entry_on_header_line_is_refused() {
+        let (line, msg) = fails(&GOOD.replace("COOR_3D\n", "COOR_3D N0 0 0 0\n"));
+        assert_eq!(line, 4);
+        assert!(msg.contains("entries start on the next line"), "{msg}");
+    }
+}

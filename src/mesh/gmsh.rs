@@ -546,3 +546,117 @@ fn build(p: Parsed) -> Mesh {
     mesh.cell_groups = cell_groups.into_iter().map(|(g, _)| g).collect();
     mesh
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const V22: &str = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n2 1 0 0\n$EndNodes\n$Elements\n1\n1 1 2 0 1 1 2\n$EndElements\n";
+
+    fn fails(text: &str) -> (usize, String) {
+        let e = parse(text, "t.msh").expect_err("the file should be refused");
+        assert_eq!(e.kind, crate::error::ErrorKind::Input);
+        let loc = e.location.clone().expect("errors carry a location");
+        (loc.span.line, e.to_string())
+    }
+
+    #[test]
+    fn names_follow_code_aster_convention() {
+        let m = parse(V22, "t.msh").unwrap();
+        assert_eq!(m.nodes[1].name, "N2");
+        assert_eq!(m.cells[0].name, "M1");
+        assert!(m.cell_groups.is_empty(), "physical tag 0 means no group");
+        assert_eq!(m.dim, 2);
+    }
+
+    #[test]
+    fn unnamed_physical_group_is_named_by_tag() {
+        let m = parse(&V22.replace("1 1 2 0 1 1 2", "1 1 2 7 1 1 2"), "t.msh").unwrap();
+        assert_eq!(m.cell_group("GM7").unwrap().members, vec![0]);
+        assert_eq!(m.node_group("GN7").unwrap().members, vec![0, 1]);
+    }
+
+    #[test]
+    fn unsupported_element_type() {
+        let (line, msg) = fails(&V22.replace("1 1 2 0 1 1 2", "1 11 2 0 1 1 2"));
+        assert_eq!(line, 11);
+        assert!(msg.contains("type 11, which is not supported"), "{msg}");
+    }
+
+    #[test]
+    fn undefined_node() {
+        let (line, msg) = fails(&V22.replace("1 1 2 0 1 1 2", "1 1 2 0 1 1 5"));
+        assert_eq!(line, 11);
+        assert!(msg.contains("uses node 5, which is not in $Nodes"), "{msg}");
+    }
+
+    #[test]
+    fn wrong_node_count() {
+        let (line, msg) = fails(&V22.replace("1 1 2 0 1 1 2", "1 1 2 0 1 1 2 2"));
+        assert_eq!(line, 11);
+        assert!(msg.contains("needs 2 nodes, found 3"), "{msg}");
+    }
+
+    #[test]
+    fn bad_number() {
+        let (line, msg) = fails(&V22.replace("2 1 0 0", "2 1 zero 0"));
+        assert_eq!(line, 7);
+        assert!(msg.contains("'zero' is not a valid number"), "{msg}");
+    }
+
+    #[test]
+    fn truncated_file() {
+        let cut = &V22[..V22.find("$EndElements").unwrap()];
+        let (line, msg) = fails(cut);
+        assert_eq!(line, 11);
+        assert!(msg.contains("ends inside $Elements"), "{msg}");
+    }
+
+    #[test]
+    fn count_mismatch() {
+        let (line, msg) = fails(&V22.replace("$Nodes\n2\n", "$Nodes\n3\n"));
+        assert_eq!(line, 8);
+        assert!(msg.contains("$Nodes ends early"), "{msg}");
+    }
+
+    #[test]
+    fn duplicate_node_tag() {
+        let (line, msg) = fails(&V22.replace("2 1 0 0", "1 1 0 0"));
+        assert_eq!(line, 7);
+        assert!(msg.contains("node 1 is defined twice"), "{msg}");
+    }
+
+    #[test]
+    fn binary_and_unknown_versions_refused() {
+        let (line, msg) = fails(&V22.replace("2.2 0 8", "2.2 1 8"));
+        assert_eq!(line, 2);
+        assert!(msg.contains("binary"), "{msg}");
+        let (_, msg) = fails(&V22.replace("2.2 0 8", "3.0 0 8"));
+        assert!(msg.contains("version 3.0"), "{msg}");
+    }
+
+    #[test]
+    fn v41_total_must_match_blocks() {
+        let t =
+            "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 2\n0 1 0 1\n1\n0 0 0\n$EndNodes\n";
+        let (line, msg) = fails(t);
+        assert_eq!(line, 5);
+        assert!(
+            msg.contains("announces 2 nodes, the blocks hold 1"),
+            "{msg}"
+        );
+    }
+
+    #[test]
+    fn multiple_physical_tags_of_an_entity_give_several_groups() {
+        let m = read_file(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("testcases/meshes/mixed41.msh"),
+        )
+        .unwrap();
+        // Surface 2 carries physical tags 10 ("quads") and 12 (unnamed).
+        assert_eq!(m.cell_group("GM12").unwrap().members, vec![1]);
+        assert_eq!(m.cell_group("quads").unwrap().members, vec![0, 1]);
+        assert_eq!(m.cells[1].name, "M20");
+        assert_eq!(m.cells[1].kind, CellKind::Quad8);
+    }
+}
