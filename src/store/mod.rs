@@ -12,6 +12,8 @@
 //! Each operator runs inside one transaction ([`Store::begin_op`] / [`Store::commit_op`] /
 //! [`Store::rollback_op`]): an operator that fails leaves the file exactly as before.
 
+pub mod mesh;
+
 use crate::error::{Error, Result};
 use rusqlite::{params, Connection, OptionalExtension};
 use serde::{de::DeserializeOwned, Serialize};
@@ -247,7 +249,7 @@ impl Store {
     /// Delete the rows a concept owns in the typed tables. Each typed submodule adds its
     /// own cleanup here.
     fn drop_typed_data(&self, name: &str) -> Result<()> {
-        let _ = name;
+        mesh::delete_mesh(&self.conn, name)?;
         Ok(())
     }
 
