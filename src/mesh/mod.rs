@@ -1,6 +1,8 @@
 //! Meshes: nodes, cells and named groups, and the readers of the formats we claim.
 
 pub mod aster;
+pub mod check;
+pub mod edit;
 pub mod gmsh;
 pub mod select;
 
@@ -129,6 +131,30 @@ impl Mesh {
 }
 
 impl Mesh {
+    /// One line: node and cell counts, cells per type, group counts.
+    pub fn summary(&self) -> String {
+        let mut per_kind: Vec<(CellKind, usize)> = Vec::new();
+        for c in &self.cells {
+            match per_kind.iter_mut().find(|(k, _)| *k == c.kind) {
+                Some((_, n)) => *n += 1,
+                None => per_kind.push((c.kind, 1)),
+            }
+        }
+        let kinds: Vec<String> = per_kind
+            .iter()
+            .map(|(k, n)| format!("{} {n}", k.aster_name()))
+            .collect();
+        format!(
+            "{} nodes, {} cells ({}), {} GROUP_MA, {} GROUP_NO, dimension {}",
+            self.nodes.len(),
+            self.cells.len(),
+            kinds.join(", "),
+            self.cell_groups.len(),
+            self.node_groups.len(),
+            self.dim
+        )
+    }
+
     /// The nodes of `cells`, each once, in order of first appearance.
     pub fn nodes_of_cells(&self, cells: &[usize]) -> Vec<usize> {
         let mut seen = vec![false; self.nodes.len()];
