@@ -4,6 +4,10 @@
 //!
 //! The interpreter calls [`run`] inside one store transaction per call.
 
+pub mod crea_maillage;
+pub mod defi_group;
+pub mod lire_maillage;
+
 use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::store::Store;
@@ -96,6 +100,9 @@ pub type OpFn = fn(&mut OpContext<'_>, &Args) -> Result<()>;
 pub fn lookup(name: &str) -> Option<OpFn> {
     // One line per operator: "NAME" => module::run,
     let f: OpFn = match name {
+        "LIRE_MAILLAGE" => lire_maillage::run,
+        "CREA_MAILLAGE" => crea_maillage::run,
+        "DEFI_GROUP" => defi_group::run,
         _ => return None,
     };
     Some(f)
