@@ -31,6 +31,9 @@ pub mod assemblage;
 pub mod calc_matr_elem;
 pub mod defi_materiau;
 pub mod nume_ddl;
+pub mod crea_maillage;
+pub mod defi_group;
+pub mod lire_maillage;
 
 use crate::args::Args;
 use crate::error::{Error, Result};
@@ -147,6 +150,9 @@ pub fn lookup(name: &str) -> Option<OpFn> {
         "NUME_DDL" => nume_ddl::run,
         "ASSE_MATRICE" => asse_matrice::run,
         "ASSEMBLAGE" => assemblage::run,
+        "LIRE_MAILLAGE" => lire_maillage::run,
+        "CREA_MAILLAGE" => crea_maillage::run,
+        "DEFI_GROUP" => defi_group::run,
         _ => return None,
     };
     Some(f)

@@ -16,6 +16,7 @@ pub mod function;
 pub mod table;
 pub mod matrix;
 pub mod model;
+pub mod mesh;
 
 use crate::error::{Error, Result};
 use rusqlite::{params, Connection, OptionalExtension};
@@ -254,6 +255,7 @@ impl Store {
     fn drop_typed_data(&self, name: &str) -> Result<()> {
         table::drop_table_data(self, name)?;
         matrix::drop_data(self, name)?;
+        mesh::delete_mesh(&self.conn, name)?;
         Ok(())
     }
 
