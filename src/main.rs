@@ -1,4 +1,5 @@
 //! The `aster-nl` command: a thin layer over the library.
+#![allow(clippy::result_large_err)]
 
 use aster_nl::error::{Error, ErrorKind};
 use aster_nl::interp::{self, RunOptions};

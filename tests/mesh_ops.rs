@@ -67,6 +67,7 @@ fn run(
         tests: &mut tests,
         created: Vec::new(),
         progress: false,
+        value: None,
     };
     store.begin_op()?;
     match f(&mut ctx, a) {

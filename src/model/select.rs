@@ -1,74 +1,24 @@
-//! Private cell/node selection for the model operators (TOUT / GROUP_MA / MAILLE /
-//! GROUP_NO / NOEUD). integration: the mesh helper writes `mesh::select`; switch these
-//! two functions to it when merging.
+//! Cell/node selection for the model operators (TOUT / GROUP_MA / MAILLE / GROUP_NO /
+//! NOEUD), over `mesh::select`, in mesh order.
 
 use crate::args::Args;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::mesh::Mesh;
-use std::collections::BTreeSet;
-
-fn unknown(what: &str, name: &str, mesh_name: &str, key: String) -> Error {
-    Error::input(format!("{what} {name} is not in mesh {mesh_name}"))
-        .keyword(key)
-        .hint("check the spelling; names are case-sensitive")
-}
 
 /// Cells chosen by TOUT='OUI', GROUP_MA or MAILLE in one factor keyword occurrence,
-/// sorted and without repeats.
-pub fn model_select_cells(mesh: &Mesh, mesh_name: &str, args: &Args) -> Result<Vec<usize>> {
-    let mut out = BTreeSet::new();
-    if args.text("TOUT") == Some("OUI") {
-        out.extend(0..mesh.cells.len());
-    }
-    for g in args.texts("GROUP_MA").unwrap_or_default() {
-        let grp = mesh
-            .cell_group(&g)
-            .ok_or_else(|| unknown("GROUP_MA", &g, mesh_name, args.key_path("GROUP_MA")))?;
-        out.extend(grp.members.iter().copied());
-    }
-    for m in args.texts("MAILLE").unwrap_or_default() {
-        let i = mesh
-            .cell_index(&m)
-            .ok_or_else(|| unknown("cell (MAILLE)", &m, mesh_name, args.key_path("MAILLE")))?;
-        out.insert(i);
-    }
-    Ok(out.into_iter().collect())
+/// sorted and without repeats (the model keeps its elements in mesh order).
+pub fn model_select_cells(mesh: &Mesh, _mesh_name: &str, args: &Args) -> Result<Vec<usize>> {
+    let mut cells = crate::mesh::select::select_cells(mesh, args)?;
+    cells.sort_unstable();
+    Ok(cells)
 }
 
 /// Nodes chosen by TOUT, GROUP_NO, NOEUD, GROUP_MA or MAILLE (the nodes of those cells),
 /// sorted and without repeats.
-pub fn model_select_nodes(mesh: &Mesh, mesh_name: &str, args: &Args) -> Result<Vec<usize>> {
-    let mut out = BTreeSet::new();
-    if args.text("TOUT") == Some("OUI") {
-        out.extend(0..mesh.nodes.len());
-    }
-    for g in args.texts("GROUP_NO").unwrap_or_default() {
-        let grp = mesh
-            .node_group(&g)
-            .ok_or_else(|| unknown("GROUP_NO", &g, mesh_name, args.key_path("GROUP_NO")))?;
-        out.extend(grp.members.iter().copied());
-    }
-    for n in args.texts("NOEUD").unwrap_or_default() {
-        let i = mesh
-            .node_index(&n)
-            .ok_or_else(|| unknown("node (NOEUD)", &n, mesh_name, args.key_path("NOEUD")))?;
-        out.insert(i);
-    }
-    let has_cells = args.has("GROUP_MA") || args.has("MAILLE");
-    if has_cells {
-        let mut cell_args = Args::new(args.path.clone());
-        for k in ["GROUP_MA", "MAILLE"] {
-            if let Some((kk, v, s)) = args.simple.iter().find(|(kk, _, _)| kk == k) {
-                cell_args.simple.push((kk.clone(), v.clone(), *s));
-            }
-        }
-        for c in model_select_cells(mesh, mesh_name, &cell_args)? {
-            if let Some(cell) = mesh.cells.get(c) {
-                out.extend(cell.nodes.iter().copied());
-            }
-        }
-    }
-    Ok(out.into_iter().collect())
+pub fn model_select_nodes(mesh: &Mesh, _mesh_name: &str, args: &Args) -> Result<Vec<usize>> {
+    let mut nodes = crate::mesh::select::select_nodes(mesh, args)?;
+    nodes.sort_unstable();
+    Ok(nodes)
 }
 
 /// Names of the cell groups containing `cell`, for messages.

@@ -678,7 +678,7 @@ fn unknown_group_is_refused() {
         ("CARA", s("K_T_D_N")),
         ("VALE", reals(&[1.0, 1.0, 1.0])),
     ]]));
-    assert!(e.contains("GROUP_MA NOPE is not in mesh MA"), "{e}");
+    assert!(e.contains("GROUP_MA 'NOPE' is not in the mesh"), "{e}");
 }
 
 #[test]

@@ -120,6 +120,7 @@ mod tests {
                 tests: &mut tests,
                 created: vec![],
                 progress: false,
+                value: None,
             };
             f(&mut ctx, args)?;
             ctx.created
@@ -159,7 +160,7 @@ mod tests {
         store
             .register_concept("MA", "maillage_sdaster", "LIRE_MAILLAGE", "t.comm", 1)
             .unwrap();
-        store.put_json("MA", "mesh", &mesh).unwrap();
+        crate::store::mesh::save_mesh(&store, "MA", &mesh).unwrap();
         let mo = with_facts(
             fact(
                 "AFFE_MODELE",

@@ -13,10 +13,9 @@ pub const KEY_CARA_ELEM: &str = "cara_elem";
 pub const KEY_LOAD: &str = "load";
 pub const KEY_MATR_ELEM: &str = "matr_elem";
 
-/// The mesh of a concept. integration: switch to store::mesh::load (written by the mesh
-/// helper); this reads a json payload under key "mesh".
+/// The mesh of a concept (stored by `store::mesh`).
 pub fn load_mesh(store: &Store, name: &str) -> Result<Mesh> {
-    store.get_json::<Mesh>(name, "mesh")
+    super::mesh::load_mesh(store, name)
 }
 
 pub fn save_model(store: &Store, name: &str, m: &Model) -> Result<()> {
