@@ -28,6 +28,11 @@ use std::f64::consts::PI;
 /// shift-invert Lanczos pays off for larger models or few modes.
 pub const DENSE_MAX_DOFS: usize = 1500;
 
+/// Shift below 0, relative to the spectral scale tr K / tr M, used when K is singular
+/// (rigid-body modes): small enough to stay below the first elastic ω² of any sensible
+/// model, large enough that K + δM keeps a condition number ~1e10, far from breakdown.
+const RIGID_SHIFT: f64 = 1e-10;
+
 /// Largest number of Lanczos passes (each one deflating the modes already found).
 const MAX_PASSES: usize = 8;
 
@@ -190,7 +195,9 @@ fn check_request(req: &ModeRequest, n: usize) -> Result<()> {
             if !(f_min.is_finite() && f_max.is_finite() && f_min <= f_max && f_max >= 0.0) =>
         {
             bad(
-                format!("the band needs finite frequencies with f_min <= f_max, got [{f_min}, {f_max}]"),
+                format!(
+                    "the band needs finite frequencies with f_min <= f_max, got [{f_min}, {f_max}]"
+                ),
                 "CALC_FREQ/FREQ",
             )
         }
@@ -215,7 +222,11 @@ fn residual(k: &SymSparse, m: &SymSparse, omega2: f64, v: &[f64], scale: f64) ->
     k.mul(v, &mut kv);
     m.mul(v, &mut mv);
     let r: Vec<f64> = kv.iter().zip(&mv).map(|(a, b)| a - omega2 * b).collect();
-    let d: Vec<f64> = kv.iter().zip(&mv).map(|(a, b)| a + 1e-6 * scale * b).collect();
+    let d: Vec<f64> = kv
+        .iter()
+        .zip(&mv)
+        .map(|(a, b)| a + 1e-6 * scale * b)
+        .collect();
     let den = norm2(&d);
     if den > 0.0 {
         norm2(&r) / den
@@ -225,24 +236,61 @@ fn residual(k: &SymSparse, m: &SymSparse, omega2: f64, v: &[f64], scale: f64) ->
 }
 
 fn dense_modes(k: &SymSparse, m: &SymSparse, req: &ModeRequest, scale: f64) -> Result<ModeSet> {
-    let all = solve_dense(k, m, 1e-6 * scale)?;
-    let method = if all.infinite > 0 {
-        format!(
-            "dense (Cholesky of K + δM, {} infinite frequencies of massless DOFs dropped)",
-            all.infinite
-        )
-    } else {
+    let all = solve_dense(k, m, RIGID_SHIFT * scale)?;
+    let method = if all.delta.is_nan() {
         "dense (Cholesky of M, symmetric eigensolver)".to_string()
+    } else {
+        let chol = if all.delta == 0.0 {
+            "K".to_string()
+        } else {
+            format!("K + δM, δ = {:e}", all.delta)
+        };
+        let dropped = if all.infinite > 0 {
+            format!(
+                ", {} infinite frequencies of massless DOFs dropped",
+                all.infinite
+            )
+        } else {
+            String::new()
+        };
+        format!("dense (Cholesky of {chol}, symmetric eigensolver of the inverse form{dropped})")
     };
     let pairs: Vec<(f64, Vec<f64>)> = all.omega2.into_iter().zip(all.vectors).collect();
     let chosen = select(pairs, req)?;
-    let (omega2, vectors) = chosen.into_iter().unzip();
+    let (omega2, mut vectors): (Vec<f64>, Vec<Vec<f64>>) = chosen.into_iter().unzip();
+    // The eigenvector error of the inverse form is ~ε·μ_max/gap: with the tiny δ of
+    // rigid-body modes, enough to spoil M-orthogonality at 1e-8. What is lost is exactly
+    // the components along the other modes, which Gram–Schmidt removes.
+    m_orthonormalize(&mut vectors, m);
     Ok(ModeSet {
         omega2,
         vectors,
         residuals: vec![],
         method,
     })
+}
+
+/// Gram–Schmidt in the M inner product (two passes), in place.
+fn m_orthonormalize(vectors: &mut [Vec<f64>], m: &SymSparse) {
+    let mut mv: Vec<Vec<f64>> = Vec::with_capacity(vectors.len());
+    for i in 0..vectors.len() {
+        let (done, rest) = vectors.split_at_mut(i);
+        let v = &mut rest[0];
+        let mut w = vec![0.0; v.len()];
+        for _pass in 0..2 {
+            for (u, mu) in done.iter().zip(&mv) {
+                let c = super::eigen_sym::dot(mu, v);
+                v.iter_mut().zip(u).for_each(|(a, b)| *a -= c * b);
+            }
+        }
+        m.mul(v, &mut w);
+        let nrm = super::eigen_sym::dot(v, &w).max(0.0).sqrt();
+        if nrm > 0.0 {
+            v.iter_mut().for_each(|a| *a /= nrm);
+            w.iter_mut().for_each(|a| *a /= nrm);
+        }
+        mv.push(w);
+    }
 }
 
 /// Picks the requested modes out of a set (sorted or not); returns them by ascending ω².
@@ -270,7 +318,11 @@ fn select(mut pairs: Vec<(f64, Vec<f64>)>, req: &ModeRequest) -> Result<Vec<(f64
                 ))
                 .keyword("CALC_FREQ/NMAX_FREQ"));
             }
-            pairs.sort_by(|a, b| (frequency(a.0) - f).abs().total_cmp(&(frequency(b.0) - f).abs()));
+            pairs.sort_by(|a, b| {
+                (frequency(a.0) - f)
+                    .abs()
+                    .total_cmp(&(frequency(b.0) - f).abs())
+            });
             pairs.truncate(n);
             pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
         }
@@ -279,7 +331,13 @@ fn select(mut pairs: Vec<(f64, Vec<f64>)>, req: &ModeRequest) -> Result<Vec<(f64
 }
 
 /// Factorises K − σM, nudging σ off an eigenvalue if the factorisation breaks down.
-fn factor_near(k: &SymSparse, m: &SymSparse, sigma: f64, scale: f64, kind: FactorKind) -> Result<ShiftedFactor> {
+fn factor_near(
+    k: &SymSparse,
+    m: &SymSparse,
+    sigma: f64,
+    scale: f64,
+    kind: FactorKind,
+) -> Result<ShiftedFactor> {
     let mut s = sigma;
     let mut last = None;
     for attempt in 0..4 {
@@ -294,7 +352,13 @@ fn factor_near(k: &SymSparse, m: &SymSparse, sigma: f64, scale: f64, kind: Facto
 }
 
 /// Number of eigenvalues strictly below σ (Sylvester).
-fn count_below(k: &SymSparse, m: &SymSparse, sigma: f64, scale: f64, kind: FactorKind) -> Result<usize> {
+fn count_below(
+    k: &SymSparse,
+    m: &SymSparse,
+    sigma: f64,
+    scale: f64,
+    kind: FactorKind,
+) -> Result<usize> {
     Ok(factor_near(k, m, sigma, scale, kind)?.negative_count())
 }
 
@@ -309,7 +373,11 @@ fn lanczos_pass(
     seed: u64,
 ) -> Result<Vec<(f64, Vec<f64>)>> {
     let n = k.n;
-    let ncv = if opts.ncv > 0 { opts.ncv } else { (2 * nev + 20).max(40) };
+    let ncv = if opts.ncv > 0 {
+        opts.ncv
+    } else {
+        (2 * nev + 20).max(40)
+    };
     let params = LanczosParams {
         nev,
         ncv,
@@ -355,8 +423,13 @@ fn lanczos_modes(
             // and σ goes slightly below 0 so K − σM stays positive definite.
             let f0 = ShiftedFactor::new(k, m, 0.0, kind);
             match f0 {
-                Ok(f) if f.negative_count() == 0 && f.min_relative_pivot() > 1e-10 => (0.0, "σ = 0"),
-                _ => (-1e-9 * scale, "σ < 0 (singular stiffness: rigid-body modes)"),
+                Ok(f) if f.negative_count() == 0 && f.min_relative_pivot() > 1e-10 => {
+                    (0.0, "definite stiffness")
+                }
+                _ => (
+                    -RIGID_SHIFT * scale,
+                    "singular stiffness (rigid-body modes), σ < 0",
+                ),
             }
         }
         ModeRequest::Band { f_min, f_max } => {
@@ -388,7 +461,9 @@ fn lanczos_modes(
         _ => None,
     };
     if band_count == Some(0) {
-        return Ok(ModeSet::empty(&format!("shift-invert Lanczos ({method}): band is empty")));
+        return Ok(ModeSet::empty(&format!(
+            "shift-invert Lanczos ({method}): band is empty"
+        )));
     }
     let target = match *req {
         ModeRequest::Smallest { n } | ModeRequest::Centre { n, .. } => n,
@@ -402,7 +477,15 @@ fn lanczos_modes(
     loop {
         passes += 1;
         let locked: Vec<Vec<f64>> = found.iter().map(|p| p.1.clone()).collect();
-        let new = lanczos_pass(k, m, &mut fac, nev, &locked, opts, 0x9E37_79B9 + passes as u64)?;
+        let new = lanczos_pass(
+            k,
+            m,
+            &mut fac,
+            nev,
+            &locked,
+            opts,
+            0x9E37_79B9 + passes as u64,
+        )?;
         if new.is_empty() && passes > 1 {
             break;
         }
@@ -420,9 +503,16 @@ fn lanczos_modes(
                 let lo_abs = if lo.is_finite() { lo.abs() } else { 0.0 };
                 let tol = 1e-9 * hi.abs().max(lo_abs) + 1e-12 * scale;
                 let count = count_below(k, m, hi + tol, scale, kind)?
-                    - if lo.is_finite() { count_below(k, m, lo - tol, scale, kind)? } else { 0 };
+                    - if lo.is_finite() {
+                        count_below(k, m, lo - tol, scale, kind)?
+                    } else {
+                        0
+                    };
                 factorizations += if lo.is_finite() { 2 } else { 1 };
-                let have = found.iter().filter(|p| p.0 >= lo - tol && p.0 <= hi + tol).count();
+                let have = found
+                    .iter()
+                    .filter(|p| p.0 >= lo - tol && p.0 <= hi + tol)
+                    .count();
                 count.saturating_sub(have)
             }
         };
@@ -469,7 +559,11 @@ fn span(chosen: &[(f64, Vec<f64>)], req: &ModeRequest) -> (f64, f64) {
                 .iter()
                 .map(|p| (frequency(p.0) - f).abs())
                 .fold(0.0, f64::max);
-            let lo = if f - d > 0.0 { omega2_of(f - d) } else { f64::NEG_INFINITY };
+            let lo = if f - d > 0.0 {
+                omega2_of(f - d)
+            } else {
+                f64::NEG_INFINITY
+            };
             (lo, omega2_of(f + d))
         }
         _ => (f64::NEG_INFINITY, top),

@@ -58,7 +58,12 @@ pub fn generalized(phi: &[f64], k: &SymSparse, m: &SymSparse) -> (f64, f64) {
 }
 
 /// Scales `phi` in place and returns the scale and generalized mass/stiffness.
-pub fn normalize(phi: &mut [f64], k: &SymSparse, m: &SymSparse, norm: &ModeNorm) -> Result<Normalized> {
+pub fn normalize(
+    phi: &mut [f64],
+    k: &SymSparse,
+    m: &SymSparse,
+    norm: &ModeNorm,
+) -> Result<Normalized> {
     let (gm, gk) = generalized(phi, k, m);
     let scale = match norm {
         ModeNorm::MassGene => {
@@ -124,8 +129,15 @@ mod tests {
     fn largest_component_respects_mask_and_sign() {
         let (k, m) = two_dof();
         let mut phi = vec![0.5, -4.0];
-        let r = normalize(&mut phi, &k, &m, &ModeNorm::LargestComponent { mask: vec![true, true] })
-            .unwrap();
+        let r = normalize(
+            &mut phi,
+            &k,
+            &m,
+            &ModeNorm::LargestComponent {
+                mask: vec![true, true],
+            },
+        )
+        .unwrap();
         assert_eq!(phi, vec![-0.125, 1.0]);
         assert_eq!(r.scale, -0.25);
         // Masking the second DOF out: the first one becomes 1.

@@ -52,7 +52,9 @@ impl ShiftedFactor {
         };
         let symbolic =
             factorize_symbolic_cholesky(a.symbolic(), Side::Lower, SymmetricOrdering::Amd, params)
-                .map_err(|e| Error::numerical(format!("symbolic factorisation of K - σM failed: {e:?}")))?;
+                .map_err(|e| {
+                    Error::numerical(format!("symbolic factorisation of K - σM failed: {e:?}"))
+                })?;
         let mut values = vec![0.0; symbolic.len_val()];
         let par = faer::get_global_parallelism();
         let mut buf = MemBuffer::try_new(
@@ -192,9 +194,18 @@ mod tests {
         for kind in [FactorKind::Simplicial, FactorKind::Supernodal] {
             for j in [1usize, 7, 150, 299] {
                 // A shift halfway between eigenvalues j and j+1: exactly j below it.
-                let sigma = if j < n { 0.5 * (lam(j) + lam(j + 1)) } else { lam(n) + 1.0 };
+                let sigma = if j < n {
+                    0.5 * (lam(j) + lam(j + 1))
+                } else {
+                    lam(n) + 1.0
+                };
                 let f = ShiftedFactor::new(&k, &m, sigma, kind).unwrap();
-                assert_eq!(f.negative_count(), j, "{kind:?} σ between modes {j} and {}", j + 1);
+                assert_eq!(
+                    f.negative_count(),
+                    j,
+                    "{kind:?} σ between modes {j} and {}",
+                    j + 1
+                );
             }
         }
     }

@@ -170,7 +170,11 @@ impl SymSparse {
 
     /// Lower triangle of K − σM as a faer matrix, with every diagonal entry present (the
     /// factorisation needs the diagonal in the pattern even where K and M have none).
-    pub fn shifted_lower(k: &SymSparse, m: &SymSparse, sigma: f64) -> Result<SparseColMat<usize, f64>> {
+    pub fn shifted_lower(
+        k: &SymSparse,
+        m: &SymSparse,
+        sigma: f64,
+    ) -> Result<SparseColMat<usize, f64>> {
         let n = k.n;
         let mut t = Vec::with_capacity(k.val.len() + m.val.len() + n);
         for i in 0..n {

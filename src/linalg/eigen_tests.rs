@@ -16,11 +16,20 @@ fn faer_sym(n: usize, lower: &[(usize, usize, f64)]) -> SparseColMat<usize, f64>
 }
 
 /// N masses `mass` linked by springs `k`; `fixed` = both ends tied to walls, else free-free.
-fn chain(n: usize, k: f64, mass: f64, fixed: bool) -> (SparseColMat<usize, f64>, SparseColMat<usize, f64>) {
+fn chain(
+    n: usize,
+    k: f64,
+    mass: f64,
+    fixed: bool,
+) -> (SparseColMat<usize, f64>, SparseColMat<usize, f64>) {
     let mut kt = Vec::new();
     let mut mt = Vec::new();
     for i in 0..n {
-        let ends = if fixed { 2.0 } else { (i > 0) as u8 as f64 + (i + 1 < n) as u8 as f64 };
+        let ends = if fixed {
+            2.0
+        } else {
+            (i > 0) as u8 as f64 + (i + 1 < n) as u8 as f64
+        };
         kt.push((i, i, ends * k));
         mt.push((i, i, mass));
         if i + 1 < n {
@@ -73,7 +82,11 @@ fn dense_fixed_chain_matches_closed_form() {
     for (j, w) in omegas(&set).iter().enumerate() {
         let exact = fixed_omega(j + 1, n, k, mass);
         // 10 DOFs, condition ~50: a dense eigensolver is accurate to ~1e-14 here.
-        assert!((w - exact).abs() <= 1e-12 * exact, "mode {}: {w} vs {exact}", j + 1);
+        assert!(
+            (w - exact).abs() <= 1e-12 * exact,
+            "mode {}: {w} vs {exact}",
+            j + 1
+        );
     }
     assert!(orthonormality_error(&set, &mm) < 1e-12);
     // Frequencies in Hz follow from ω.
@@ -85,17 +98,31 @@ fn dense_fixed_chain_matches_closed_form() {
 fn lanczos_long_fixed_chain_ten_smallest() {
     let (n, k, mass) = (20_000, 3.0e5, 0.7);
     let (km, mm) = chain(n, k, mass, true);
-    let set = solve_modes(&km, &mm, &ModeRequest::Smallest { n: 10 }, &opts(Method::Lanczos)).unwrap();
+    let set = solve_modes(
+        &km,
+        &mm,
+        &ModeRequest::Smallest { n: 10 },
+        &opts(Method::Lanczos),
+    )
+    .unwrap();
     assert!(set.method.contains("Lanczos"), "{}", set.method);
     assert_eq!(set.omega2.len(), 10);
     for (j, w) in omegas(&set).iter().enumerate() {
         let exact = fixed_omega(j + 1, n, k, mass);
         // Required accuracy of the brief: relative error < 1e-8 on ω although the
         // condition number of K is ~1.6e8 (shift-invert keeps the low end accurate).
-        assert!((w - exact).abs() < 1e-8 * exact, "mode {}: {w} vs {exact}", j + 1);
+        assert!(
+            (w - exact).abs() < 1e-8 * exact,
+            "mode {}: {w} vs {exact}",
+            j + 1
+        );
     }
     assert!(orthonormality_error(&set, &mm) < 1e-10);
-    assert!(set.residuals.iter().all(|r| *r < 1e-8), "{:?}", set.residuals);
+    assert!(
+        set.residuals.iter().all(|r| *r < 1e-8),
+        "{:?}",
+        set.residuals
+    );
 }
 
 #[test]
@@ -106,12 +133,19 @@ fn free_free_chain_has_rigid_body_mode_both_solvers() {
         let set = solve_modes(&km, &mm, &ModeRequest::Smallest { n: 6 }, &opts(method)).unwrap();
         // Rigid-body mode: ω² is round-off. Absolute tolerance 1e-8·(k/m), i.e. a frequency
         // below ~1.6e-5 Hz for a chain whose highest ω² is 4k/m.
-        assert!(set.omega2[0].abs() < 1e-8 * k / mass, "{method:?}: rigid ω² = {}", set.omega2[0]);
+        assert!(
+            set.omega2[0].abs() < 1e-8 * k / mass,
+            "{method:?}: rigid ω² = {}",
+            set.omega2[0]
+        );
         assert!(!set.frequencies()[0].is_nan());
         for j in 1..6 {
             let exact = free_omega(j, n, k, mass);
             let w = set.omega2[j].sqrt();
-            assert!((w - exact).abs() < 1e-8 * exact, "{method:?} mode {j}: {w} vs {exact}");
+            assert!(
+                (w - exact).abs() < 1e-8 * exact,
+                "{method:?} mode {j}: {w} vs {exact}"
+            );
         }
         assert!(orthonormality_error(&set, &mm) < 1e-10, "{method:?}");
     }
@@ -125,18 +159,28 @@ fn band_returns_exactly_the_modes_inside() {
     let hz = |j: usize| fixed_omega(j, n, k, mass) / (2.0 * PI);
     let (f_min, f_max) = (0.5 * (hz(37) + hz(38)), 0.5 * (hz(52) + hz(53)));
     for method in [Method::Dense, Method::Lanczos] {
-        let set = solve_modes(&km, &mm, &ModeRequest::Band { f_min, f_max }, &opts(method)).unwrap();
+        let set =
+            solve_modes(&km, &mm, &ModeRequest::Band { f_min, f_max }, &opts(method)).unwrap();
         assert_eq!(set.omega2.len(), 15, "{method:?}");
         for (i, w) in omegas(&set).iter().enumerate() {
             let exact = fixed_omega(38 + i, n, k, mass);
-            assert!((w - exact).abs() < 1e-9 * exact, "{method:?}: {w} vs {exact}");
+            assert!(
+                (w - exact).abs() < 1e-9 * exact,
+                "{method:?}: {w} vs {exact}"
+            );
         }
         assert!(orthonormality_error(&set, &mm) < 1e-10, "{method:?}");
     }
     // An empty band.
     let (a, b) = (0.4 * hz(1), 0.6 * hz(1));
     for method in [Method::Dense, Method::Lanczos] {
-        let set = solve_modes(&km, &mm, &ModeRequest::Band { f_min: a, f_max: b }, &opts(method)).unwrap();
+        let set = solve_modes(
+            &km,
+            &mm,
+            &ModeRequest::Band { f_min: a, f_max: b },
+            &opts(method),
+        )
+        .unwrap();
         assert!(set.omega2.is_empty());
     }
 }
@@ -153,11 +197,20 @@ fn centre_returns_the_n_closest() {
     let mut expect: Vec<usize> = idx[..7].to_vec();
     expect.sort();
     for method in [Method::Dense, Method::Lanczos] {
-        let set = solve_modes(&km, &mm, &ModeRequest::Centre { f: fc, n: 7 }, &opts(method)).unwrap();
+        let set = solve_modes(
+            &km,
+            &mm,
+            &ModeRequest::Centre { f: fc, n: 7 },
+            &opts(method),
+        )
+        .unwrap();
         assert_eq!(set.omega2.len(), 7);
         for (w, &j) in omegas(&set).iter().zip(&expect) {
             let exact = fixed_omega(j, n, k, mass);
-            assert!((w - exact).abs() < 1e-9 * exact, "{method:?}: {w} vs mode {j} {exact}");
+            assert!(
+                (w - exact).abs() < 1e-9 * exact,
+                "{method:?}: {w} vs mode {j} {exact}"
+            );
         }
     }
 }
@@ -210,7 +263,13 @@ fn lanczos_finds_both_copies_of_double_modes() {
         }
     }
     let (km, mm) = (faer_sym(2 * n1, &kt), faer_sym(2 * n1, &mt));
-    let set = solve_modes(&km, &mm, &ModeRequest::Smallest { n: 6 }, &opts(Method::Lanczos)).unwrap();
+    let set = solve_modes(
+        &km,
+        &mm,
+        &ModeRequest::Smallest { n: 6 },
+        &opts(Method::Lanczos),
+    )
+    .unwrap();
     for (i, w) in omegas(&set).iter().enumerate() {
         let exact = fixed_omega(i / 2 + 1, n1, k, mass);
         assert!((w - exact).abs() < 1e-9 * exact, "mode {i}: {w} vs {exact}");
@@ -240,12 +299,21 @@ fn massless_dofs_give_no_mode_and_condense_correctly() {
         let set = solve_modes(&km, &mm, &ModeRequest::Smallest { n: 10 }, &opts(method)).unwrap();
         for (j, w) in omegas(&set).iter().enumerate() {
             let exact = fixed_omega(j + 1, p, k / 2.0, mass);
-            assert!((w - exact).abs() < 1e-9 * exact, "{method:?} mode {}: {w} vs {exact}", j + 1);
+            assert!(
+                (w - exact).abs() < 1e-9 * exact,
+                "{method:?} mode {}: {w} vs {exact}",
+                j + 1
+            );
         }
         assert!(orthonormality_error(&set, &mm) < 1e-10, "{method:?}");
     }
     // Only p finite frequencies exist: asking for more is an error, not a panic.
-    let r = solve_modes(&km, &mm, &ModeRequest::Smallest { n: p + 1 }, &opts(Method::Dense));
+    let r = solve_modes(
+        &km,
+        &mm,
+        &ModeRequest::Smallest { n: p + 1 },
+        &opts(Method::Dense),
+    );
     assert!(r.is_err());
 }
 
@@ -253,14 +321,29 @@ fn massless_dofs_give_no_mode_and_condense_correctly() {
 fn bad_requests_are_errors() {
     let (km, mm) = chain(5, 1.0, 1.0, true);
     let o = EigenOptions::default();
-    let e = solve_modes(&km, &mm, &ModeRequest::Band { f_min: 2.0, f_max: 1.0 }, &o).unwrap_err();
+    let e = solve_modes(
+        &km,
+        &mm,
+        &ModeRequest::Band {
+            f_min: 2.0,
+            f_max: 1.0,
+        },
+        &o,
+    )
+    .unwrap_err();
     assert_eq!(e.keyword.as_deref(), Some("CALC_FREQ/FREQ"));
     assert!(solve_modes(&km, &mm, &ModeRequest::Smallest { n: 6 }, &o).is_err());
     assert!(solve_modes(&km, &mm, &ModeRequest::Centre { f: f64::NAN, n: 1 }, &o).is_err());
     let (k4, _) = chain(4, 1.0, 1.0, true);
     assert!(solve_modes(&k4, &mm, &ModeRequest::Smallest { n: 1 }, &o).is_err());
     // Zero requested modes: an empty set.
-    let s = solve_modes(&km, &mm, &ModeRequest::Smallest { n: 0 }, &opts(Method::Lanczos)).unwrap();
+    let s = solve_modes(
+        &km,
+        &mm,
+        &ModeRequest::Smallest { n: 0 },
+        &opts(Method::Lanczos),
+    )
+    .unwrap();
     assert!(s.omega2.is_empty());
 }
 
@@ -282,9 +365,63 @@ fn upper_triangle_storage_is_accepted() {
     }
     let km = SparseColMat::try_new_from_triplets(n, n, &t).unwrap();
     let (_, mm) = chain(n, k, mass, true);
-    let set = solve_modes(&km, &mm, &ModeRequest::Smallest { n: 3 }, &EigenOptions::default()).unwrap();
+    let set = solve_modes(
+        &km,
+        &mm,
+        &ModeRequest::Smallest { n: 3 },
+        &EigenOptions::default(),
+    )
+    .unwrap();
     for (j, w) in omegas(&set).iter().enumerate() {
         let exact = fixed_omega(j + 1, n, k, mass);
         assert!((w - exact).abs() < 1e-12 * exact);
+    }
+}
+
+#[path = "../../benches/common/models.rs"]
+mod models;
+
+#[test]
+fn simply_supported_beam_both_solvers() {
+    // Hermite beam elements, translations and rotations (DOFs of different scales, a
+    // banded matrix). Exact ω_j = (jπ)² for L = EI = ρA = 1. The discretisation error
+    // on ω scales as (jh)⁴ (measured with this builder: 6.75e-6 for mode 10 with 100
+    // elements, converging at order 4), i.e. ≈ 1.1e-8 for mode 6 with 300 elements, so
+    // 1e-7 leaves room for it while catching any solver error.
+    let (k, m) = models::beam(300);
+    for method in [Method::Dense, Method::Lanczos] {
+        let set = solve_modes(&k, &m, &ModeRequest::Smallest { n: 6 }, &opts(method)).unwrap();
+        for (j, w) in omegas(&set).iter().enumerate() {
+            let exact = ((j + 1) as f64 * PI).powi(2);
+            assert!(
+                (w - exact).abs() < 1e-7 * exact,
+                "{method:?} mode {}: {w} vs {exact}",
+                j + 1
+            );
+        }
+        assert!(orthonormality_error(&set, &m) < 1e-10, "{method:?}");
+    }
+}
+
+#[test]
+fn lanczos_with_locked_vectors_finds_the_rest() {
+    // Explicit deflation: with the lowest 3 modes locked, a pass must return modes 4..6.
+    let (n, k, mass) = (500, 1.0, 1.0);
+    let (km, mm) = chain(n, k, mass, true);
+    let ks = SymSparse::from_faer(&km, "k").unwrap();
+    let ms = SymSparse::from_faer(&mm, "m").unwrap();
+    let o = EigenOptions::default();
+    let mut fac = ShiftedFactor::new(&ks, &ms, 0.0, FactorKind::Auto).unwrap();
+    let first = lanczos_pass(&ks, &ms, &mut fac, 3, &[], &o, 7).unwrap();
+    let locked: Vec<Vec<f64>> = first.iter().map(|p| p.1.clone()).collect();
+    let mut next = lanczos_pass(&ks, &ms, &mut fac, 3, &locked, &o, 11).unwrap();
+    next.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for (i, (w2, _)) in next.iter().enumerate() {
+        let exact = fixed_omega(i + 4, n, k, mass);
+        assert!(
+            (w2.sqrt() - exact).abs() < 1e-9 * exact,
+            "{} vs {exact}",
+            w2.sqrt()
+        );
     }
 }
