@@ -25,6 +25,13 @@ fn main() {
     };
     let t0 = Instant::now();
     let ((k, m), exact): (models::Pair, Box<dyn Fn(usize) -> f64>) = match model {
+        "membrane" => {
+            // A strip 5:8, as close to ndof DOFs as the grid allows.
+            let nx = ((ndof as f64 * 5.0 / 8.0).sqrt()).round() as usize;
+            let ny = ndof / nx;
+            let w = models::membrane_omegas(nx, ny, nev);
+            (models::membrane(nx, ny), Box::new(move |j| w[j - 1]))
+        }
         "beam" => {
             let ne = ndof / 2;
             (models::beam(ne), Box::new(|j| (j as f64 * PI).powi(2)))

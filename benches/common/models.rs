@@ -75,3 +75,39 @@ pub fn beam(ne: usize) -> Pair {
     }
     (sym(n, &kt), sym(n, &mt))
 }
+
+/// Membrane: nx × ny grid of unit masses, unit springs to the 4 neighbours, fixed edges
+/// (the 5-point Laplacian: a banded matrix of bandwidth nx with fill-in when factorised).
+/// Exact ω² = 4 sin²(iπ/(2(nx+1))) + 4 sin²(jπ/(2(ny+1))).
+pub fn membrane(nx: usize, ny: usize) -> Pair {
+    let n = nx * ny;
+    let mut kt = Vec::new();
+    let mut mt = Vec::new();
+    for y in 0..ny {
+        for x in 0..nx {
+            let i = y * nx + x;
+            kt.push((i, i, 4.0));
+            mt.push((i, i, 1.0));
+            if x + 1 < nx {
+                kt.push((i + 1, i, -1.0));
+            }
+            if y + 1 < ny {
+                kt.push((i + nx, i, -1.0));
+            }
+        }
+    }
+    (sym(n, &kt), sym(n, &mt))
+}
+
+/// The `count` lowest exact ω of [`membrane`].
+pub fn membrane_omegas(nx: usize, ny: usize, count: usize) -> Vec<f64> {
+    let s = |i: usize, n: usize| (i as f64 * std::f64::consts::PI / (2.0 * (n as f64 + 1.0))).sin();
+    let mut w2: Vec<f64> = Vec::new();
+    for i in 1..=count.min(nx) {
+        for j in 1..=count.min(ny) {
+            w2.push(4.0 * s(i, nx).powi(2) + 4.0 * s(j, ny).powi(2));
+        }
+    }
+    w2.sort_by(f64::total_cmp);
+    w2.into_iter().take(count).map(f64::sqrt).collect()
+}

@@ -133,7 +133,7 @@ pub fn lanczos(
                 h[i][j] = *ci;
             }
             let scale = c.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-            if !(beta > 1e-13 * scale) {
+            if beta.is_nan() || beta <= 1e-13 * scale {
                 // Invariant subspace: continue with a fresh direction, coupling 0.
                 beta = 0.0;
                 let mut fresh = false;

@@ -142,15 +142,14 @@ impl SymSparse {
     }
 
     pub fn diag(&self) -> Vec<f64> {
-        let mut d = vec![0.0; self.n];
-        for j in 0..self.n {
-            for p in self.col_ptr[j]..self.col_ptr[j + 1] {
-                if self.row_idx[p] == j {
-                    d[j] += self.val[p];
-                }
-            }
-        }
-        d
+        (0..self.n)
+            .map(|j| {
+                (self.col_ptr[j]..self.col_ptr[j + 1])
+                    .filter(|&p| self.row_idx[p] == j)
+                    .map(|p| self.val[p])
+                    .sum()
+            })
+            .collect()
     }
 
     /// Dense copy (both triangles), for the dense solver only.
