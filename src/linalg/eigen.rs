@@ -1,0 +1,597 @@
+//! The symmetric generalized eigenproblem K φ = ω² M φ of CALC_MODES.
+//!
+//! Inputs are the reduced (free-DOF) stiffness K (positive semi-definite: free-free
+//! models have rigid-body modes at ω ≈ 0) and mass M (positive definite, or semi-definite
+//! when some DOFs carry no mass: those give infinite frequencies, never returned).
+//!
+//! Two solvers, chosen by size (see [`DENSE_MAX_DOFS`]) unless [`EigenOptions::force`]:
+//! - dense ([`super::eigen_dense`]): Cholesky reduction and a full symmetric eigensolve,
+//!   O(n²) memory, every mode at once;
+//! - shift-invert Lanczos ([`super::eigen_lanczos`]) on (K − σM)⁻¹M with one sparse LDLᵀ
+//!   of K − σM ([`super::eigen_shift`]), O(nnz(L) + n·ncv) memory.
+//!
+//! The sparse path never trusts Lanczos alone to have found every mode (a single Krylov
+//! sequence misses copies of multiple eigenvalues): Sylvester's inertia counts the modes in
+//! the interval the answer spans, and missing ones are sought by further deflated passes.
+
+use super::eigen_dense::solve_dense;
+use super::eigen_lanczos::{lanczos, LanczosParams};
+use super::eigen_norm::{self, ModeNorm, Normalized};
+use super::eigen_shift::{FactorKind, ShiftedFactor};
+use super::eigen_sym::{norm2, SymSparse};
+use crate::error::{Error, Result};
+use faer::sparse::SparseColMat;
+use std::f64::consts::PI;
+
+/// Models with at most this many free DOFs use the dense solver: its O(n²) memory is
+/// 18 MB at 1500 DOFs and the full eigensolve takes well under a second there, while
+/// shift-invert Lanczos pays off for larger models or few modes.
+pub const DENSE_MAX_DOFS: usize = 1500;
+
+/// Shift below 0, relative to the spectral scale tr K / tr M, used when K is singular
+/// (rigid-body modes): small enough to stay below the first elastic ω² of any sensible
+/// model, large enough that K + δM keeps a condition number ~1e10, far from breakdown.
+const RIGID_SHIFT: f64 = 1e-10;
+
+/// Largest number of Lanczos passes (each one deflating the modes already found).
+const MAX_PASSES: usize = 8;
+
+/// Which modes to compute (CALC_MODES / OPTION and CALC_FREQ).
+#[derive(Clone, Debug, PartialEq)]
+pub enum ModeRequest {
+    /// OPTION='PLUS_PETITE': the n lowest frequencies.
+    Smallest { n: usize },
+    /// OPTION='BANDE': every mode with f_min ≤ f ≤ f_max (Hz).
+    Band { f_min: f64, f_max: f64 },
+    /// OPTION='CENTRE': the n modes whose frequencies are closest to f (Hz).
+    Centre { f: f64, n: usize },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    Dense,
+    Lanczos,
+}
+
+#[derive(Clone, Debug)]
+pub struct EigenOptions {
+    /// Force a solver (tests, benchmarks); `None` chooses by size.
+    pub force: Option<Method>,
+    /// Lanczos convergence tolerance on the shift-invert residual, relative to |θ|.
+    pub tol: f64,
+    /// Lanczos basis size (0: automatic, max(2·nev + 20, 40)).
+    pub ncv: usize,
+    pub max_restarts: usize,
+    /// Sparse factorisation variant (tests force each one).
+    pub factor: FactorKind,
+}
+
+impl Default for EigenOptions {
+    fn default() -> Self {
+        EigenOptions {
+            force: None,
+            tol: 1e-12,
+            ncv: 0,
+            max_restarts: 300,
+            factor: FactorKind::Auto,
+        }
+    }
+}
+
+/// Modes sorted by ascending ω², vectors M-orthonormal (φᵀMφ = 1).
+#[derive(Clone, Debug)]
+pub struct ModeSet {
+    pub omega2: Vec<f64>,
+    pub vectors: Vec<Vec<f64>>,
+    /// ‖Kφ − ω²Mφ‖ / ‖(K + s·10⁻⁶ M)φ‖ per mode, s = tr K / tr M (a spectral scale
+    /// keeping the ratio meaningful for rigid-body modes, where Kφ ≈ 0).
+    pub residuals: Vec<f64>,
+    /// Which solver was used, for INFO=2.
+    pub method: String,
+}
+
+impl ModeSet {
+    pub fn frequencies(&self) -> Vec<f64> {
+        self.omega2.iter().map(|&w| frequency(w)).collect()
+    }
+    fn empty(method: &str) -> Self {
+        ModeSet {
+            omega2: vec![],
+            vectors: vec![],
+            residuals: vec![],
+            method: method.to_string(),
+        }
+    }
+}
+
+/// f = √max(ω², 0) / 2π: round-off negative ω² of rigid-body modes give 0 Hz, never NaN.
+pub fn frequency(omega2: f64) -> f64 {
+    omega2.max(0.0).sqrt() / (2.0 * PI)
+}
+
+/// ω² of a frequency in Hz.
+pub fn omega2_of(f: f64) -> f64 {
+    let w = 2.0 * PI * f;
+    w * w
+}
+
+/// Computes the requested modes of K φ = ω² M φ.
+pub fn solve_modes(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    req: &ModeRequest,
+    opts: &EigenOptions,
+) -> Result<ModeSet> {
+    let ks = SymSparse::from_faer(k, "stiffness")?;
+    let ms = SymSparse::from_faer(m, "mass")?;
+    solve_modes_sym(&ks, &ms, req, opts)
+}
+
+/// Same as [`solve_modes`] on matrices already in [`SymSparse`] form.
+pub fn solve_modes_sym(
+    ks: &SymSparse,
+    ms: &SymSparse,
+    req: &ModeRequest,
+    opts: &EigenOptions,
+) -> Result<ModeSet> {
+    let n = ks.n;
+    if ms.n != n {
+        return Err(Error::internal(format!(
+            "stiffness has {n} DOFs but mass has {}",
+            ms.n
+        )));
+    }
+    check_request(req, n)?;
+    let method = opts.force.unwrap_or(if n <= DENSE_MAX_DOFS {
+        Method::Dense
+    } else {
+        Method::Lanczos
+    });
+    let scale = spectral_scale(ks, ms)?;
+    let mut set = match method {
+        Method::Dense => dense_modes(ks, ms, req, scale)?,
+        Method::Lanczos => lanczos_modes(ks, ms, req, opts, scale)?,
+    };
+    set.residuals = set
+        .omega2
+        .iter()
+        .zip(&set.vectors)
+        .map(|(&w, v)| residual(ks, ms, w, v, scale))
+        .collect();
+    // A residual this large means a solve went wrong (e.g. an unstable factorisation);
+    // better an error than wrong frequencies.
+    if let Some((i, r)) = set
+        .residuals
+        .iter()
+        .enumerate()
+        .find(|(_, r)| r.is_nan() || **r > 1e-6)
+    {
+        return Err(Error::numerical(format!(
+            "mode {} (f = {:e} Hz) has a relative residual {r:e}: the eigensolver is not accurate",
+            i + 1,
+            frequency(set.omega2[i])
+        ))
+        .hint("try another frequency band or shift"));
+    }
+    Ok(set)
+}
+
+fn check_request(req: &ModeRequest, n: usize) -> Result<()> {
+    let bad = |msg: String, kw: &str| Err(Error::validation(msg).keyword(kw));
+    match *req {
+        ModeRequest::Smallest { n: nev } if nev > n => bad(
+            format!("{nev} modes requested but the model has only {n} free DOFs"),
+            "CALC_FREQ/NMAX_FREQ",
+        ),
+        ModeRequest::Centre { n: nev, .. } if nev > n => bad(
+            format!("{nev} modes requested but the model has only {n} free DOFs"),
+            "CALC_FREQ/NMAX_FREQ",
+        ),
+        ModeRequest::Centre { f, .. } if !(f.is_finite() && f >= 0.0) => bad(
+            format!("the centre frequency must be finite and non-negative, got {f}"),
+            "CALC_FREQ/FREQ",
+        ),
+        ModeRequest::Band { f_min, f_max }
+            if !(f_min.is_finite() && f_max.is_finite() && f_min <= f_max && f_max >= 0.0) =>
+        {
+            bad(
+                format!(
+                    "the band needs finite frequencies with f_min <= f_max, got [{f_min}, {f_max}]"
+                ),
+                "CALC_FREQ/FREQ",
+            )
+        }
+        _ => Ok(()),
+    }
+}
+
+/// tr K / tr M: a typical ω² of the model, used to size tolerances and the shift.
+fn spectral_scale(k: &SymSparse, m: &SymSparse) -> Result<f64> {
+    let tk: f64 = k.diag().iter().map(|d| d.abs()).sum();
+    let tm: f64 = m.diag().iter().map(|d| d.abs()).sum();
+    if tm <= 0.0 {
+        return Err(Error::numerical("the mass matrix is zero on the free DOFs")
+            .hint("check the density (RHO) in DEFI_MATERIAU and the mass matrix option"));
+    }
+    Ok(if tk > 0.0 { tk / tm } else { 1.0 })
+}
+
+fn residual(k: &SymSparse, m: &SymSparse, omega2: f64, v: &[f64], scale: f64) -> f64 {
+    let n = k.n;
+    let (mut kv, mut mv) = (vec![0.0; n], vec![0.0; n]);
+    k.mul(v, &mut kv);
+    m.mul(v, &mut mv);
+    let r: Vec<f64> = kv.iter().zip(&mv).map(|(a, b)| a - omega2 * b).collect();
+    let d: Vec<f64> = kv
+        .iter()
+        .zip(&mv)
+        .map(|(a, b)| a + 1e-6 * scale * b)
+        .collect();
+    let den = norm2(&d);
+    if den > 0.0 {
+        norm2(&r) / den
+    } else {
+        f64::INFINITY
+    }
+}
+
+fn dense_modes(k: &SymSparse, m: &SymSparse, req: &ModeRequest, scale: f64) -> Result<ModeSet> {
+    let all = solve_dense(k, m, RIGID_SHIFT * scale)?;
+    let method = if all.delta.is_nan() {
+        "dense (Cholesky of M, symmetric eigensolver)".to_string()
+    } else {
+        let chol = if all.delta == 0.0 {
+            "K".to_string()
+        } else {
+            format!("K + δM, δ = {:e}", all.delta)
+        };
+        let dropped = if all.infinite > 0 {
+            format!(
+                ", {} infinite frequencies of massless DOFs dropped",
+                all.infinite
+            )
+        } else {
+            String::new()
+        };
+        format!("dense (Cholesky of {chol}, symmetric eigensolver of the inverse form{dropped})")
+    };
+    let pairs: Vec<(f64, Vec<f64>)> = all.omega2.into_iter().zip(all.vectors).collect();
+    let chosen = select(pairs, req)?;
+    let (omega2, mut vectors): (Vec<f64>, Vec<Vec<f64>>) = chosen.into_iter().unzip();
+    // The eigenvector error of the inverse form is ~ε·μ_max/gap: with the tiny δ of
+    // rigid-body modes, enough to spoil M-orthogonality at 1e-8. What is lost is exactly
+    // the components along the other modes, which Gram–Schmidt removes.
+    m_orthonormalize(&mut vectors, m);
+    Ok(ModeSet {
+        omega2,
+        vectors,
+        residuals: vec![],
+        method,
+    })
+}
+
+/// Gram–Schmidt in the M inner product (two passes), in place.
+fn m_orthonormalize(vectors: &mut [Vec<f64>], m: &SymSparse) {
+    let mut mv: Vec<Vec<f64>> = Vec::with_capacity(vectors.len());
+    for i in 0..vectors.len() {
+        let (done, rest) = vectors.split_at_mut(i);
+        let v = &mut rest[0];
+        let mut w = vec![0.0; v.len()];
+        for _pass in 0..2 {
+            for (u, mu) in done.iter().zip(&mv) {
+                let c = super::eigen_sym::dot(mu, v);
+                v.iter_mut().zip(u).for_each(|(a, b)| *a -= c * b);
+            }
+        }
+        m.mul(v, &mut w);
+        let nrm = super::eigen_sym::dot(v, &w).max(0.0).sqrt();
+        if nrm > 0.0 {
+            v.iter_mut().for_each(|a| *a /= nrm);
+            w.iter_mut().for_each(|a| *a /= nrm);
+        }
+        mv.push(w);
+    }
+}
+
+/// Picks the requested modes out of a set (sorted or not); returns them by ascending ω².
+fn select(mut pairs: Vec<(f64, Vec<f64>)>, req: &ModeRequest) -> Result<Vec<(f64, Vec<f64>)>> {
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    match *req {
+        ModeRequest::Smallest { n } => {
+            if pairs.len() < n {
+                return Err(Error::numerical(format!(
+                    "only {} finite frequencies exist, {n} were requested",
+                    pairs.len()
+                ))
+                .keyword("CALC_FREQ/NMAX_FREQ"));
+            }
+            pairs.truncate(n);
+        }
+        ModeRequest::Band { f_min, f_max } => {
+            pairs.retain(|(w, _)| (f_min..=f_max).contains(&frequency(*w)));
+        }
+        ModeRequest::Centre { f, n } => {
+            if pairs.len() < n {
+                return Err(Error::numerical(format!(
+                    "only {} finite frequencies exist, {n} were requested",
+                    pairs.len()
+                ))
+                .keyword("CALC_FREQ/NMAX_FREQ"));
+            }
+            pairs.sort_by(|a, b| {
+                (frequency(a.0) - f)
+                    .abs()
+                    .total_cmp(&(frequency(b.0) - f).abs())
+            });
+            pairs.truncate(n);
+            pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        }
+    }
+    Ok(pairs)
+}
+
+/// Factorises K − σM, nudging σ off an eigenvalue if the factorisation breaks down.
+fn factor_near(
+    k: &SymSparse,
+    m: &SymSparse,
+    sigma: f64,
+    scale: f64,
+    kind: FactorKind,
+) -> Result<ShiftedFactor> {
+    let mut s = sigma;
+    let mut last = None;
+    for attempt in 0..4 {
+        match ShiftedFactor::new(k, m, s, kind) {
+            Ok(f) => return Ok(f),
+            Err(e) => last = Some(e),
+        }
+        let step = 1e-7 * (sigma.abs() + 1e-6 * scale) * (1 << attempt) as f64;
+        s = sigma + step;
+    }
+    Err(last.unwrap_or_else(|| Error::internal("factorisation retry loop ran no attempt")))
+}
+
+/// Number of eigenvalues strictly below σ (Sylvester).
+fn count_below(
+    k: &SymSparse,
+    m: &SymSparse,
+    sigma: f64,
+    scale: f64,
+    kind: FactorKind,
+) -> Result<usize> {
+    Ok(factor_near(k, m, sigma, scale, kind)?.negative_count())
+}
+
+/// One Lanczos pass with the factor of K − σM; returns (ω², φ) pairs.
+fn lanczos_pass(
+    k: &SymSparse,
+    m: &SymSparse,
+    fac: &mut ShiftedFactor,
+    nev: usize,
+    locked: &[Vec<f64>],
+    opts: &EigenOptions,
+    op_count: &mut usize,
+) -> Result<Vec<(f64, Vec<f64>)>> {
+    let n = k.n;
+    let ncv = if opts.ncv > 0 {
+        opts.ncv
+    } else {
+        (2 * nev + 20).max(40)
+    };
+    let params = LanczosParams {
+        nev,
+        ncv,
+        tol: opts.tol,
+        max_restarts: opts.max_restarts,
+        // A different start vector for every deflated pass, reproducible run to run.
+        seed: 0x9E37_79B9 + locked.len() as u64,
+    };
+    let sigma = fac.sigma;
+    let out = lanczos(
+        n,
+        m,
+        |x, y| {
+            m.mul(x, y);
+            fac.solve_in_place(y);
+        },
+        locked,
+        &params,
+    )?;
+    *op_count += out.op_count;
+    Ok(out
+        .theta
+        .into_iter()
+        .zip(out.vectors)
+        .filter(|(t, _)| *t != 0.0)
+        .map(|(t, v)| (sigma + 1.0 / t, v))
+        .collect())
+}
+
+fn lanczos_modes(
+    k: &SymSparse,
+    m: &SymSparse,
+    req: &ModeRequest,
+    opts: &EigenOptions,
+    scale: f64,
+) -> Result<ModeSet> {
+    let kind = opts.factor;
+    // The shift and the ω² interval [lo, hi] whose mode count must be matched.
+    let mut ready: Option<ShiftedFactor> = None;
+    let (sigma, method) = match *req {
+        ModeRequest::Smallest { n: 0 } | ModeRequest::Centre { n: 0, .. } => {
+            return Ok(ModeSet::empty("none (no mode requested)"))
+        }
+        ModeRequest::Smallest { .. } => {
+            // σ = 0 is best when K is safely definite; with rigid-body modes K is singular
+            // and σ goes slightly below 0 so K − σM stays positive definite.
+            match ShiftedFactor::new(k, m, 0.0, kind) {
+                Ok(f) if f.negative_count() == 0 && f.min_relative_pivot() > 1e-10 => {
+                    ready = Some(f);
+                    (0.0, "definite stiffness")
+                }
+                _ => (
+                    -RIGID_SHIFT * scale,
+                    "singular stiffness (rigid-body modes), σ < 0",
+                ),
+            }
+        }
+        ModeRequest::Band { f_min, f_max } => {
+            let lo = omega2_of(f_min.max(0.0));
+            let hi = omega2_of(f_max);
+            (0.5 * (lo + hi), "σ at the band centre")
+        }
+        ModeRequest::Centre { f, .. } => (omega2_of(f), "σ at the centre frequency"),
+    };
+    // A failed σ = 0 attempt of PLUS_PETITE also cost a factorisation.
+    let zero_attempt = usize::from(matches!(req, ModeRequest::Smallest { .. }) && ready.is_none());
+    let mut fac = match ready {
+        Some(f) => f,
+        None => factor_near(k, m, sigma, scale, kind)?,
+    };
+    if matches!(req, ModeRequest::Smallest { .. }) && fac.negative_count() > 0 {
+        return Err(Error::numerical(format!(
+            "the stiffness matrix has {} negative eigenvalues: it is not positive semi-definite",
+            fac.negative_count()
+        ))
+        .hint("check the boundary conditions and material data"));
+    }
+    // Band: how many modes to find, from the inertia at both ends.
+    let band_count = match *req {
+        ModeRequest::Band { f_min, f_max } => {
+            let below_hi = count_below(k, m, omega2_of(f_max), scale, kind)?;
+            let below_lo = if f_min > 0.0 {
+                count_below(k, m, omega2_of(f_min), scale, kind)?
+            } else {
+                0
+            };
+            Some(below_hi.saturating_sub(below_lo))
+        }
+        _ => None,
+    };
+    if band_count == Some(0) {
+        return Ok(ModeSet::empty(&format!(
+            "shift-invert Lanczos ({method}): band is empty"
+        )));
+    }
+    let target = match *req {
+        ModeRequest::Smallest { n } | ModeRequest::Centre { n, .. } => n,
+        ModeRequest::Band { .. } => band_count.unwrap_or(0),
+    };
+
+    let mut found: Vec<(f64, Vec<f64>)> = Vec::new();
+    let mut nev = target;
+    let mut passes = 0;
+    let mut op_count = 0;
+    let mut factorizations = 1 + zero_attempt + if band_count.is_some() { 2 } else { 0 };
+    loop {
+        passes += 1;
+        let locked: Vec<Vec<f64>> = found.iter().map(|p| p.1.clone()).collect();
+        let new = lanczos_pass(k, m, &mut fac, nev, &locked, opts, &mut op_count)?;
+        if new.is_empty() && passes > 1 {
+            break;
+        }
+        found.extend(new);
+        // Which modes the request takes from what we have, and how many are missing.
+        let missing = match *req {
+            ModeRequest::Band { .. } => {
+                let inside = select(found.clone(), req)?.len();
+                target.saturating_sub(inside)
+            }
+            _ if found.len() < target => target - found.len(),
+            _ => {
+                let chosen = select(found.clone(), req)?;
+                let (lo, hi) = span(&chosen, req);
+                let lo_abs = if lo.is_finite() { lo.abs() } else { 0.0 };
+                let tol = 1e-9 * hi.abs().max(lo_abs) + 1e-12 * scale;
+                let count = count_below(k, m, hi + tol, scale, kind)?
+                    - if lo.is_finite() {
+                        count_below(k, m, lo - tol, scale, kind)?
+                    } else {
+                        0
+                    };
+                factorizations += if lo.is_finite() { 2 } else { 1 };
+                let have = found
+                    .iter()
+                    .filter(|p| p.0 >= lo - tol && p.0 <= hi + tol)
+                    .count();
+                count.saturating_sub(have)
+            }
+        };
+        if missing == 0 {
+            break;
+        }
+        if passes >= MAX_PASSES {
+            return Err(Error::numerical(format!(
+                "shift-invert Lanczos still misses {missing} mode(s) after {passes} passes"
+            ))
+            .hint("multiple or very close frequencies: ask for a narrower band"));
+        }
+        nev = missing;
+    }
+    let chosen = select(found, req)?;
+    if let Some(c) = band_count {
+        if chosen.len() != c {
+            return Err(Error::numerical(format!(
+                "the band holds {c} modes (Sylvester count) but {} were found",
+                chosen.len()
+            ))
+            .hint("a mode sits on a band edge: widen the band slightly"));
+        }
+    }
+    let (omega2, vectors) = chosen.into_iter().unzip();
+    Ok(ModeSet {
+        omega2,
+        vectors,
+        residuals: vec![],
+        method: format!(
+            "shift-invert Lanczos ({method}, σ = {:e}, {passes} pass(es), {op_count} solves, \
+             {factorizations} sparse LDLᵀ)",
+            fac.sigma
+        ),
+    })
+}
+
+/// ω² interval the chosen modes span: (−∞, max] for the lowest modes, the frequency
+/// window |f − f_c| ≤ d for CENTRE.
+fn span(chosen: &[(f64, Vec<f64>)], req: &ModeRequest) -> (f64, f64) {
+    let top = chosen.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
+    match *req {
+        ModeRequest::Centre { f, .. } => {
+            let d = chosen
+                .iter()
+                .map(|p| (frequency(p.0) - f).abs())
+                .fold(0.0, f64::max);
+            let lo = if f - d > 0.0 {
+                omega2_of(f - d)
+            } else {
+                f64::NEG_INFINITY
+            };
+            (lo, omega2_of(f + d))
+        }
+        _ => (f64::NEG_INFINITY, top),
+    }
+}
+
+/// NORM_MODE on one mode given as faer matrices: scales `phi` in place.
+pub fn normalize(
+    phi: &mut [f64],
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    norm: &ModeNorm,
+) -> Result<Normalized> {
+    let ks = SymSparse::from_faer(k, "stiffness")?;
+    let ms = SymSparse::from_faer(m, "mass")?;
+    if phi.len() != ks.n || ms.n != ks.n {
+        return Err(Error::internal(format!(
+            "mode of {} DOFs for matrices of {} and {} DOFs",
+            phi.len(),
+            ks.n,
+            ms.n
+        )));
+    }
+    eigen_norm::normalize(phi, &ks, &ms, norm)
+}
+
+#[cfg(test)]
+#[path = "eigen_tests.rs"]
+mod tests;
