@@ -91,7 +91,7 @@ pub fn read_file(path: &Path, name: Option<&str>) -> Result<Mesh> {
         .dataset("COO")
         .and_then(|d| d.read_raw())
         .map_err(h5e("NOE/COO (coordinates)"))?;
-    if coo.len() % dim != 0 {
+    if !coo.len().is_multiple_of(dim) {
         return Err(bad(format!(
             "{} coordinates is not a multiple of the dimension {dim}",
             coo.len()
@@ -135,7 +135,7 @@ pub fn read_file(path: &Path, name: Option<&str>) -> Result<Mesh> {
             .and_then(|d| d.read_raw())
             .map_err(h5e(&format!("MAI/{med}/NOD")))?;
         let nn = kind.node_count();
-        if nod.len() % nn != 0 {
+        if !nod.len().is_multiple_of(nn) {
             return Err(bad(format!(
                 "MAI/{med}/NOD has {} entries, not a multiple of {nn}",
                 nod.len()
