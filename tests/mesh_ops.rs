@@ -437,3 +437,40 @@ fn defi_group_errors_roll_back() {
     assert!(e.to_string().contains("BOTTOM, PLATE"), "{e}");
     assert_eq!(load_mesh(&st, "MAIL").unwrap(), before);
 }
+
+#[cfg(feature = "med")]
+#[test]
+fn lire_maillage_med_and_nom_med() {
+    let st = Store::in_memory().unwrap();
+    let out = lire(&st, "MA", &units_with(20, "plate_med.med"), "MED").unwrap();
+    assert!(
+        out.contains("MA: 7 nodes, 6 cells (POI1 1, SEG2 2, TRIA3 2, QUAD4 1)"),
+        "{out}"
+    );
+    let m = load_mesh(&st, "MA").unwrap();
+    // Unnamed MED entities get Code_Aster names: cells numbered type after type.
+    assert_eq!(m.cells[0].name, "M1");
+    assert_eq!(m.cells[0].kind, CellKind::Poi1);
+    assert_eq!(m.dim, 2);
+    let a = args(
+        "LIRE_MAILLAGE",
+        &[
+            ("FORMAT", s("MED")),
+            ("UNITE", Value::Int(20)),
+            ("NOM_MED", s("other")),
+        ],
+    );
+    let e = run(
+        &st,
+        "LIRE_MAILLAGE",
+        "MB",
+        None,
+        &units_with(20, "plate_med.med"),
+        &a,
+    )
+    .unwrap_err();
+    assert!(
+        e.to_string().contains("no mesh named 'other'") && e.to_string().contains("mesh"),
+        "{e}"
+    );
+}

@@ -4,9 +4,11 @@ pub mod aster;
 pub mod check;
 pub mod edit;
 pub mod gmsh;
+#[cfg(feature = "med")]
+pub mod med;
 pub mod select;
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -220,7 +222,7 @@ fn read_med(path: &Path, med_name: Option<&str>) -> Result<Mesh> {
 
 #[cfg(not(feature = "med"))]
 fn read_med(path: &Path, _med_name: Option<&str>) -> Result<Mesh> {
-    Err(Error::input(format!(
+    Err(crate::error::Error::input(format!(
         "cannot read {}: this aster-nl was built without MED support",
         path.display()
     ))

@@ -4,6 +4,9 @@
 The Rust test `tests/mesh_meshio.rs` reads the same files with aster-nl's readers and
 compares. Usage: `python3 meshio_expected.py` (needs `pip install meshio`, and h5py for MED).
 
+MED groups come from meshio's cell_tags / point_tags (families); as MED stores cells type
+by type, their cell groups are compared as sets ("group_order": "unordered").
+
 JSON layout:
   points:       [[x, y, z], ...] in meshio order (file order)
   cells:        {meshio_type: [[point indices], ...]} cells of each type in file order
@@ -41,6 +44,9 @@ def dump(path):
         start = len(lst)
         lst.extend([[int(i) for i in c] for c in block.data])
         block_ids.append([(block.type, start + k) for k in range(len(block.data))])
+
+    if str(path).endswith(".med"):
+        return dump_med(m, cells, block_ids)
 
     groups = {}
     named = {}  # (dim, tag) -> name
@@ -80,6 +86,28 @@ def dump(path):
         "cells": cells,
         "cell_groups": {k: [list(c) for c in v] for k, v in groups.items()},
         "node_groups": node_groups,
+    }
+
+
+def dump_med(m, cells, block_ids):
+    """MED groups are families: cell_tags / point_tags give each family's group names."""
+    groups = {}
+    for b, fams in enumerate(m.cell_data.get("cell_tags", [])):
+        for k, fam in enumerate(fams):
+            for g in m.cell_tags.get(fam, []):
+                groups.setdefault(g, []).append(block_ids[b][k])
+    node_groups = {}
+    for i, fam in enumerate(m.point_data.get("point_tags", [])):
+        for g in m.point_tags.get(fam, []):
+            node_groups.setdefault(g, []).append(i)
+    return {
+        "source": f"meshio {meshio.__version__}",
+        "points": [[float(x) for x in p] + [0.0] * (3 - len(p)) for p in m.points],
+        "cells": cells,
+        # MED lists cells type by type: group members are compared as sets.
+        "cell_groups": {k: sorted(list(c) for c in v) for k, v in groups.items()},
+        "node_groups": {k: sorted(v) for k, v in node_groups.items()},
+        "group_order": "unordered",
     }
 
 
