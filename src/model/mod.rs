@@ -13,6 +13,7 @@ pub mod fe_model;
 pub mod frame;
 pub mod loads;
 pub mod material;
+pub mod modes;
 pub mod numbering;
 pub mod select;
 

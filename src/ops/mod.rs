@@ -4,6 +4,7 @@
 //!
 //! The interpreter calls [`run`] inside one store transaction per call.
 
+pub mod calc_modes;
 pub mod calc_table;
 pub mod crea_table;
 pub mod defi_fonction;
@@ -16,9 +17,11 @@ pub mod impr_table;
 #[cfg(test)]
 mod op_tests;
 pub mod output;
+pub mod progress;
 pub mod recu_fonction;
 pub mod table_args;
 pub mod test_fonction;
+pub mod test_resu;
 pub mod test_table;
 pub mod testing;
 pub mod affe_cara_elem;
@@ -148,6 +151,8 @@ pub fn lookup(name: &str) -> Option<OpFn> {
         "AFFE_CHAR_MECA" => affe_char_meca::run,
         "CALC_MATR_ELEM" => calc_matr_elem::run,
         "NUME_DDL" => nume_ddl::run,
+        "CALC_MODES" => calc_modes::run,
+        "TEST_RESU" => test_resu::run,
         "ASSE_MATRICE" => asse_matrice::run,
         "ASSEMBLAGE" => assemblage::run,
         "LIRE_MAILLAGE" => lire_maillage::run,

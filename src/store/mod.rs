@@ -17,6 +17,7 @@ pub mod table;
 pub mod matrix;
 pub mod model;
 pub mod mesh;
+pub mod modes;
 
 use crate::error::{Error, Result};
 use rusqlite::{params, Connection, OptionalExtension};
@@ -256,6 +257,7 @@ impl Store {
         table::drop_table_data(self, name)?;
         matrix::drop_data(self, name)?;
         mesh::delete_mesh(&self.conn, name)?;
+        modes::drop_data(self, name)?;
         Ok(())
     }
 

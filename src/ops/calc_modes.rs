@@ -1,0 +1,172 @@
+//! CALC_MODES: real modes of K φ = ω² M φ (OPTION PLUS_PETITE / BANDE / CENTRE).
+
+use crate::args::Args;
+use crate::error::{Error, Result};
+use crate::linalg::eigen::{self, EigenOptions, ModeRequest};
+use crate::linalg::eigen_norm::ModeNorm;
+use crate::model::dof::Cmp;
+use crate::model::modes::{Mode, ModeMeca};
+use crate::ops::OpContext;
+use crate::table::print::format_e;
+use crate::store::{matrix, modes as mode_store};
+
+pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    let name = ctx.result_name()?.to_string();
+    let k_name = &args.req_concept("MATR_RIGI")?.name;
+    let m_name = &args.req_concept("MATR_MASS")?.name;
+    let k = matrix::load_matrix(ctx.store, k_name)?;
+    let m = matrix::load_matrix(ctx.store, m_name)?;
+    if k.numbering.dofs != m.numbering.dofs || k.eliminated != m.eliminated {
+        return Err(Error::input(format!(
+            "{k_name} and {m_name} are not assembled on the same DOF numbering and boundary conditions"
+        ))
+        .keyword("CALC_MODES/MATR_MASS")
+        .hint("assemble both matrices with the same NUME_DDL and CHAR_CINE"));
+    }
+    let numbering_name = matrix::matrix_numbering_name(ctx.store, k_name)?;
+    let request = mode_request(args)?;
+    let kr = k.reduced()?;
+    let mr = m.reduced()?;
+    let free = k.free_dofs();
+    if free.is_empty() {
+        return Err(Error::input("every DOF is blocked: there is no mode to compute")
+            .keyword("CALC_MODES/MATR_RIGI"));
+    }
+    let set = eigen::solve_modes(&kr, &mr, &request, &EigenOptions::default())?;
+    if ctx.info >= 2 {
+        ctx.say(&format!(
+            "CALC_MODES: {} DOFs ({} free), solver: {}",
+            k.size(),
+            free.len(),
+            set.method
+        ))?;
+    }
+    let calc_freq = args.fact("CALC_FREQ");
+    let stop_band_empty = args.text("STOP_BANDE_VIDE") != Some("NON");
+    if set.omega2.is_empty() && matches!(request, ModeRequest::Band { .. }) && stop_band_empty {
+        return Err(Error::input("no mode in the requested band")
+            .keyword("CALC_MODES/CALC_FREQ/FREQ")
+            .hint("widen FREQ, or set STOP_BANDE_VIDE='NON' to accept an empty result"));
+    }
+    let norm = mode_norm(args, &k.numbering.dofs, &free)?;
+    let (seuil, stop_on_error) = match args.fact("VERI_MODE") {
+        Some(v) => (
+            v.real("SEUIL").unwrap_or(1e-6),
+            v.text("STOP_ERREUR") != Some("NON"),
+        ),
+        None => (1e-6, true),
+    };
+    let seuil_freq = calc_freq.and_then(|c| c.real("SEUIL_FREQ")).unwrap_or(1e-2);
+    let mut modes = Vec::with_capacity(set.omega2.len());
+    ctx.say(&format!(
+        "CALC_MODES {name}: {} mode(s)\n  NUME_ORDRE  FREQUENCE (HZ)   ERREUR",
+        set.omega2.len()
+    ))?;
+    for (i, (omega2, vector)) in set.omega2.iter().zip(&set.vectors).enumerate() {
+        let mut phi = vector.clone();
+        let gene = eigen::normalize(&mut phi, &kr, &mr, &norm)?;
+        let residual = set.residuals.get(i).copied().unwrap_or(0.0);
+        let freq = eigen::frequency(*omega2);
+        if residual > seuil {
+            let msg = format!(
+                "mode {} ({freq:.6e} Hz) has a relative residual {residual:.2e} above SEUIL={seuil:.1e}",
+                i + 1
+            );
+            if stop_on_error {
+                return Err(Error::numerical(msg).keyword("CALC_MODES/VERI_MODE"));
+            }
+            ctx.alarm("CALC_MODES_1", &msg)?;
+        }
+        let rigid = if freq < seuil_freq { "  (rigid-body mode)" } else { "" };
+        ctx.say(&format!(
+            "  {:>10}  {:>14}   {}{rigid}",
+            i + 1,
+            format_e(freq, 6),
+            format_e(residual, 2)
+        ))?;
+        let mut shape = vec![0.0; k.size()];
+        for (&full, v) in free.iter().zip(&phi) {
+            shape[full] = *v;
+        }
+        modes.push(Mode {
+            nume_ordre: i + 1,
+            freq,
+            omega2: *omega2,
+            mass_gene: gene.gen_mass,
+            rigi_gene: gene.gen_stiff,
+            shape,
+            label: "DEPL".to_string(),
+        });
+    }
+    let result = ModeMeca {
+        numbering: k.numbering.clone(),
+        numbering_name,
+        modes,
+    };
+    ctx.create(&name, "mode_meca")?;
+    mode_store::save_modes(ctx.store, &name, &result)
+}
+
+fn mode_request(args: &Args) -> Result<ModeRequest> {
+    let option = args.text("OPTION").unwrap_or("PLUS_PETITE");
+    let cf = args.fact("CALC_FREQ");
+    let nmax = cf.and_then(|c| c.int("NMAX_FREQ")).unwrap_or(10);
+    let freqs = cf.and_then(|c| c.reals("FREQ")).unwrap_or_default();
+    let n = usize::try_from(nmax).ok().filter(|&n| n > 0).ok_or_else(|| {
+        Error::validation(format!("NMAX_FREQ must be a positive integer, got {nmax}"))
+            .keyword("CALC_MODES/CALC_FREQ/NMAX_FREQ")
+    })?;
+    match option {
+        "PLUS_PETITE" => Ok(ModeRequest::Smallest { n }),
+        "BANDE" => match freqs.as_slice() {
+            [f1, f2] if f1 < f2 => Ok(ModeRequest::Band {
+                f_min: *f1,
+                f_max: *f2,
+            }),
+            _ => Err(Error::validation(format!(
+                "OPTION='BANDE' needs FREQ=(f_min, f_max) with f_min < f_max, got {freqs:?}"
+            ))
+            .keyword("CALC_MODES/CALC_FREQ/FREQ")),
+        },
+        "CENTRE" => match freqs.as_slice() {
+            [f] => Ok(ModeRequest::Centre { f: *f, n }),
+            _ => Err(Error::validation(format!(
+                "OPTION='CENTRE' needs one centre frequency FREQ=f, got {freqs:?}"
+            ))
+            .keyword("CALC_MODES/CALC_FREQ/FREQ")),
+        },
+        other => Err(Error::validation(format!("OPTION='{other}' is not supported"))
+            .keyword("CALC_MODES/OPTION")),
+    }
+}
+
+/// NORM_MODE on the reduced (free) DOFs.
+fn mode_norm(
+    args: &Args,
+    dofs: &[crate::model::numbering::NumberedDof],
+    free: &[usize],
+) -> Result<ModeNorm> {
+    let norme = args
+        .fact("NORM_MODE")
+        .and_then(|n| n.text("NORME"))
+        .unwrap_or("TRAN_ROTA");
+    let mask = |keep: fn(Cmp) -> bool| -> Vec<bool> {
+        free.iter()
+            .map(|&i| dofs.get(i).is_some_and(|d| keep(d.cmp)))
+            .collect()
+    };
+    Ok(match norme {
+        "MASS_GENE" => ModeNorm::MassGene,
+        "RIGI_GENE" => ModeNorm::RigiGene,
+        "TRAN" => ModeNorm::LargestComponent {
+            mask: mask(|c| matches!(c, Cmp::Dx | Cmp::Dy | Cmp::Dz)),
+        },
+        "TRAN_ROTA" => ModeNorm::LargestComponent {
+            mask: mask(|_| true),
+        },
+        other => {
+            return Err(Error::validation(format!("NORME='{other}' is not supported"))
+                .keyword("CALC_MODES/NORM_MODE/NORME"))
+        }
+    })
+}

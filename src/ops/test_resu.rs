@@ -1,0 +1,173 @@
+//! TEST_RESU: checks a value of a result concept, Code_Aster style.
+//!
+//! RESU=_F(RESULTAT=..., NUME_ORDRE|NUME_MODE=n, PARA='FREQ'|'MASS_GENE'|'RIGI_GENE'|'OMEGA2')
+//! tests a modal quantity of a `mode_meca`; RESU=_F(RESULTAT=..., NUME_ORDRE=n|INST=t,
+//! NOM_CHAM='DEPL'|'VITE', NOEUD=|GROUP_NO=, NOM_CMP=) tests one value of a field (a mode
+//! shape, or a `dyna_trans` time history).
+
+use crate::args::Args;
+use crate::error::{Error, Result};
+use crate::ops::testing::{checks_from_args, TestValue};
+use crate::ops::OpContext;
+use crate::store::{mesh as mesh_store, modes as mode_store, table as table_store};
+use crate::table::Cell;
+
+pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    for (i, resu) in args.facts_or_empty("RESU").iter().enumerate() {
+        let kw = |k: &str| format!("TEST_RESU/RESU[{}]/{k}", i + 1);
+        let result = resu.req_concept("RESULTAT")?;
+        let computed = match result.ty.as_str() {
+            "mode_meca" => mode_value(ctx, resu, &result.name, &kw)?,
+            "dyna_trans" => dyna_value(ctx, resu, &result.name, &kw)?,
+            other => {
+                return Err(Error::validation(format!(
+                    "TEST_RESU cannot test a concept of type {other}"
+                ))
+                .keyword(kw("RESULTAT")))
+            }
+        };
+        for outcome in checks_from_args(resu, &TestValue::R(computed))? {
+            ctx.say(&outcome.line)?;
+            ctx.tests.push(outcome);
+        }
+    }
+    Ok(())
+}
+
+fn order(resu: &Args, kw: &dyn Fn(&str) -> String) -> Result<i64> {
+    resu.int("NUME_ORDRE")
+        .or_else(|| resu.int("NUME_MODE"))
+        .ok_or_else(|| {
+            Error::validation("expected NUME_ORDRE or NUME_MODE").keyword(kw("NUME_ORDRE"))
+        })
+}
+
+/// The node named by NOEUD or by a one-node GROUP_NO.
+fn node_name(
+    ctx: &OpContext<'_>,
+    resu: &Args,
+    mesh: &str,
+    kw: &dyn Fn(&str) -> String,
+) -> Result<String> {
+    if let Some(n) = resu.text("NOEUD") {
+        return Ok(n.to_string());
+    }
+    let group = resu
+        .text("GROUP_NO")
+        .ok_or_else(|| Error::validation("expected NOEUD or GROUP_NO").keyword(kw("NOEUD")))?;
+    let m = mesh_store::load_mesh(ctx.store, mesh)?;
+    let g = m.node_group(group).ok_or_else(|| {
+        Error::validation(format!("mesh {mesh} has no GROUP_NO '{group}'")).keyword(kw("GROUP_NO"))
+    })?;
+    match g.members.as_slice() {
+        [one] => Ok(m.nodes.get(*one).map(|n| n.name.clone()).unwrap_or_default()),
+        other => Err(Error::validation(format!(
+            "GROUP_NO '{group}' holds {} nodes; TEST_RESU tests one value",
+            other.len()
+        ))
+        .keyword(kw("GROUP_NO"))),
+    }
+}
+
+fn mode_value(
+    ctx: &OpContext<'_>,
+    resu: &Args,
+    name: &str,
+    kw: &dyn Fn(&str) -> String,
+) -> Result<f64> {
+    let modes = mode_store::load_modes(ctx.store, name)?;
+    let n = order(resu, kw)?;
+    let mode = usize::try_from(n)
+        .ok()
+        .and_then(|n| modes.mode(n))
+        .ok_or_else(|| {
+            Error::validation(format!(
+                "{name} has no mode {n} (available: {})",
+                modes.available()
+            ))
+            .keyword(kw("NUME_ORDRE"))
+        })?;
+    if let Some(para) = resu.text("PARA") {
+        return match para {
+            "FREQ" => Ok(mode.freq),
+            "MASS_GENE" => Ok(mode.mass_gene),
+            "RIGI_GENE" => Ok(mode.rigi_gene),
+            "OMEGA2" => Ok(mode.omega2),
+            other => Err(Error::validation(format!(
+                "PARA='{other}' is not stored in a mode_meca"
+            ))
+            .keyword(kw("PARA"))
+            .hint("use FREQ, MASS_GENE, RIGI_GENE or OMEGA2")),
+        };
+    }
+    let cmp = resu
+        .text("NOM_CMP")
+        .ok_or_else(|| Error::validation("expected PARA, or NOM_CHAM with NOM_CMP").keyword(kw("NOM_CMP")))?;
+    let node = node_name(ctx, resu, &modes.numbering.mesh, kw)?;
+    let idx = modes
+        .numbering
+        .dofs
+        .iter()
+        .position(|d| d.node == node && d.cmp.name() == cmp)
+        .ok_or_else(|| {
+            Error::validation(format!("{name} has no DOF {cmp} on node {node}")).keyword(kw("NOM_CMP"))
+        })?;
+    Ok(mode.shape[idx])
+}
+
+fn dyna_value(
+    ctx: &OpContext<'_>,
+    resu: &Args,
+    name: &str,
+    kw: &dyn Fn(&str) -> String,
+) -> Result<f64> {
+    let t = table_store::load_table(ctx.store, name)?;
+    let cmp = resu
+        .text("NOM_CMP")
+        .ok_or_else(|| Error::validation("expected NOM_CMP").keyword(kw("NOM_CMP")))?;
+    let node = match resu.text("NOEUD") {
+        Some(n) => n.to_string(),
+        None => {
+            return Err(Error::validation("expected NOEUD").keyword(kw("NOEUD"))
+                .hint("give the node by name for a time history"))
+        }
+    };
+    let field = match resu.text("NOM_CHAM").unwrap_or("DEPL") {
+        "DEPL" => "DEPL",
+        "VITE" => "VITE",
+        other => {
+            return Err(Error::validation(format!("NOM_CHAM='{other}' is not stored"))
+                .keyword(kw("NOM_CHAM"))
+                .hint("use DEPL or VITE"))
+        }
+    };
+    let by_inst = resu.real("INST");
+    let n = resu.int("NUME_ORDRE");
+    // Instants are matched to 1e-6 relative (PRECISION is the test's own tolerance).
+    let prec = 1e-6;
+    for r in 0..t.nrows() {
+        let same_dof = t.cell(r, "NOEUD").and_then(Cell::as_text) == Some(node.as_str())
+            && t.cell(r, "NOM_CMP").and_then(Cell::as_text) == Some(cmp);
+        if !same_dof {
+            continue;
+        }
+        let hit = match (by_inst, n) {
+            (Some(inst), _) => t
+                .cell(r, "INST")
+                .and_then(Cell::as_f64)
+                .is_some_and(|ti| (ti - inst).abs() <= prec * inst.abs().max(1e-300)),
+            (None, Some(n)) => matches!(t.cell(r, "NUME_ORDRE"), Some(Cell::I(i)) if *i == n),
+            (None, None) => false,
+        };
+        if hit {
+            return t.cell(r, field).and_then(Cell::as_f64).ok_or_else(|| {
+                Error::store(format!("{name}: no {field} value at this instant"))
+            });
+        }
+    }
+    Err(Error::validation(format!(
+        "{name} has no {field} value of {node} {cmp} at the requested instant"
+    ))
+    .keyword(kw("INST"))
+    .hint("give NUME_ORDRE (1..NB_INST) or an INST of the stored time history"))
+}

@@ -1,0 +1,142 @@
+//! Persistence of `mode_meca` concepts.
+//!
+//! - `modes(concept, NUME_ORDRE, FREQ, OMEGA2, MASS_GENE, RIGI_GENE, LABEL)`: one row per
+//!   mode, queryable as `SELECT NUME_ORDRE, FREQ FROM modes WHERE concept='MODES'`.
+//! - `mode_shapes(concept, NUME_ORDRE, dof, NOEUD, NOM_CMP, value)`: every shape value.
+//! - `concept_data(concept, 'numbering')`: the DOF numbering (json).
+
+use crate::error::{Error, Result};
+use crate::model::modes::{Mode, ModeMeca};
+use crate::model::numbering::DofNumbering;
+use crate::store::Store;
+use rusqlite::params;
+
+const SCHEMA: &str = "
+CREATE TABLE IF NOT EXISTS modes (
+    concept TEXT NOT NULL REFERENCES concepts(name) ON DELETE CASCADE,
+    NUME_ORDRE INTEGER NOT NULL,
+    FREQ REAL NOT NULL,
+    OMEGA2 REAL NOT NULL,
+    MASS_GENE REAL NOT NULL,
+    RIGI_GENE REAL NOT NULL,
+    LABEL TEXT NOT NULL,
+    PRIMARY KEY (concept, NUME_ORDRE)
+);
+CREATE TABLE IF NOT EXISTS mode_shapes (
+    concept TEXT NOT NULL REFERENCES concepts(name) ON DELETE CASCADE,
+    NUME_ORDRE INTEGER NOT NULL,
+    dof INTEGER NOT NULL,
+    NOEUD TEXT NOT NULL,
+    NOM_CMP TEXT NOT NULL,
+    value REAL NOT NULL,
+    PRIMARY KEY (concept, NUME_ORDRE, dof)
+);
+";
+
+pub fn ensure_schema(store: &Store) -> Result<()> {
+    store.conn().execute_batch(SCHEMA)?;
+    Ok(())
+}
+
+pub fn drop_data(store: &Store, name: &str) -> Result<()> {
+    ensure_schema(store)?;
+    store
+        .conn()
+        .execute("DELETE FROM modes WHERE concept = ?1", params![name])?;
+    store
+        .conn()
+        .execute("DELETE FROM mode_shapes WHERE concept = ?1", params![name])?;
+    Ok(())
+}
+
+pub fn save_modes(store: &Store, name: &str, modes: &ModeMeca) -> Result<()> {
+    ensure_schema(store)?;
+    drop_data(store, name)?;
+    store.put_json(name, "numbering", &modes.numbering)?;
+    store.put_json(name, "numbering_name", &modes.numbering_name)?;
+    let conn = store.conn();
+    let mut row = conn.prepare(
+        "INSERT INTO modes(concept, NUME_ORDRE, FREQ, OMEGA2, MASS_GENE, RIGI_GENE, LABEL)
+         VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)",
+    )?;
+    let mut val = conn.prepare(
+        "INSERT INTO mode_shapes(concept, NUME_ORDRE, dof, NOEUD, NOM_CMP, value)
+         VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
+    )?;
+    for m in &modes.modes {
+        if m.shape.len() != modes.numbering.len() {
+            return Err(Error::internal(format!(
+                "mode {} has {} values for {} DOFs",
+                m.nume_ordre,
+                m.shape.len(),
+                modes.numbering.len()
+            )));
+        }
+        row.execute(params![
+            name,
+            m.nume_ordre as i64,
+            m.freq,
+            m.omega2,
+            m.mass_gene,
+            m.rigi_gene,
+            m.label
+        ])?;
+        for (i, (v, dof)) in m.shape.iter().zip(&modes.numbering.dofs).enumerate() {
+            val.execute(params![
+                name,
+                m.nume_ordre as i64,
+                i as i64,
+                dof.node,
+                dof.cmp.name(),
+                v
+            ])?;
+        }
+    }
+    Ok(())
+}
+
+pub fn load_modes(store: &Store, name: &str) -> Result<ModeMeca> {
+    ensure_schema(store)?;
+    let numbering: DofNumbering = store.get_json(name, "numbering")?;
+    let numbering_name: String = store.get_json(name, "numbering_name")?;
+    let conn = store.conn();
+    let mut rows = conn.prepare(
+        "SELECT NUME_ORDRE, FREQ, OMEGA2, MASS_GENE, RIGI_GENE, LABEL FROM modes
+         WHERE concept = ?1 ORDER BY NUME_ORDRE",
+    )?;
+    let mut modes: Vec<Mode> = rows
+        .query_map(params![name], |r| {
+            Ok(Mode {
+                nume_ordre: r.get::<_, i64>(0)? as usize,
+                freq: r.get(1)?,
+                omega2: r.get(2)?,
+                mass_gene: r.get(3)?,
+                rigi_gene: r.get(4)?,
+                label: r.get(5)?,
+                shape: Vec::new(),
+            })
+        })?
+        .collect::<rusqlite::Result<_>>()?;
+    let mut vals = conn.prepare(
+        "SELECT dof, value FROM mode_shapes WHERE concept = ?1 AND NUME_ORDRE = ?2 ORDER BY dof",
+    )?;
+    for m in &mut modes {
+        let mut shape = vec![0.0; numbering.len()];
+        let entries = vals.query_map(params![name, m.nume_ordre as i64], |r| {
+            Ok((r.get::<_, i64>(0)?, r.get::<_, f64>(1)?))
+        })?;
+        for e in entries {
+            let (i, v) = e?;
+            let slot = shape.get_mut(i as usize).ok_or_else(|| {
+                Error::store(format!("mode_shapes of {name} names DOF {i} out of range"))
+            })?;
+            *slot = v;
+        }
+        m.shape = shape;
+    }
+    Ok(ModeMeca {
+        numbering,
+        numbering_name,
+        modes,
+    })
+}
