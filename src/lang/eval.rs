@@ -188,6 +188,11 @@ impl Evaluator<'_> {
         if self.env.modules.contains(n) {
             return Err(self.syntax(format!("module '{n}' cannot be used as a value"), span));
         }
+        // A concept of the study that no statement of this file bound: one created by an
+        // earlier run (POURSUITE).
+        if let Some(c) = self.host.lookup_concept(n) {
+            return Ok(Value::Concept(c));
+        }
         let mut err = self.input(format!("name '{n}' is not defined"), span);
         if builtins::math_const(n).is_some() {
             err = err.hint(IMPORT_HINT);

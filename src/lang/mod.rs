@@ -138,7 +138,8 @@ pub trait Host {
     }
 
     /// The concept named `name` if it exists: after a call, every `CO('NAME')` of its
-    /// keywords that the host reports here becomes a Python name.
+    /// keywords that the host reports here becomes a Python name, and a name no statement
+    /// bound is looked up here (concepts of an earlier run continued by POURSUITE).
     fn lookup_concept(&self, _name: &str) -> Option<ConceptRef> {
         None
     }

@@ -1,0 +1,219 @@
+//! The `aster-nl` binary on the command files of `testcases/`, as a user runs them.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_aster-nl"))
+}
+
+fn case(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("testcases").join(name)
+}
+
+fn text(o: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+/// Runs a self-checking case with its database in a temporary directory; returns the
+/// output after asserting exit code 0, no NOOK and at least one OK.
+fn run_ok(name: &str) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let o = bin()
+        .arg("run")
+        .arg(case(name))
+        .arg("--db")
+        .arg(dir.path().join("case.db"))
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{name}:\n{out}");
+    assert!(!out.contains("NOOK "), "{name}:\n{out}");
+    assert!(out.contains(" OK "), "{name} ran no test:\n{out}");
+    out
+}
+
+#[test]
+fn spring_chain_fixed_fixed() {
+    let out = run_ok("chain_fixed_fixed.comm");
+    assert!(out.contains("tests: 11 OK, 0 NOOK"), "{out}");
+}
+
+#[test]
+fn spring_chain_fixed_free_with_ddl_impo() {
+    run_ok("chain_fixed_free.comm");
+}
+
+#[test]
+fn spring_chain_free_free_has_a_rigid_body_mode() {
+    run_ok("chain_free_free.comm");
+}
+
+#[test]
+fn cantilever_beam() {
+    let out = run_ok("beam_cantilever.comm");
+    assert!(out.contains("tests: 5 OK, 0 NOOK"), "{out}");
+}
+
+#[test]
+fn simply_supported_beam() {
+    run_ok("beam_simply_supported.comm");
+}
+
+#[test]
+fn tables_and_functions() {
+    let out = run_ok("tables_functions.comm");
+    assert!(out.contains("tests: 12 OK, 0 NOOK"), "{out}");
+}
+
+#[test]
+fn poursuite_sees_the_concepts_of_the_first_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("study.db");
+    let first = bin()
+        .args(["run"])
+        .arg(case("poursuite_debut.comm"))
+        .arg("--db")
+        .arg(&db)
+        .output()
+        .unwrap();
+    assert_eq!(first.status.code(), Some(0), "{}", text(&first));
+    let second = bin()
+        .args(["run"])
+        .arg(case("poursuite_suite.comm"))
+        .arg("--db")
+        .arg(&db)
+        .output()
+        .unwrap();
+    let out = text(&second);
+    assert_eq!(second.status.code(), Some(0), "{out}");
+    assert!(out.contains("continuing"), "{out}");
+    assert!(out.contains("tests: 2 OK, 0 NOOK"), "{out}");
+}
+
+#[test]
+fn poursuite_without_a_database_is_a_clear_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = bin()
+        .arg("run")
+        .arg(case("poursuite_suite.comm"))
+        .arg("--db")
+        .arg(dir.path().join("missing.db"))
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("no database to continue"), "{out}");
+}
+
+#[test]
+fn syntax_error_names_file_line_and_column() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = bin()
+        .arg("run")
+        .arg(case("errors/syntax.comm"))
+        .arg("--db")
+        .arg(dir.path().join("x.db"))
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("syntax.comm:2:15"), "{out}");
+    assert!(out.contains("was never closed"), "{out}");
+}
+
+#[test]
+fn check_reports_every_catalog_error_of_a_file() {
+    let o = bin()
+        .arg("check")
+        .arg(case("errors/catalog.comm"))
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("3 error(s)"), "{out}");
+    assert!(out.contains("did you mean TITRE?"), "{out}");
+    assert!(out.contains("catalog.comm:4:22"), "{out}");
+    assert!(out.contains("expected a real"), "{out}");
+}
+
+#[test]
+fn check_accepts_the_nonlinear_mode_cases() {
+    for name in ["sdnd122a.comm", "sdnd122b.comm", "sdnd122c.comm"] {
+        let o = bin().arg("check").arg(case(name)).output().unwrap();
+        assert_eq!(o.status.code(), Some(0), "{name}: {}", text(&o));
+    }
+}
+
+#[test]
+fn failed_operator_keeps_earlier_concepts() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("r.db");
+    let o = bin()
+        .arg("run")
+        .arg(case("errors/runtime.comm"))
+        .arg("--db")
+        .arg(&db)
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("no mesh file for unit 33"), "{out}");
+    let t = bin().arg("tables").arg(&db).output().unwrap();
+    let listing = text(&t);
+    assert_eq!(t.status.code(), Some(0), "{listing}");
+    assert!(listing.contains("table_sdaster"), "{listing}");
+    assert!(!listing.contains("MAIL "), "{listing}");
+}
+
+#[test]
+fn nook_test_gives_exit_code_1() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = bin()
+        .arg("run")
+        .arg(case("errors/nook.comm"))
+        .arg("--db")
+        .arg(dir.path().join("n.db"))
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{out}");
+    assert!(out.contains("NOOK"), "{out}");
+}
+
+#[test]
+fn export_file_maps_the_mesh_unit() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("chain_fixed_fixed.comm"), dir.path().join("study.comm")).unwrap();
+    std::fs::copy(case("chain_fixed_fixed.mail"), dir.path().join("other_name.mail")).unwrap();
+    std::fs::write(
+        dir.path().join("study.export"),
+        "P actions make_etude\nF comm study.comm D 1\nF mail other_name.mail D 20\nF mess study.mess R 6\n",
+    )
+    .unwrap();
+    let o = bin()
+        .arg("run")
+        .arg(dir.path().join("study.export"))
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert!(out.contains("tests: 11 OK, 0 NOOK"), "{out}");
+    assert!(dir.path().join("study.db").exists());
+}
+
+#[test]
+fn catalog_prints_an_operator() {
+    let o = bin().args(["catalog", "MODE_NON_LINE"]).output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    for word in ["NB_HARM_NONL", "201", "PARA_REGUL", "CHOC", "EHMAN"] {
+        assert!(out.contains(word), "{word} missing:\n{out}");
+    }
+    let o = bin().args(["catalog", "NOT_AN_OPERATOR"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+}
