@@ -485,3 +485,28 @@ fn normalize_through_faer_matrices() {
     let mut short = vec![1.0; 29];
     assert!(normalize(&mut short, &km, &mm, &ModeNorm::MassGene).is_err());
 }
+
+#[test]
+fn lanczos_on_a_tiny_model_returns_every_mode() {
+    // Basis as large as the model: the Krylov space is the whole space and the
+    // exhausted-subspace path must still return every mode correctly.
+    let (n, k, mass) = (6, 3.0, 1.5);
+    let (km, mm) = chain(n, k, mass, true);
+    let set = solve_modes(
+        &km,
+        &mm,
+        &ModeRequest::Smallest { n },
+        &opts(Method::Lanczos),
+    )
+    .unwrap();
+    assert_eq!(set.omega2.len(), n);
+    for (j, w) in omegas(&set).iter().enumerate() {
+        let exact = fixed_omega(j + 1, n, k, mass);
+        assert!(
+            (w - exact).abs() < 1e-10 * exact,
+            "mode {}: {w} vs {exact}",
+            j + 1
+        );
+    }
+    assert!(orthonormality_error(&set, &mm) < 1e-10);
+}
