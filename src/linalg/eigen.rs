@@ -16,8 +16,10 @@
 
 use super::eigen_dense::solve_dense;
 use super::eigen_lanczos::{lanczos, LanczosParams};
-use super::eigen_norm::{self, ModeNorm, Normalized};
-use super::eigen_shift::{FactorKind, ShiftedFactor};
+use super::eigen_norm;
+pub use super::eigen_norm::{largest_component_scale, ModeNorm, Normalized};
+pub use super::eigen_shift::FactorKind;
+use super::eigen_shift::ShiftedFactor;
 use super::eigen_sym::{norm2, SymSparse};
 use crate::error::{Error, Result};
 use faer::sparse::SparseColMat;
@@ -581,14 +583,6 @@ pub fn normalize(
 ) -> Result<Normalized> {
     let ks = SymSparse::from_faer(k, "stiffness")?;
     let ms = SymSparse::from_faer(m, "mass")?;
-    if phi.len() != ks.n || ms.n != ks.n {
-        return Err(Error::internal(format!(
-            "mode of {} DOFs for matrices of {} and {} DOFs",
-            phi.len(),
-            ks.n,
-            ms.n
-        )));
-    }
     eigen_norm::normalize(phi, &ks, &ms, norm)
 }
 

@@ -53,7 +53,7 @@ pub fn largest_component_scale(phi: &[f64], mask: &[bool]) -> Result<f64> {
 }
 
 /// (φᵀMφ, φᵀKφ).
-pub fn generalized(phi: &[f64], k: &SymSparse, m: &SymSparse) -> (f64, f64) {
+fn generalized(phi: &[f64], k: &SymSparse, m: &SymSparse) -> (f64, f64) {
     (m.form(phi, phi), k.form(phi, phi))
 }
 
@@ -64,6 +64,14 @@ pub fn normalize(
     m: &SymSparse,
     norm: &ModeNorm,
 ) -> Result<Normalized> {
+    if phi.len() != k.n || m.n != k.n {
+        return Err(Error::internal(format!(
+            "mode of {} DOFs for matrices of {} and {} DOFs",
+            phi.len(),
+            k.n,
+            m.n
+        )));
+    }
     let (gm, gk) = generalized(phi, k, m);
     let scale = match norm {
         ModeNorm::MassGene => {

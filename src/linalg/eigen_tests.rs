@@ -425,3 +425,88 @@ fn lanczos_with_locked_vectors_finds_the_rest() {
         );
     }
 }
+
+#[test]
+fn band_from_zero_includes_rigid_body_mode() {
+    // Free-free chain, band [0, f] with f halfway between elastic modes 3 and 4: the
+    // rigid-body mode (ω² ≈ 0, reported at 0 Hz) and 3 elastic modes.
+    let (n, k, mass) = (2500, 50.0, 0.5);
+    let (km, mm) = chain(n, k, mass, false);
+    let hz = |j: usize| free_omega(j, n, k, mass) / (2.0 * PI);
+    let f_max = 0.5 * (hz(3) + hz(4));
+    for method in [Method::Dense, Method::Lanczos] {
+        let set = solve_modes(
+            &km,
+            &mm,
+            &ModeRequest::Band { f_min: 0.0, f_max },
+            &opts(method),
+        )
+        .unwrap();
+        assert_eq!(set.omega2.len(), 4, "{method:?}: {:?}", set.frequencies());
+        // Same absolute tolerance on the rigid mode as above: 1e-8·k/m.
+        assert!(set.omega2[0].abs() < 1e-8 * k / mass, "{method:?}");
+        for j in 1..4 {
+            let exact = free_omega(j, n, k, mass);
+            assert!(
+                (set.omega2[j].sqrt() - exact).abs() < 1e-8 * exact,
+                "{method:?} mode {j}"
+            );
+        }
+    }
+}
+
+#[test]
+fn normalize_through_faer_matrices() {
+    let (km, mm) = chain(30, 4.0, 2.0, true);
+    let set = solve_modes(
+        &km,
+        &mm,
+        &ModeRequest::Smallest { n: 2 },
+        &EigenOptions::default(),
+    )
+    .unwrap();
+    let mut phi = set.vectors[1].clone();
+    let r = normalize(
+        &mut phi,
+        &km,
+        &mm,
+        &ModeNorm::LargestComponent {
+            mask: vec![true; 30],
+        },
+    )
+    .unwrap();
+    let biggest = phi
+        .iter()
+        .fold(0.0f64, |a, v| if v.abs() > a.abs() { *v } else { a });
+    assert!((biggest - 1.0).abs() < 1e-15);
+    // Rayleigh quotient is scale-free: gen_stiff / gen_mass = ω².
+    assert!((r.gen_stiff / r.gen_mass - set.omega2[1]).abs() < 1e-10 * set.omega2[1]);
+    // Wrong length: an error, not a panic.
+    let mut short = vec![1.0; 29];
+    assert!(normalize(&mut short, &km, &mm, &ModeNorm::MassGene).is_err());
+}
+
+#[test]
+fn lanczos_on_a_tiny_model_returns_every_mode() {
+    // Basis as large as the model: the Krylov space is the whole space and the
+    // exhausted-subspace path must still return every mode correctly.
+    let (n, k, mass) = (6, 3.0, 1.5);
+    let (km, mm) = chain(n, k, mass, true);
+    let set = solve_modes(
+        &km,
+        &mm,
+        &ModeRequest::Smallest { n },
+        &opts(Method::Lanczos),
+    )
+    .unwrap();
+    assert_eq!(set.omega2.len(), n);
+    for (j, w) in omegas(&set).iter().enumerate() {
+        let exact = fixed_omega(j + 1, n, k, mass);
+        assert!(
+            (w - exact).abs() < 1e-10 * exact,
+            "mode {}: {w} vs {exact}",
+            j + 1
+        );
+    }
+    assert!(orthonormality_error(&set, &mm) < 1e-10);
+}
