@@ -34,7 +34,7 @@ use faer::sparse::SparseColMat;
 use laws::ScaledLaw;
 use system::{Scaling, System};
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ShockLaw {
     Plan,
     BiPlan,
