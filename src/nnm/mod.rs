@@ -92,7 +92,7 @@ pub struct Point {
     pub energy: f64,
     /// Full unknown vector, physical units (layout in the module doc).
     pub x: Vec<f64>,
-    /// ‖R‖ of the scaled equations.
+    /// ‖R(X)‖/max(1, ‖X‖) of the scaled equations.
     pub residual: f64,
     /// Unfolding parameter (1/s).
     pub gamma: f64,
@@ -443,7 +443,19 @@ fn run(
                 }
             }
         };
-        let ser = anm::compute(&sys, &mut solver, &x0, &border, &params, &orient).map_err(|e| in_branch(e, b))?;
+        let mut ser = anm::compute(&sys, &mut solver, &x0, &border, &params, &orient).map_err(|e| in_branch(e, b))?;
+        // Safeguard: the step-length estimate assumes the series converges at a_max; where it
+        // does not (nearly homogeneous regimes far up a branch, where the estimate grows
+        // without bound), the end residual says so: halve the step until it is credible.
+        let credible = 1e3 * settings.prec_man.max(settings.prec_newton);
+        for _ in 0..40 {
+            let xe = ser.eval(&x0, ser.a_max);
+            let r = newton::relative(&sys.residual(&xe), &xe);
+            if r.is_finite() && r <= credible {
+                break;
+            }
+            ser.a_max *= 0.5;
+        }
         let np = settings.n_points_per_branch;
         let mut branch_points = Vec::with_capacity(np);
         let mut newton_iterations = 0;
@@ -463,7 +475,7 @@ fn run(
                     b,
                 ));
             }
-            let mut res = anm::norm(&sys.residual(&x));
+            let mut res = newton::relative(&sys.residual(&x), &x);
             if i == np {
                 let (it, r) = newton::correct(
                     &sys,
