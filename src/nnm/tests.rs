@@ -292,7 +292,7 @@ fn cercle_approaches_biplan_as_the_offset_shrinks_and_rejects_the_centre() {
 
 #[test]
 fn spring_chains_with_one_stop_run_to_high_energy_with_converged_points() {
-    for n in [2, 20] {
+    for (n, branches) in [(2, 30), (20, 80)] {
         let (k, m) = chain(n, 10.0, 1.0);
         let (mode, w) = lowest_mode(&k, &m);
         let p = Problem {
@@ -300,7 +300,7 @@ fn spring_chains_with_one_stop_run_to_high_energy_with_converged_points() {
             m,
             shocks: vec![Shock { law: ShockLaw::Plan, dofs: vec![n - 1], gap: 0.01, stiffness: 50.0, regul: 1e-4 }],
         };
-        let mut s = settings(3, 40, 80, 1);
+        let mut s = settings(3, 40, branches, 1);
         s.prec_man = 1e-8;
         let st = start_from_mode(&p, &s, &mode, 1.0, w).unwrap();
         let e0 = st.point.energy;
@@ -308,15 +308,16 @@ fn spring_chains_with_one_stop_run_to_high_energy_with_converged_points() {
         assert!(out.error.is_none(), "{n} DOFs: {:?}", out.error);
         let top = out.points.iter().map(|q| q.energy).fold(0.0, f64::max);
         println!("{n} DOFs: energy {e0:.3e} -> {top:.3e}");
-        for q in out.points.iter().step_by(20) {
-            println!("   E {:.4e} f {:.6} harm {}", q.energy, q.frequency, q.harm_max);
-        }
         // "High energy": at least ten times the energy of first contact.
         assert!(top > 10.0 * e0, "{n} DOFs: {e0} -> {top}");
         for q in &out.points {
             assert!(q.residual <= s.prec_newton, "residual {}", q.residual);
-            // The stop stiffens the system: frequency above the linear one.
-            assert!(q.omega > w * (1.0 - 1e-6));
+            // The stop stiffens the 2-DOF system: frequency above the linear one. (The
+            // 20-DOF chain has ω₂ ≈ 3ω₁: its branch winds through a 3:1 interaction where
+            // the frequency may dip below the linear one, so no such check there.)
+            if n == 2 {
+                assert!(q.omega > w * (1.0 - 1e-6));
+            }
         }
     }
 }
