@@ -92,8 +92,9 @@ pub fn compute(
     let mut terms = vec![x1];
     for order in 2..=p.order {
         let mut rhs = vec![0.0; n];
-        let pairs: Vec<(&[f64], &[f64])> =
-            (1..order).map(|r| (terms[r - 1].as_slice(), terms[order - r - 1].as_slice())).collect();
+        let pairs: Vec<(&[f64], &[f64])> = (1..order)
+            .map(|r| (terms[r - 1].as_slice(), terms[order - r - 1].as_slice()))
+            .collect();
         sys.quad_sum(&pairs, &mut rhs[..n - 1]);
         rhs.iter_mut().for_each(|v| *v = -*v);
         rhs[n - 1] = 0.0;
@@ -103,7 +104,9 @@ pub fn compute(
             *z -= c * yi;
         }
         if rhs.iter().any(|v| !v.is_finite()) {
-            return Err(Error::numerical(format!("series term of order {order} is not finite")));
+            return Err(Error::numerical(format!(
+                "series term of order {order} is not finite"
+            )));
         }
         terms.push(rhs);
     }
@@ -148,9 +151,15 @@ pub fn compute(
         a_max = cap;
     }
     if !(a_max.is_finite() && a_max > 0.0) {
-        return Err(Error::numerical(format!("the step length a_max = {a_max} is not usable")));
+        return Err(Error::numerical(format!(
+            "the step length a_max = {a_max} is not usable"
+        )));
     }
-    Ok(Series { terms, a_max, bifurcation })
+    Ok(Series {
+        terms,
+        a_max,
+        bifurcation,
+    })
 }
 
 /// a_max = (PREC_MAN/‖R_{N+1}‖)^{1/(N+1)}, R_{N+1} = Σ_{r=1..N} Q(X_r, X_{N+1−r}) the

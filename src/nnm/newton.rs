@@ -27,9 +27,6 @@ pub fn correct(
     loop {
         let r = sys.residual(x);
         let nr = relative(&r, x);
-        if std::env::var("NNM_DEBUG").is_ok() {
-            eprintln!("newton it {it} res {nr:e} |x| {:e}", norm(x));
-        }
         if !nr.is_finite() {
             return Err(Error::numerical(format!(
                 "the residual is not finite after {it} Newton iteration(s)"
