@@ -180,25 +180,18 @@ impl Runner<'_> {
         let mut tests = Vec::new();
         store.begin_op()?;
         let started = Instant::now();
-        let mut ctx = OpContext {
-            store,
-            op: &call.op,
-            result: call.result.as_deref(),
-            reuse: call.reuse.as_ref().map(|c| c.name.as_str()),
-            file: &self.file,
-            line: call.span.line,
-            info,
-            out: &mut *self.out,
-            units: &self.units,
-            ignored_alarms: &self.ignored_alarms,
-            tests: &mut tests,
-            created: Vec::new(),
-            progress: self.progress,
-            value: None,
-        };
+        let mut ctx = OpContext::new(store, &call.op, &mut *self.out, &self.units, &mut tests);
+        ctx.result = call.result.as_deref();
+        ctx.reuse = call.reuse.as_ref().map(|c| c.name.as_str());
+        ctx.file = &self.file;
+        ctx.line = call.span.line;
+        ctx.info = info;
+        ctx.ignored_alarms = &self.ignored_alarms;
+        ctx.progress = self.progress;
         let outcome = op_fn(&mut ctx, args);
         let created = std::mem::take(&mut ctx.created);
         let value = ctx.value.take();
+        let deferred = ctx.deferred_error.take();
         let outcome = outcome.and_then(|()| store.commit_op());
         let elapsed = started.elapsed();
         // TEST_* lines are printed by the operators; keep the score even if it failed later.
@@ -216,6 +209,10 @@ impl Runner<'_> {
             self.summary
                 .created
                 .push((name.clone(), ty.clone(), call.op.clone()));
+        }
+        if let Some(e) = deferred {
+            // The operator's results are committed; the run still stops here.
+            return Err(e);
         }
         if let Some(v) = value {
             return Ok(v);

@@ -217,3 +217,23 @@ fn catalog_prints_an_operator() {
     let o = bin().args(["catalog", "NOT_AN_OPERATOR"]).output().unwrap();
     assert_eq!(o.status.code(), Some(2));
 }
+
+#[test]
+fn sdnd122a_nonlinear_mode_end_to_end() {
+    let out = run_ok("sdnd122a.comm");
+    assert!(out.contains("tests: 6 OK, 0 NOOK"), "{out}");
+    assert!(out.contains("MODE_NON_LINE MNL: 105 point(s)"), "{out}");
+    assert!(out.contains("SELECT NUME_ORDRE, ENERGIE, FREQUENCE FROM MNL"), "{out}");
+}
+
+#[test]
+fn sdnd122b_boundary_conditions_by_ddl_impo() {
+    let out = run_ok("sdnd122b.comm");
+    assert!(out.contains("MODE_NON_LINE MNL: 1050 point(s)"), "{out}");
+}
+
+#[test]
+fn sdnd122c_restart_into_a_new_concept() {
+    let out = run_ok("sdnd122c.comm");
+    assert!(out.contains("tests: 6 OK, 0 NOOK"), "{out}");
+}

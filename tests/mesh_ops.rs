@@ -53,22 +53,12 @@ fn run(
     let mut out: Vec<u8> = Vec::new();
     let mut tests: Vec<TestOutcome> = Vec::new();
     let f = ops::lookup(op).expect("operator registered");
-    let mut ctx = OpContext {
-        store,
-        op,
-        result: Some(result),
-        reuse,
-        file: "t.comm",
-        line: 1,
-        info: a.int("INFO").unwrap_or(1),
-        out: &mut out,
-        units,
-        ignored_alarms: &[],
-        tests: &mut tests,
-        created: Vec::new(),
-        progress: false,
-        value: None,
-    };
+    let mut ctx = OpContext::new(store, op, &mut out, units, &mut tests);
+    ctx.result = Some(result);
+    ctx.reuse = reuse;
+    ctx.file = "t.comm";
+    ctx.line = 1;
+    ctx.info = a.int("INFO").unwrap_or(1);
     store.begin_op()?;
     match f(&mut ctx, a) {
         Ok(()) => store.commit_op()?,

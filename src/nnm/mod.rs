@@ -23,6 +23,7 @@ mod energy;
 mod laws;
 mod linear_solver;
 mod newton;
+mod resolution;
 mod series;
 mod system;
 
@@ -32,6 +33,7 @@ mod reference;
 mod tests;
 
 pub use linear_solver::{BorderedSolver, SparseLu};
+pub use resolution::{resolution_warnings, tail_ratio};
 
 use crate::error::{Error, Result};
 use faer::sparse::SparseColMat;

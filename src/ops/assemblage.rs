@@ -106,22 +106,10 @@ mod tests {
         let mut tests = Vec::new();
         let f = lookup(op).expect("operator registered");
         let created = {
-            let mut ctx = OpContext {
-                store,
-                op,
-                result,
-                reuse: None,
-                file: "t.comm",
-                line: 1,
-                info: 1,
-                out: &mut out,
-                units: &units,
-                ignored_alarms: &[],
-                tests: &mut tests,
-                created: vec![],
-                progress: false,
-                value: None,
-            };
+            let mut ctx = OpContext::new(store, op, &mut out, &units, &mut tests);
+            ctx.result = result;
+            ctx.file = "t.comm";
+            ctx.line = 1;
             f(&mut ctx, args)?;
             ctx.created
         };

@@ -40,22 +40,17 @@ impl Harness {
     ) -> Result<Option<Value>> {
         let f = lookup(op).ok_or_else(|| Error::internal(format!("no operator {op}")))?;
         self.store.begin_op()?;
-        let mut ctx = OpContext {
-            store: &self.store,
+        let mut ctx = OpContext::new(
+            &self.store,
             op,
-            result,
-            reuse,
-            file: "test.comm",
-            line: 1,
-            info: 1,
-            out: &mut self.out,
-            units: &self.units,
-            ignored_alarms: &[],
-            tests: &mut self.tests,
-            created: Vec::new(),
-            progress: false,
-            value: None,
-        };
+            &mut self.out,
+            &self.units,
+            &mut self.tests,
+        );
+        ctx.result = result;
+        ctx.reuse = reuse;
+        ctx.file = "test.comm";
+        ctx.line = 1;
         let r = f(&mut ctx, args);
         let value = ctx.value.take();
         match r {

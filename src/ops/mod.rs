@@ -6,6 +6,9 @@
 
 pub mod calc_modes;
 pub mod calc_table;
+pub mod mnl_common;
+pub mod mode_non_line;
+pub mod rest_mode_nonl;
 pub mod crea_table;
 pub mod defi_fonction;
 pub mod detruire;
@@ -90,9 +93,40 @@ pub struct OpContext<'a> {
     /// Set by operators whose result is a plain Python value (EXTR_TABLE with
     /// TYPE_RESU='R', ...) rather than a concept.
     pub value: Option<crate::value::Value>,
+    /// An error to report after this operator's work is committed: MODE_NON_LINE keeps
+    /// the branches computed before a failed correction, then the run stops.
+    pub deferred_error: Option<Error>,
 }
 
-impl OpContext<'_> {
+impl<'a> OpContext<'a> {
+    /// A context with no result name, no reuse, INFO=1, no silenced alarms and no
+    /// progress bars; callers set the other fields they need.
+    pub fn new(
+        store: &'a Store,
+        op: &'a str,
+        out: &'a mut dyn Write,
+        units: &'a Units,
+        tests: &'a mut Vec<TestOutcome>,
+    ) -> Self {
+        OpContext {
+            store,
+            op,
+            result: None,
+            reuse: None,
+            file: "",
+            line: 0,
+            info: 1,
+            out,
+            units,
+            ignored_alarms: &[],
+            tests,
+            created: Vec::new(),
+            progress: false,
+            value: None,
+            deferred_error: None,
+        }
+    }
+
     /// The name of the result, or an error if the call was not assigned.
     pub fn result_name(&self) -> Result<&str> {
         self.result.ok_or_else(|| {
@@ -152,6 +186,8 @@ pub fn lookup(name: &str) -> Option<OpFn> {
         "CALC_MATR_ELEM" => calc_matr_elem::run,
         "NUME_DDL" => nume_ddl::run,
         "CALC_MODES" => calc_modes::run,
+        "MODE_NON_LINE" => mode_non_line::run,
+        "REST_MODE_NONL" => rest_mode_nonl::run,
         "TEST_RESU" => test_resu::run,
         "ASSE_MATRICE" => asse_matrice::run,
         "ASSEMBLAGE" => assemblage::run,

@@ -17,6 +17,7 @@ pub mod table;
 pub mod matrix;
 pub mod model;
 pub mod mesh;
+pub mod mnl;
 pub mod modes;
 
 use crate::error::{Error, Result};
@@ -258,6 +259,7 @@ impl Store {
         matrix::drop_data(self, name)?;
         mesh::delete_mesh(&self.conn, name)?;
         modes::drop_data(self, name)?;
+        mnl::drop_data(self, name)?;
         Ok(())
     }
 

@@ -37,6 +37,10 @@ pub const INTERNAL_TABLES: &[&str] = &[
     "matrix_entries",
     "modes",
     "mode_shapes",
+    "mnl_points",
+    "mnl_fourier",
+    "meshes",
+    "mesh_group_defs",
 ];
 
 const SCHEMA: &str = "

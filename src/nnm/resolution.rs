@@ -1,0 +1,92 @@
+//! A posteriori checks of a computed branch that the operator turns into alarms.
+//!
+//! The contact force of a stiff shock is a narrow pulse: its Fourier series decays slowly,
+//! and when NB_HARM_NONL is too small the highest retained harmonics still carry a visible
+//! part of the pulse. Code_Aster warns in that case and asks for more harmonics; so do we.
+
+use super::{contact_coefficients, Point, Problem, Settings};
+
+/// Amplitude of the highest tenth of the harmonics relative to the largest harmonic
+/// amplitude, above which the force series counts as poorly resolved.
+pub const TAIL_RATIO_ALARM: f64 = 1e-2;
+
+/// At most this many points of a branch are examined (evenly spread, the last included).
+const SAMPLED_POINTS: usize = 20;
+
+/// Largest |c_k| over the last tenth of harmonics divided by the largest |c_k|, k ≥ 1, of
+/// a series stored as 0, C1..CH, S1..SH.
+pub fn tail_ratio(coefs: &[f64]) -> f64 {
+    let h = coefs.len().saturating_sub(1) / 2;
+    if h == 0 {
+        return 0.0;
+    }
+    let amp = |k: usize| coefs[k].hypot(coefs[h + k]);
+    let peak = (1..=h).map(amp).fold(0.0, f64::max);
+    if peak == 0.0 {
+        return 0.0;
+    }
+    let first_tail = h - (h / 10).max(1) + 1;
+    (first_tail..=h).map(amp).fold(0.0, f64::max) / peak
+}
+
+/// One message per shock whose force series is poorly resolved somewhere on `points`.
+pub fn resolution_warnings(problem: &Problem, settings: &Settings, points: &[Point]) -> Vec<String> {
+    let mut worst: Vec<(f64, f64)> = vec![(0.0, 0.0); problem.shocks.len()];
+    if points.is_empty() || problem.shocks.is_empty() {
+        return Vec::new();
+    }
+    let stride = points.len().div_ceil(SAMPLED_POINTS).max(1);
+    let picked = points
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| i % stride == 0 || *i + 1 == points.len());
+    for (_, p) in picked {
+        let Ok(per_shock) = contact_coefficients(problem, settings, &p.x) else {
+            continue;
+        };
+        for (s, unknowns) in per_shock.iter().enumerate() {
+            // The first unknown of every law is its force (PLAN, BI_PLAN: f; CERCLE: f).
+            if let (Some(f), Some(w)) = (unknowns.first(), worst.get_mut(s)) {
+                let r = tail_ratio(f);
+                if r > w.0 {
+                    *w = (r, p.energy);
+                }
+            }
+        }
+    }
+    worst
+        .iter()
+        .enumerate()
+        .filter(|(_, (r, _))| *r > TAIL_RATIO_ALARM)
+        .map(|(s, (r, e))| {
+            format!(
+                "the contact force of shock {} is poorly resolved by NB_HARM_NONL={}: its last harmonics \
+                 still carry {:.1}% of its largest harmonic (at ENERGIE={:.4e}); raise NB_HARM_NONL",
+                s + 1,
+                settings.h_nonl,
+                100.0 * r,
+                e
+            )
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tail_ratio_of_a_resolved_and_of_a_truncated_series() {
+        // Geometric decay 0.5^k: the last tenth of 20 harmonics is tiny.
+        let h = 20;
+        let mut c = vec![0.0; 2 * h + 1];
+        for k in 1..=h {
+            c[k] = 0.5f64.powi(k as i32);
+        }
+        assert!(tail_ratio(&c) < 1e-5);
+        // A flat spectrum (a Dirac comb truncated): the tail is as large as the peak.
+        let flat: Vec<f64> = (0..=2 * h).map(|i| if i <= h { 1.0 } else { 0.0 }).collect();
+        assert!((tail_ratio(&flat) - 1.0).abs() < 1e-12);
+        assert_eq!(tail_ratio(&[3.0]), 0.0);
+    }
+}

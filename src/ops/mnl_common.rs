@@ -1,0 +1,145 @@
+//! Shared by MODE_NON_LINE, REST_MODE_NONL and CALC_STABILITE: turning stored shocks and
+//! matrices back into the engine's problem.
+
+use crate::error::{Error, Result};
+use crate::model::assembly::AssembledMatrix;
+use crate::model::dof::Cmp;
+use crate::nnm::{Problem, Settings, Shock, ShockLaw};
+use crate::store::mnl::{MnlSetup, StoredShock};
+use crate::table::{Cell, Table};
+
+/// Translate a stored shock into the engine's reduced-DOF form.
+pub fn engine_shock(s: &StoredShock, i: usize, k: &AssembledMatrix, free: &[usize]) -> Result<Shock> {
+    let kw = |key: &str| format!("MODE_NON_LINE/CHOC[{}]/{key}", i + 1);
+    let mut dofs = Vec::new();
+    for c in &s.cmps {
+        let cmp = Cmp::parse(c).ok_or_else(|| {
+            Error::validation(format!("'{c}' is not a displacement component (DX, DY, DZ, ...)"))
+                .keyword(kw("NOM_CMP"))
+        })?;
+        let full = k.numbering.index_of(&s.node, cmp).ok_or_else(|| {
+            Error::validation(format!(
+                "node {} has no DOF {c} in the numbering of the matrices",
+                s.node
+            ))
+            .keyword(kw("NOEUD"))
+            .hint("the node must carry this component in the model (and exist in the mesh)")
+        })?;
+        let reduced = free.iter().position(|&f| f == full).ok_or_else(|| {
+            Error::validation(format!(
+                "DOF {c} of node {} is blocked by a boundary condition: a shock cannot act on it",
+                s.node
+            ))
+            .keyword(kw("NOM_CMP"))
+        })?;
+        dofs.push(reduced);
+    }
+    let law = match s.obstacle.as_str() {
+        "PLAN" => ShockLaw::Plan,
+        "BI_PLAN" => ShockLaw::BiPlan,
+        "CERCLE" => {
+            // The ring centre in the plane of the two components.
+            let pick = |c: &str| match c {
+                "DX" | "DRX" => s.origin[0],
+                "DY" | "DRY" => s.origin[1],
+                _ => s.origin[2],
+            };
+            ShockLaw::Cercle {
+                origin: [pick(&s.cmps[0]), pick(&s.cmps[1])],
+            }
+        }
+        other => {
+            return Err(Error::validation(format!("unknown OBSTACLE '{other}'")).keyword(kw("OBSTACLE")))
+        }
+    };
+    Ok(Shock {
+        law,
+        dofs,
+        gap: s.gap,
+        stiffness: s.stiffness,
+        regul: s.regul,
+    })
+}
+
+/// The engine problem of a stored MODE_NON_LINE run, with settings carrying its harmonics
+/// (the continuation fields are not used by restitution), and the free DOFs.
+pub fn engine_problem(
+    setup: &MnlSetup,
+    k: &AssembledMatrix,
+    m: &AssembledMatrix,
+) -> Result<(Problem, Settings, Vec<usize>)> {
+    let free = k.free_dofs();
+    let shocks = setup
+        .shocks
+        .iter()
+        .enumerate()
+        .map(|(i, s)| engine_shock(s, i, k, &free))
+        .collect::<Result<Vec<_>>>()?;
+    let problem = Problem {
+        k: k.reduced()?,
+        m: m.reduced()?,
+        shocks,
+    };
+    let settings = Settings {
+        h_lin: setup.h_lin,
+        h_nonl: setup.h_nonl,
+        n_branches: 1,
+        n_points_per_branch: 1,
+        order: 20,
+        prec_man: 1e-9,
+        prec_newton: 1e-8,
+        iter_newton_max: 15,
+        bif_terms: 3,
+        bif_tol: 1e-4,
+        direction: 1,
+    };
+    Ok((problem, settings, free))
+}
+
+/// Index of the row with NUME_ORDRE = `order`.
+pub fn row_of(t: &Table, order: i64) -> Option<usize> {
+    let col = t.col("NUME_ORDRE")?;
+    t.rows
+        .iter()
+        .position(|r| matches!(r.get(col), Some(Cell::I(i)) if *i == order))
+}
+
+/// The shocks described by a CARA_CHOC sub-table.
+pub fn shocks_from_cara_choc(t: &Table, name: &str) -> Result<Vec<StoredShock>> {
+    let text = |r: usize, c: &str| -> Option<String> {
+        t.cell(r, c).and_then(Cell::as_text).map(str::to_string)
+    };
+    let real = |r: usize, c: &str| -> Result<f64> {
+        t.cell(r, c).and_then(Cell::as_f64).ok_or_else(|| {
+            Error::store(format!("CARA_CHOC table {name}: row {} has no {c}", r + 1))
+        })
+    };
+    (0..t.nrows())
+        .map(|r| {
+            let obstacle = text(r, "TYPE_CHOC").ok_or_else(|| {
+                Error::store(format!("CARA_CHOC table {name}: row {} has no TYPE_CHOC", r + 1))
+            })?;
+            let node = text(r, "NOEUD_CHOC").ok_or_else(|| {
+                Error::store(format!("CARA_CHOC table {name}: row {} has no NOEUD_CHOC", r + 1))
+            })?;
+            let cmps: Vec<String> = ["NOM_CMP_1", "NOM_CMP_2"]
+                .iter()
+                .filter_map(|c| text(r, c))
+                .filter(|c| !c.is_empty())
+                .collect();
+            Ok(StoredShock {
+                obstacle,
+                node,
+                cmps,
+                gap: real(r, "JEU")?,
+                stiffness: real(r, "RIGI_NOR")?,
+                regul: real(r, "PARA_REGUL")?,
+                origin: [
+                    real(r, "ORIG_OBST_X")?,
+                    real(r, "ORIG_OBST_Y")?,
+                    real(r, "ORIG_OBST_Z")?,
+                ],
+            })
+        })
+        .collect()
+}

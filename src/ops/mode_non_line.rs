@@ -1,0 +1,439 @@
+//! MODE_NON_LINE: branches of nonlinear normal modes with shocks (EHMAN).
+//!
+//! Glue only: reads the matrices, the start (a linear mode or a row of an earlier
+//! MODE_NON_LINE table), the shocks and the settings, runs `nnm`, and stores the result
+//! table (a real SQL table), the CARA_CHOC sub-table, every point's unknowns and the
+//! displacement Fourier coefficients.
+
+use crate::args::Args;
+use crate::error::{Error, Result};
+use crate::nnm::{self, Point, Problem, Settings, StartState};
+use crate::ops::mnl_common::{engine_shock, row_of, shocks_from_cara_choc};
+use crate::ops::{progress::Progress, OpContext};
+use crate::store::mnl::{self as mnl_store, MnlSetup, StoredShock};
+use crate::store::{matrix, mesh as mesh_store, modes as mode_store, table as table_store};
+use crate::table::{Cell, ColKind, Table};
+
+/// Columns of the result table: Code_Aster's, then ours (accuracy indicators).
+const COLUMNS: &[(&str, ColKind)] = &[
+    ("NUME_ORDRE", ColKind::I),
+    ("FREQUENCE", ColKind::R),
+    ("ENERGIE", ColKind::R),
+    ("NB_COEF_FOURIER", ColKind::I),
+    ("NOM_SD", ColKind::K),
+    ("TYPE_OBJET", ColKind::K),
+    ("NOM_OBJET", ColKind::K),
+    ("CARA_CHOC", ColKind::K),
+    ("HARM_MAX", ColKind::I),
+    ("BIFURCATION", ColKind::K),
+    ("STABILITE", ColKind::K),
+    ("NUME_REPRISE", ColKind::I),
+    // Beyond Code_Aster (docs/mode_non_line.md): residual norm after correction, |γ| (the
+    // unfolding parameter, zero on an exact solution) and the relative spread of the total
+    // energy over one period sampled in time.
+    ("RESIDU", ColKind::R),
+    ("AMOR_FICTIF", ColKind::R),
+    ("ECART_ENERGIE", ColKind::R),
+    ("BRANCHE", ColKind::I),
+];
+
+pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    let name = match (ctx.reuse, ctx.result) {
+        (Some(r), _) => r.to_string(),
+        (None, Some(r)) => r.to_string(),
+        (None, None) => ctx.result_name()?.to_string(),
+    };
+    let k_name = args.req_concept("MATR_RIGI")?.name.clone();
+    let m_name = args.req_concept("MATR_MASS")?.name.clone();
+    let k = matrix::load_matrix(ctx.store, &k_name)?;
+    let m = matrix::load_matrix(ctx.store, &m_name)?;
+    if k.numbering.dofs != m.numbering.dofs || k.eliminated != m.eliminated {
+        return Err(Error::input(format!(
+            "{k_name} and {m_name} are not assembled on the same DOF numbering and boundary conditions"
+        ))
+        .keyword("MODE_NON_LINE/MATR_MASS"));
+    }
+    let free = k.free_dofs();
+    let settings = settings(args)?;
+    let etat = args.req_fact("ETAT_INIT")?;
+
+    // Shocks: from CHOC on a first run, from the stored CARA_CHOC on a restart.
+    let restart_from = etat.concept("MODE_NON_LINE").map(|c| c.name.clone());
+    let stored_shocks = match &restart_from {
+        Some(src) => {
+            if args.has("CHOC") {
+                ctx.alarm(
+                    "MODE_NON_LINE_2",
+                    "CHOC is ignored on a restart: the shocks come from the CARA_CHOC of the start table",
+                )?;
+            }
+            let setup = mnl_store::load_setup(ctx.store, src)?;
+            check_restart_harmonics(&setup, &settings)?;
+            // The contact data of the start row, as Code_Aster reads them: from the
+            // sub-table named in its CARA_CHOC cell.
+            let t = table_store::load_table(ctx.store, src)?;
+            let order = etat.req_int("NUME_ORDRE")?;
+            let sub = row_of(&t, order)
+                .and_then(|r| t.cell(r, "CARA_CHOC"))
+                .and_then(Cell::as_text)
+                .map(str::to_string)
+                .unwrap_or(setup.cara_choc);
+            shocks_from_cara_choc(&table_store::load_table(ctx.store, &sub)?, &sub)?
+        }
+        None => shocks_from_args(ctx, args)?,
+    };
+    let shocks = stored_shocks
+        .iter()
+        .enumerate()
+        .map(|(i, s)| engine_shock(s, i, &k, &free))
+        .collect::<Result<Vec<_>>>()?;
+    let problem = Problem {
+        k: k.reduced()?,
+        m: m.reduced()?,
+        shocks,
+    };
+
+    // Start point.
+    let nume_ordre = etat.req_int("NUME_ORDRE")?;
+    let start: StartState = match &restart_from {
+        Some(src) => {
+            let x = mnl_store::load_point(ctx.store, src, nume_ordre)?.ok_or_else(|| {
+                Error::input(format!("{src} has no row NUME_ORDRE={nume_ordre}"))
+                    .keyword("MODE_NON_LINE/ETAT_INIT/NUME_ORDRE")
+            })?;
+            nnm::start_from_point(&problem, &settings, &x)?
+        }
+        None => {
+            let modes_name = &etat.req_concept("MODE_LINE")?.name;
+            let modes = mode_store::load_modes(ctx.store, modes_name)?;
+            let mode = usize::try_from(nume_ordre)
+                .ok()
+                .and_then(|n| modes.mode(n))
+                .ok_or_else(|| {
+                    Error::input(format!(
+                        "{modes_name} has no mode NUME_ORDRE={nume_ordre} (available: {})",
+                        modes.available()
+                    ))
+                    .keyword("MODE_NON_LINE/ETAT_INIT/NUME_ORDRE")
+                })?;
+            if modes.numbering.dofs != k.numbering.dofs {
+                return Err(Error::input(format!(
+                    "{modes_name} is not expressed on the numbering of {k_name}"
+                ))
+                .keyword("MODE_NON_LINE/ETAT_INIT/MODE_LINE"));
+            }
+            let shape: Vec<f64> = free.iter().map(|&i| mode.shape[i]).collect();
+            let coef = etat.real("COEF_AMPL").unwrap_or(1.0);
+            nnm::start_from_mode(&problem, &settings, &shape, coef, mode.omega2.max(0.0).sqrt())?
+        }
+    };
+
+    // Continue, reporting each branch.
+    let info = ctx.info;
+    let mut lines = Vec::new();
+    let progress = Progress::new(ctx.progress, settings.n_branches as u64, "MODE_NON_LINE");
+    let outcome = nnm::continue_branches(&problem, &settings, start, &mut |rep, _pts| {
+        progress.inc();
+        if info >= 1 {
+            lines.push(format!(
+                "  branch {:>4}: {:>3} pts  freq {:.6e} .. {:.6e} Hz  energy {:.6e} .. {:.6e}  a_max {:.3e}  newton {:>2}  bifurcation {}",
+                rep.branch,
+                rep.points,
+                rep.freq_range.0,
+                rep.freq_range.1,
+                rep.energy_range.0,
+                rep.energy_range.1,
+                rep.a_max,
+                rep.newton_iterations,
+                if rep.bifurcation { "yes" } else { "no" }
+            ));
+        }
+    });
+    progress.finish();
+    ctx.say(&format!("MODE_NON_LINE {name}: {} point(s)", outcome.points.len()))?;
+    for l in &lines {
+        ctx.say(l)?;
+    }
+
+    // The result table: a new one, or the reused one extended.
+    let (mut table, first_order, reprise) = match ctx.reuse {
+        Some(r) => {
+            let t = table_store::load_table(ctx.store, r)?;
+            let last = max_int(&t, "NUME_ORDRE");
+            let rep = max_int(&t, "NUME_REPRISE") + 1;
+            (t, last + 1, rep)
+        }
+        None => (
+            new_table(),
+            1,
+            i64::from(restart_from.is_some()) + restart_reprise(ctx, &restart_from)?,
+        ),
+    };
+    let cara_choc = format!("{name}_CHOC");
+    if ctx.reuse.is_none() {
+        ctx.create(&name, "table_container")?;
+        ctx.create(&cara_choc, "table_sdaster")?;
+        table_store::save_table(ctx.store, &cara_choc, &cara_choc_table(&stored_shocks)?)?;
+        mnl_store::save_setup(
+            ctx.store,
+            &name,
+            &MnlSetup {
+                h_lin: settings.h_lin,
+                h_nonl: settings.h_nonl,
+                matr_rigi: k_name.clone(),
+                matr_mass: m_name.clone(),
+                shocks: stored_shocks.clone(),
+                cara_choc: cara_choc.clone(),
+            },
+        )?;
+    }
+    let dof_names: Vec<(String, String)> = free
+        .iter()
+        .map(|&i| {
+            let d = &k.numbering.dofs[i];
+            (d.node.clone(), d.cmp.name().to_string())
+        })
+        .collect();
+    let ncoef = 2 * settings.h_lin as i64 + 1;
+    for (j, p) in outcome.points.iter().enumerate() {
+        let order = first_order + j as i64;
+        table.push_row(row(&name, &cara_choc, order, ncoef, reprise, p))?;
+        mnl_store::save_point(ctx.store, &name, order, p.omega, &p.x)?;
+        let coefs = nnm::displacement_coefficients(&problem, &settings, &p.x)?;
+        mnl_store::save_fourier(ctx.store, &name, order, &dof_names, &coefs)?;
+    }
+    table_store::save_table(ctx.store, &name, &table)?;
+    ctx.say(&format!(
+        "  frequency against energy: SELECT NUME_ORDRE, ENERGIE, FREQUENCE FROM {name} ORDER BY NUME_ORDRE"
+    ))?;
+    for w in nnm::resolution_warnings(&problem, &settings, &outcome.points) {
+        ctx.alarm("MODE_NON_LINE_1", &w)?;
+    }
+    if let Some(e) = outcome.error {
+        // Keep every branch computed so far (committed), then stop the run.
+        ctx.deferred_error = Some(
+            e.keyword("MODE_NON_LINE")
+                .hint("the rows computed before the failure are stored; restart from the last one with ETAT_INIT=_F(MODE_NON_LINE=..., NUME_ORDRE=...)"),
+        );
+    }
+    Ok(())
+}
+
+fn settings(args: &Args) -> Result<Settings> {
+    let r = args.req_fact("RESOLUTION")?;
+    let usize_of = |key: &str| -> Result<usize> {
+        let v = r.req_int(key)?;
+        usize::try_from(v).ok().filter(|&v| v > 0).ok_or_else(|| {
+            Error::validation(format!("{key} must be a positive integer, got {v}"))
+                .keyword(format!("MODE_NON_LINE/RESOLUTION/{key}"))
+        })
+    };
+    let h_lin = usize_of("NB_HARM_LINE")?;
+    let h_nonl = usize_of("NB_HARM_NONL")?;
+    if h_nonl < h_lin {
+        return Err(Error::validation(format!(
+            "NB_HARM_NONL ({h_nonl}) must be at least NB_HARM_LINE ({h_lin})"
+        ))
+        .keyword("MODE_NON_LINE/RESOLUTION/NB_HARM_NONL")
+        .hint("the contact forces need at least as many harmonics as the displacements"));
+    }
+    let direction = args
+        .req_fact("ETAT_INIT")?
+        .int("DIR_EVOLUTION")
+        .unwrap_or(-1);
+    Ok(Settings {
+        h_lin,
+        h_nonl,
+        n_branches: usize_of("NB_BRANCHE")?,
+        n_points_per_branch: usize_of("NB_PAS_MAN")?,
+        order: usize_of("NB_ORDRE_MAN")?,
+        prec_man: r.req_real("PREC_MAN")?,
+        prec_newton: r.req_real("PREC_NEWTON")?,
+        iter_newton_max: usize_of("ITER_NEWTON_MAXI")?,
+        bif_terms: usize_of("CRIT_ORDR_BIFURCATION")?,
+        bif_tol: r.req_real("RESI_RELA_BIFURCATION")?,
+        direction: if direction >= 0 { 1 } else { -1 },
+    })
+}
+
+fn check_restart_harmonics(setup: &MnlSetup, s: &Settings) -> Result<()> {
+    if setup.h_lin != s.h_lin || setup.h_nonl != s.h_nonl {
+        return Err(Error::validation(format!(
+            "the start table was computed with NB_HARM_LINE={} and NB_HARM_NONL={}, this call asks for {} and {}",
+            setup.h_lin, setup.h_nonl, s.h_lin, s.h_nonl
+        ))
+        .keyword("MODE_NON_LINE/RESOLUTION")
+        .hint("a restart keeps the harmonics of the branch it continues"));
+    }
+    Ok(())
+}
+
+/// NUME_REPRISE of the start row's table, for a restart into a new concept.
+fn restart_reprise(ctx: &OpContext<'_>, from: &Option<String>) -> Result<i64> {
+    match from {
+        None => Ok(0),
+        Some(src) => {
+            let t = table_store::load_table(ctx.store, src)?;
+            Ok(max_int(&t, "NUME_REPRISE"))
+        }
+    }
+}
+
+fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<StoredShock>> {
+    let mut out = Vec::new();
+    for (i, c) in args.facts_or_empty("CHOC").iter().enumerate() {
+        let kw = |k: &str| format!("MODE_NON_LINE/CHOC[{}]/{k}", i + 1);
+        let obstacle = c.req_text("OBSTACLE")?.to_string();
+        let cmps = c.texts("NOM_CMP").unwrap_or_default();
+        let want = if obstacle == "CERCLE" { 2 } else { 1 };
+        if cmps.len() != want {
+            return Err(Error::validation(format!(
+                "OBSTACLE='{obstacle}' needs {want} component(s) in NOM_CMP, got {}",
+                cmps.len()
+            ))
+            .keyword(kw("NOM_CMP"))
+            .hint(if want == 1 { "e.g. NOM_CMP='DX'" } else { "e.g. NOM_CMP=('DX', 'DY')" }));
+        }
+        let node = choc_node(ctx, args, c, &kw)?;
+        let positive = |key: &str| -> Result<f64> {
+            let v = c.req_real(key)?;
+            if v > 0.0 && v.is_finite() {
+                Ok(v)
+            } else {
+                Err(Error::validation(format!("{key} must be positive, got {v}")).keyword(kw(key)))
+            }
+        };
+        let gap = positive("JEU")?;
+        let stiffness = positive("RIGI_NOR")?;
+        let regul = positive("PARA_REGUL")?;
+        let o = c.reals("ORIG_OBST").unwrap_or_else(|| vec![0.0; 3]);
+        if o.len() != 3 {
+            return Err(Error::validation(format!("ORIG_OBST needs 3 reals, got {}", o.len()))
+                .keyword(kw("ORIG_OBST")));
+        }
+        out.push(StoredShock {
+            obstacle,
+            node,
+            cmps,
+            gap,
+            stiffness,
+            regul,
+            origin: [o[0], o[1], o[2]],
+        });
+    }
+    Ok(out)
+}
+
+/// The node of a CHOC: NOEUD, or a GROUP_NO holding exactly one node.
+fn choc_node(
+    ctx: &OpContext<'_>,
+    args: &Args,
+    c: &Args,
+    kw: &dyn Fn(&str) -> String,
+) -> Result<String> {
+    if let Some(n) = c.text("NOEUD") {
+        return Ok(n.to_string());
+    }
+    let group = c.req_text("GROUP_NO")?;
+    let k_name = &args.req_concept("MATR_RIGI")?.name;
+    let numbering = matrix::load_matrix(ctx.store, k_name)?.numbering;
+    let mesh = mesh_store::load_mesh(ctx.store, &numbering.mesh)?;
+    let g = mesh.node_group(group).ok_or_else(|| {
+        Error::validation(format!("mesh {} has no GROUP_NO '{group}'", numbering.mesh))
+            .keyword(kw("GROUP_NO"))
+    })?;
+    match g.members.as_slice() {
+        [one] => mesh
+            .nodes
+            .get(*one)
+            .map(|n| n.name.clone())
+            .ok_or_else(|| Error::internal(format!("GROUP_NO {group} names a missing node"))),
+        members => Err(Error::validation(format!(
+            "GROUP_NO '{group}' holds {} nodes; a shock acts on exactly one",
+            members.len()
+        ))
+        .keyword(kw("GROUP_NO"))
+        .hint("give the node with NOEUD=, or a GROUP_NO of one node")),
+    }
+}
+
+fn new_table() -> Table {
+    let mut t = Table::new("MODE_NON_LINE");
+    for (name, kind) in COLUMNS {
+        // Names are constants: add_column cannot fail on them.
+        let _ = t.add_column(name, *kind);
+    }
+    t
+}
+
+fn row(name: &str, cara_choc: &str, order: i64, ncoef: i64, reprise: i64, p: &Point) -> Vec<Cell> {
+    vec![
+        Cell::I(order),
+        Cell::R(p.frequency),
+        Cell::R(p.energy),
+        Cell::I(ncoef),
+        Cell::K(format!("{name}.{order:04}")),
+        Cell::K("MODE_MECA".into()),
+        Cell::K(format!("FOURIER_{order:04}")),
+        Cell::K(cara_choc.into()),
+        Cell::I(p.harm_max as i64),
+        Cell::K(if p.bifurcation { "OUI" } else { "NON" }.into()),
+        Cell::K("NON_EVALUE".into()),
+        Cell::I(reprise),
+        Cell::R(p.residual),
+        Cell::R(p.gamma.abs()),
+        Cell::R(p.energy_spread),
+        Cell::I(p.branch as i64),
+    ]
+}
+
+fn max_int(t: &Table, col: &str) -> i64 {
+    t.column_cells(col)
+        .map(|cells| {
+            cells
+                .iter()
+                .filter_map(|c| match c {
+                    Cell::I(i) => Some(*i),
+                    _ => None,
+                })
+                .max()
+                .unwrap_or(0)
+        })
+        .unwrap_or(0)
+}
+
+fn cara_choc_table(shocks: &[StoredShock]) -> Result<Table> {
+    let mut t = Table::new("CARA_CHOC");
+    let cols: &[(&str, ColKind)] = &[
+        ("NUME_CHOC", ColKind::I),
+        ("TYPE_CHOC", ColKind::K),
+        ("NOEUD_CHOC", ColKind::K),
+        ("NOM_CMP_1", ColKind::K),
+        ("NOM_CMP_2", ColKind::K),
+        ("RIGI_NOR", ColKind::R),
+        ("PARA_REGUL", ColKind::R),
+        ("JEU", ColKind::R),
+        ("ORIG_OBST_X", ColKind::R),
+        ("ORIG_OBST_Y", ColKind::R),
+        ("ORIG_OBST_Z", ColKind::R),
+    ];
+    for (n, k) in cols {
+        t.add_column(n, *k)?;
+    }
+    for (i, s) in shocks.iter().enumerate() {
+        t.push_row(vec![
+            Cell::I(i as i64 + 1),
+            Cell::K(s.obstacle.clone()),
+            Cell::K(s.node.clone()),
+            Cell::K(s.cmps.first().cloned().unwrap_or_default()),
+            s.cmps.get(1).map(|c| Cell::K(c.clone())).unwrap_or(Cell::Null),
+            Cell::R(s.stiffness),
+            Cell::R(s.regul),
+            Cell::R(s.gap),
+            Cell::R(s.origin[0]),
+            Cell::R(s.origin[1]),
+            Cell::R(s.origin[2]),
+        ])?;
+    }
+    Ok(t)
+}

@@ -1,0 +1,173 @@
+//! Persistence of what MODE_NON_LINE computes besides its result table.
+//!
+//! - `mnl_points(concept, NUME_ORDRE, omega, n, x)`: the full unknown vector of every row
+//!   (little-endian f64 blob), enough to restart a branch or rebuild any quantity.
+//! - `mnl_fourier(concept, NUME_ORDRE, NOEUD, NOM_CMP, HARM, COEF_C, COEF_S)`: the Fourier
+//!   coefficients of every displacement, queryable in SQL (HARM 0 has COEF_S = 0).
+//! - `concept_data(concept, 'mnl_setup')`: harmonics, numbering and shocks of the run.
+
+use crate::error::{Error, Result};
+use crate::store::Store;
+use rusqlite::{params, OptionalExtension};
+use serde::{Deserialize, Serialize};
+
+const SCHEMA: &str = "
+CREATE TABLE IF NOT EXISTS mnl_points (
+    concept TEXT NOT NULL REFERENCES concepts(name) ON DELETE CASCADE,
+    NUME_ORDRE INTEGER NOT NULL,
+    omega REAL NOT NULL,
+    n INTEGER NOT NULL,
+    x BLOB NOT NULL,
+    PRIMARY KEY (concept, NUME_ORDRE)
+);
+CREATE TABLE IF NOT EXISTS mnl_fourier (
+    concept TEXT NOT NULL REFERENCES concepts(name) ON DELETE CASCADE,
+    NUME_ORDRE INTEGER NOT NULL,
+    NOEUD TEXT NOT NULL,
+    NOM_CMP TEXT NOT NULL,
+    HARM INTEGER NOT NULL,
+    COEF_C REAL NOT NULL,
+    COEF_S REAL NOT NULL
+);
+CREATE INDEX IF NOT EXISTS mnl_fourier_row ON mnl_fourier(concept, NUME_ORDRE);
+";
+
+/// One shock as stored (also written to the CARA_CHOC sub-table).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StoredShock {
+    pub obstacle: String,
+    pub node: String,
+    pub cmps: Vec<String>,
+    pub gap: f64,
+    pub stiffness: f64,
+    pub regul: f64,
+    pub origin: [f64; 3],
+}
+
+/// What a later REST_MODE_NONL or restart needs to interpret the stored points.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MnlSetup {
+    pub h_lin: usize,
+    pub h_nonl: usize,
+    pub matr_rigi: String,
+    pub matr_mass: String,
+    pub shocks: Vec<StoredShock>,
+    /// Name of the CARA_CHOC sub-table concept.
+    pub cara_choc: String,
+}
+
+pub fn ensure_schema(store: &Store) -> Result<()> {
+    store.conn().execute_batch(SCHEMA)?;
+    Ok(())
+}
+
+pub fn drop_data(store: &Store, name: &str) -> Result<()> {
+    ensure_schema(store)?;
+    for t in ["mnl_points", "mnl_fourier"] {
+        store
+            .conn()
+            .execute(&format!("DELETE FROM {t} WHERE concept = ?1"), params![name])?;
+    }
+    Ok(())
+}
+
+pub fn save_setup(store: &Store, name: &str, setup: &MnlSetup) -> Result<()> {
+    store.put_json(name, "mnl_setup", setup)
+}
+
+pub fn load_setup(store: &Store, name: &str) -> Result<MnlSetup> {
+    store.get_json(name, "mnl_setup")
+}
+
+fn to_blob(x: &[f64]) -> Vec<u8> {
+    x.iter().flat_map(|v| v.to_le_bytes()).collect()
+}
+
+fn from_blob(b: &[u8]) -> Vec<f64> {
+    b.chunks_exact(8)
+        .map(|c| {
+            let mut a = [0u8; 8];
+            a.copy_from_slice(c);
+            f64::from_le_bytes(a)
+        })
+        .collect()
+}
+
+pub fn save_point(store: &Store, name: &str, nume_ordre: i64, omega: f64, x: &[f64]) -> Result<()> {
+    ensure_schema(store)?;
+    store.conn().execute(
+        "INSERT OR REPLACE INTO mnl_points(concept, NUME_ORDRE, omega, n, x) VALUES (?1, ?2, ?3, ?4, ?5)",
+        params![name, nume_ordre, omega, x.len() as i64, to_blob(x)],
+    )?;
+    Ok(())
+}
+
+/// The stored unknown vector of row `nume_ordre`, if any.
+pub fn load_point(store: &Store, name: &str, nume_ordre: i64) -> Result<Option<Vec<f64>>> {
+    ensure_schema(store)?;
+    let row: Option<(i64, Vec<u8>)> = store
+        .conn()
+        .query_row(
+            "SELECT n, x FROM mnl_points WHERE concept = ?1 AND NUME_ORDRE = ?2",
+            params![name, nume_ordre],
+            |r| Ok((r.get(0)?, r.get(1)?)),
+        )
+        .optional()?;
+    match row {
+        None => Ok(None),
+        Some((n, blob)) => {
+            let x = from_blob(&blob);
+            if x.len() as i64 != n {
+                return Err(Error::store(format!(
+                    "row {nume_ordre} of {name}: stored point is damaged ({} values, {n} expected)",
+                    x.len()
+                )));
+            }
+            Ok(Some(x))
+        }
+    }
+}
+
+/// Write the displacement Fourier coefficients of one row: `coefs[d]` holds DOF `dofs[d]`'s
+/// 2H+1 coefficients ordered 0, C1..CH, S1..SH.
+pub fn save_fourier(
+    store: &Store,
+    name: &str,
+    nume_ordre: i64,
+    dofs: &[(String, String)],
+    coefs: &[Vec<f64>],
+) -> Result<()> {
+    ensure_schema(store)?;
+    let mut stmt = store.conn().prepare_cached(
+        "INSERT INTO mnl_fourier(concept, NUME_ORDRE, NOEUD, NOM_CMP, HARM, COEF_C, COEF_S)
+         VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)",
+    )?;
+    for ((node, cmp), c) in dofs.iter().zip(coefs) {
+        let h = c.len().saturating_sub(1) / 2;
+        for k in 0..=h {
+            let (cc, cs) = if k == 0 {
+                (c[0], 0.0)
+            } else {
+                (c[k], c[h + k])
+            };
+            stmt.execute(params![name, nume_ordre, node, cmp, k as i64, cc, cs])?;
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn point_round_trip_is_exact() {
+        let s = Store::in_memory().unwrap();
+        s.register_concept("MNL", "table_container", "MODE_NON_LINE", "a.comm", 1)
+            .unwrap();
+        let x = vec![1.0, -2.5e-300, f64::MAX, 0.1 + 0.2];
+        save_point(&s, "MNL", 3, 6.28, &x).unwrap();
+        assert_eq!(load_point(&s, "MNL", 3).unwrap(), Some(x));
+        assert_eq!(load_point(&s, "MNL", 4).unwrap(), None);
+    }
+}
