@@ -8,7 +8,9 @@ fn bin() -> Command {
 }
 
 fn case(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("testcases").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("testcases")
+        .join(name)
 }
 
 fn text(o: &Output) -> String {
@@ -188,8 +190,16 @@ fn nook_test_gives_exit_code_1() {
 #[test]
 fn export_file_maps_the_mesh_unit() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::copy(case("chain_fixed_fixed.comm"), dir.path().join("study.comm")).unwrap();
-    std::fs::copy(case("chain_fixed_fixed.mail"), dir.path().join("other_name.mail")).unwrap();
+    std::fs::copy(
+        case("chain_fixed_fixed.comm"),
+        dir.path().join("study.comm"),
+    )
+    .unwrap();
+    std::fs::copy(
+        case("chain_fixed_fixed.mail"),
+        dir.path().join("other_name.mail"),
+    )
+    .unwrap();
     std::fs::write(
         dir.path().join("study.export"),
         "P actions make_etude\nF comm study.comm D 1\nF mail other_name.mail D 20\nF mess study.mess R 6\n",
@@ -223,7 +233,10 @@ fn sdnd122a_nonlinear_mode_end_to_end() {
     let out = run_ok("sdnd122a.comm");
     assert!(out.contains("tests: 6 OK, 0 NOOK"), "{out}");
     assert!(out.contains("MODE_NON_LINE MNL: 105 point(s)"), "{out}");
-    assert!(out.contains("SELECT NUME_ORDRE, ENERGIE, FREQUENCE FROM MNL"), "{out}");
+    assert!(
+        out.contains("SELECT NUME_ORDRE, ENERGIE, FREQUENCE FROM MNL"),
+        "{out}"
+    );
 }
 
 #[test]

@@ -30,7 +30,11 @@ pub fn tail_ratio(coefs: &[f64]) -> f64 {
 }
 
 /// One message per shock whose force series is poorly resolved somewhere on `points`.
-pub fn resolution_warnings(problem: &Problem, settings: &Settings, points: &[Point]) -> Vec<String> {
+pub fn resolution_warnings(
+    problem: &Problem,
+    settings: &Settings,
+    points: &[Point],
+) -> Vec<String> {
     let mut worst: Vec<(f64, f64)> = vec![(0.0, 0.0); problem.shocks.len()];
     if points.is_empty() || problem.shocks.is_empty() {
         return Vec::new();
@@ -85,7 +89,9 @@ mod tests {
         }
         assert!(tail_ratio(&c) < 1e-5);
         // A flat spectrum (a Dirac comb truncated): the tail is as large as the peak.
-        let flat: Vec<f64> = (0..=2 * h).map(|i| if i <= h { 1.0 } else { 0.0 }).collect();
+        let flat: Vec<f64> = (0..=2 * h)
+            .map(|i| if i <= h { 1.0 } else { 0.0 })
+            .collect();
         assert!((tail_ratio(&flat) - 1.0).abs() < 1e-12);
         assert_eq!(tail_ratio(&[3.0]), 0.0);
     }

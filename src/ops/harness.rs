@@ -40,13 +40,7 @@ impl Harness {
     ) -> Result<Option<Value>> {
         let f = lookup(op).ok_or_else(|| Error::internal(format!("no operator {op}")))?;
         self.store.begin_op()?;
-        let mut ctx = OpContext::new(
-            &self.store,
-            op,
-            &mut self.out,
-            &self.units,
-            &mut self.tests,
-        );
+        let mut ctx = OpContext::new(&self.store, op, &mut self.out, &self.units, &mut self.tests);
         ctx.result = result;
         ctx.reuse = reuse;
         ctx.file = "test.comm";

@@ -9,13 +9,20 @@ use crate::store::mnl::{MnlSetup, StoredShock};
 use crate::table::{Cell, Table};
 
 /// Translate a stored shock into the engine's reduced-DOF form.
-pub fn engine_shock(s: &StoredShock, i: usize, k: &AssembledMatrix, free: &[usize]) -> Result<Shock> {
+pub fn engine_shock(
+    s: &StoredShock,
+    i: usize,
+    k: &AssembledMatrix,
+    free: &[usize],
+) -> Result<Shock> {
     let kw = |key: &str| format!("MODE_NON_LINE/CHOC[{}]/{key}", i + 1);
     let mut dofs = Vec::new();
     for c in &s.cmps {
         let cmp = Cmp::parse(c).ok_or_else(|| {
-            Error::validation(format!("'{c}' is not a displacement component (DX, DY, DZ, ...)"))
-                .keyword(kw("NOM_CMP"))
+            Error::validation(format!(
+                "'{c}' is not a displacement component (DX, DY, DZ, ...)"
+            ))
+            .keyword(kw("NOM_CMP"))
         })?;
         let full = k.numbering.index_of(&s.node, cmp).ok_or_else(|| {
             Error::validation(format!(
@@ -49,7 +56,9 @@ pub fn engine_shock(s: &StoredShock, i: usize, k: &AssembledMatrix, free: &[usiz
             }
         }
         other => {
-            return Err(Error::validation(format!("unknown OBSTACLE '{other}'")).keyword(kw("OBSTACLE")))
+            return Err(
+                Error::validation(format!("unknown OBSTACLE '{other}'")).keyword(kw("OBSTACLE"))
+            )
         }
     };
     Ok(Shock {
@@ -117,10 +126,16 @@ pub fn shocks_from_cara_choc(t: &Table, name: &str) -> Result<Vec<StoredShock>> 
     (0..t.nrows())
         .map(|r| {
             let obstacle = text(r, "TYPE_CHOC").ok_or_else(|| {
-                Error::store(format!("CARA_CHOC table {name}: row {} has no TYPE_CHOC", r + 1))
+                Error::store(format!(
+                    "CARA_CHOC table {name}: row {} has no TYPE_CHOC",
+                    r + 1
+                ))
             })?;
             let node = text(r, "NOEUD_CHOC").ok_or_else(|| {
-                Error::store(format!("CARA_CHOC table {name}: row {} has no NOEUD_CHOC", r + 1))
+                Error::store(format!(
+                    "CARA_CHOC table {name}: row {} has no NOEUD_CHOC",
+                    r + 1
+                ))
             })?;
             let cmps: Vec<String> = ["NOM_CMP_1", "NOM_CMP_2"]
                 .iter()

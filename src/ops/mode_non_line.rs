@@ -124,7 +124,13 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             }
             let shape: Vec<f64> = free.iter().map(|&i| mode.shape[i]).collect();
             let coef = etat.real("COEF_AMPL").unwrap_or(1.0);
-            nnm::start_from_mode(&problem, &settings, &shape, coef, mode.omega2.max(0.0).sqrt())?
+            nnm::start_from_mode(
+                &problem,
+                &settings,
+                &shape,
+                coef,
+                mode.omega2.max(0.0).sqrt(),
+            )?
         }
     };
 
@@ -150,7 +156,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         }
     });
     progress.finish();
-    ctx.say(&format!("MODE_NON_LINE {name}: {} point(s)", outcome.points.len()))?;
+    ctx.say(&format!(
+        "MODE_NON_LINE {name}: {} point(s)",
+        outcome.points.len()
+    ))?;
     for l in &lines {
         ctx.say(l)?;
     }
@@ -292,7 +301,11 @@ fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<StoredShock>
                 cmps.len()
             ))
             .keyword(kw("NOM_CMP"))
-            .hint(if want == 1 { "e.g. NOM_CMP='DX'" } else { "e.g. NOM_CMP=('DX', 'DY')" }));
+            .hint(if want == 1 {
+                "e.g. NOM_CMP='DX'"
+            } else {
+                "e.g. NOM_CMP=('DX', 'DY')"
+            }));
         }
         let node = choc_node(ctx, args, c, &kw)?;
         let positive = |key: &str| -> Result<f64> {
@@ -308,8 +321,10 @@ fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<StoredShock>
         let regul = positive("PARA_REGUL")?;
         let o = c.reals("ORIG_OBST").unwrap_or_else(|| vec![0.0; 3]);
         if o.len() != 3 {
-            return Err(Error::validation(format!("ORIG_OBST needs 3 reals, got {}", o.len()))
-                .keyword(kw("ORIG_OBST")));
+            return Err(
+                Error::validation(format!("ORIG_OBST needs 3 reals, got {}", o.len()))
+                    .keyword(kw("ORIG_OBST")),
+            );
         }
         out.push(StoredShock {
             obstacle,
@@ -426,7 +441,10 @@ fn cara_choc_table(shocks: &[StoredShock]) -> Result<Table> {
             Cell::K(s.obstacle.clone()),
             Cell::K(s.node.clone()),
             Cell::K(s.cmps.first().cloned().unwrap_or_default()),
-            s.cmps.get(1).map(|c| Cell::K(c.clone())).unwrap_or(Cell::Null),
+            s.cmps
+                .get(1)
+                .map(|c| Cell::K(c.clone()))
+                .unwrap_or(Cell::Null),
             Cell::R(s.stiffness),
             Cell::R(s.regul),
             Cell::R(s.gap),

@@ -62,10 +62,13 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         }
         _ => {
             let n_inst = args.int("NB_INST").unwrap_or(512);
-            let n_inst = usize::try_from(n_inst).ok().filter(|&n| n >= 2).ok_or_else(|| {
-                Error::validation(format!("NB_INST must be at least 2, got {n_inst}"))
-                    .keyword("REST_MODE_NONL/NB_INST")
-            })?;
+            let n_inst = usize::try_from(n_inst)
+                .ok()
+                .filter(|&n| n >= 2)
+                .ok_or_else(|| {
+                    Error::validation(format!("NB_INST must be at least 2, got {n_inst}"))
+                        .keyword("REST_MODE_NONL/NB_INST")
+                })?;
             let th = nnm::time_history(&problem, &settings, &x, n_inst)?;
             let mut t = Table::new(format!("REST_MODE_NONL {src} NUME_ORDRE={order}"));
             for (c, kind) in [
@@ -91,7 +94,9 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                     ])?;
                 }
             }
-            let mut f = Table::new(format!("REST_MODE_NONL {src} NUME_ORDRE={order}: contact forces"));
+            let mut f = Table::new(format!(
+                "REST_MODE_NONL {src} NUME_ORDRE={order}: contact forces"
+            ));
             for (c, kind) in [
                 ("NUME_ORDRE", ColKind::I),
                 ("INST", ColKind::R),

@@ -64,9 +64,10 @@ pub fn ensure_schema(store: &Store) -> Result<()> {
 pub fn drop_data(store: &Store, name: &str) -> Result<()> {
     ensure_schema(store)?;
     for t in ["mnl_points", "mnl_fourier"] {
-        store
-            .conn()
-            .execute(&format!("DELETE FROM {t} WHERE concept = ?1"), params![name])?;
+        store.conn().execute(
+            &format!("DELETE FROM {t} WHERE concept = ?1"),
+            params![name],
+        )?;
     }
     Ok(())
 }
