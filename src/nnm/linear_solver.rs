@@ -4,7 +4,7 @@
 use crate::error::{Error, Result};
 use faer::prelude::*;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat, Triplet};
 
 /// Factor a square sparse matrix given as triplets (duplicates add), then solve with it.
 pub trait BorderedSolver {
@@ -17,6 +17,14 @@ pub trait BorderedSolver {
 /// (branch after branch, and at every Newton iteration, it does).
 #[derive(Default)]
 pub struct SparseLu {
+    /// The (row, col) sequence of the last triplets, with its compressed pattern and the
+    /// permutation that sorts the triplets into it: assembling the next matrix of the same
+    /// sequence is then a gather, not a sort.
+    assembly: Option<(
+        Vec<(usize, usize)>,
+        SymbolicSparseColMat<usize>,
+        Argsort<usize>,
+    )>,
     pattern: Option<(Vec<usize>, Vec<usize>, SymbolicLu<usize>)>,
     lu: Option<(usize, Lu<usize, f64>)>,
     /// Number of symbolic analyses done (for tests and reports).
