@@ -34,7 +34,33 @@ pub struct SparseLu {
 impl BorderedSolver for SparseLu {
     fn factor(&mut self, n: usize, triplets: &[Triplet<usize, usize, f64>]) -> Result<()> {
         self.lu = None;
-        let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, triplets).map_err(|e| {
+        let same_seq = match &self.assembly {
+            Some((seq, sym, _)) => {
+                sym.nrows() == n
+                    && seq.len() == triplets.len()
+                    && seq
+                        .iter()
+                        .zip(triplets)
+                        .all(|(p, t)| p.0 == t.row && p.1 == t.col)
+            }
+            None => false,
+        };
+        if !same_seq {
+            let idx: Vec<Pair<usize, usize>> =
+                triplets.iter().map(|t| Pair::new(t.row, t.col)).collect();
+            let (sym, argsort) =
+                SymbolicSparseColMat::try_new_from_indices(n, n, &idx).map_err(|e| {
+                    Error::internal(format!("bordered tangent could not be assembled: {e:?}"))
+                })?;
+            let seq = triplets.iter().map(|t| (t.row, t.col)).collect();
+            self.assembly = Some((seq, sym, argsort));
+        }
+        let (_, sym, argsort) = self
+            .assembly
+            .as_ref()
+            .ok_or_else(|| Error::internal("tangent pattern missing"))?;
+        let vals: Vec<f64> = triplets.iter().map(|t| t.val).collect();
+        let a = SparseColMat::new_from_argsort(sym.clone(), argsort, &vals).map_err(|e| {
             Error::internal(format!("bordered tangent could not be assembled: {e:?}"))
         })?;
         let same = match &self.pattern {

@@ -588,7 +588,6 @@ pub fn time_history(
             Error::input("a time history needs ω > 0 and at least 2 instants").keyword("NB_INST"),
         );
     }
-    let period = 2.0 * std::f64::consts::PI / omega;
     let th: Vec<f64> = (0..n_inst)
         .map(|j| 2.0 * std::f64::consts::PI * j as f64 / (n_inst - 1) as f64)
         .collect();
@@ -621,11 +620,7 @@ pub fn time_history(
         })
         .collect();
     Ok(TimeHistory {
-        t: th
-            .iter()
-            .map(|t| t / omega)
-            .map(|t| t.min(period))
-            .collect(),
+        t: th.iter().map(|t| t / omega).collect(),
         displacement,
         velocity,
         contact_force,

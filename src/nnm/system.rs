@@ -174,6 +174,18 @@ pub fn validate(problem: &Problem, settings: &Settings) -> Result<()> {
         ))
         .keyword("MATR_RIGI"));
     }
+    if problem
+        .k
+        .val()
+        .iter()
+        .chain(problem.m.val())
+        .any(|v| !v.is_finite())
+    {
+        return Err(
+            Error::input("the stiffness or mass matrix has non-finite entries")
+                .keyword("MATR_RIGI"),
+        );
+    }
     if settings.h_lin == 0 {
         return Err(
             Error::input("NB_HARM_LINE must be at least 1").keyword("RESOLUTION/NB_HARM_LINE")
