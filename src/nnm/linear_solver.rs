@@ -13,6 +13,13 @@ pub trait BorderedSolver {
     fn solve(&self, rhs: &mut [f64]) -> Result<()>;
 }
 
+/// (row, col) sequence of the triplets, compressed pattern, sorting permutation.
+type Assembly = (
+    Vec<(usize, usize)>,
+    SymbolicSparseColMat<usize>,
+    Argsort<usize>,
+);
+
 /// faer sparse LU; the symbolic analysis is kept while the sparsity pattern repeats
 /// (branch after branch, and at every Newton iteration, it does).
 #[derive(Default)]
@@ -20,11 +27,7 @@ pub struct SparseLu {
     /// The (row, col) sequence of the last triplets, with its compressed pattern and the
     /// permutation that sorts the triplets into it: assembling the next matrix of the same
     /// sequence is then a gather, not a sort.
-    assembly: Option<(
-        Vec<(usize, usize)>,
-        SymbolicSparseColMat<usize>,
-        Argsort<usize>,
-    )>,
+    assembly: Option<Assembly>,
     pattern: Option<(Vec<usize>, Vec<usize>, SymbolicLu<usize>)>,
     lu: Option<(usize, Lu<usize, f64>)>,
     /// Number of symbolic analyses done (for tests and reports).
