@@ -84,6 +84,11 @@ pub fn compute(
     y[n - 1] = 1.0;
     solver.solve(&mut y)?;
     let ny = norm(&y);
+    if !(ny.is_finite() && ny > 0.0) {
+        return Err(Error::numerical(
+            "the tangent direction (order 1) is zero or not finite: singular bordered tangent",
+        ));
+    }
     let mut x1: Vec<f64> = y.iter().map(|v| v / ny).collect();
     if orient(&x1) < 0.0 {
         x1.iter_mut().for_each(|v| *v = -*v);
