@@ -84,18 +84,35 @@ pub fn compute(
     y[n - 1] = 1.0;
     solver.solve(&mut y)?;
     let ny = norm(&y);
+    if !(ny.is_finite() && ny > 0.0) {
+        return Err(Error::numerical(
+            "the tangent direction (order 1) is zero or not finite: singular bordered tangent",
+        ));
+    }
     let mut x1: Vec<f64> = y.iter().map(|v| v / ny).collect();
     if orient(&x1) < 0.0 {
         x1.iter_mut().for_each(|v| *v = -*v);
     }
     let y_x1 = dot(&y, &x1);
+    let sampled = sys.uses_samples();
+    let mut samples = Vec::new();
+    if sampled {
+        samples.push(sys.samples(&x1));
+    }
     let mut terms = vec![x1];
     for order in 2..=p.order {
         let mut rhs = vec![0.0; n];
         let pairs: Vec<(&[f64], &[f64])> = (1..order)
             .map(|r| (terms[r - 1].as_slice(), terms[order - r - 1].as_slice()))
             .collect();
-        sys.quad_sum(&pairs, &mut rhs[..n - 1]);
+        if sampled {
+            let cache: Vec<_> = (1..order)
+                .map(|r| (&samples[r - 1], &samples[order - r - 1]))
+                .collect();
+            sys.quad_sum_cached(&pairs, Some(&cache), &mut rhs[..n - 1]);
+        } else {
+            sys.quad_sum(&pairs, &mut rhs[..n - 1]);
+        }
         rhs.iter_mut().for_each(|v| *v = -*v);
         rhs[n - 1] = 0.0;
         solver.solve(&mut rhs)?;
@@ -107,6 +124,9 @@ pub fn compute(
             return Err(Error::numerical(format!(
                 "series term of order {order} is not finite"
             )));
+        }
+        if sampled {
+            samples.push(sys.samples(&rhs));
         }
         terms.push(rhs);
     }

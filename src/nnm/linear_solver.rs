@@ -4,7 +4,7 @@
 use crate::error::{Error, Result};
 use faer::prelude::*;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat, Triplet};
 
 /// Factor a square sparse matrix given as triplets (duplicates add), then solve with it.
 pub trait BorderedSolver {
@@ -13,10 +13,21 @@ pub trait BorderedSolver {
     fn solve(&self, rhs: &mut [f64]) -> Result<()>;
 }
 
+/// (row, col) sequence of the triplets, compressed pattern, sorting permutation.
+type Assembly = (
+    Vec<(usize, usize)>,
+    SymbolicSparseColMat<usize>,
+    Argsort<usize>,
+);
+
 /// faer sparse LU; the symbolic analysis is kept while the sparsity pattern repeats
 /// (branch after branch, and at every Newton iteration, it does).
 #[derive(Default)]
 pub struct SparseLu {
+    /// The (row, col) sequence of the last triplets, with its compressed pattern and the
+    /// permutation that sorts the triplets into it: assembling the next matrix of the same
+    /// sequence is then a gather, not a sort.
+    assembly: Option<Assembly>,
     pattern: Option<(Vec<usize>, Vec<usize>, SymbolicLu<usize>)>,
     lu: Option<(usize, Lu<usize, f64>)>,
     /// Number of symbolic analyses done (for tests and reports).
@@ -26,7 +37,33 @@ pub struct SparseLu {
 impl BorderedSolver for SparseLu {
     fn factor(&mut self, n: usize, triplets: &[Triplet<usize, usize, f64>]) -> Result<()> {
         self.lu = None;
-        let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, triplets).map_err(|e| {
+        let same_seq = match &self.assembly {
+            Some((seq, sym, _)) => {
+                sym.nrows() == n
+                    && seq.len() == triplets.len()
+                    && seq
+                        .iter()
+                        .zip(triplets)
+                        .all(|(p, t)| p.0 == t.row && p.1 == t.col)
+            }
+            None => false,
+        };
+        if !same_seq {
+            let idx: Vec<Pair<usize, usize>> =
+                triplets.iter().map(|t| Pair::new(t.row, t.col)).collect();
+            let (sym, argsort) =
+                SymbolicSparseColMat::try_new_from_indices(n, n, &idx).map_err(|e| {
+                    Error::internal(format!("bordered tangent could not be assembled: {e:?}"))
+                })?;
+            let seq = triplets.iter().map(|t| (t.row, t.col)).collect();
+            self.assembly = Some((seq, sym, argsort));
+        }
+        let (_, sym, argsort) = self
+            .assembly
+            .as_ref()
+            .ok_or_else(|| Error::internal("tangent pattern missing"))?;
+        let vals: Vec<f64> = triplets.iter().map(|t| t.val).collect();
+        let a = SparseColMat::new_from_argsort(sym.clone(), argsort, &vals).map_err(|e| {
             Error::internal(format!("bordered tangent could not be assembled: {e:?}"))
         })?;
         let same = match &self.pattern {

@@ -300,6 +300,20 @@ fn start(sys: System, settings: &Settings, mut x: Vec<f64>) -> Result<StartState
     })
 }
 
+/// The DOF whose velocity is zero at t = 0: the first free DOF as in Code_Aster (so that
+/// ENERGIE, taken at ωt = π/2, is evaluated at the same instant of the motion), unless it
+/// barely moves in the mode (the condition would then be degenerate): then the DOF that
+/// moves most.
+fn phase_dof(amplitudes: &[f64]) -> usize {
+    let big = amplitudes.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    match amplitudes.first() {
+        Some(a) if a.abs() > 1e-3 * big => 0,
+        _ => (0..amplitudes.len())
+            .max_by(|&a, &b| amplitudes[a].abs().total_cmp(&amplitudes[b].abs()))
+            .unwrap_or(0),
+    }
+}
+
 /// Start from a linear mode (largest component 1) scaled by `coef_ampl` as Code_Aster does:
 /// with shocks the scaled displacement is coef_ampl·mode, so COEF_AMPL = 1 gives an
 /// amplitude equal to the largest JEU; without shocks the physical amplitude is
@@ -342,7 +356,7 @@ pub fn start_from_mode(
         return Err(Error::input("the linear mode is zero").keyword("ETAT_INIT/NUME_ORDRE"));
     }
     let sc = Scaling::new(problem, coef_ampl * mp, p)?;
-    let sys = System::new(problem, settings, sc, p)?;
+    let sys = System::new(problem, settings, sc, phase_dof(mode))?;
     let l = sys.lay;
     let phys_per_coef = if problem.shocks.is_empty() { 1.0 } else { sc.g };
     let om = omega_lin / sc.w;
@@ -397,7 +411,8 @@ fn system_for_point(problem: &Problem, settings: &Settings, x: &[f64]) -> Result
         .max_by(|&a, &b| amp(a).total_cmp(&amp(b)))
         .unwrap_or(0);
     let sc = Scaling::new(problem, amp(p), p)?;
-    System::new(problem, settings, sc, p)
+    let amps: Vec<f64> = (0..n).map(amp).collect();
+    System::new(problem, settings, sc, phase_dof(&amps))
 }
 
 fn to_scaled(sys: &System, x: &[f64]) -> Vec<f64> {
@@ -575,7 +590,6 @@ pub fn time_history(
             Error::input("a time history needs ω > 0 and at least 2 instants").keyword("NB_INST"),
         );
     }
-    let period = 2.0 * std::f64::consts::PI / omega;
     let th: Vec<f64> = (0..n_inst)
         .map(|j| 2.0 * std::f64::consts::PI * j as f64 / (n_inst - 1) as f64)
         .collect();
@@ -608,11 +622,7 @@ pub fn time_history(
         })
         .collect();
     Ok(TimeHistory {
-        t: th
-            .iter()
-            .map(|t| t / omega)
-            .map(|t| t.min(period))
-            .collect(),
+        t: th.iter().map(|t| t / omega).collect(),
         displacement,
         velocity,
         contact_force,

@@ -115,7 +115,12 @@ pub struct ShockSys {
     pub eta: f64,
     pub eqs: LawEqs,
     pub offset: usize,
+    /// The distinct variables of the quadratic terms (order of the time samples).
+    pub vars: Vec<Var>,
 }
+
+/// Time samples of the law variables of one X: [shock][variable (ShockSys::vars)][sample].
+pub type Samples = Vec<Vec<Vec<f64>>>;
 
 #[derive(Clone, Copy, Debug)]
 pub struct Layout {
@@ -168,6 +173,18 @@ pub fn validate(problem: &Problem, settings: &Settings) -> Result<()> {
             problem.m.ncols()
         ))
         .keyword("MATR_RIGI"));
+    }
+    if problem
+        .k
+        .val()
+        .iter()
+        .chain(problem.m.val())
+        .any(|v| !v.is_finite())
+    {
+        return Err(
+            Error::input("the stiffness or mass matrix has non-finite entries")
+                .keyword("MATR_RIGI"),
+        );
     }
     if settings.h_lin == 0 {
         return Err(
@@ -261,6 +278,12 @@ impl System {
             let (gs, alpha) = (s.gap / sc.g, s.stiffness / sc.k);
             let eqs = laws::equations(law, gs, alpha, s.regul);
             let n_own = eqs.n_own;
+            let mut vars: Vec<Var> = Vec::new();
+            for v in eqs.quad.iter().flat_map(|t| [t.a, t.b]) {
+                if !vars.contains(&v) {
+                    vars.push(v);
+                }
+            }
             shocks.push(ShockSys {
                 law,
                 dofs: s.dofs.clone(),
@@ -269,6 +292,7 @@ impl System {
                 eta: s.regul,
                 eqs,
                 offset,
+                vars,
             });
             offset += n_own * nn;
         }
@@ -307,8 +331,43 @@ impl System {
         }
     }
 
+    /// Whether products of the law variables go through time samples (large H_nl).
+    pub fn uses_samples(&self) -> bool {
+        series::prefer_fft(self.lay.hn, self.lay.hn, self.lay.hn)
+    }
+
+    /// Time samples of every law variable of `x` (for the sampled products).
+    pub fn samples(&self, x: &[f64]) -> Samples {
+        let ns = self.sampler.n();
+        self.shocks
+            .iter()
+            .map(|sh| {
+                sh.vars
+                    .iter()
+                    .map(|&v| {
+                        let (s, h) = self.var(x, sh, v);
+                        let mut o = vec![0.0; ns];
+                        self.sampler.synth(s, h, &mut o);
+                        o
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
     /// out (length n_eq) += Σ Q(a_i, b_i).
     pub fn quad_sum(&self, pairs: &[(&[f64], &[f64])], out: &mut [f64]) {
+        self.quad_sum_cached(pairs, None, out)
+    }
+
+    /// Same, with the time samples of each pair given (`samples(a_i)`, `samples(b_i)`) so
+    /// that a series of orders synthesises each term once (ANM right-hand sides).
+    pub fn quad_sum_cached(
+        &self,
+        pairs: &[(&[f64], &[f64])],
+        cache: Option<&[(&Samples, &Samples)]>,
+        out: &mut [f64],
+    ) {
         let l = self.lay;
         let (n, nl, hl) = (l.n, l.nl, l.hl);
         // Structural rows: Ω_a D U_b (rows of U) and M (Ω_a D V_b + γ_a V_b) (rows of V).
@@ -329,70 +388,50 @@ impl System {
             }
         }
         self.m.mul_blocks(&w, nl, &mut out[l.v(0)..l.v(0) + n * nl]);
-        for sh in &self.shocks {
-            self.law_quad_sum(sh, pairs, out);
-        }
-    }
-
-    fn law_quad_sum(&self, sh: &ShockSys, pairs: &[(&[f64], &[f64])], out: &mut [f64]) {
-        let l = self.lay;
-        let nn = l.nn;
-        if !series::prefer_fft(l.hn, l.hn, l.hn) {
-            for (a, b) in pairs {
-                for t in &sh.eqs.quad {
-                    let (va, ha) = self.var(a, sh, t.a);
-                    let (vb, hb) = self.var(b, sh, t.b);
-                    let o = sh.offset + t.eq * nn;
-                    series::mul_conv_acc(va, ha, vb, hb, l.hn, t.coef, &mut out[o..o + nn]);
+        if !self.uses_samples() {
+            for sh in &self.shocks {
+                for (a, b) in pairs {
+                    for t in &sh.eqs.quad {
+                        let (va, ha) = self.var(a, sh, t.a);
+                        let (vb, hb) = self.var(b, sh, t.b);
+                        let o = sh.offset + t.eq * l.nn;
+                        series::mul_conv_acc(va, ha, vb, hb, l.hn, t.coef, &mut out[o..o + l.nn]);
+                    }
                 }
             }
             return;
         }
         // Large H_nl: accumulate every product in the time domain, one FFT back per equation.
+        let owned: Vec<(Samples, Samples)>;
+        let cache: Vec<(&Samples, &Samples)> = match cache {
+            Some(c) => c.to_vec(),
+            None => {
+                owned = pairs
+                    .iter()
+                    .map(|(a, b)| (self.samples(a), self.samples(b)))
+                    .collect();
+                owned.iter().map(|(a, b)| (a, b)).collect()
+            }
+        };
         let ns = self.sampler.n();
-        let mut acc = vec![vec![0.0; ns]; sh.eqs.n_own];
-        let vars: Vec<Var> = {
-            let mut v: Vec<Var> = sh.eqs.quad.iter().flat_map(|t| [t.a, t.b]).collect();
-            v.dedup();
-            let mut u = Vec::new();
-            for x in v {
-                if !u.contains(&x) {
-                    u.push(x);
+        let mut c = vec![0.0; l.nn];
+        for (k, sh) in self.shocks.iter().enumerate() {
+            let pos = |v: Var| sh.vars.iter().position(|&w| w == v).unwrap_or(0);
+            let mut acc = vec![vec![0.0; ns]; sh.eqs.n_own];
+            for (sa, sb) in &cache {
+                for t in &sh.eqs.quad {
+                    let (xa, xb) = (&sa[k][pos(t.a)], &sb[k][pos(t.b)]);
+                    for ((o, p), q) in acc[t.eq].iter_mut().zip(xa).zip(xb) {
+                        *o += t.coef * p * q;
+                    }
                 }
             }
-            u
-        };
-        let synth = |x: &[f64]| -> Vec<Vec<f64>> {
-            vars.iter()
-                .map(|&v| {
-                    let (s, h) = self.var(x, sh, v);
-                    let mut o = vec![0.0; ns];
-                    self.sampler.synth(s, h, &mut o);
-                    o
-                })
-                .collect()
-        };
-        let pos = |v: Var| vars.iter().position(|&w| w == v).unwrap_or(0);
-        for (a, b) in pairs {
-            let sa = synth(a);
-            let sb = if std::ptr::eq(*a, *b) {
-                sa.clone()
-            } else {
-                synth(b)
-            };
-            for t in &sh.eqs.quad {
-                let (xa, xb) = (&sa[pos(t.a)], &sb[pos(t.b)]);
-                for ((o, p), q) in acc[t.eq].iter_mut().zip(xa).zip(xb) {
-                    *o += t.coef * p * q;
+            for (e, s) in acc.iter_mut().enumerate() {
+                self.sampler.analyse(s, l.hn, &mut c);
+                let o = sh.offset + e * l.nn;
+                for (y, v) in out[o..o + l.nn].iter_mut().zip(&c) {
+                    *y += v;
                 }
-            }
-        }
-        let mut c = vec![0.0; nn];
-        for (e, s) in acc.iter_mut().enumerate() {
-            self.sampler.analyse(s, l.hn, &mut c);
-            let o = sh.offset + e * nn;
-            for (y, v) in out[o..o + nn].iter_mut().zip(&c) {
-                *y += v;
             }
         }
     }
