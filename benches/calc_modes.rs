@@ -1,5 +1,7 @@
 //! CALC_MODES numerics: the 10 lowest modes of 10⁵-DOF models with shift-invert Lanczos.
 
+// Each user of the shared model builders needs only some of them.
+#[allow(dead_code)]
 #[path = "common/models.rs"]
 mod models;
 

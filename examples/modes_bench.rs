@@ -3,6 +3,8 @@
 //! Prints wall time, the solver used and the largest relative error on ω against the
 //! closed form.
 
+// Each user of the shared model builders needs only some of them.
+#[allow(dead_code)]
 #[path = "../benches/common/models.rs"]
 mod models;
 

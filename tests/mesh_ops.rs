@@ -1,3 +1,4 @@
+#![allow(clippy::result_large_err)]
 //! LIRE_MAILLAGE, CREA_MAILLAGE, DEFI_GROUP and the mesh-location helper, run on an
 //! in-memory store with hand-built contexts and arguments.
 

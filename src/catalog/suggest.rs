@@ -32,7 +32,7 @@ pub fn closest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) ->
 }
 
 /// A hint naming the closest candidates, or listing all of them when none is close.
-pub fn hint<'a>(name: &str, candidates: &[&'a str]) -> String {
+pub fn hint(name: &str, candidates: &[&str]) -> String {
     let near = closest(name, candidates.iter().copied());
     if near.is_empty() {
         format!("allowed: {}", candidates.join(", "))

@@ -13,6 +13,18 @@ struct Recorder {
     printed: Vec<String>,
 }
 
+/// Every `CO('NAME')` in a call's keywords, at any depth.
+fn co_names(values: &[&Value], out: &mut Vec<String>) {
+    for v in values {
+        match v {
+            Value::Co(n) => out.push(n.clone()),
+            Value::Seq(items) => co_names(&items.iter().collect::<Vec<_>>(), out),
+            Value::Fact(kws) => co_names(&kws.iter().map(|k| &k.value).collect::<Vec<_>>(), out),
+            _ => {}
+        }
+    }
+}
+
 const OPS: &[&str] = &[
     "DEBUT",
     "FIN",
@@ -45,8 +57,17 @@ impl Host for Recorder {
     fn operator_names(&self) -> Vec<String> {
         OPS.iter().map(|s| s.to_string()).collect()
     }
+    /// The concepts the recorded calls created through CO('NAME'), as a real host's store
+    /// would know them.
     fn lookup_concept(&self, name: &str) -> Option<ConceptRef> {
-        Some(ConceptRef {
+        let mut created = Vec::new();
+        for c in &self.calls {
+            co_names(
+                &c.args.iter().map(|k| &k.value).collect::<Vec<_>>(),
+                &mut created,
+            );
+        }
+        created.iter().any(|n| n == name).then(|| ConceptRef {
             name: name.into(),
             ty: "co".into(),
         })
@@ -770,4 +791,39 @@ fn render_shows_line_and_caret() {
     let r = render_plain(&e, Some(&src));
     let expected = "error: unknown operator 'AFFE_MODEL'\n  --> t.comm:2:5\n   |\n 2 | M = AFFE_MODEL(A=1)\n   |     ^^^^^^^^^^\n  = hint: did you mean 'AFFE_MODELE'?\n";
     assert_eq!(r, expected);
+}
+
+/// POURSUITE: a concept of an earlier run is bound by no statement of the file; the
+/// evaluator asks the host for it, and still reports names the host does not know.
+#[test]
+fn names_no_statement_bound_are_asked_to_the_host() {
+    struct Continued(Vec<CommandCall>);
+    impl Host for Continued {
+        fn is_operator(&self, name: &str) -> bool {
+            name == "TEST_RESU"
+        }
+        fn call(&mut self, call: CommandCall) -> crate::error::Result<Value> {
+            self.0.push(call);
+            Ok(Value::None)
+        }
+        fn lookup_concept(&self, name: &str) -> Option<ConceptRef> {
+            (name == "MODES").then(|| ConceptRef {
+                name: "MODES".into(),
+                ty: "mode_meca".into(),
+            })
+        }
+    }
+    let src = Source::new("t.comm", "TEST_RESU(RESULTAT=MODES)\n");
+    let mut host = Continued(Vec::new());
+    run(&src, &mut Env::new(), &mut host).unwrap();
+    assert_eq!(
+        host.0[0].args[0].value,
+        Value::Concept(ConceptRef {
+            name: "MODES".into(),
+            ty: "mode_meca".into()
+        })
+    );
+    let src = Source::new("t.comm", "TEST_RESU(RESULTAT=MODE)\n");
+    let e = run(&src, &mut Env::new(), &mut Continued(Vec::new())).unwrap_err();
+    assert_eq!(e.message, "name 'MODE' is not defined");
 }

@@ -378,6 +378,8 @@ fn upper_triangle_storage_is_accepted() {
     }
 }
 
+// Each user of the shared model builders needs only some of them.
+#[allow(dead_code)]
 #[path = "../../benches/common/models.rs"]
 mod models;
 

@@ -167,7 +167,7 @@ mod tests {
         s.register_concept("MNL", "table_container", "MODE_NON_LINE", "a.comm", 1)
             .unwrap();
         let x = vec![1.0, -2.5e-300, f64::MAX, 0.1 + 0.2];
-        save_point(&s, "MNL", 3, 6.28, &x).unwrap();
+        save_point(&s, "MNL", 3, 2.5, &x).unwrap();
         assert_eq!(load_point(&s, "MNL", 3).unwrap(), Some(x));
         assert_eq!(load_point(&s, "MNL", 4).unwrap(), None);
     }
