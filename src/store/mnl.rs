@@ -30,6 +30,15 @@ CREATE TABLE IF NOT EXISTS mnl_fourier (
     COEF_S REAL NOT NULL
 );
 CREATE INDEX IF NOT EXISTS mnl_fourier_row ON mnl_fourier(concept, NUME_ORDRE);
+CREATE TABLE IF NOT EXISTS mnl_floquet (
+    concept TEXT NOT NULL REFERENCES concepts(name) ON DELETE CASCADE,
+    NUME_ORDRE INTEGER NOT NULL,
+    NUME_MULT INTEGER NOT NULL,
+    PARTIE_REELLE REAL NOT NULL,
+    PARTIE_IMAG REAL NOT NULL,
+    MODULE REAL NOT NULL,
+    PRIMARY KEY (concept, NUME_ORDRE, NUME_MULT)
+);
 ";
 
 /// One shock as stored (also written to the CARA_CHOC sub-table).
@@ -63,7 +72,7 @@ pub fn ensure_schema(store: &Store) -> Result<()> {
 
 pub fn drop_data(store: &Store, name: &str) -> Result<()> {
     ensure_schema(store)?;
-    for t in ["mnl_points", "mnl_fourier"] {
+    for t in ["mnl_points", "mnl_fourier", "mnl_floquet"] {
         store.conn().execute(
             &format!("DELETE FROM {t} WHERE concept = ?1"),
             params![name],
@@ -154,6 +163,53 @@ pub fn save_fourier(
             stmt.execute(params![name, nume_ordre, node, cmp, k as i64, cc, cs])?;
         }
     }
+    Ok(())
+}
+
+/// Replace the Floquet multipliers stored for row `nume_ordre`.
+pub fn save_multipliers(
+    store: &Store,
+    name: &str,
+    nume_ordre: i64,
+    multipliers: &[(f64, f64)],
+) -> Result<()> {
+    ensure_schema(store)?;
+    let conn = store.conn();
+    conn.execute(
+        "DELETE FROM mnl_floquet WHERE concept = ?1 AND NUME_ORDRE = ?2",
+        params![name, nume_ordre],
+    )?;
+    let mut stmt = conn.prepare_cached(
+        "INSERT INTO mnl_floquet(concept, NUME_ORDRE, NUME_MULT, PARTIE_REELLE, PARTIE_IMAG, MODULE)
+         VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
+    )?;
+    for (i, (re, im)) in multipliers.iter().enumerate() {
+        stmt.execute(params![name, nume_ordre, i as i64 + 1, re, im, re.hypot(*im)])?;
+    }
+    Ok(())
+}
+
+/// Copy everything MODE_NON_LINE stored for `from` (setup, points, Fourier coefficients,
+/// multipliers) to the new concept `to`.
+pub fn copy_data(store: &Store, from: &str, to: &str) -> Result<()> {
+    ensure_schema(store)?;
+    save_setup(store, to, &load_setup(store, from)?)?;
+    let conn = store.conn();
+    conn.execute(
+        "INSERT INTO mnl_points(concept, NUME_ORDRE, omega, n, x)
+         SELECT ?2, NUME_ORDRE, omega, n, x FROM mnl_points WHERE concept = ?1",
+        params![from, to],
+    )?;
+    conn.execute(
+        "INSERT INTO mnl_fourier(concept, NUME_ORDRE, NOEUD, NOM_CMP, HARM, COEF_C, COEF_S)
+         SELECT ?2, NUME_ORDRE, NOEUD, NOM_CMP, HARM, COEF_C, COEF_S FROM mnl_fourier WHERE concept = ?1",
+        params![from, to],
+    )?;
+    conn.execute(
+        "INSERT INTO mnl_floquet(concept, NUME_ORDRE, NUME_MULT, PARTIE_REELLE, PARTIE_IMAG, MODULE)
+         SELECT ?2, NUME_ORDRE, NUME_MULT, PARTIE_REELLE, PARTIE_IMAG, MODULE FROM mnl_floquet WHERE concept = ?1",
+        params![from, to],
+    )?;
     Ok(())
 }
 

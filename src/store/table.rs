@@ -39,6 +39,7 @@ pub const INTERNAL_TABLES: &[&str] = &[
     "mode_shapes",
     "mnl_points",
     "mnl_fourier",
+    "mnl_floquet",
     "meshes",
     "mesh_group_defs",
 ];
