@@ -30,10 +30,10 @@ pub fn parse_export(text: &str, path: &Path) -> Result<Export> {
             continue;
         }
         if fields.len() < 5 {
-            return Err(Error::input(
-                "an F line needs 5 fields: F <type> <path> <D|R|DR> <unit>",
-            )
-            .at_line(&file, i + 1));
+            return Err(
+                Error::input("an F line needs 5 fields: F <type> <path> <D|R|DR> <unit>")
+                    .at_line(&file, i + 1),
+            );
         }
         let (kind, p, mode, unit) = (fields[1], fields[2], fields[3], fields[4]);
         let unit: i64 = unit.parse().map_err(|_| {
@@ -71,8 +71,11 @@ mod tests {
 
     #[test]
     fn bad_unit_names_the_line() {
-        let err = parse_export("F comm a.comm D 1\nF mail a.mail D twenty\n", Path::new("x.export"))
-            .unwrap_err();
+        let err = parse_export(
+            "F comm a.comm D 1\nF mail a.mail D twenty\n",
+            Path::new("x.export"),
+        )
+        .unwrap_err();
         assert_eq!(err.location.unwrap().span.line, 2);
         assert!(err.message.contains("twenty"));
     }

@@ -81,8 +81,9 @@ struct Runner<'o> {
 impl Runner<'_> {
     fn store(&self) -> Result<&Store> {
         self.store.as_ref().ok_or_else(|| {
-            Error::validation("no study is open")
-                .hint("a command file starts with DEBUT() (new study) or POURSUITE() (continue one)")
+            Error::validation("no study is open").hint(
+                "a command file starts with DEBUT() (new study) or POURSUITE() (continue one)",
+            )
         })
     }
 
@@ -220,7 +221,10 @@ impl Runner<'_> {
         if let Some(v) = value {
             return Ok(v);
         }
-        let bound = call.result.as_ref().or(call.reuse.as_ref().map(|c| &c.name));
+        let bound = call
+            .result
+            .as_ref()
+            .or(call.reuse.as_ref().map(|c| &c.name));
         match bound {
             Some(name) => {
                 let ty = created
@@ -269,7 +273,9 @@ impl Host for Runner<'_> {
         let args = catalog::validate(&call, &self.file).map_err(|errors| {
             // Report every problem of the call; stop on the first.
             let mut errors = errors.into_iter();
-            let first = errors.next().unwrap_or_else(|| Error::validation("invalid call"));
+            let first = errors
+                .next()
+                .unwrap_or_else(|| Error::validation("invalid call"));
             for e in errors {
                 let _ = writeln!(self.out, "{e}");
             }
@@ -311,10 +317,7 @@ pub fn run_file(path: &Path, opts: RunOptions, out: &mut dyn Write) -> Result<Ru
         name: path.display().to_string(),
         text,
     };
-    let default_db = opts
-        .db
-        .clone()
-        .unwrap_or_else(|| path.with_extension("db"));
+    let default_db = opts.db.clone().unwrap_or_else(|| path.with_extension("db"));
     let mut units = opts.units;
     units.comm_file.get_or_insert_with(|| path.to_path_buf());
     run_source(&src, default_db, units, opts.progress, out)

@@ -16,7 +16,11 @@ const EXIT_NOOK: u8 = 1;
 const EXIT_ERROR: u8 = 2;
 
 #[derive(Parser)]
-#[command(name = "aster-nl", version, about = "Code_Aster-style command files for nonlinear modal analysis, results in SQLite")]
+#[command(
+    name = "aster-nl",
+    version,
+    about = "Code_Aster-style command files for nonlinear modal analysis, results in SQLite"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -61,13 +65,23 @@ fn parse_units(specs: &[String], base: &Path) -> Result<Units, Error> {
     let mut units = Units::default();
     for spec in specs {
         let (n, path) = spec.split_once('=').ok_or_else(|| {
-            Error::new(ErrorKind::Io, format!("--unit {spec}: expected N=PATH, e.g. 20=mesh.mail"))
+            Error::new(
+                ErrorKind::Io,
+                format!("--unit {spec}: expected N=PATH, e.g. 20=mesh.mail"),
+            )
         })?;
         let n: i64 = n.trim().parse().map_err(|_| {
-            Error::new(ErrorKind::Io, format!("--unit {spec}: '{n}' is not a unit number"))
+            Error::new(
+                ErrorKind::Io,
+                format!("--unit {spec}: '{n}' is not a unit number"),
+            )
         })?;
         let p = PathBuf::from(path);
-        let p = if p.is_relative() && !p.exists() { base.join(p) } else { p };
+        let p = if p.is_relative() && !p.exists() {
+            base.join(p)
+        } else {
+            p
+        };
         units.map.insert(n, p);
     }
     Ok(units)
@@ -129,7 +143,10 @@ fn check(file: &Path) -> ExitCode {
         Ok(t) => t,
         Err(e) => {
             return fail(
-                &Error::new(ErrorKind::Io, format!("cannot read {}: {e}", file.display())),
+                &Error::new(
+                    ErrorKind::Io,
+                    format!("cannot read {}: {e}", file.display()),
+                ),
                 None,
             )
         }

@@ -7,8 +7,8 @@ use crate::linalg::eigen_norm::ModeNorm;
 use crate::model::dof::Cmp;
 use crate::model::modes::{Mode, ModeMeca};
 use crate::ops::OpContext;
-use crate::table::print::format_e;
 use crate::store::{matrix, modes as mode_store};
+use crate::table::print::format_e;
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let name = ctx.result_name()?.to_string();
@@ -29,8 +29,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let mr = m.reduced()?;
     let free = k.free_dofs();
     if free.is_empty() {
-        return Err(Error::input("every DOF is blocked: there is no mode to compute")
-            .keyword("CALC_MODES/MATR_RIGI"));
+        return Err(
+            Error::input("every DOF is blocked: there is no mode to compute")
+                .keyword("CALC_MODES/MATR_RIGI"),
+        );
     }
     let set = eigen::solve_modes(&kr, &mr, &request, &EigenOptions::default())?;
     if ctx.info >= 2 {
@@ -77,7 +79,11 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             }
             ctx.alarm("CALC_MODES_1", &msg)?;
         }
-        let rigid = if freq < seuil_freq { "  (rigid-body mode)" } else { "" };
+        let rigid = if freq < seuil_freq {
+            "  (rigid-body mode)"
+        } else {
+            ""
+        };
         ctx.say(&format!(
             "  {:>10}  {:>14}   {}{rigid}",
             i + 1,
@@ -112,10 +118,13 @@ fn mode_request(args: &Args) -> Result<ModeRequest> {
     let cf = args.fact("CALC_FREQ");
     let nmax = cf.and_then(|c| c.int("NMAX_FREQ")).unwrap_or(10);
     let freqs = cf.and_then(|c| c.reals("FREQ")).unwrap_or_default();
-    let n = usize::try_from(nmax).ok().filter(|&n| n > 0).ok_or_else(|| {
-        Error::validation(format!("NMAX_FREQ must be a positive integer, got {nmax}"))
-            .keyword("CALC_MODES/CALC_FREQ/NMAX_FREQ")
-    })?;
+    let n = usize::try_from(nmax)
+        .ok()
+        .filter(|&n| n > 0)
+        .ok_or_else(|| {
+            Error::validation(format!("NMAX_FREQ must be a positive integer, got {nmax}"))
+                .keyword("CALC_MODES/CALC_FREQ/NMAX_FREQ")
+        })?;
     match option {
         "PLUS_PETITE" => Ok(ModeRequest::Smallest { n }),
         "BANDE" => match freqs.as_slice() {
@@ -135,8 +144,10 @@ fn mode_request(args: &Args) -> Result<ModeRequest> {
             ))
             .keyword("CALC_MODES/CALC_FREQ/FREQ")),
         },
-        other => Err(Error::validation(format!("OPTION='{other}' is not supported"))
-            .keyword("CALC_MODES/OPTION")),
+        other => Err(
+            Error::validation(format!("OPTION='{other}' is not supported"))
+                .keyword("CALC_MODES/OPTION"),
+        ),
     }
 }
 
@@ -165,8 +176,10 @@ fn mode_norm(
             mask: mask(|_| true),
         },
         other => {
-            return Err(Error::validation(format!("NORME='{other}' is not supported"))
-                .keyword("CALC_MODES/NORM_MODE/NORME"))
+            return Err(
+                Error::validation(format!("NORME='{other}' is not supported"))
+                    .keyword("CALC_MODES/NORM_MODE/NORME"),
+            )
         }
     })
 }

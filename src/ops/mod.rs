@@ -4,16 +4,29 @@
 //!
 //! The interpreter calls [`run`] inside one store transaction per call.
 
+pub mod affe_cara_elem;
+pub mod affe_char_cine;
+pub mod affe_char_meca;
+pub mod affe_materiau;
+pub mod affe_modele;
+pub mod asse_matrice;
+pub mod assemblage;
+pub mod calc_matr_elem;
 pub mod calc_modes;
 pub mod calc_table;
+pub mod crea_maillage;
 pub mod crea_table;
 pub mod defi_fonction;
+pub mod defi_group;
+pub mod defi_materiau;
 pub mod detruire;
 pub mod extr_table;
 #[cfg(test)]
 pub mod harness;
 pub mod impr_fonction;
 pub mod impr_table;
+pub mod lire_maillage;
+pub mod nume_ddl;
 #[cfg(test)]
 mod op_tests;
 pub mod output;
@@ -24,19 +37,6 @@ pub mod test_fonction;
 pub mod test_resu;
 pub mod test_table;
 pub mod testing;
-pub mod affe_cara_elem;
-pub mod affe_char_cine;
-pub mod affe_char_meca;
-pub mod affe_materiau;
-pub mod affe_modele;
-pub mod asse_matrice;
-pub mod assemblage;
-pub mod calc_matr_elem;
-pub mod defi_materiau;
-pub mod nume_ddl;
-pub mod crea_maillage;
-pub mod defi_group;
-pub mod lire_maillage;
 
 use crate::args::Args;
 use crate::error::{Error, Result};

@@ -10,9 +10,9 @@ impl Progress {
             return Progress(None);
         }
         let bar = ProgressBar::new(len);
-        if let Ok(style) =
-            ProgressStyle::with_template("{prefix} [{bar:40}] {pos}/{len} branches ({elapsed}, eta {eta})")
-        {
+        if let Ok(style) = ProgressStyle::with_template(
+            "{prefix} [{bar:40}] {pos}/{len} branches ({elapsed}, eta {eta})",
+        ) {
             bar.set_style(style.progress_chars("=> "));
         }
         bar.set_prefix(label.to_string());

@@ -60,7 +60,11 @@ fn node_name(
         Error::validation(format!("mesh {mesh} has no GROUP_NO '{group}'")).keyword(kw("GROUP_NO"))
     })?;
     match g.members.as_slice() {
-        [one] => Ok(m.nodes.get(*one).map(|n| n.name.clone()).unwrap_or_default()),
+        [one] => Ok(m
+            .nodes
+            .get(*one)
+            .map(|n| n.name.clone())
+            .unwrap_or_default()),
         other => Err(Error::validation(format!(
             "GROUP_NO '{group}' holds {} nodes; TEST_RESU tests one value",
             other.len()
@@ -93,16 +97,16 @@ fn mode_value(
             "MASS_GENE" => Ok(mode.mass_gene),
             "RIGI_GENE" => Ok(mode.rigi_gene),
             "OMEGA2" => Ok(mode.omega2),
-            other => Err(Error::validation(format!(
-                "PARA='{other}' is not stored in a mode_meca"
-            ))
-            .keyword(kw("PARA"))
-            .hint("use FREQ, MASS_GENE, RIGI_GENE or OMEGA2")),
+            other => Err(
+                Error::validation(format!("PARA='{other}' is not stored in a mode_meca"))
+                    .keyword(kw("PARA"))
+                    .hint("use FREQ, MASS_GENE, RIGI_GENE or OMEGA2"),
+            ),
         };
     }
-    let cmp = resu
-        .text("NOM_CMP")
-        .ok_or_else(|| Error::validation("expected PARA, or NOM_CHAM with NOM_CMP").keyword(kw("NOM_CMP")))?;
+    let cmp = resu.text("NOM_CMP").ok_or_else(|| {
+        Error::validation("expected PARA, or NOM_CHAM with NOM_CMP").keyword(kw("NOM_CMP"))
+    })?;
     let node = node_name(ctx, resu, &modes.numbering.mesh, kw)?;
     let idx = modes
         .numbering
@@ -110,7 +114,8 @@ fn mode_value(
         .iter()
         .position(|d| d.node == node && d.cmp.name() == cmp)
         .ok_or_else(|| {
-            Error::validation(format!("{name} has no DOF {cmp} on node {node}")).keyword(kw("NOM_CMP"))
+            Error::validation(format!("{name} has no DOF {cmp} on node {node}"))
+                .keyword(kw("NOM_CMP"))
         })?;
     Ok(mode.shape[idx])
 }
@@ -128,7 +133,8 @@ fn dyna_value(
     let node = match resu.text("NOEUD") {
         Some(n) => n.to_string(),
         None => {
-            return Err(Error::validation("expected NOEUD").keyword(kw("NOEUD"))
+            return Err(Error::validation("expected NOEUD")
+                .keyword(kw("NOEUD"))
                 .hint("give the node by name for a time history"))
         }
     };
@@ -136,9 +142,11 @@ fn dyna_value(
         "DEPL" => "DEPL",
         "VITE" => "VITE",
         other => {
-            return Err(Error::validation(format!("NOM_CHAM='{other}' is not stored"))
-                .keyword(kw("NOM_CHAM"))
-                .hint("use DEPL or VITE"))
+            return Err(
+                Error::validation(format!("NOM_CHAM='{other}' is not stored"))
+                    .keyword(kw("NOM_CHAM"))
+                    .hint("use DEPL or VITE"),
+            )
         }
     };
     let by_inst = resu.real("INST");
@@ -160,9 +168,10 @@ fn dyna_value(
             (None, None) => false,
         };
         if hit {
-            return t.cell(r, field).and_then(Cell::as_f64).ok_or_else(|| {
-                Error::store(format!("{name}: no {field} value at this instant"))
-            });
+            return t
+                .cell(r, field)
+                .and_then(Cell::as_f64)
+                .ok_or_else(|| Error::store(format!("{name}: no {field} value at this instant")));
         }
     }
     Err(Error::validation(format!(

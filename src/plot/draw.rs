@@ -245,6 +245,7 @@ fn draw_panel<'c, DB: DrawingBackend + 'c>(
         chart
             .configure_series_labels()
             .position(match spec.legend {
+                LegendPosition::Auto => emptiest_corner(p),
                 LegendPosition::UpperLeft => SeriesLabelPosition::UpperLeft,
                 LegendPosition::UpperRight => SeriesLabelPosition::UpperRight,
                 LegendPosition::LowerLeft => SeriesLabelPosition::LowerLeft,
@@ -258,6 +259,47 @@ fn draw_panel<'c, DB: DrawingBackend + 'c>(
             .draw()?;
     }
     Ok(())
+}
+
+/// The corner of the plot whose legend-sized box holds the fewest points (ties: upper
+/// right, upper left, lower right, lower left, in that order).
+fn emptiest_corner(p: &Prepared<'_>) -> SeriesLabelPosition {
+    // A legend covers roughly a third of the width and a quarter of the height.
+    let (w, h) = (0.35, 0.25);
+    let (xs, ys) = (
+        (p.x.hi - p.x.lo).max(f64::MIN_POSITIVE),
+        (p.y.hi - p.y.lo).max(f64::MIN_POSITIVE),
+    );
+    let corners = [
+        (
+            SeriesLabelPosition::UpperRight,
+            (1.0 - w, 1.0),
+            (1.0 - h, 1.0),
+        ),
+        (SeriesLabelPosition::UpperLeft, (0.0, w), (1.0 - h, 1.0)),
+        (SeriesLabelPosition::LowerRight, (1.0 - w, 1.0), (0.0, h)),
+        (SeriesLabelPosition::LowerLeft, (0.0, w), (0.0, h)),
+    ];
+    let count = |(x0, x1): (f64, f64), (y0, y1): (f64, f64)| {
+        p.series
+            .iter()
+            .flat_map(Cleaned::points)
+            .filter(|&(u, v)| {
+                let (a, b) = ((u - p.x.lo) / xs, (v - p.y.lo) / ys);
+                (x0..=x1).contains(&a) && (y0..=y1).contains(&b)
+            })
+            .count()
+    };
+    let mut best = SeriesLabelPosition::UpperRight;
+    let mut fewest = usize::MAX;
+    for (pos, xr, yr) in corners {
+        let n = count(xr, yr);
+        if n < fewest {
+            fewest = n;
+            best = pos;
+        }
+    }
+    best
 }
 
 /// A linear coordinate in plotting units whose grid lines are the axis' own ticks (bold:

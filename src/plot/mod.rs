@@ -68,6 +68,8 @@ pub enum Marker {
 /// Where the legend box goes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LegendPosition {
+    /// The corner the curves cross least.
+    Auto,
     UpperLeft,
     UpperRight,
     LowerLeft,
@@ -151,7 +153,7 @@ impl Default for XyPlot {
             x_range: None,
             y_range: None,
             series: Vec::new(),
-            legend: LegendPosition::UpperRight,
+            legend: LegendPosition::Auto,
             size: DEFAULT_SIZE,
         }
     }

@@ -271,3 +271,37 @@ fn time_history_and_phase_portrait() {
     time_history(&[orbit()], "history", "N2 DX", &th_png, ImageFormat::Png).unwrap();
     assert_eq!(png_size(&th_png), (1024, 1024));
 }
+
+/// Writes the synthetic frequency–energy picture to $ASTER_NL_PLOT_DIR for a visual check
+/// (skipped when the variable is unset).
+#[test]
+fn sample_pictures_for_visual_check() {
+    let Ok(dir) = std::env::var("ASTER_NL_PLOT_DIR") else {
+        return;
+    };
+    let dir = std::path::PathBuf::from(dir);
+    frequency_energy(
+        &synthetic_fe(),
+        "sdnd122: frequency-energy",
+        &dir.join("fe.png"),
+        ImageFormat::Png,
+    )
+    .unwrap();
+    time_history(
+        &[orbit()],
+        "REST_MODE_NONL",
+        "N2 DX",
+        &dir.join("th.png"),
+        ImageFormat::Png,
+    )
+    .unwrap();
+    phase_portrait(
+        &[orbit()],
+        "phase",
+        "N2 DX",
+        &dir.join("ph.png"),
+        ImageFormat::Png,
+    )
+    .unwrap();
+    xy_plot(&two_curves(), &dir.join("xy.png"), ImageFormat::Png).unwrap();
+}

@@ -13,11 +13,11 @@
 //! [`Store::rollback_op`]): an operator that fails leaves the file exactly as before.
 
 pub mod function;
-pub mod table;
 pub mod matrix;
-pub mod model;
 pub mod mesh;
+pub mod model;
 pub mod modes;
+pub mod table;
 
 use crate::error::{Error, Result};
 use rusqlite::{params, Connection, OptionalExtension};
@@ -307,9 +307,12 @@ pub fn listing(store: &Store) -> Result<String> {
     };
     for name in names {
         let quoted = name.replace('"', "\"\"");
-        let n: i64 = store
-            .conn()
-            .query_row(&format!("SELECT count(*) FROM \"{quoted}\""), [], |r| r.get(0))?;
+        let n: i64 =
+            store
+                .conn()
+                .query_row(&format!("SELECT count(*) FROM \"{quoted}\""), [], |r| {
+                    r.get(0)
+                })?;
         text.push_str(&format!("  {name:<24} {n:>8} rows\n"));
     }
     Ok(text)
