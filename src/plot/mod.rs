@@ -13,9 +13,13 @@ pub mod axis;
 pub mod data;
 mod draw;
 pub mod nnm;
+pub mod tables;
 
 pub use axis::Scale;
-pub use nnm::{frequency_energy, phase_portrait, time_history, FePoint, History, Stability};
+pub use nnm::{
+    frequency_energy, frequency_energy_spec, phase_portrait, phase_portrait_spec, time_history,
+    time_history_specs, FePoint, History, Stability, HISTORY_SIZE,
+};
 
 use crate::error::{Error, Result};
 use std::path::Path;

@@ -140,6 +140,9 @@ pub struct History {
     pub vite: Vec<f64>,
 }
 
+/// Size of the stacked time-history picture: two panels of a 1024-wide plot.
+pub const HISTORY_SIZE: (u32, u32) = (DEFAULT_SIZE.0, DEFAULT_SIZE.0);
+
 /// Displacement (top) and velocity (bottom) against time. `what` names the node and
 /// component (`N2 DX`) on the axis labels.
 pub fn time_history(
@@ -149,6 +152,12 @@ pub fn time_history(
     path: &Path,
     format: ImageFormat,
 ) -> Result<PlotSummary> {
+    let [depl, vite] = time_history_specs(curves, title, what);
+    stacked(&[&depl, &vite], HISTORY_SIZE, path, format)
+}
+
+/// The two panels of [`time_history`].
+pub fn time_history_specs(curves: &[History], title: &str, what: &str) -> [XyPlot; 2] {
     let panel = |y: fn(&History) -> &Vec<f64>, name: &str, title: &str| XyPlot {
         title: title.to_string(),
         x_label: "INST".into(),
@@ -159,15 +168,10 @@ pub fn time_history(
             .collect(),
         ..XyPlot::default()
     };
-    let depl = panel(|h| &h.depl, "DEPL", title);
-    let vite = panel(|h| &h.vite, "VITE", "");
-    // Two panels of the default plot's height each would be too tall: share 1024×1024.
-    stacked(
-        &[&depl, &vite],
-        (DEFAULT_SIZE.0, DEFAULT_SIZE.0),
-        path,
-        format,
-    )
+    [
+        panel(|h| &h.depl, "DEPL", title),
+        panel(|h| &h.vite, "VITE", ""),
+    ]
 }
 
 /// Velocity against displacement: one closed orbit per periodic row.
@@ -178,7 +182,12 @@ pub fn phase_portrait(
     path: &Path,
     format: ImageFormat,
 ) -> Result<PlotSummary> {
-    let spec = XyPlot {
+    xy_plot(&phase_portrait_spec(curves, title, what), path, format)
+}
+
+/// The plot of [`phase_portrait`].
+pub fn phase_portrait_spec(curves: &[History], title: &str, what: &str) -> XyPlot {
+    XyPlot {
         title: title.to_string(),
         x_label: format!("DEPL {what}").trim().to_string(),
         y_label: format!("VITE {what}").trim().to_string(),
@@ -187,6 +196,5 @@ pub fn phase_portrait(
             .map(|h| Series::new(&h.label, h.depl.clone(), h.vite.clone()))
             .collect(),
         ..XyPlot::default()
-    };
-    xy_plot(&spec, path, format)
+    }
 }
