@@ -30,6 +30,7 @@ pub mod nume_ddl;
 #[cfg(test)]
 mod op_tests;
 pub mod output;
+pub mod plot_args;
 pub mod progress;
 pub mod recu_fonction;
 pub mod table_args;
