@@ -31,6 +31,8 @@ pub mod nume_ddl;
 mod op_tests;
 pub mod output;
 pub mod plot_args;
+#[cfg(test)]
+mod plot_op_tests;
 pub mod progress;
 pub mod recu_fonction;
 pub mod table_args;

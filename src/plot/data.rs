@@ -29,17 +29,18 @@ pub fn clean(s: &Series, xs: Scale, ys: Scale, summary: &mut PlotSummary) -> Res
     }
     let mut segments = Vec::new();
     let mut current = Vec::new();
-    for (&x, &y) in s.x.iter().zip(&s.y) {
+    for (k, (&x, &y)) in s.x.iter().zip(&s.y).enumerate() {
+        let counted = k >= s.repeats;
         match (xs.to_plot(x), ys.to_plot(y)) {
             (Some(u), Some(v)) => {
                 current.push((u, v));
-                summary.points += 1;
+                summary.points += usize::from(counted);
             }
             _ => {
-                if !x.is_finite() || !y.is_finite() {
-                    summary.skipped_nan += 1;
-                } else {
-                    summary.skipped_log += 1;
+                match (counted, x.is_finite() && y.is_finite()) {
+                    (false, _) => {}
+                    (true, false) => summary.skipped_nan += 1,
+                    (true, true) => summary.skipped_log += 1,
                 }
                 if !current.is_empty() {
                     segments.push(std::mem::take(&mut current));
@@ -85,6 +86,17 @@ mod tests {
         );
         assert_eq!((sum.points, sum.skipped_log, sum.skipped_nan), (4, 1, 1));
         assert_eq!(bounds(&[c]), Some(((0.0, 3.0), (1.0, 6.0))));
+    }
+
+    #[test]
+    fn repeated_points_are_drawn_but_not_counted() {
+        let mut s = Series::new("s", vec![0.0, 1.0, 2.0], vec![1.0, 2.0, 3.0]);
+        s.repeats = 2;
+        let mut sum = PlotSummary::default();
+        let c = clean(&s, Scale::Log, Scale::Lin, &mut sum).unwrap();
+        assert_eq!(c.segments, vec![vec![(0.0, 2.0), (2f64.log10(), 3.0)]]);
+        // The x = 0 point is a repeat: not counted as skipped either.
+        assert_eq!((sum.points, sum.skipped_log), (1, 0));
     }
 
     #[test]

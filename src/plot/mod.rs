@@ -93,6 +93,9 @@ pub struct Series {
     pub color: Option<(u8, u8, u8)>,
     /// Line width in pixels.
     pub width: u32,
+    /// Leading points that repeat points of an earlier series (a join between two styled
+    /// runs, markers on a curve): drawn, but not counted in the [`PlotSummary`].
+    pub repeats: usize,
 }
 
 impl Series {
@@ -106,6 +109,7 @@ impl Series {
             marker: Marker::None,
             color: None,
             width: 2,
+            repeats: 0,
         }
     }
     pub fn line(mut self, line: LineStyle) -> Series {
@@ -235,4 +239,4 @@ pub fn stacked(
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

@@ -95,11 +95,13 @@ pub fn frequency_energy_spec(rows: &[FePoint], title: &str) -> XyPlot {
             labelled.push(kind);
             kind.legend()
         };
-        series.push(kind.style(Series::new(
+        let mut s = kind.style(Series::new(
             label,
             run.iter().map(|r| r.energy).collect(),
             run.iter().map(|r| r.freq).collect(),
-        )));
+        ));
+        s.repeats = start - from;
+        series.push(s);
         start = end;
     }
     let bif: Vec<&FePoint> = rows.iter().filter(|r| r.bifurcation).collect();
@@ -115,6 +117,10 @@ pub fn frequency_energy_spec(rows: &[FePoint], title: &str) -> XyPlot {
             .color(BIFURCATION)
             .width(3),
         );
+        if let Some(s) = series.last_mut() {
+            // The markers sit on rows the curve already counts.
+            s.repeats = s.x.len();
+        }
     }
     XyPlot {
         title: title.to_string(),

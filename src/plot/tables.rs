@@ -99,7 +99,6 @@ pub fn histories(
                 noeud.map(|n| format!(" NOEUD={n}")).unwrap_or_default(),
                 nom_cmp.map(|c| format!(" NOM_CMP={c}")).unwrap_or_default()
             ))
-            .keyword("NOEUD")
             .hint(format!("it has: {}", listing())))
         }
         _ => {
@@ -107,7 +106,6 @@ pub fn histories(
                 "the table holds {} node components: choose one",
                 chosen.len()
             ))
-            .keyword("NOEUD")
             .hint(format!(
                 "give NOEUD and NOM_CMP (or a FILTRE); the table has: {}",
                 listing()
