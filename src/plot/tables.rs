@@ -84,13 +84,7 @@ pub fn histories(
             .collect::<Vec<_>>()
             .join(" ")
     };
-    let listing = || {
-        pairs
-            .iter()
-            .map(|p| describe(p))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
+    let listing = || pairs.iter().map(&describe).collect::<Vec<_>>().join(", ");
     let pair = match chosen.as_slice() {
         [one] => (*one).clone(),
         [] => {
