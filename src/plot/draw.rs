@@ -41,9 +41,18 @@ fn axis_for(
     which: &str,
 ) -> Result<Axis> {
     match range {
+        // Values near ±f64::MAX leave no finite span to divide into ticks.
+        None if !(data.1 - data.0).is_finite() => Err(Error::input(format!(
+            "the {which} values span [{:e}, {:e}]: too wide to draw",
+            scale.to_data(data.0),
+            scale.to_data(data.1)
+        ))
+        .hint(format!("give BORNE_{which}, or a LOG scale"))),
         None => Ok(Axis::new(scale, data.0, data.1, true)),
         Some((a, b)) => match (scale.to_plot(a), scale.to_plot(b)) {
-            (Some(u), Some(v)) if u != v => Ok(Axis::new(scale, u, v, false)),
+            (Some(u), Some(v)) if u != v && (v - u).is_finite() => {
+                Ok(Axis::new(scale, u, v, false))
+            }
             _ => Err(
                 Error::input(format!("the {which} axis range ({a}, {b}) cannot be drawn"))
                     .keyword(format!("BORNE_{which}"))
