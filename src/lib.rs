@@ -28,6 +28,7 @@ pub mod mesh;
 pub mod model;
 pub mod nnm;
 pub mod ops;
+pub mod plot;
 pub mod store;
 pub mod table;
 pub mod value;

@@ -1,19 +1,33 @@
 //! IMPR_TABLE: print a table (FORMAT 'TABLEAU' or 'CSV') after FILTRE, TRI and NOM_PARA;
-//! TITRE replaces the table's title in the TABLEAU header.
+//! TITRE replaces the table's title in the TABLEAU header. FORMAT='PNG' | 'SVG' (aster-nl)
+//! draws it instead: see [`draw`].
 
 use super::output::write_unit;
+use super::plot_args::{picture, Picture};
 use super::table_args::{apply_tri, filters, load_table_arg, titre};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::plot::tables::{
+    columns_plot, fe_points, histories, is_mode_non_line, is_time_history, HISTORY_COLUMNS,
+    MODE_NON_LINE_COLUMNS,
+};
+use crate::plot::{
+    frequency_energy_spec, phase_portrait_spec, stacked, time_history_specs, xy_plot, HISTORY_SIZE,
+};
 use crate::table::filter::apply_all;
 use crate::table::print::{csv, tableau, FormatR};
+use crate::table::Table;
+use crate::value::ConceptRef;
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let (c, t) = load_table_arg(ctx, args, "TABLE")?;
     let mut t = apply_all(&t, &filters(args, "FILTRE")?)?;
     if let Some(tri) = args.fact("TRI") {
         apply_tri(&mut t, tri)?;
+    }
+    if let Some(pic) = picture(ctx, args)? {
+        return draw(ctx, args, &pic, &c, &t);
     }
     if let Some(names) = args.texts("NOM_PARA") {
         t = t
@@ -38,10 +52,100 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             return Err(
                 Error::validation(format!("FORMAT '{other}' is not supported"))
                     .keyword("IMPR_TABLE/FORMAT")
-                    .hint("use 'TABLEAU' or 'CSV'"),
+                    .hint("use 'TABLEAU', 'CSV', or 'PNG' / 'SVG' for a picture"),
             )
         }
     };
     let unite = args.int("UNITE").unwrap_or(8);
     write_unit(ctx, unite, &text)
+}
+
+/// The picture of a table. NOM_PARA=(x, y, ...) draws columns against a column; without
+/// it, a MODE_NON_LINE table gives its frequency–energy plot and a time-history table the
+/// displacement and velocity of one node component (COURBE='PHASE': the phase portrait).
+fn draw(
+    ctx: &mut OpContext<'_>,
+    args: &Args,
+    pic: &Picture,
+    c: &ConceptRef,
+    t: &Table,
+) -> Result<()> {
+    let kw = |k: &str| args.key_path(k);
+    let kind = match (args.text("COURBE"), args.texts("NOM_PARA")) {
+        (Some(k), _) => k.to_string(),
+        (None, Some(_)) => "COLONNES".into(),
+        (None, None) if is_mode_non_line(t) => "FREQ_ENER".into(),
+        (None, None) if is_time_history(t) => "TEMPS".into(),
+        (None, None) => {
+            return Err(
+                Error::validation(format!("which columns of {} should be drawn?", c.name))
+                    .keyword(kw("NOM_PARA"))
+                    .hint("give NOM_PARA=(x, y, ...): the abscissa then the ordinates"),
+            )
+        }
+    };
+    let title = if t.title.is_empty() {
+        c.name.clone()
+    } else {
+        t.title.clone()
+    };
+    let summary = match kind.as_str() {
+        "FREQ_ENER" => {
+            if !is_mode_non_line(t) {
+                return Err(not_a(
+                    c,
+                    "MODE_NON_LINE",
+                    &MODE_NON_LINE_COLUMNS,
+                    kw("COURBE"),
+                ));
+            }
+            let mut spec = frequency_energy_spec(&fe_points(t)?, &title);
+            pic.apply(&mut spec);
+            xy_plot(&spec, &pic.path, pic.format)?
+        }
+        "TEMPS" | "PHASE" => {
+            if !is_time_history(t) {
+                return Err(not_a(c, "time history", &HISTORY_COLUMNS, kw("COURBE")));
+            }
+            let (curves, what) = histories(t, args.text("NOEUD"), args.text("NOM_CMP"))
+                .map_err(|e| e.keyword(kw("NOEUD")))?;
+            if kind == "PHASE" {
+                let mut spec = phase_portrait_spec(&curves, &title, &what);
+                pic.apply(&mut spec);
+                xy_plot(&spec, &pic.path, pic.format)?
+            } else {
+                let [mut depl, mut vite] = time_history_specs(&curves, &title, &what);
+                // TITRE goes on top; the x options apply to both panels, which share INST.
+                if let Some(tt) = &pic.title {
+                    depl.title = tt.clone();
+                }
+                pic.apply_x(&mut depl);
+                pic.apply_x(&mut vite);
+                stacked(&[&depl, &vite], HISTORY_SIZE, &pic.path, pic.format)?
+            }
+        }
+        _ => {
+            let names = args.texts("NOM_PARA").unwrap_or_default();
+            let Some((x, ys)) = names.split_first() else {
+                return Err(
+                    Error::validation("COURBE='COLONNES' needs NOM_PARA=(x, y, ...)")
+                        .keyword(kw("NOM_PARA")),
+                );
+            };
+            let mut spec = columns_plot(t, x, ys).map_err(|e| e.keyword(kw("NOM_PARA")))?;
+            spec.title = title;
+            pic.apply(&mut spec);
+            xy_plot(&spec, &pic.path, pic.format)?
+        }
+    };
+    pic.report(ctx, &summary)
+}
+
+fn not_a(c: &ConceptRef, what: &str, cols: &[&str], key: String) -> Error {
+    Error::input(format!("{} is not a {what} table", c.name))
+        .keyword(key)
+        .hint(format!(
+            "that picture needs the columns {}",
+            cols.join(", ")
+        ))
 }

@@ -32,6 +32,9 @@ pub mod nume_ddl;
 #[cfg(test)]
 mod op_tests;
 pub mod output;
+pub mod plot_args;
+#[cfg(test)]
+mod plot_op_tests;
 pub mod progress;
 pub mod recu_fonction;
 pub mod rest_mode_nonl;

@@ -44,3 +44,60 @@ pub fn write_unit(ctx: &mut OpContext<'_>, unite: i64, text: &str) -> Result<()>
         .map_err(|e| Error::from(e).keyword("UNITE"))?;
     Ok(())
 }
+
+/// Where a picture goes: FICHIER (relative to the command file's directory), else the file
+/// mapped to unit `unite`, else `fort.<unite>.<ext>` beside the command file. A picture
+/// replaces the file: it cannot be appended to.
+pub fn picture_path(units: &Units, fichier: Option<&str>, unite: i64, ext: &str) -> PathBuf {
+    let beside = |name: &str| match units.comm_file.as_ref().and_then(|c| c.parent()) {
+        Some(dir) => dir.join(name),
+        None => PathBuf::from(name),
+    };
+    if let Some(f) = fichier {
+        let p = std::path::Path::new(f);
+        return if p.is_absolute() {
+            p.to_path_buf()
+        } else {
+            beside(f)
+        };
+    }
+    if let Some(p) = units.map.get(&unite) {
+        return p.clone();
+    }
+    beside(&format!("fort.{unite}.{ext}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn picture_paths() {
+        let mut units = Units {
+            comm_file: Some(PathBuf::from("/study/case.comm")),
+            ..Units::default()
+        };
+        units.map.insert(30, PathBuf::from("/out/fe.png"));
+        assert_eq!(
+            picture_path(&units, Some("pics/a.svg"), 8, "svg"),
+            PathBuf::from("/study/pics/a.svg")
+        );
+        assert_eq!(
+            picture_path(&units, Some("/tmp/a.png"), 8, "png"),
+            PathBuf::from("/tmp/a.png")
+        );
+        assert_eq!(
+            picture_path(&units, None, 30, "png"),
+            PathBuf::from("/out/fe.png")
+        );
+        assert_eq!(
+            picture_path(&units, None, 31, "png"),
+            PathBuf::from("/study/fort.31.png")
+        );
+        let bare = Units::default();
+        assert_eq!(
+            picture_path(&bare, None, 8, "svg"),
+            PathBuf::from("fort.8.svg")
+        );
+    }
+}

@@ -184,7 +184,14 @@ pub fn save_multipliers(
          VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
     )?;
     for (i, (re, im)) in multipliers.iter().enumerate() {
-        stmt.execute(params![name, nume_ordre, i as i64 + 1, re, im, re.hypot(*im)])?;
+        stmt.execute(params![
+            name,
+            nume_ordre,
+            i as i64 + 1,
+            re,
+            im,
+            re.hypot(*im)
+        ])?;
     }
     Ok(())
 }
