@@ -1,0 +1,134 @@
+//! Energies of a periodic solution, in scaled units (multiply by k_ref·g_ref² for joules).
+//!
+//! - `energy_ca`: Code_Aster's ENERGIE: ½uᵀKu + ½vᵀMv at ωt = π/2 plus the penalty energy
+//!   ½α(u − JEU)² of each shock in contact at that instant (PLAN one side, BI_PLAN both
+//!   sides; CERCLE ½α(r − JEU)², our extension). With the phase condition (zero velocity of
+//!   the reference DOF at t = 0) the instant π/2 is mid-swing, usually out of contact, where
+//!   this is the total energy of the nonsmooth system.
+//! - `energy_spread`: the total energy of the regularised system sampled over one period,
+//!   E(θ) = ½uᵀKu + ½vᵀMv + Σ ∫ f du (the work of the contact forces, integrated exactly in
+//!   Fourier space); (max − min)/ENERGIE. Zero for an exact periodic orbit.
+
+use super::laws::ScaledLaw;
+use super::series::{self, Sampler};
+use super::system::System;
+use std::f64::consts::FRAC_PI_2;
+
+/// Time-averaged ½uᵀKu + ½vᵀMv (Parseval), quadratic in x: used to orient the first branch.
+pub fn mean_quadratic_energy(sys: &System, x: &[f64]) -> f64 {
+    let l = sys.lay;
+    let nl = l.nl;
+    let w = |j: usize| if j == 0 { 1.0 } else { 0.5 };
+    let mut e = 0.0;
+    for &(i, c, a) in &sys.k.entries {
+        for j in 0..nl {
+            e += 0.5 * a * w(j) * x[l.u(i) + j] * x[l.u(c) + j];
+        }
+    }
+    for &(i, c, a) in &sys.m.entries {
+        for j in 0..nl {
+            e += 0.5 * a * w(j) * x[l.v(i) + j] * x[l.v(c) + j];
+        }
+    }
+    e
+}
+
+fn quad_form(entries: &[(usize, usize, f64)], y: &[f64]) -> f64 {
+    entries.iter().map(|&(i, c, a)| 0.5 * a * y[i] * y[c]).sum()
+}
+
+/// Displacements and velocities of every DOF at θ.
+fn state_at(sys: &System, x: &[f64], theta: f64) -> (Vec<f64>, Vec<f64>) {
+    let l = sys.lay;
+    let u = (0..l.n).map(|i| series::eval(&x[l.u(i)..l.u(i) + l.nl], l.hl, theta)).collect();
+    let v = (0..l.n).map(|i| series::eval(&x[l.v(i)..l.v(i) + l.nl], l.hl, theta)).collect();
+    (u, v)
+}
+
+/// Code_Aster's ENERGIE (scaled).
+pub fn energy_ca(sys: &System, x: &[f64]) -> f64 {
+    let (u, v) = state_at(sys, x, FRAC_PI_2);
+    let mut e = quad_form(&sys.k.entries, &u) + quad_form(&sys.m.entries, &v);
+    for sh in &sys.shocks {
+        let pen = |d: f64| if d > 0.0 { 0.5 * sh.alpha * d * d } else { 0.0 };
+        e += match sh.law {
+            ScaledLaw::Plan => pen(u[sh.dofs[0]] - sh.s),
+            ScaledLaw::BiPlan => pen(u[sh.dofs[0]].abs() - sh.s),
+            ScaledLaw::Cercle { ex, ey } => {
+                let r = ((u[sh.dofs[0]] - ex).powi(2) + (u[sh.dofs[1]] - ey).powi(2)).sqrt();
+                pen(r - sh.s)
+            }
+        };
+    }
+    e
+}
+
+/// Samples over one period (θ_j = 2πj/N) of the total energy of the regularised system.
+pub fn energy_samples(sys: &System, x: &[f64]) -> Vec<f64> {
+    let l = sys.lay;
+    let (hl, hn, nl, nn) = (l.hl, l.hn, l.nl, l.nn);
+    let hw = hn + hl;
+    let smp = Sampler::new(series::fft_size(2 * hw));
+    let ns = smp.n();
+    let mut us = vec![vec![0.0; ns]; l.n];
+    let mut vs = vec![vec![0.0; ns]; l.n];
+    for i in 0..l.n {
+        smp.synth(&x[l.u(i)..l.u(i) + nl], hl, &mut us[i]);
+        smp.synth(&x[l.v(i)..l.v(i) + nl], hl, &mut vs[i]);
+    }
+    // Work of the contact forces: p = Σ f_c u_c', W = ∫ p dθ (exact in Fourier space).
+    let mut p = vec![0.0; series::len(hw)];
+    let mut du = vec![0.0; nl];
+    for sh in &sys.shocks {
+        for &(c, v) in &sh.eqs.forces {
+            let d = sh.dofs[c];
+            series::deriv(&x[l.u(d)..l.u(d) + nl], hl, &mut du);
+            let f = &x[sh.offset + v * nn..sh.offset + (v + 1) * nn];
+            series::mul_acc(f, hn, &du, hl, hw, 1.0, &mut p);
+        }
+    }
+    let mut w = vec![0.0; series::len(hw)];
+    for k in 1..=hw {
+        let kf = k as f64;
+        w[series::ic(k)] = -p[series::is(hw, k)] / kf;
+        w[series::is(hw, k)] = p[series::ic(k)] / kf;
+    }
+    let mut ws = vec![0.0; ns];
+    smp.synth(&w, hw, &mut ws);
+    (0..ns)
+        .map(|j| {
+            let theta = 2.0 * std::f64::consts::PI * j as f64 / ns as f64;
+            let u: Vec<f64> = us.iter().map(|s| s[j]).collect();
+            let v: Vec<f64> = vs.iter().map(|s| s[j]).collect();
+            quad_form(&sys.k.entries, &u) + quad_form(&sys.m.entries, &v) + ws[j] + p[0] * theta
+        })
+        .collect()
+}
+
+/// (max − min) of the sampled total energy over one period, relative to `reference`.
+pub fn energy_spread(sys: &System, x: &[f64], reference: f64) -> f64 {
+    let e = energy_samples(sys, x);
+    let (lo, hi) = e
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    (hi - lo) / reference.abs().max(f64::MIN_POSITIVE)
+}
+
+/// Dominant harmonic (≥ 1) of the DOF with the largest spectrum.
+pub fn harm_max(sys: &System, x: &[f64]) -> usize {
+    let l = sys.lay;
+    let amp = |i: usize, k: usize| {
+        let u = &x[l.u(i)..l.u(i) + l.nl];
+        u[series::ic(k)].hypot(u[series::is(l.hl, k)])
+    };
+    let best_dof = (0..l.n)
+        .max_by(|&a, &b| {
+            let sa: f64 = (1..=l.hl).map(|k| amp(a, k).powi(2)).sum();
+            let sb: f64 = (1..=l.hl).map(|k| amp(b, k).powi(2)).sum();
+            sa.total_cmp(&sb)
+        })
+        .unwrap_or(0);
+    (1..=l.hl)
+        .max_by(|&a, &b| amp(best_dof, a).total_cmp(&amp(best_dof, b)))
+        .unwrap_or(1)
+}

@@ -1,0 +1,323 @@
+//! Truncated Fourier series of one scalar time function.
+//!
+//! Layout (Code_Aster's): `[x0, c1..cH, s1..sH]`, 2H+1 numbers, for
+//! x(θ) = x0 + Σ_k (c_k cos kθ + s_k sin kθ), θ = ωt.
+//! Products are exact for the retained harmonics: by convolution (trigonometric product
+//! formulas, O(H_a·H_b)) for small series, by FFT of zero-padded samples (O(N log N),
+//! N > H_a + H_b + H_out so no aliasing reaches a retained harmonic) for large ones.
+
+use realfft::num_complex::Complex;
+use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
+use std::cell::RefCell;
+use std::sync::Arc;
+
+/// Number of coefficients of a series with `h` harmonics.
+pub fn len(h: usize) -> usize {
+    2 * h + 1
+}
+
+/// Index of cos(kθ) (k ≥ 1), or of the mean for k = 0.
+pub fn ic(k: usize) -> usize {
+    k
+}
+
+/// Index of sin(kθ), k ≥ 1.
+pub fn is(h: usize, k: usize) -> usize {
+    h + k
+}
+
+/// Position in a series with `h_to` harmonics of coefficient `j` of a series with `h_from`
+/// harmonics, or None when that harmonic is not retained.
+pub fn map_index(j: usize, h_from: usize, h_to: usize) -> Option<usize> {
+    if j == 0 {
+        Some(0)
+    } else if j <= h_from {
+        (j <= h_to).then_some(j)
+    } else {
+        let k = j - h_from;
+        (k <= h_to).then_some(h_to + k)
+    }
+}
+
+/// d/dθ: (Dx)c_k = k s_k, (Dx)s_k = −k c_k.
+pub fn deriv(x: &[f64], h: usize, out: &mut [f64]) {
+    out[0] = 0.0;
+    for k in 1..=h {
+        let kf = k as f64;
+        let (c, s) = (x[ic(k)], x[is(h, k)]);
+        out[ic(k)] = kf * s;
+        out[is(h, k)] = -kf * c;
+    }
+}
+
+/// Value at θ.
+pub fn eval(x: &[f64], h: usize, theta: f64) -> f64 {
+    let mut v = x[0];
+    for k in 1..=h {
+        let (s, c) = (k as f64 * theta).sin_cos();
+        v += x[ic(k)] * c + x[is(h, k)] * s;
+    }
+    v
+}
+
+#[derive(Clone, Copy)]
+enum Kind {
+    Cos,
+    Sin,
+}
+
+/// out += v·cos(jθ) for a signed harmonic j (truncated to hout).
+fn add_cos(out: &mut [f64], hout: usize, j: i64, v: f64) {
+    let k = j.unsigned_abs() as usize;
+    if k <= hout {
+        out[k] += v;
+    }
+}
+
+/// out += v·sin(jθ) for a signed harmonic j (truncated to hout).
+fn add_sin(out: &mut [f64], hout: usize, j: i64, v: f64) {
+    let k = j.unsigned_abs() as usize;
+    if k != 0 && k <= hout {
+        out[hout + k] += if j < 0 { -v } else { v };
+    }
+}
+
+/// out += v · trig_a(kθ) · trig_b(mθ)  (cos 0 = 1 stands for the mean).
+fn acc_prod(out: &mut [f64], hout: usize, ka: Kind, k: usize, kb: Kind, m: usize, v: f64) {
+    let (k, m) = (k as i64, m as i64);
+    let hv = 0.5 * v;
+    match (ka, kb) {
+        (Kind::Cos, Kind::Cos) => {
+            add_cos(out, hout, k - m, hv);
+            add_cos(out, hout, k + m, hv);
+        }
+        (Kind::Cos, Kind::Sin) => {
+            add_sin(out, hout, k + m, hv);
+            add_sin(out, hout, k - m, -hv);
+        }
+        (Kind::Sin, Kind::Cos) => {
+            add_sin(out, hout, k + m, hv);
+            add_sin(out, hout, k - m, hv);
+        }
+        (Kind::Sin, Kind::Sin) => {
+            add_cos(out, hout, k - m, hv);
+            add_cos(out, hout, k + m, -hv);
+        }
+    }
+}
+
+fn add_kind(out: &mut [f64], hout: usize, kind: Kind, j: usize, v: f64) {
+    match kind {
+        Kind::Cos => add_cos(out, hout, j as i64, v),
+        Kind::Sin => add_sin(out, hout, j as i64, v),
+    }
+}
+
+/// Terms of a series as (kind, harmonic, value); the mean is (Cos, 0, x0).
+fn terms(x: &[f64], h: usize) -> impl Iterator<Item = (Kind, usize, f64)> + '_ {
+    std::iter::once((Kind::Cos, 0, x[0]))
+        .chain((1..=h).map(move |k| (Kind::Cos, k, x[ic(k)])))
+        .chain((1..=h).map(move |k| (Kind::Sin, k, x[is(h, k)])))
+}
+
+/// out += scale · trunc_hout(a·b) by the trigonometric product formulas.
+pub fn mul_conv_acc(a: &[f64], ha: usize, b: &[f64], hb: usize, hout: usize, scale: f64, out: &mut [f64]) {
+    for (ka, k, va) in terms(a, ha) {
+        if va == 0.0 {
+            continue;
+        }
+        for (kb, m, vb) in terms(b, hb) {
+            if vb == 0.0 || (k.abs_diff(m) > hout) {
+                continue;
+            }
+            let v = scale * va * vb;
+            match (k == 0, m == 0) {
+                (true, true) => out[0] += v,
+                (true, false) => add_kind(out, hout, kb, m, v),
+                (false, true) => add_kind(out, hout, ka, k, v),
+                (false, false) => acc_prod(out, hout, ka, k, kb, m, v),
+            }
+        }
+    }
+}
+
+/// Dense matrix (column-major, (2hout+1) × (2hx+1)) of x ↦ trunc_hout(c·x), x with hx harmonics.
+pub fn mul_operator(c: &[f64], hc: usize, hx: usize, hout: usize) -> Vec<f64> {
+    let nr = len(hout);
+    let mut m = vec![0.0; nr * len(hx)];
+    for j in 0..len(hx) {
+        let mut e = vec![0.0; len(hx)];
+        e[j] = 1.0;
+        // The single nonzero of e drives the outer loop: O(hc) per column.
+        mul_conv_acc(&e, hx, c, hc, hout, 1.0, &mut m[j * nr..(j + 1) * nr]);
+    }
+    m
+}
+
+/// Smallest power of two strictly above `need` (and at least 8).
+pub fn fft_size(need: usize) -> usize {
+    (need + 1).next_power_of_two().max(8)
+}
+
+thread_local! {
+    static PLANNER: RefCell<RealFftPlanner<f64>> = RefCell::new(RealFftPlanner::new());
+}
+
+/// Samples x(2πj/N), j = 0..N−1, and back, by real FFTs of size N.
+pub struct Sampler {
+    n: usize,
+    fwd: Arc<dyn RealToComplex<f64>>,
+    inv: Arc<dyn ComplexToReal<f64>>,
+}
+
+impl Sampler {
+    pub fn new(n: usize) -> Self {
+        let (fwd, inv) = PLANNER.with(|p| {
+            let mut p = p.borrow_mut();
+            (p.plan_fft_forward(n), p.plan_fft_inverse(n))
+        });
+        Sampler { n, fwd, inv }
+    }
+
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// Samples of `x` (h harmonics, h < N/2) into `out` (length N).
+    pub fn synth(&self, x: &[f64], h: usize, out: &mut [f64]) {
+        let mut spec = vec![Complex::new(0.0, 0.0); self.n / 2 + 1];
+        spec[0] = Complex::new(x[0], 0.0);
+        for k in 1..=h.min(self.n / 2 - 1) {
+            spec[k] = Complex::new(0.5 * x[ic(k)], -0.5 * x[is(h, k)]);
+        }
+        // Lengths are consistent by construction, so the only failure (size mismatch) cannot
+        // happen; on error leave NaN so callers' finiteness checks report it.
+        if self.inv.process(&mut spec, out).is_err() {
+            out.iter_mut().for_each(|v| *v = f64::NAN);
+        }
+    }
+
+    /// Coefficients (h harmonics, h < N/2) of the samples `s` (length N); `s` is clobbered.
+    pub fn analyse(&self, s: &mut [f64], h: usize, out: &mut [f64]) {
+        let mut spec = vec![Complex::new(0.0, 0.0); self.n / 2 + 1];
+        if self.fwd.process(s, &mut spec).is_err() {
+            out.iter_mut().for_each(|v| *v = f64::NAN);
+            return;
+        }
+        let nf = self.n as f64;
+        out[0] = spec[0].re / nf;
+        for k in 1..=h {
+            let z = spec.get(k).copied().unwrap_or_default();
+            out[ic(k)] = 2.0 * z.re / nf;
+            out[is(h, k)] = -2.0 * z.im / nf;
+        }
+    }
+}
+
+/// out += scale · trunc_hout(a·b) through FFT samples.
+pub fn mul_fft_acc(a: &[f64], ha: usize, b: &[f64], hb: usize, hout: usize, scale: f64, out: &mut [f64]) {
+    let s = Sampler::new(fft_size(ha + hb + hout));
+    let n = s.n();
+    let (mut sa, mut sb) = (vec![0.0; n], vec![0.0; n]);
+    s.synth(a, ha, &mut sa);
+    s.synth(b, hb, &mut sb);
+    for (x, y) in sa.iter_mut().zip(&sb) {
+        *x *= y;
+    }
+    let mut c = vec![0.0; len(hout)];
+    s.analyse(&mut sa, hout, &mut c);
+    for (o, v) in out.iter_mut().zip(&c) {
+        *o += scale * v;
+    }
+}
+
+/// True when the FFT route is cheaper than the convolution for these sizes.
+pub fn prefer_fft(ha: usize, hb: usize, hout: usize) -> bool {
+    let conv = (2 * ha + 1) * (2 * hb + 1);
+    let n = fft_size(ha + hb + hout);
+    let fft = 3 * n * (n.trailing_zeros() as usize + 1) * 2;
+    fft < conv
+}
+
+/// out += scale · trunc_hout(a·b), by convolution or FFT, whichever is cheaper.
+pub fn mul_acc(a: &[f64], ha: usize, b: &[f64], hb: usize, hout: usize, scale: f64, out: &mut [f64]) {
+    if prefer_fft(ha, hb, hout) {
+        mul_fft_acc(a, ha, b, hb, hout, scale, out)
+    } else {
+        mul_conv_acc(a, ha, b, hb, hout, scale, out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn direct(a: &[f64], ha: usize, b: &[f64], hb: usize, hout: usize) -> Vec<f64> {
+        // Reference: sample densely, multiply, project by the trapezoid rule (exact for
+        // trigonometric polynomials of degree < number of samples).
+        let n = 4 * (ha + hb + hout) + 8;
+        let mut out = vec![0.0; len(hout)];
+        for j in 0..n {
+            let t = 2.0 * std::f64::consts::PI * j as f64 / n as f64;
+            let p = eval(a, ha, t) * eval(b, hb, t);
+            out[0] += p / n as f64;
+            for k in 1..=hout {
+                out[ic(k)] += 2.0 * p * (k as f64 * t).cos() / n as f64;
+                out[is(hout, k)] += 2.0 * p * (k as f64 * t).sin() / n as f64;
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn conv_matches_direct_projection() {
+        let a = [0.3, 1.0, -0.5, 0.2, 0.7, -1.1, 0.4];
+        let b = [-0.2, 0.5, 0.9, -0.3, 0.1];
+        let mut c = vec![0.0; len(4)];
+        mul_conv_acc(&a, 3, &b, 2, 4, 1.0, &mut c);
+        let d = direct(&a, 3, &b, 2, 4);
+        for (x, y) in c.iter().zip(&d) {
+            assert!((x - y).abs() < 1e-13, "{c:?} vs {d:?}");
+        }
+    }
+
+    #[test]
+    fn operator_matches_product_and_deriv_is_exact() {
+        let c = [0.3, 1.0, -0.5, 0.2, 0.7];
+        let x = [1.5, -0.2, 0.4];
+        let m = mul_operator(&c, 2, 1, 3);
+        let mut y = vec![0.0; len(3)];
+        mul_conv_acc(&c, 2, &x, 1, 3, 1.0, &mut y);
+        for (r, yr) in y.iter().enumerate() {
+            let v: f64 = (0..3).map(|j| m[j * len(3) + r] * x[j]).sum();
+            assert!((v - yr).abs() < 1e-14);
+        }
+        let mut d = vec![0.0; 5];
+        deriv(&c, 2, &mut d);
+        let t = 0.37;
+        let h = 1e-6;
+        let fd = (eval(&c, 2, t + h) - eval(&c, 2, t - h)) / (2.0 * h);
+        assert!((eval(&d, 2, t) - fd).abs() < 1e-8);
+    }
+
+    proptest! {
+        // Property (6): the FFT route gives the convolution's numbers for retained harmonics
+        // (both exact; 1e-12 relative to the coefficient scale covers round-off of N ≤ 1024).
+        #[test]
+        fn fft_product_equals_convolution(
+            ha in 0usize..40, hb in 0usize..40, hout in 0usize..60,
+            seed in proptest::collection::vec(-1.0f64..1.0, 162)) {
+            let a: Vec<f64> = seed[..len(ha)].to_vec();
+            let b: Vec<f64> = seed[81..81 + len(hb)].to_vec();
+            let mut c1 = vec![0.0; len(hout)];
+            let mut c2 = vec![0.0; len(hout)];
+            mul_conv_acc(&a, ha, &b, hb, hout, 1.0, &mut c1);
+            mul_fft_acc(&a, ha, &b, hb, hout, 1.0, &mut c2);
+            let scale: f64 = 1.0 + a.iter().map(|v| v.abs()).sum::<f64>() * b.iter().map(|v| v.abs()).sum::<f64>();
+            for (x, y) in c1.iter().zip(&c2) {
+                prop_assert!((x - y).abs() <= 1e-12 * scale, "{} vs {}", x, y);
+            }
+        }
+    }
+}

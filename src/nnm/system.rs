@@ -1,0 +1,502 @@
+//! The harmonic-balance system R(X) = C + L(X) + Q(X, X) in scaled units, and its tangent.
+//!
+//! Unknowns X (all scaled): U (n DOFs × (2H_l+1), DOF-major), V (same), the contact unknowns
+//! of each shock (each series 2H_nl+1), Ω = ω/ω_ref, γ. Equations: U' = V on 0..H_l (rows of
+//! U), Ω M D V + K U + Pᵀ F + γ M V = 0 on 0..H_l (rows of V), each law's equations on
+//! 0..H_nl (rows of its unknowns), and the phase condition (row of Ω): the reference DOF has
+//! zero velocity at t = 0, Σ_k k·us_k = 0. One equation fewer than unknowns: a curve.
+
+use super::laws::{self, LawEqs, ScaledLaw, Var};
+use super::series::{self, Sampler};
+use super::{Problem, Settings, ShockLaw};
+use crate::error::{Error, Result};
+use faer::prelude::*;
+use faer::sparse::{SparseColMat, Triplet};
+
+/// Compressed columns of a scaled matrix (our own copy, scaled once).
+#[derive(Clone, Debug)]
+pub struct Csc {
+    pub entries: Vec<(usize, usize, f64)>,
+}
+
+impl Csc {
+    fn from_faer(a: &SparseColMat<usize, f64>, scale: f64) -> Self {
+        let sym = a.symbolic();
+        let (cp, ri, v) = (sym.col_ptr(), sym.row_idx(), a.val());
+        let mut entries = Vec::with_capacity(v.len());
+        for j in 0..a.ncols() {
+            for p in cp[j]..cp[j + 1] {
+                entries.push((ri[p], j, v[p] * scale));
+            }
+        }
+        Csc { entries }
+    }
+
+    /// out (DOF-major blocks of `nl`) += A · x.
+    pub fn mul_blocks(&self, x: &[f64], nl: usize, out: &mut [f64]) {
+        for &(i, l, a) in &self.entries {
+            for j in 0..nl {
+                out[i * nl + j] += a * x[l * nl + j];
+            }
+        }
+    }
+}
+
+/// Reference scales: lengths by `g`, stiffness by `k`, mass by `m`, pulsation by `w` = √(k/m).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Scaling {
+    pub g: f64,
+    pub k: f64,
+    pub m: f64,
+    pub w: f64,
+}
+
+/// (A⁻¹)_pp by one sparse solve, or None when A is singular.
+fn inverse_diag(a: &SparseColMat<usize, f64>, p: usize) -> Option<f64> {
+    let lu = a.sp_lu().ok()?;
+    let mut e = vec![0.0; a.nrows()];
+    e[p] = 1.0;
+    lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut e, a.nrows(), 1));
+    let v = e[p];
+    (v.is_finite() && v > 0.0).then_some(v)
+}
+
+fn diag(a: &SparseColMat<usize, f64>, p: usize) -> f64 {
+    Csc::from_faer(a, 1.0)
+        .entries
+        .iter()
+        .filter(|e| e.0 == p && e.1 == p)
+        .map(|e| e.2)
+        .sum()
+}
+
+impl Scaling {
+    /// Code_Aster's scaling: displacements by the largest JEU, k_ref = 1/(K⁻¹)pp and
+    /// m_ref = 1/(M⁻¹)pp at the DOF of that shock. Without shocks: lengths by `amplitude`
+    /// and the diagonal of K and M at DOF `p`. A singular K (free structure) falls back to
+    /// the diagonal too.
+    pub fn new(problem: &Problem, amplitude: f64, p_noshock: usize) -> Result<Scaling> {
+        let (g, p) = match problem
+            .shocks
+            .iter()
+            .max_by(|a, b| a.gap.total_cmp(&b.gap))
+        {
+            Some(s) => (s.gap, s.dofs.first().copied().unwrap_or(0)),
+            None => (amplitude, p_noshock),
+        };
+        let k = match problem.shocks.is_empty() {
+            false => inverse_diag(&problem.k, p).map(|v| 1.0 / v),
+            true => None,
+        }
+        .unwrap_or_else(|| diag(&problem.k, p));
+        let m = match problem.shocks.is_empty() {
+            false => inverse_diag(&problem.m, p).map(|v| 1.0 / v),
+            true => None,
+        }
+        .unwrap_or_else(|| diag(&problem.m, p));
+        if !(g.is_finite() && g > 0.0 && k.is_finite() && k > 0.0 && m.is_finite() && m > 0.0) {
+            return Err(Error::input(format!(
+                "cannot scale the problem (length {g:e}, stiffness {k:e}, mass {m:e} at DOF {p}); \
+                 the stiffness and mass matrices must be positive at the reference DOF"
+            )));
+        }
+        Ok(Scaling { g, k, m, w: (k / m).sqrt() })
+    }
+}
+
+/// One shock in scaled units, with the position of its unknowns in X.
+#[derive(Clone, Debug)]
+pub struct ShockSys {
+    pub law: ScaledLaw,
+    pub dofs: Vec<usize>,
+    pub s: f64,
+    pub alpha: f64,
+    pub eta: f64,
+    pub eqs: LawEqs,
+    pub offset: usize,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct Layout {
+    pub n: usize,
+    pub hl: usize,
+    pub hn: usize,
+    pub nl: usize,
+    pub nn: usize,
+    pub n_unk: usize,
+}
+
+impl Layout {
+    pub fn u(&self, i: usize) -> usize {
+        i * self.nl
+    }
+    pub fn v(&self, i: usize) -> usize {
+        (self.n + i) * self.nl
+    }
+    pub fn omega(&self) -> usize {
+        self.n_unk - 2
+    }
+    pub fn gamma(&self) -> usize {
+        self.n_unk - 1
+    }
+    /// Number of equations (one fewer than unknowns).
+    pub fn n_eq(&self) -> usize {
+        self.n_unk - 1
+    }
+}
+
+pub struct System {
+    pub lay: Layout,
+    pub k: Csc,
+    pub m: Csc,
+    pub shocks: Vec<ShockSys>,
+    pub ref_dof: usize,
+    pub sc: Scaling,
+    sampler: Sampler,
+}
+
+/// Validate the problem and settings against each other (keyword-named errors).
+pub fn validate(problem: &Problem, settings: &Settings) -> Result<()> {
+    let n = problem.k.nrows();
+    if problem.k.ncols() != n || problem.m.nrows() != n || problem.m.ncols() != n || n == 0 {
+        return Err(Error::input(format!(
+            "stiffness ({}×{}) and mass ({}×{}) must be square, non-empty and of the same size",
+            problem.k.nrows(),
+            problem.k.ncols(),
+            problem.m.nrows(),
+            problem.m.ncols()
+        ))
+        .keyword("MATR_RIGI"));
+    }
+    if settings.h_lin == 0 {
+        return Err(Error::input("NB_HARM_LINE must be at least 1").keyword("RESOLUTION/NB_HARM_LINE"));
+    }
+    if !problem.shocks.is_empty() && settings.h_nonl < settings.h_lin {
+        return Err(Error::input(format!(
+            "NB_HARM_NONL ({}) must be at least NB_HARM_LINE ({})",
+            settings.h_nonl, settings.h_lin
+        ))
+        .keyword("RESOLUTION/NB_HARM_NONL"));
+    }
+    if settings.order < 2 {
+        return Err(Error::input("NB_ORDRE_MAN must be at least 2").keyword("RESOLUTION/NB_ORDRE_MAN"));
+    }
+    if settings.n_points_per_branch == 0 {
+        return Err(Error::input("NB_PAS_MAN must be at least 1").keyword("RESOLUTION/NB_PAS_MAN"));
+    }
+    if !(settings.prec_man > 0.0 && settings.prec_newton > 0.0) {
+        return Err(Error::input("PREC_MAN and PREC_NEWTON must be positive").keyword("RESOLUTION/PREC_MAN"));
+    }
+    for (i, s) in problem.shocks.iter().enumerate() {
+        let want = match s.law {
+            ShockLaw::Cercle { .. } => 2,
+            _ => 1,
+        };
+        let ctx = |e: Error| e.hint(format!("shock number {}", i + 1));
+        if s.dofs.len() != want || s.dofs.iter().any(|&d| d >= n) {
+            return Err(ctx(Error::input(format!(
+                "shock needs {want} component(s) among the {n} free DOFs, got {:?}",
+                s.dofs
+            ))
+            .keyword("CHOC/NOM_CMP")));
+        }
+        if !(s.gap.is_finite() && s.gap > 0.0) {
+            return Err(ctx(Error::input(format!("JEU must be positive, got {}", s.gap)).keyword("CHOC/JEU")));
+        }
+        if !(s.stiffness.is_finite() && s.stiffness > 0.0) {
+            return Err(ctx(
+                Error::input(format!("RIGI_NOR must be positive, got {}", s.stiffness)).keyword("CHOC/RIGI_NOR"),
+            ));
+        }
+        if !(s.regul.is_finite() && s.regul > 0.0) {
+            return Err(ctx(Error::input(format!(
+                "PARA_REGUL must be positive (the regularised law is singular at 0), got {}",
+                s.regul
+            ))
+            .keyword("CHOC/PARA_REGUL")));
+        }
+    }
+    Ok(())
+}
+
+impl System {
+    pub fn new(problem: &Problem, settings: &Settings, sc: Scaling, ref_dof: usize) -> Result<System> {
+        validate(problem, settings)?;
+        let n = problem.k.nrows();
+        let hl = settings.h_lin;
+        let hn = if problem.shocks.is_empty() { hl } else { settings.h_nonl };
+        let (nl, nn) = (series::len(hl), series::len(hn));
+        let mut offset = 2 * n * nl;
+        let mut shocks = Vec::new();
+        for s in &problem.shocks {
+            let law = match s.law {
+                ShockLaw::Plan => ScaledLaw::Plan,
+                ShockLaw::BiPlan => ScaledLaw::BiPlan,
+                ShockLaw::Cercle { origin } => ScaledLaw::Cercle {
+                    ex: origin[0] / sc.g,
+                    ey: origin[1] / sc.g,
+                },
+            };
+            let (gs, alpha) = (s.gap / sc.g, s.stiffness / sc.k);
+            let eqs = laws::equations(law, gs, alpha, s.regul);
+            let n_own = eqs.n_own;
+            shocks.push(ShockSys { law, dofs: s.dofs.clone(), s: gs, alpha, eta: s.regul, eqs, offset });
+            offset += n_own * nn;
+        }
+        let lay = Layout { n, hl, hn, nl, nn, n_unk: offset + 2 };
+        Ok(System {
+            lay,
+            k: Csc::from_faer(&problem.k, 1.0 / sc.k),
+            m: Csc::from_faer(&problem.m, 1.0 / sc.m),
+            shocks,
+            ref_dof,
+            sc,
+            sampler: Sampler::new(series::fft_size(3 * hn)),
+        })
+    }
+
+    pub fn sampler(&self) -> &Sampler {
+        &self.sampler
+    }
+
+    /// A law variable of `x` as a slice and its number of harmonics.
+    fn var<'a>(&self, x: &'a [f64], sh: &ShockSys, v: Var) -> (&'a [f64], usize) {
+        let l = &self.lay;
+        match v {
+            Var::Own(k) => (&x[sh.offset + k * l.nn..sh.offset + (k + 1) * l.nn], l.hn),
+            Var::U(c) => {
+                let d = sh.dofs[c];
+                (&x[l.u(d)..l.u(d) + l.nl], l.hl)
+            }
+        }
+    }
+
+    /// out (length n_eq) += Σ Q(a_i, b_i).
+    pub fn quad_sum(&self, pairs: &[(&[f64], &[f64])], out: &mut [f64]) {
+        let l = self.lay;
+        let (n, nl, hl) = (l.n, l.nl, l.hl);
+        // Structural rows: Ω_a D U_b (rows of U) and M (Ω_a D V_b + γ_a V_b) (rows of V).
+        let mut w = vec![0.0; n * nl];
+        let mut d = vec![0.0; nl];
+        for (a, b) in pairs {
+            let (om, ga) = (a[l.omega()], a[l.gamma()]);
+            for i in 0..n {
+                series::deriv(&b[l.u(i)..l.u(i) + nl], hl, &mut d);
+                for j in 0..nl {
+                    out[l.u(i) + j] += om * d[j];
+                }
+                let vb = &b[l.v(i)..l.v(i) + nl];
+                series::deriv(vb, hl, &mut d);
+                for j in 0..nl {
+                    w[i * nl + j] += om * d[j] + ga * vb[j];
+                }
+            }
+        }
+        self.m.mul_blocks(&w, nl, &mut out[l.v(0)..l.v(0) + n * nl]);
+        for sh in &self.shocks {
+            self.law_quad_sum(sh, pairs, out);
+        }
+    }
+
+    fn law_quad_sum(&self, sh: &ShockSys, pairs: &[(&[f64], &[f64])], out: &mut [f64]) {
+        let l = self.lay;
+        let nn = l.nn;
+        if !series::prefer_fft(l.hn, l.hn, l.hn) {
+            for (a, b) in pairs {
+                for t in &sh.eqs.quad {
+                    let (va, ha) = self.var(a, sh, t.a);
+                    let (vb, hb) = self.var(b, sh, t.b);
+                    let o = sh.offset + t.eq * nn;
+                    series::mul_conv_acc(va, ha, vb, hb, l.hn, t.coef, &mut out[o..o + nn]);
+                }
+            }
+            return;
+        }
+        // Large H_nl: accumulate every product in the time domain, one FFT back per equation.
+        let ns = self.sampler.n();
+        let mut acc = vec![vec![0.0; ns]; sh.eqs.n_own];
+        let vars: Vec<Var> = {
+            let mut v: Vec<Var> = sh.eqs.quad.iter().flat_map(|t| [t.a, t.b]).collect();
+            v.dedup();
+            let mut u = Vec::new();
+            for x in v {
+                if !u.contains(&x) {
+                    u.push(x);
+                }
+            }
+            u
+        };
+        let synth = |x: &[f64]| -> Vec<Vec<f64>> {
+            vars.iter()
+                .map(|&v| {
+                    let (s, h) = self.var(x, sh, v);
+                    let mut o = vec![0.0; ns];
+                    self.sampler.synth(s, h, &mut o);
+                    o
+                })
+                .collect()
+        };
+        let pos = |v: Var| vars.iter().position(|&w| w == v).unwrap_or(0);
+        for (a, b) in pairs {
+            let sa = synth(a);
+            let sb = if std::ptr::eq(*a, *b) { sa.clone() } else { synth(b) };
+            for t in &sh.eqs.quad {
+                let (xa, xb) = (&sa[pos(t.a)], &sb[pos(t.b)]);
+                for ((o, p), q) in acc[t.eq].iter_mut().zip(xa).zip(xb) {
+                    *o += t.coef * p * q;
+                }
+            }
+        }
+        let mut c = vec![0.0; nn];
+        for (e, s) in acc.iter_mut().enumerate() {
+            self.sampler.analyse(s, l.hn, &mut c);
+            let o = sh.offset + e * nn;
+            for (y, v) in out[o..o + nn].iter_mut().zip(&c) {
+                *y += v;
+            }
+        }
+    }
+
+    /// R(X) = C + L(X) + Q(X, X), length n_eq.
+    pub fn residual(&self, x: &[f64]) -> Vec<f64> {
+        let l = self.lay;
+        let (n, nl, hl, hn, nn) = (l.n, l.nl, l.hl, l.hn, l.nn);
+        let mut r = vec![0.0; l.n_eq()];
+        self.quad_sum(&[(x, x)], &mut r);
+        for i in 0..n {
+            for j in 0..nl {
+                r[l.u(i) + j] -= x[l.v(i) + j];
+            }
+        }
+        self.k.mul_blocks(&x[0..n * nl], nl, &mut r[l.v(0)..l.v(0) + n * nl]);
+        for sh in &self.shocks {
+            for &(c, v) in &sh.eqs.forces {
+                let (d, o) = (sh.dofs[c], sh.offset + v * nn);
+                for j in 0..nl {
+                    if let Some(t) = series::map_index(j, hl, hn) {
+                        r[l.v(d) + j] += x[o + t];
+                    }
+                }
+            }
+            for t in &sh.eqs.lin {
+                let (s, h) = self.var(x, sh, t.var);
+                let o = sh.offset + t.eq * nn;
+                for (j, &v) in s.iter().enumerate() {
+                    if let Some(p) = series::map_index(j, h, hn) {
+                        r[o + p] += t.coef * v;
+                    }
+                }
+            }
+            for &(e, c) in &sh.eqs.cst {
+                r[sh.offset + e * nn] += c;
+            }
+        }
+        r[l.omega()] = (1..=hl).map(|k| k as f64 * x[l.u(self.ref_dof) + series::is(hl, k)]).sum();
+        r
+    }
+
+    /// Triplets of the square bordered tangent [dR/dX(x0); borderᵀ]. The pattern depends
+    /// only on the layout (zeros are kept), so the symbolic factorisation can be reused.
+    pub fn tangent(&self, x0: &[f64], border: &[f64]) -> Vec<Triplet<usize, usize, f64>> {
+        let l = self.lay;
+        let (n, nl, hl, hn, nn) = (l.n, l.nl, l.hl, l.hn, l.nn);
+        let (om, ga) = (x0[l.omega()], x0[l.gamma()]);
+        let mut t = Vec::new();
+        let mut push = |r: usize, c: usize, v: f64| t.push(Triplet::new(r, c, v));
+        let mut d = vec![0.0; nl];
+        let mut mdv = vec![0.0; n * nl];
+        let mut mv = vec![0.0; n * nl];
+        let mut dv = vec![0.0; n * nl];
+        for i in 0..n {
+            series::deriv(&x0[l.v(i)..l.v(i) + nl], hl, &mut dv[i * nl..(i + 1) * nl]);
+        }
+        self.m.mul_blocks(&dv, nl, &mut mdv);
+        self.m.mul_blocks(&x0[l.v(0)..l.v(0) + n * nl], nl, &mut mv);
+        for i in 0..n {
+            let (ru, cu, cv) = (l.u(i), l.u(i), l.v(i));
+            series::deriv(&x0[cu..cu + nl], hl, &mut d);
+            for j in 0..nl {
+                push(ru + j, cv + j, -1.0);
+                push(ru + j, l.omega(), d[j]);
+                push(l.v(i) + j, l.omega(), mdv[i * nl + j]);
+                push(l.v(i) + j, l.gamma(), mv[i * nl + j]);
+            }
+            for k in 1..=hl {
+                let kf = k as f64;
+                push(ru + series::ic(k), cu + series::is(hl, k), om * kf);
+                push(ru + series::is(hl, k), cu + series::ic(k), -om * kf);
+            }
+        }
+        for &(i, c, a) in &self.k.entries {
+            for j in 0..nl {
+                push(l.v(i) + j, l.u(c) + j, a);
+            }
+        }
+        for &(i, c, a) in &self.m.entries {
+            let (r, cv) = (l.v(i), l.v(c));
+            for j in 0..nl {
+                push(r + j, cv + j, ga * a);
+            }
+            for k in 1..=hl {
+                let kf = k as f64;
+                push(r + series::ic(k), cv + series::is(hl, k), om * kf * a);
+                push(r + series::is(hl, k), cv + series::ic(k), -om * kf * a);
+            }
+        }
+        for sh in &self.shocks {
+            for &(c, v) in &sh.eqs.forces {
+                let (dd, o) = (sh.dofs[c], sh.offset + v * nn);
+                for j in 0..nl {
+                    if let Some(p) = series::map_index(j, hl, hn) {
+                        push(l.v(dd) + j, o + p, 1.0);
+                    }
+                }
+            }
+            // Blocks (equation, variable): multiplier series accumulated from the terms.
+            let mut blocks: Vec<((usize, Var), Vec<f64>)> = Vec::new();
+            let mut add = |key: (usize, Var), s: &[f64], h: usize, coef: f64| {
+                let idx = match blocks.iter().position(|b| b.0 == key) {
+                    Some(i) => i,
+                    None => {
+                        blocks.push((key, vec![0.0; nn]));
+                        blocks.len() - 1
+                    }
+                };
+                for (j, &v) in s.iter().enumerate() {
+                    if let Some(p) = series::map_index(j, h, hn) {
+                        blocks[idx].1[p] += coef * v;
+                    }
+                }
+            };
+            for tm in &sh.eqs.quad {
+                let (sa, ha) = self.var(x0, sh, tm.a);
+                let (sb, hb) = self.var(x0, sh, tm.b);
+                add((tm.eq, tm.a), sb, hb, tm.coef);
+                add((tm.eq, tm.b), sa, ha, tm.coef);
+            }
+            for tm in &sh.eqs.lin {
+                add((tm.eq, tm.var), &[1.0], 0, tm.coef);
+            }
+            for ((e, v), mult) in &blocks {
+                let (hx, col0) = match *v {
+                    Var::Own(k) => (hn, sh.offset + k * nn),
+                    Var::U(c) => (hl, l.u(sh.dofs[c])),
+                };
+                let op = series::mul_operator(mult, hn, hx, hn);
+                let row0 = sh.offset + e * nn;
+                for j in 0..series::len(hx) {
+                    for r in 0..nn {
+                        push(row0 + r, col0 + j, op[j * nn + r]);
+                    }
+                }
+            }
+        }
+        for k in 1..=hl {
+            push(l.omega(), l.u(self.ref_dof) + series::is(hl, k), k as f64);
+        }
+        for (c, &b) in border.iter().enumerate() {
+            push(l.n_eq(), c, b);
+        }
+        t
+    }
+}
