@@ -4,8 +4,10 @@
 //! tangent, or a guess at the start) serves every order: order 1 is its solution y for the
 //! right-hand side (0, 1), X_1 = ±y/‖y‖; order p solves for z with (−Σ Q(X_r, X_{p−r}), 0)
 //! and adds the multiple of y that makes X_p·X_1 = 0 (y spans the kernel of L_t).
-//! Step length (ehman.md §5, Cochelin's classical estimate — not Code_Aster's residual of
-//! order N+1): a_max = (PREC_MAN·‖X_1‖/‖X_N‖)^{1/(N−1)}.
+//! Step length: Code_Aster's, a_max = (PREC_MAN/‖R_{N+1}‖)^{1/(N+1)} with R_{N+1} the
+//! residual of the first neglected order (not ehman.md's (ε‖X_1‖/‖X_N‖)^{1/(N−1)}): with it
+//! the NB_BRANCHE of Code_Aster's command files covers the same energy range (sdnd122a:
+//! 105 branches reach past ENERGIE = 6.5e-3, which ehman.md's estimate does not).
 
 use super::linear_solver::BorderedSolver;
 use super::system::System;
@@ -90,8 +92,9 @@ pub fn compute(
     let mut terms = vec![x1];
     for order in 2..=p.order {
         let mut rhs = vec![0.0; n];
-        let pairs: Vec<(&[f64], &[f64])> =
-            (1..order).map(|r| (terms[r - 1].as_slice(), terms[order - r - 1].as_slice())).collect();
+        let pairs: Vec<(&[f64], &[f64])> = (1..order)
+            .map(|r| (terms[r - 1].as_slice(), terms[order - r - 1].as_slice()))
+            .collect();
         sys.quad_sum(&pairs, &mut rhs[..n - 1]);
         rhs.iter_mut().for_each(|v| *v = -*v);
         rhs[n - 1] = 0.0;
@@ -101,12 +104,14 @@ pub fn compute(
             *z -= c * yi;
         }
         if rhs.iter().any(|v| !v.is_finite()) {
-            return Err(Error::numerical(format!("series term of order {order} is not finite")));
+            return Err(Error::numerical(format!(
+                "series term of order {order} is not finite"
+            )));
         }
         terms.push(rhs);
     }
     let last = terms.len();
-    let mut a_max = (p.prec / norm(&terms[last - 1]).max(f64::MIN_POSITIVE)).powf(1.0 / (last - 1) as f64);
+    let mut a_max = step_length(sys, &terms, p.prec);
     let mut bifurcation = None;
     if let Some(r) = geometric_ratio(&terms, p.bif_terms, p.bif_tol) {
         // Cochelin & Medale (2013): the tail is X_p ≈ X_N r^{p−N}; remove it from every
@@ -121,8 +126,7 @@ pub fn compute(
                 }
             }
             terms.pop();
-            let l2 = terms.len();
-            let a_reg = (p.prec / norm(&terms[l2 - 1]).max(f64::MIN_POSITIVE)).powf(1.0 / (l2 - 1) as f64);
+            let a_reg = step_length(sys, &terms, p.prec);
             if a_reg.is_finite() && a_reg >= a_b {
                 a_max = a_reg;
                 bifurcation = Some(a_b);
@@ -147,9 +151,27 @@ pub fn compute(
         a_max = cap;
     }
     if !(a_max.is_finite() && a_max > 0.0) {
-        return Err(Error::numerical(format!("the step length a_max = {a_max} is not usable")));
+        return Err(Error::numerical(format!(
+            "the step length a_max = {a_max} is not usable"
+        )));
     }
-    Ok(Series { terms, a_max, bifurcation })
+    Ok(Series {
+        terms,
+        a_max,
+        bifurcation,
+    })
+}
+
+/// a_max = (PREC_MAN/‖R_{N+1}‖)^{1/(N+1)}, R_{N+1} = Σ_{r=1..N} Q(X_r, X_{N+1−r}) the
+/// residual of the first neglected order, so that ‖R(X(a_max))‖ ≈ PREC_MAN.
+fn step_length(sys: &System, terms: &[Vec<f64>], prec: f64) -> f64 {
+    let last = terms.len();
+    let mut r = vec![0.0; sys.lay.n_eq()];
+    let pairs: Vec<(&[f64], &[f64])> = (1..=last)
+        .map(|k| (terms[k - 1].as_slice(), terms[last - k].as_slice()))
+        .collect();
+    sys.quad_sum(&pairs, &mut r);
+    (prec / norm(&r).max(f64::MIN_POSITIVE)).powf(1.0 / (last + 1) as f64)
 }
 
 /// Signed common ratio r of the last `m` terms when they form a geometric series along one

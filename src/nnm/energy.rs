@@ -40,8 +40,12 @@ fn quad_form(entries: &[(usize, usize, f64)], y: &[f64]) -> f64 {
 /// Displacements and velocities of every DOF at θ.
 fn state_at(sys: &System, x: &[f64], theta: f64) -> (Vec<f64>, Vec<f64>) {
     let l = sys.lay;
-    let u = (0..l.n).map(|i| series::eval(&x[l.u(i)..l.u(i) + l.nl], l.hl, theta)).collect();
-    let v = (0..l.n).map(|i| series::eval(&x[l.v(i)..l.v(i) + l.nl], l.hl, theta)).collect();
+    let u = (0..l.n)
+        .map(|i| series::eval(&x[l.u(i)..l.u(i) + l.nl], l.hl, theta))
+        .collect();
+    let v = (0..l.n)
+        .map(|i| series::eval(&x[l.v(i)..l.v(i) + l.nl], l.hl, theta))
+        .collect();
     (u, v)
 }
 
@@ -110,7 +114,9 @@ pub fn energy_spread(sys: &System, x: &[f64], reference: f64) -> f64 {
     let e = energy_samples(sys, x);
     let (lo, hi) = e
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
     (hi - lo) / reference.abs().max(f64::MIN_POSITIVE)
 }
 

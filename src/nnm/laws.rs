@@ -44,7 +44,10 @@ pub enum ScaledLaw {
     Plan,
     BiPlan,
     /// Ring centre in scaled units.
-    Cercle { ex: f64, ey: f64 },
+    Cercle {
+        ex: f64,
+        ey: f64,
+    },
 }
 
 /// The equations of one shock: as many as its own unknowns.
@@ -156,13 +159,28 @@ fn biplan_force(u: f64, s: f64, alpha: f64, eta: f64) -> f64 {
 
 /// Samples of a law's own unknowns from samples of its displacement components (a start
 /// point: consistent with the law sample by sample, then projected on the harmonics).
-pub fn own_from_u(law: ScaledLaw, s: f64, alpha: f64, eta: f64, u: &[Vec<f64>]) -> Result<Vec<Vec<f64>>> {
+pub fn own_from_u(
+    law: ScaledLaw,
+    s: f64,
+    alpha: f64,
+    eta: f64,
+    u: &[Vec<f64>],
+) -> Result<Vec<Vec<f64>>> {
     let c = eta * s * s;
-    let comp = |i: usize| u.get(i).ok_or_else(|| Error::internal("law component missing"));
+    let comp = |i: usize| {
+        u.get(i)
+            .ok_or_else(|| Error::internal("law component missing"))
+    };
     match law {
-        ScaledLaw::Plan => Ok(vec![comp(0)?.iter().map(|&x| plan_force(x - s, alpha, c)).collect()]),
+        ScaledLaw::Plan => Ok(vec![comp(0)?
+            .iter()
+            .map(|&x| plan_force(x - s, alpha, c))
+            .collect()]),
         ScaledLaw::BiPlan => {
-            let f: Vec<f64> = comp(0)?.iter().map(|&x| biplan_force(x, s, alpha, eta)).collect();
+            let f: Vec<f64> = comp(0)?
+                .iter()
+                .map(|&x| biplan_force(x, s, alpha, eta))
+                .collect();
             let z = f
                 .iter()
                 .zip(comp(0)?)

@@ -26,25 +26,32 @@ pub struct SparseLu {
 impl BorderedSolver for SparseLu {
     fn factor(&mut self, n: usize, triplets: &[Triplet<usize, usize, f64>]) -> Result<()> {
         self.lu = None;
-        let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, triplets)
-            .map_err(|e| Error::internal(format!("bordered tangent could not be assembled: {e:?}")))?;
+        let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, triplets).map_err(|e| {
+            Error::internal(format!("bordered tangent could not be assembled: {e:?}"))
+        })?;
         let same = match &self.pattern {
             Some((cp, ri, _)) => cp == a.symbolic().col_ptr() && ri == a.symbolic().row_idx(),
             None => false,
         };
         if !same {
-            let sym = SymbolicLu::try_new(a.symbolic())
-                .map_err(|e| Error::numerical(format!("symbolic LU of the tangent failed: {e:?}")))?;
+            let sym = SymbolicLu::try_new(a.symbolic()).map_err(|e| {
+                Error::numerical(format!("symbolic LU of the tangent failed: {e:?}"))
+            })?;
             self.symbolic_count += 1;
-            self.pattern = Some((a.symbolic().col_ptr().to_vec(), a.symbolic().row_idx().to_vec(), sym));
+            self.pattern = Some((
+                a.symbolic().col_ptr().to_vec(),
+                a.symbolic().row_idx().to_vec(),
+                sym,
+            ));
         }
         let sym = match &self.pattern {
             Some((_, _, s)) => s.clone(),
             None => return Err(Error::internal("symbolic LU missing")),
         };
         let lu = Lu::try_new_with_symbolic(sym, a.as_ref()).map_err(|e| {
-            Error::numerical(format!("the bordered tangent is singular ({e:?})"))
-                .hint("the branch may have reached a turning point of ω that the border cannot resolve")
+            Error::numerical(format!("the bordered tangent is singular ({e:?})")).hint(
+                "the branch may have reached a turning point of ω that the border cannot resolve",
+            )
         })?;
         self.lu = Some((n, lu));
         Ok(())

@@ -92,7 +92,7 @@ pub struct Point {
     pub energy: f64,
     /// Full unknown vector, physical units (layout in the module doc).
     pub x: Vec<f64>,
-    /// ‖R‖ of the scaled equations.
+    /// ‖R(X)‖/max(1, ‖X‖) of the scaled equations.
     pub residual: f64,
     /// Unfolding parameter (1/s).
     pub gamma: f64,
@@ -212,7 +212,9 @@ fn check_rings(sys: &System, x: &[f64]) -> Result<()> {
             }
             // Both the unknown r and the true distance must stay clear of zero.
             laws::check_ring_radius(&s[0], sh.s)?;
-            let dist: Vec<f64> = (0..smp.n()).map(|j| (s[1][j] - ex).hypot(s[2][j] - ey)).collect();
+            let dist: Vec<f64> = (0..smp.n())
+                .map(|j| (s[1][j] - ex).hypot(s[2][j] - ey))
+                .collect();
             laws::check_ring_radius(&dist, sh.s)?;
         }
     }
@@ -236,7 +238,11 @@ fn make_point(sys: &System, x: &[f64], residual: f64, branch: usize, bifurcation
     let e_scale = sc.k * sc.g * sc.g;
     let energy = energy::energy_ca(sys, x);
     let omega = x[l.omega()] * sc.w;
-    let xp: Vec<f64> = x.iter().zip(unit_factors(sys)).map(|(v, f)| v * f).collect();
+    let xp: Vec<f64> = x
+        .iter()
+        .zip(unit_factors(sys))
+        .map(|(v, f)| v * f)
+        .collect();
     Point {
         omega,
         frequency: omega / (2.0 * std::f64::consts::PI),
@@ -258,8 +264,10 @@ fn start(sys: System, settings: &Settings, mut x: Vec<f64>) -> Result<StartState
     check_rings(&sys, &x)?;
     let border = motion_border(&sys, &x);
     if !finite(&border) {
-        return Err(Error::input("the start point has no motion (all displacements are zero)")
-            .keyword("ETAT_INIT"));
+        return Err(
+            Error::input("the start point has no motion (all displacements are zero)")
+                .keyword("ETAT_INIT"),
+        );
     }
     let mut solver = SparseLu::default();
     let (it, res) = newton::correct(
@@ -309,11 +317,16 @@ pub fn start_from_mode(
         .keyword("ETAT_INIT/NUME_ORDRE"));
     }
     if !(coef_ampl.is_finite() && coef_ampl > 0.0) {
-        return Err(Error::input(format!("COEF_AMPL must be positive, got {coef_ampl}")).keyword("ETAT_INIT/COEF_AMPL"));
+        return Err(
+            Error::input(format!("COEF_AMPL must be positive, got {coef_ampl}"))
+                .keyword("ETAT_INIT/COEF_AMPL"),
+        );
     }
     if !(omega_lin.is_finite() && omega_lin > 0.0) {
-        return Err(Error::input(format!("the linear pulsation must be positive, got {omega_lin}"))
-            .keyword("ETAT_INIT/NUME_ORDRE"));
+        return Err(Error::input(format!(
+            "the linear pulsation must be positive, got {omega_lin}"
+        ))
+        .keyword("ETAT_INIT/NUME_ORDRE"));
     }
     let p = (0..n)
         .max_by(|&a, &b| mode[a].abs().total_cmp(&mode[b].abs()))
@@ -341,7 +354,11 @@ pub fn start_from_mode(
 /// Number of unknowns of `x` for this problem and these settings.
 pub fn unknown_count(problem: &Problem, settings: &Settings) -> usize {
     let n = problem.k.nrows();
-    let hn = if problem.shocks.is_empty() { settings.h_lin } else { settings.h_nonl };
+    let hn = if problem.shocks.is_empty() {
+        settings.h_lin
+    } else {
+        settings.h_nonl
+    };
     let own: usize = problem
         .shocks
         .iter()
@@ -370,13 +387,18 @@ fn system_for_point(problem: &Problem, settings: &Settings, x: &[f64]) -> Result
     let n = problem.k.nrows();
     let nl = series::len(settings.h_lin);
     let amp = |i: usize| x[i * nl + series::ic(1)].hypot(x[i * nl + series::is(settings.h_lin, 1)]);
-    let p = (0..n).max_by(|&a, &b| amp(a).total_cmp(&amp(b))).unwrap_or(0);
+    let p = (0..n)
+        .max_by(|&a, &b| amp(a).total_cmp(&amp(b)))
+        .unwrap_or(0);
     let sc = Scaling::new(problem, amp(p), p)?;
     System::new(problem, settings, sc, p)
 }
 
 fn to_scaled(sys: &System, x: &[f64]) -> Vec<f64> {
-    x.iter().zip(unit_factors(sys)).map(|(v, f)| v / f).collect()
+    x.iter()
+        .zip(unit_factors(sys))
+        .map(|(v, f)| v / f)
+        .collect()
 }
 
 /// Restart from a stored point (physical `Point::x`), Newton-corrected.
@@ -434,7 +456,8 @@ fn run(
                     // Energy is quadratic in X: the centred difference with step 1 is exact.
                     let plus: Vec<f64> = x0.iter().zip(x1).map(|(a, c)| a + c).collect();
                     let minus: Vec<f64> = x0.iter().zip(x1).map(|(a, c)| a - c).collect();
-                    let de = energy::mean_quadratic_energy(&sys, &plus) - energy::mean_quadratic_energy(&sys, &minus);
+                    let de = energy::mean_quadratic_energy(&sys, &plus)
+                        - energy::mean_quadratic_energy(&sys, &minus);
                     if de < 0.0 {
                         -dir
                     } else {
@@ -443,17 +466,33 @@ fn run(
                 }
             }
         };
-        let ser = anm::compute(&sys, &mut solver, &x0, &border, &params, &orient).map_err(|e| in_branch(e, b))?;
+        let mut ser = anm::compute(&sys, &mut solver, &x0, &border, &params, &orient)
+            .map_err(|e| in_branch(e, b))?;
+        // Safeguard: the step-length estimate assumes the series converges at a_max; where it
+        // does not (nearly homogeneous regimes far up a branch, where the estimate grows
+        // without bound), the end residual says so: halve the step until it is credible.
+        let credible = 1e3 * settings.prec_man.max(settings.prec_newton);
+        for _ in 0..40 {
+            let xe = ser.eval(&x0, ser.a_max);
+            let r = newton::relative(&sys.residual(&xe), &xe);
+            if r.is_finite() && r <= credible {
+                break;
+            }
+            ser.a_max *= 0.5;
+        }
         let np = settings.n_points_per_branch;
         let mut branch_points = Vec::with_capacity(np);
         let mut newton_iterations = 0;
         let tangent = ser.unit_tangent(ser.a_max);
         if !finite(&tangent) {
-            return Err(in_branch(Error::numerical("the branch tangent is not finite"), b));
+            return Err(in_branch(
+                Error::numerical("the branch tangent is not finite"),
+                b,
+            ));
         }
-        let bif_index = ser.bifurcation.map(|ab| {
-            (((ab / ser.a_max) * np as f64).round() as usize).clamp(1, np)
-        });
+        let bif_index = ser
+            .bifurcation
+            .map(|ab| (((ab / ser.a_max) * np as f64).round() as usize).clamp(1, np));
         for i in 1..=np {
             let a = ser.a_max * i as f64 / np as f64;
             let mut x = ser.eval(&x0, a);
@@ -463,7 +502,7 @@ fn run(
                     b,
                 ));
             }
-            let mut res = anm::norm(&sys.residual(&x));
+            let mut res = newton::relative(&sys.residual(&x), &x);
             if i == np {
                 let (it, r) = newton::correct(
                     &sys,
@@ -491,7 +530,9 @@ fn run(
         let range = |f: &dyn Fn(&Point) -> f64| {
             branch_points
                 .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(f(p)), hi.max(f(p))))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                    (lo.min(f(p)), hi.max(f(p)))
+                })
         };
         let report = BranchReport {
             branch: b,
@@ -512,20 +553,37 @@ fn run(
 
 /// One period sampled at `n_inst` instants t_j = j·T/(n_inst − 1), j = 0..n_inst−1 (both
 /// ends included), physical units.
-pub fn time_history(problem: &Problem, settings: &Settings, x: &[f64], n_inst: usize) -> Result<TimeHistory> {
+pub fn time_history(
+    problem: &Problem,
+    settings: &Settings,
+    x: &[f64],
+    n_inst: usize,
+) -> Result<TimeHistory> {
     let sys = system_for_point(problem, settings, x)?;
     let xs = to_scaled(&sys, x);
     let l = sys.lay;
     let sc = sys.sc;
     let omega = xs[l.omega()] * sc.w;
     if !(omega.is_finite() && omega > 0.0) || n_inst < 2 {
-        return Err(Error::input("a time history needs ω > 0 and at least 2 instants").keyword("NB_INST"));
+        return Err(
+            Error::input("a time history needs ω > 0 and at least 2 instants").keyword("NB_INST"),
+        );
     }
     let period = 2.0 * std::f64::consts::PI / omega;
-    let th: Vec<f64> = (0..n_inst).map(|j| 2.0 * std::f64::consts::PI * j as f64 / (n_inst - 1) as f64).collect();
-    let samp = |s: &[f64], h: usize, f: f64| th.iter().map(|&t| f * series::eval(s, h, t)).collect::<Vec<f64>>();
-    let displacement = (0..l.n).map(|i| samp(&xs[l.u(i)..l.u(i) + l.nl], l.hl, sc.g)).collect();
-    let velocity = (0..l.n).map(|i| samp(&xs[l.v(i)..l.v(i) + l.nl], l.hl, sc.g * sc.w)).collect();
+    let th: Vec<f64> = (0..n_inst)
+        .map(|j| 2.0 * std::f64::consts::PI * j as f64 / (n_inst - 1) as f64)
+        .collect();
+    let samp = |s: &[f64], h: usize, f: f64| {
+        th.iter()
+            .map(|&t| f * series::eval(s, h, t))
+            .collect::<Vec<f64>>()
+    };
+    let displacement = (0..l.n)
+        .map(|i| samp(&xs[l.u(i)..l.u(i) + l.nl], l.hl, sc.g))
+        .collect();
+    let velocity = (0..l.n)
+        .map(|i| samp(&xs[l.v(i)..l.v(i) + l.nl], l.hl, sc.g * sc.w))
+        .collect();
     let contact_force = sys
         .shocks
         .iter()
@@ -533,12 +591,22 @@ pub fn time_history(problem: &Problem, settings: &Settings, x: &[f64], n_inst: u
             sh.eqs
                 .forces
                 .iter()
-                .map(|&(_, v)| samp(&xs[sh.offset + v * l.nn..sh.offset + (v + 1) * l.nn], l.hn, sc.k * sc.g))
+                .map(|&(_, v)| {
+                    samp(
+                        &xs[sh.offset + v * l.nn..sh.offset + (v + 1) * l.nn],
+                        l.hn,
+                        sc.k * sc.g,
+                    )
+                })
                 .collect()
         })
         .collect();
     Ok(TimeHistory {
-        t: th.iter().map(|t| t / omega).map(|t| t.min(period)).collect(),
+        t: th
+            .iter()
+            .map(|t| t / omega)
+            .map(|t| t.min(period))
+            .collect(),
         displacement,
         velocity,
         contact_force,
@@ -546,22 +614,38 @@ pub fn time_history(problem: &Problem, settings: &Settings, x: &[f64], n_inst: u
 }
 
 /// Fourier coefficients (0, C1..CH_l, S1..SH_l) of the displacement of each DOF (physical).
-pub fn displacement_coefficients(problem: &Problem, settings: &Settings, x: &[f64]) -> Result<Vec<Vec<f64>>> {
+pub fn displacement_coefficients(
+    problem: &Problem,
+    settings: &Settings,
+    x: &[f64],
+) -> Result<Vec<Vec<f64>>> {
     let sys = system_for_point(problem, settings, x)?;
     let l = sys.lay;
-    Ok((0..l.n).map(|i| x[l.u(i)..l.u(i) + l.nl].to_vec()).collect())
+    Ok((0..l.n)
+        .map(|i| x[l.u(i)..l.u(i) + l.nl].to_vec())
+        .collect())
 }
 
 /// Fourier coefficients of the velocity of each DOF (physical).
-pub fn velocity_coefficients(problem: &Problem, settings: &Settings, x: &[f64]) -> Result<Vec<Vec<f64>>> {
+pub fn velocity_coefficients(
+    problem: &Problem,
+    settings: &Settings,
+    x: &[f64],
+) -> Result<Vec<Vec<f64>>> {
     let sys = system_for_point(problem, settings, x)?;
     let l = sys.lay;
-    Ok((0..l.n).map(|i| x[l.v(i)..l.v(i) + l.nl].to_vec()).collect())
+    Ok((0..l.n)
+        .map(|i| x[l.v(i)..l.v(i) + l.nl].to_vec())
+        .collect())
 }
 
 /// Fourier coefficients (0, C1..CH_nl, S1..SH_nl) of each contact unknown of each shock
 /// (PLAN: f; BI_PLAN: f, z; CERCLE: f, r, fx, fy), physical.
-pub fn contact_coefficients(problem: &Problem, settings: &Settings, x: &[f64]) -> Result<Vec<Vec<Vec<f64>>>> {
+pub fn contact_coefficients(
+    problem: &Problem,
+    settings: &Settings,
+    x: &[f64],
+) -> Result<Vec<Vec<Vec<f64>>>> {
     let sys = system_for_point(problem, settings, x)?;
     let l = sys.lay;
     Ok(sys

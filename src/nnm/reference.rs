@@ -60,7 +60,12 @@ mod tests {
 
     #[test]
     fn limits_are_right() {
-        let o = Oscillator { m: 1.0, k: 10.0, g: 0.01, alpha: 50.0 };
+        let o = Oscillator {
+            m: 1.0,
+            k: 10.0,
+            g: 0.01,
+            alpha: 50.0,
+        };
         let t0 = 2.0 * PI / 10f64.sqrt();
         // At grazing energy both periods are the linear one.
         let e0 = 0.5 * 10.0 * 0.01 * 0.01;

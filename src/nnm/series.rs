@@ -121,7 +121,15 @@ fn terms(x: &[f64], h: usize) -> impl Iterator<Item = (Kind, usize, f64)> + '_ {
 }
 
 /// out += scale · trunc_hout(a·b) by the trigonometric product formulas.
-pub fn mul_conv_acc(a: &[f64], ha: usize, b: &[f64], hb: usize, hout: usize, scale: f64, out: &mut [f64]) {
+pub fn mul_conv_acc(
+    a: &[f64],
+    ha: usize,
+    b: &[f64],
+    hb: usize,
+    hout: usize,
+    scale: f64,
+    out: &mut [f64],
+) {
     for (ka, k, va) in terms(a, ha) {
         if va == 0.0 {
             continue;
@@ -215,7 +223,15 @@ impl Sampler {
 }
 
 /// out += scale · trunc_hout(a·b) through FFT samples.
-pub fn mul_fft_acc(a: &[f64], ha: usize, b: &[f64], hb: usize, hout: usize, scale: f64, out: &mut [f64]) {
+pub fn mul_fft_acc(
+    a: &[f64],
+    ha: usize,
+    b: &[f64],
+    hb: usize,
+    hout: usize,
+    scale: f64,
+    out: &mut [f64],
+) {
     let s = Sampler::new(fft_size(ha + hb + hout));
     let n = s.n();
     let (mut sa, mut sb) = (vec![0.0; n], vec![0.0; n]);
@@ -240,7 +256,15 @@ pub fn prefer_fft(ha: usize, hb: usize, hout: usize) -> bool {
 }
 
 /// out += scale · trunc_hout(a·b), by convolution or FFT, whichever is cheaper.
-pub fn mul_acc(a: &[f64], ha: usize, b: &[f64], hb: usize, hout: usize, scale: f64, out: &mut [f64]) {
+pub fn mul_acc(
+    a: &[f64],
+    ha: usize,
+    b: &[f64],
+    hb: usize,
+    hout: usize,
+    scale: f64,
+    out: &mut [f64],
+) {
     if prefer_fft(ha, hb, hout) {
         mul_fft_acc(a, ha, b, hb, hout, scale, out)
     } else {

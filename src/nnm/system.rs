@@ -76,11 +76,7 @@ impl Scaling {
     /// and the diagonal of K and M at DOF `p`. A singular K (free structure) falls back to
     /// the diagonal too.
     pub fn new(problem: &Problem, amplitude: f64, p_noshock: usize) -> Result<Scaling> {
-        let (g, p) = match problem
-            .shocks
-            .iter()
-            .max_by(|a, b| a.gap.total_cmp(&b.gap))
-        {
+        let (g, p) = match problem.shocks.iter().max_by(|a, b| a.gap.total_cmp(&b.gap)) {
             Some(s) => (s.gap, s.dofs.first().copied().unwrap_or(0)),
             None => (amplitude, p_noshock),
         };
@@ -100,7 +96,12 @@ impl Scaling {
                  the stiffness and mass matrices must be positive at the reference DOF"
             )));
         }
-        Ok(Scaling { g, k, m, w: (k / m).sqrt() })
+        Ok(Scaling {
+            g,
+            k,
+            m,
+            w: (k / m).sqrt(),
+        })
     }
 }
 
@@ -169,7 +170,9 @@ pub fn validate(problem: &Problem, settings: &Settings) -> Result<()> {
         .keyword("MATR_RIGI"));
     }
     if settings.h_lin == 0 {
-        return Err(Error::input("NB_HARM_LINE must be at least 1").keyword("RESOLUTION/NB_HARM_LINE"));
+        return Err(
+            Error::input("NB_HARM_LINE must be at least 1").keyword("RESOLUTION/NB_HARM_LINE")
+        );
     }
     if !problem.shocks.is_empty() && settings.h_nonl < settings.h_lin {
         return Err(Error::input(format!(
@@ -179,13 +182,16 @@ pub fn validate(problem: &Problem, settings: &Settings) -> Result<()> {
         .keyword("RESOLUTION/NB_HARM_NONL"));
     }
     if settings.order < 2 {
-        return Err(Error::input("NB_ORDRE_MAN must be at least 2").keyword("RESOLUTION/NB_ORDRE_MAN"));
+        return Err(
+            Error::input("NB_ORDRE_MAN must be at least 2").keyword("RESOLUTION/NB_ORDRE_MAN")
+        );
     }
     if settings.n_points_per_branch == 0 {
         return Err(Error::input("NB_PAS_MAN must be at least 1").keyword("RESOLUTION/NB_PAS_MAN"));
     }
     if !(settings.prec_man > 0.0 && settings.prec_newton > 0.0) {
-        return Err(Error::input("PREC_MAN and PREC_NEWTON must be positive").keyword("RESOLUTION/PREC_MAN"));
+        return Err(Error::input("PREC_MAN and PREC_NEWTON must be positive")
+            .keyword("RESOLUTION/PREC_MAN"));
     }
     for (i, s) in problem.shocks.iter().enumerate() {
         let want = match s.law {
@@ -201,12 +207,18 @@ pub fn validate(problem: &Problem, settings: &Settings) -> Result<()> {
             .keyword("CHOC/NOM_CMP")));
         }
         if !(s.gap.is_finite() && s.gap > 0.0) {
-            return Err(ctx(Error::input(format!("JEU must be positive, got {}", s.gap)).keyword("CHOC/JEU")));
+            return Err(ctx(Error::input(format!(
+                "JEU must be positive, got {}",
+                s.gap
+            ))
+            .keyword("CHOC/JEU")));
         }
         if !(s.stiffness.is_finite() && s.stiffness > 0.0) {
-            return Err(ctx(
-                Error::input(format!("RIGI_NOR must be positive, got {}", s.stiffness)).keyword("CHOC/RIGI_NOR"),
-            ));
+            return Err(ctx(Error::input(format!(
+                "RIGI_NOR must be positive, got {}",
+                s.stiffness
+            ))
+            .keyword("CHOC/RIGI_NOR")));
         }
         if !(s.regul.is_finite() && s.regul > 0.0) {
             return Err(ctx(Error::input(format!(
@@ -220,11 +232,20 @@ pub fn validate(problem: &Problem, settings: &Settings) -> Result<()> {
 }
 
 impl System {
-    pub fn new(problem: &Problem, settings: &Settings, sc: Scaling, ref_dof: usize) -> Result<System> {
+    pub fn new(
+        problem: &Problem,
+        settings: &Settings,
+        sc: Scaling,
+        ref_dof: usize,
+    ) -> Result<System> {
         validate(problem, settings)?;
         let n = problem.k.nrows();
         let hl = settings.h_lin;
-        let hn = if problem.shocks.is_empty() { hl } else { settings.h_nonl };
+        let hn = if problem.shocks.is_empty() {
+            hl
+        } else {
+            settings.h_nonl
+        };
         let (nl, nn) = (series::len(hl), series::len(hn));
         let mut offset = 2 * n * nl;
         let mut shocks = Vec::new();
@@ -240,10 +261,25 @@ impl System {
             let (gs, alpha) = (s.gap / sc.g, s.stiffness / sc.k);
             let eqs = laws::equations(law, gs, alpha, s.regul);
             let n_own = eqs.n_own;
-            shocks.push(ShockSys { law, dofs: s.dofs.clone(), s: gs, alpha, eta: s.regul, eqs, offset });
+            shocks.push(ShockSys {
+                law,
+                dofs: s.dofs.clone(),
+                s: gs,
+                alpha,
+                eta: s.regul,
+                eqs,
+                offset,
+            });
             offset += n_own * nn;
         }
-        let lay = Layout { n, hl, hn, nl, nn, n_unk: offset + 2 };
+        let lay = Layout {
+            n,
+            hl,
+            hn,
+            nl,
+            nn,
+            n_unk: offset + 2,
+        };
         Ok(System {
             lay,
             k: Csc::from_faer(&problem.k, 1.0 / sc.k),
@@ -339,7 +375,11 @@ impl System {
         let pos = |v: Var| vars.iter().position(|&w| w == v).unwrap_or(0);
         for (a, b) in pairs {
             let sa = synth(a);
-            let sb = if std::ptr::eq(*a, *b) { sa.clone() } else { synth(b) };
+            let sb = if std::ptr::eq(*a, *b) {
+                sa.clone()
+            } else {
+                synth(b)
+            };
             for t in &sh.eqs.quad {
                 let (xa, xb) = (&sa[pos(t.a)], &sb[pos(t.b)]);
                 for ((o, p), q) in acc[t.eq].iter_mut().zip(xa).zip(xb) {
@@ -368,7 +408,8 @@ impl System {
                 r[l.u(i) + j] -= x[l.v(i) + j];
             }
         }
-        self.k.mul_blocks(&x[0..n * nl], nl, &mut r[l.v(0)..l.v(0) + n * nl]);
+        self.k
+            .mul_blocks(&x[0..n * nl], nl, &mut r[l.v(0)..l.v(0) + n * nl]);
         for sh in &self.shocks {
             for &(c, v) in &sh.eqs.forces {
                 let (d, o) = (sh.dofs[c], sh.offset + v * nn);
@@ -391,7 +432,9 @@ impl System {
                 r[sh.offset + e * nn] += c;
             }
         }
-        r[l.omega()] = (1..=hl).map(|k| k as f64 * x[l.u(self.ref_dof) + series::is(hl, k)]).sum();
+        r[l.omega()] = (1..=hl)
+            .map(|k| k as f64 * x[l.u(self.ref_dof) + series::is(hl, k)])
+            .sum();
         r
     }
 
