@@ -20,6 +20,7 @@ mod laws;
 mod linear_solver;
 mod newton;
 mod series;
+pub mod stability;
 mod system;
 
 #[cfg(test)]
