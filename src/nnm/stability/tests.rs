@@ -301,3 +301,111 @@ fn law_jacobians_are_the_derivatives_of_the_forces() {
     // CERCLE refuses an orbit through the ring centre instead of dividing by r = 0.
     assert!(laws[2].eval(&[0.001, -0.002]).is_err());
 }
+
+#[test]
+fn sdnd122_is_stable_and_newmark_converges_to_rk4_at_second_order() {
+    let p = sdnd122();
+    let s = settings(5, 50, 12);
+    let pts = branch(&p, &s, &[1.0], 1.0, 10f64.sqrt());
+    for q in pts.iter().step_by(3) {
+        let coefs = displacement_coefficients(&p, &s, &q.x).unwrap();
+        let lin = Linearised::new(&p, Orbit::new(coefs, s.h_lin, q.omega).unwrap()).unwrap();
+        // RK4 with 2000 steps is the reference: its own error, measured against 16000
+        // steps, is below 3e-10 (fourth order), far under Newmark's.
+        let reference = monodromy(&lin, 2000, Integrator::Rk4).unwrap();
+        // Liouville: tr A = 0, so det Φ = 1 (RK4 error ~1e-12 here).
+        let det = reference[(0, 0)] * reference[(1, 1)] - reference[(0, 1)] * reference[(1, 0)];
+        assert!((det - 1.0).abs() < 1e-9, "E {:e}: det Φ {det}", q.energy);
+        let diffs: Vec<f64> = [500, 1000, 2000]
+            .iter()
+            .map(|&nb| rel_diff(&monodromy(&lin, nb, Integrator::Newmark).unwrap(), &reference))
+            .collect();
+        // Second order: ×4 per halving of the step (measured 3.9–4.0); 3 leaves room for
+        // the contact onsets, resolved only from ~500 steps per period.
+        assert!(diffs[0] > 3.0 * diffs[1] && diffs[1] > 3.0 * diffs[2], "E {:e}: {diffs:?}", q.energy);
+        // At NB_INST = 1000 the two agree to 6e-5 (measured 3e-5 to 6e-5).
+        assert!(diffs[1] < 1e-4, "E {:e}: {diffs:?}", q.energy);
+        for integ in [Integrator::Newmark, Integrator::Rk4] {
+            let f = floquet(&p, &s, &q.x, 1000, integ, 1e-2).unwrap();
+            // One DOF: only the trivial pair, hence STABLE by definition; with det Φ = 1 and
+            // tr Φ ≤ 2 it lies on the unit circle (|μ| = 1 to 2e-3, the Jordan block's √ of
+            // Newmark's 3e-5 error on Φ), at the distance from +1 set by the H_l = 5 orbit.
+            assert!(f.stable && f.multipliers.len() == 2, "{f:?}");
+            assert!((f.max_modulus - 1.0).abs() < 5e-3, "E {:e} {integ:?}: {f:?}", q.energy);
+        }
+    }
+}
+
+fn rel_diff(a: &Mat<f64>, b: &Mat<f64>) -> f64 {
+    let mut num = 0.0f64;
+    let mut den = 0.0f64;
+    for j in 0..a.ncols() {
+        for i in 0..a.nrows() {
+            num = num.max((a[(i, j)] - b[(i, j)]).abs());
+            den = den.max(b[(i, j)].abs());
+        }
+    }
+    num / den
+}
+
+#[test]
+fn anti_phase_mode_is_unstable_between_its_energy_extrema_and_in_phase_mode_is_stable() {
+    // Two unit masses grounded by k = 10, coupled by kc = 1, a stop on mass 2. For a family
+    // of periodic orbits of a conservative system a nontrivial pair of multipliers passes
+    // through +1 exactly where the energy along the family has an extremum (a fold of the
+    // energy–frequency curve). The anti-phase NNM stiffens, its energy peaks, falls and rises
+    // again: it must be unstable between the maximum and the minimum and stable elsewhere.
+    // The engine's Point::bifurcation flag is not raised on this branch, so the energy
+    // extrema are the reference. Boundaries are checked to one branch point.
+    let p = pair(1.0, vec![shock(ShockLaw::Plan, vec![1])]);
+    let s = settings(10, 100, 25);
+    let pts = branch(&p, &s, &[1.0, -1.0], 0.5, 12f64.sqrt());
+    let e: Vec<f64> = pts.iter().map(|q| q.energy).collect();
+    let imax = (1..e.len() - 1).find(|&i| e[i] > e[i - 1] && e[i] >= e[i + 1]).expect("an energy maximum");
+    let imin = (imax + 1..e.len() - 1).find(|&i| e[i] < e[i - 1] && e[i] <= e[i + 1]).expect("an energy minimum");
+    let verdicts: Vec<Floquet> = pts
+        .iter()
+        .map(|q| floquet(&p, &s, &q.x, 1000, Integrator::Rk4, 1e-2).unwrap())
+        .collect();
+    let unstable: Vec<usize> = (0..pts.len()).filter(|&i| !verdicts[i].stable).collect();
+    let (a, b) = (unstable[0], unstable[unstable.len() - 1]);
+    assert_eq!(unstable.len(), b - a + 1, "one unstable stretch: {unstable:?}");
+    assert!(a.abs_diff(imax) <= 1 && b.abs_diff(imin) <= 1, "unstable {a}..={b}, energy max {imax}, min {imin}");
+    // Far beyond TOLERANCE and beyond the trivial pair's own error (≤ 0.12 here).
+    let worst = verdicts.iter().map(|f| f.max_nontrivial_modulus).fold(0.0, f64::max);
+    assert!(worst > 1.4, "largest multiplier {worst}");
+    for (i, f) in verdicts.iter().enumerate() {
+        if i + 1 < a || i > b + 1 {
+            // Stable rows: the nontrivial pair on the unit circle (RK4 error ~1e-8).
+            assert!((f.max_nontrivial_modulus - 1.0).abs() < 1e-4, "row {i}: {f:?}");
+            // Newmark agrees away from the boundaries.
+            assert!(floquet(&p, &s, &pts[i].x, 1000, Integrator::Newmark, 1e-2).unwrap().stable);
+        } else if i > a && i < b {
+            assert!(!floquet(&p, &s, &pts[i].x, 1000, Integrator::Newmark, 1e-2).unwrap().stable, "row {i}");
+        }
+    }
+    // The in-phase NNM of the same system stays stable over the same energy range.
+    let s = settings(10, 100, 12);
+    for q in branch(&p, &s, &[1.0, 1.0], 0.5, 10f64.sqrt()) {
+        let f = floquet(&p, &s, &q.x, 1000, Integrator::Rk4, 1e-2).unwrap();
+        assert!(f.stable && (f.max_nontrivial_modulus - 1.0).abs() < 1e-4, "E {:e}: {f:?}", q.energy);
+    }
+}
+
+#[test]
+fn bad_input_gives_keyword_errors() {
+    let p = sdnd122();
+    let s = settings(5, 50, 1);
+    let st = start_from_mode(&p, &s, &[1.0], 1.0, 10f64.sqrt()).unwrap();
+    let x = &st.point.x;
+    let kw = |r: Result<Floquet>| r.unwrap_err().keyword;
+    assert_eq!(kw(floquet(&p, &s, x, 1, Integrator::Newmark, 1e-2)).as_deref(), Some("SCHEMA_TEMPS/NB_INST"));
+    assert_eq!(kw(floquet(&p, &s, x, 100, Integrator::Newmark, -1.0)).as_deref(), Some("TOLERANCE"));
+    assert!(floquet(&p, &s, &x[1..], 100, Integrator::Rk4, 1e-2).is_err());
+    // A DOF without mass: M is not positive definite, refused rather than inverted.
+    let massless = Problem { m: sparse(2, &[(0, 0, 1.0)]), ..pair(1.0, vec![]) };
+    let coefs = vec![vec![0.0, 0.02, 0.0, 0.0, 0.0]; 2];
+    let lin = Linearised::new(&massless, Orbit::new(coefs, 2, 3.0).unwrap()).unwrap();
+    let err = monodromy(&lin, 100, Integrator::Newmark).unwrap_err();
+    assert_eq!(err.keyword.as_deref(), Some("MODE_NON_LINE"));
+}
