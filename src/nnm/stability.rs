@@ -78,11 +78,15 @@ impl Orbit {
     /// `coefs`: per DOF, 0, C1..CH, S1..SH (physical); `omega` in rad/s.
     pub fn new(coefs: Vec<Vec<f64>>, h: usize, omega: f64) -> Result<Orbit> {
         if !(omega.is_finite() && omega > 0.0) {
-            return Err(Error::input(format!("the periodic solution has ω = {omega:e}; ω > 0 expected")));
+            return Err(Error::input(format!(
+                "the periodic solution has ω = {omega:e}; ω > 0 expected"
+            )));
         }
         let len = series::len(h);
         if coefs.iter().any(|c| c.len() != len) {
-            return Err(Error::internal("displacement series of inconsistent length"));
+            return Err(Error::internal(
+                "displacement series of inconsistent length",
+            ));
         }
         let coefs = coefs
             .into_iter()
@@ -129,11 +133,22 @@ impl Linearised {
             .iter()
             .zip(etas)
             .map(|(s, eta)| {
-                let law = PointLaw { law: s.law, alpha: s.stiffness, gap: s.gap, eta };
+                let law = PointLaw {
+                    law: s.law,
+                    alpha: s.stiffness,
+                    gap: s.gap,
+                    eta,
+                };
                 (law, s.dofs.clone())
             })
             .collect();
-        Ok(Linearised { n, m: problem.m.to_dense(), k: problem.k.to_dense(), shocks, orbit })
+        Ok(Linearised {
+            n,
+            m: problem.m.to_dense(),
+            k: problem.k.to_dense(),
+            shocks,
+            orbit,
+        })
     }
 
     /// K + Σ Pᵀ J(t) P: the tangent stiffness along the orbit at time t.
@@ -177,12 +192,16 @@ pub fn floquet(
     tolerance: f64,
 ) -> Result<Floquet> {
     if n_steps < 2 {
-        return Err(Error::input(format!("NB_INST must be at least 2, got {n_steps}"))
-            .keyword("SCHEMA_TEMPS/NB_INST"));
+        return Err(
+            Error::input(format!("NB_INST must be at least 2, got {n_steps}"))
+                .keyword("SCHEMA_TEMPS/NB_INST"),
+        );
     }
     if !(tolerance.is_finite() && tolerance >= 0.0) {
-        return Err(Error::input(format!("TOLERANCE must be a non-negative number, got {tolerance}"))
-            .keyword("TOLERANCE"));
+        return Err(Error::input(format!(
+            "TOLERANCE must be a non-negative number, got {tolerance}"
+        ))
+        .keyword("TOLERANCE"));
     }
     let coefs = displacement_coefficients(problem, settings, x)?;
     // ω is the last-but-one unknown of a stored point (rad/s, module doc of nnm).
@@ -199,7 +218,11 @@ pub fn floquet(
 }
 
 /// Φ(T) of the linearised system with the chosen integrator.
-pub(crate) fn monodromy(lin: &Linearised, n_steps: usize, integrator: Integrator) -> Result<Mat<f64>> {
+pub(crate) fn monodromy(
+    lin: &Linearised,
+    n_steps: usize,
+    integrator: Integrator,
+) -> Result<Mat<f64>> {
     let mass = lin.m.llt(Side::Lower).map_err(|_| {
         Error::input("the mass matrix is not symmetric positive definite: the Floquet analysis needs a mass on every DOF")
             .keyword("MODE_NON_LINE")
@@ -228,11 +251,7 @@ pub(crate) fn analyse(lin: &Linearised, phi: &Mat<f64>, tolerance: f64) -> Resul
         .map(|m| ((m.0 - 1.0).hypot(m.1), m.0.hypot(m.1)))
         .collect();
     by_dist.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let trivial_distance = by_dist
-        .iter()
-        .take(2)
-        .map(|d| d.0)
-        .fold(0.0, f64::max);
+    let trivial_distance = by_dist.iter().take(2).map(|d| d.0).fold(0.0, f64::max);
     let max_nontrivial_modulus = match by_dist.len() {
         0..=2 => 1.0,
         _ => by_dist.iter().skip(2).map(|d| d.1).fold(0.0, f64::max),

@@ -10,7 +10,10 @@ use faer::Mat;
 
 /// Σ cᵢ Aᵢ (all the same shape).
 fn comb(terms: &[(f64, &Mat<f64>)]) -> Mat<f64> {
-    let (r, c) = terms.first().map(|t| (t.1.nrows(), t.1.ncols())).unwrap_or((0, 0));
+    let (r, c) = terms
+        .first()
+        .map(|t| (t.1.nrows(), t.1.ncols()))
+        .unwrap_or((0, 0));
     Mat::from_fn(r, c, |i, j| terms.iter().map(|(s, a)| s * a[(i, j)]).sum())
 }
 
@@ -22,7 +25,13 @@ fn start(n: usize) -> (Mat<f64>, Mat<f64>) {
 
 fn stack(u: &Mat<f64>, v: &Mat<f64>) -> Mat<f64> {
     let n = u.nrows();
-    Mat::from_fn(2 * n, u.ncols(), |i, j| if i < n { u[(i, j)] } else { v[(i - n, j)] })
+    Mat::from_fn(2 * n, u.ncols(), |i, j| {
+        if i < n {
+            u[(i, j)]
+        } else {
+            v[(i - n, j)]
+        }
+    })
 }
 
 /// −M⁻¹ K_t(t) U.
@@ -71,8 +80,20 @@ pub fn rk4(lin: &Linearised, mass: &Llt<f64>, n_steps: usize) -> Result<Mat<f64>
         let k4u = comb(&[(1.0, &v), (h, &k3v)]);
         let k4v = acceleration(lin, mass, t + h, &comb(&[(1.0, &u), (h, &k3u)]))?;
         let w = h / 6.0;
-        u = comb(&[(1.0, &u), (w, &k1u), (2.0 * w, &k2u), (2.0 * w, &k3u), (w, &k4u)]);
-        v = comb(&[(1.0, &v), (w, &k1v), (2.0 * w, &k2v), (2.0 * w, &k3v), (w, &k4v)]);
+        u = comb(&[
+            (1.0, &u),
+            (w, &k1u),
+            (2.0 * w, &k2u),
+            (2.0 * w, &k3u),
+            (w, &k4u),
+        ]);
+        v = comb(&[
+            (1.0, &v),
+            (w, &k1v),
+            (2.0 * w, &k2v),
+            (2.0 * w, &k3v),
+            (w, &k4v),
+        ]);
     }
     Ok(stack(&u, &v))
 }

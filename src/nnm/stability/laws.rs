@@ -126,7 +126,8 @@ impl PointLaw {
             ShockLaw::Cercle { origin } => {
                 let (dx, dy) = (comp(0)? - origin[0], comp(1)? - origin[1]);
                 let r = dx.hypot(dy);
-                if !(r > RING_CENTRE_TOL * self.gap) {
+                // Also catches a NaN distance.
+                if r.is_nan() || r <= RING_CENTRE_TOL * self.gap {
                     return Err(Error::numerical(format!(
                         "CERCLE: the orbit passes through the ring centre (radial distance {:.3e} × JEU); \
                          the contact force is not differentiable there",

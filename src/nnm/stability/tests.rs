@@ -2,14 +2,16 @@
 //! against the engine's, Newmark against RK4 on sdnd122, and an orbit that loses stability.
 
 use super::super::{
-    contact_coefficients, continue_branches, start_from_mode, Point, Problem, Settings, Shock, ShockLaw,
+    contact_coefficients, continue_branches, start_from_mode, Point, Problem, Settings, Shock,
+    ShockLaw,
 };
 use super::*;
 use faer::sparse::{SparseColMat, Triplet};
 use std::f64::consts::PI;
 
 fn sparse(n: usize, e: &[(usize, usize, f64)]) -> SparseColMat<usize, f64> {
-    let t: Vec<Triplet<usize, usize, f64>> = e.iter().map(|&(r, c, v)| Triplet::new(r, c, v)).collect();
+    let t: Vec<Triplet<usize, usize, f64>> =
+        e.iter().map(|&(r, c, v)| Triplet::new(r, c, v)).collect();
     SparseColMat::try_new_from_triplets(n, n, &t).unwrap()
 }
 
@@ -42,7 +44,13 @@ fn branch(problem: &Problem, s: &Settings, mode: &[f64], coef: f64, omega: f64) 
 }
 
 fn shock(law: ShockLaw, dofs: Vec<usize>) -> Shock {
-    Shock { law, dofs, gap: 0.01, stiffness: 50.0, regul: 5e-5 }
+    Shock {
+        law,
+        dofs,
+        gap: 0.01,
+        stiffness: 50.0,
+        regul: 5e-5,
+    }
 }
 
 /// sdnd122: m = 1, k = 10, stop at JEU = 0.01, RIGI_NOR = 50, PARA_REGUL = 5e-5.
@@ -58,7 +66,10 @@ fn sdnd122() -> Problem {
 fn pair(kc: f64, shocks: Vec<Shock>) -> Problem {
     let k = 10.0;
     Problem {
-        k: sparse(2, &[(0, 0, k + kc), (0, 1, -kc), (1, 0, -kc), (1, 1, k + kc)]),
+        k: sparse(
+            2,
+            &[(0, 0, k + kc), (0, 1, -kc), (1, 0, -kc), (1, 1, k + kc)],
+        ),
         m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),
         shocks,
     }
@@ -75,7 +86,10 @@ fn assert_multipliers(got: &[(f64, f64)], want: &[(f64, f64)], tol: f64, what: &
             .map(|(i, g)| (i, (g.0 - w.0).hypot(g.1 - w.1)))
             .min_by(|a, b| a.1.total_cmp(&b.1))
             .unwrap();
-        assert!(d < tol, "{what}: expected {w:?}, nearest at {d:e}; got {got:?}");
+        assert!(
+            d < tol,
+            "{what}: expected {w:?}, nearest at {d:e}; got {got:?}"
+        );
         left.remove(i);
     }
 }
@@ -113,11 +127,20 @@ fn amplification(integrator: Integrator, z: (f64, f64)) -> (f64, f64) {
 /// The discrete monodromy multipliers of a linear system M Ü + K U = 0 whose M⁻¹K has
 /// eigenvalues `lambda2` (ω² > 0: oscillating; < 0: diverging): for each, the first-order
 /// eigenvalues ±√(−λ²) advanced by `n` steps of `h`.
-fn discrete_multipliers(integrator: Integrator, lambda2: &[f64], h: f64, n: usize) -> Vec<(f64, f64)> {
+fn discrete_multipliers(
+    integrator: Integrator,
+    lambda2: &[f64],
+    h: f64,
+    n: usize,
+) -> Vec<(f64, f64)> {
     lambda2
         .iter()
         .flat_map(|&w2| {
-            let l = if w2 >= 0.0 { (0.0, w2.sqrt()) } else { ((-w2).sqrt(), 0.0) };
+            let l = if w2 >= 0.0 {
+                (0.0, w2.sqrt())
+            } else {
+                ((-w2).sqrt(), 0.0)
+            };
             [l, (-l.0, -l.1)]
         })
         .map(|l| cpow(amplification(integrator, (l.0 * h, l.1 * h)), n))
@@ -128,7 +151,10 @@ fn discrete_multipliers(integrator: Integrator, lambda2: &[f64], h: f64, n: usiz
 fn linear_chain_gives_the_discrete_closed_form_multipliers_on_the_unit_circle() {
     // Grounded chain k = 10 / m = 1: M⁻¹K = [[20, −10], [−10, 10]], ω² = 10(3 ∓ √5)/2.
     let p = Problem {
-        k: sparse(2, &[(0, 0, 20.0), (0, 1, -10.0), (1, 0, -10.0), (1, 1, 10.0)]),
+        k: sparse(
+            2,
+            &[(0, 0, 20.0), (0, 1, -10.0), (1, 0, -10.0), (1, 1, 10.0)],
+        ),
         m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),
         shocks: vec![],
     };
@@ -158,7 +184,10 @@ fn linear_chain_gives_the_discrete_closed_form_multipliers_on_the_unit_circle() 
             .collect();
         assert_multipliers(&f.multipliers, &exact, 4e-3, &format!("{integ:?} vs exact"));
         // |μ| = 1 up to round-off for the trapezoidal rule, 1 − O((ωh)⁶ N) for RK4.
-        assert!(f.stable && (f.max_modulus - 1.0).abs() < 1e-9, "{integ:?}: {f:?}");
+        assert!(
+            f.stable && (f.max_modulus - 1.0).abs() < 1e-9,
+            "{integ:?}: {f:?}"
+        );
         // The trivial pair is the mode's own pair, at +1 up to the phase error.
         assert!(f.trivial_distance < 1e-3 && f.orbit_defect < 1e-3, "{f:?}");
     }
@@ -187,7 +216,12 @@ fn a_negative_stiffness_mode_gives_a_real_multiplier_above_one() {
         // Relative round-off on a multiplier of e^{3.6} ≈ 38.
         assert_multipliers(&f.multipliers, &want, 1e-9 * 38.0, &format!("{integ:?}"));
         // Exact e^{T} within the schemes' error, (σh)² T/12 relative for the trapezoidal rule.
-        assert!((f.max_modulus / t.exp() - 1.0).abs() < 1e-4, "{integ:?}: {} vs {}", f.max_modulus, t.exp());
+        assert!(
+            (f.max_modulus / t.exp() - 1.0).abs() < 1e-4,
+            "{integ:?}: {} vs {}",
+            f.max_modulus,
+            t.exp()
+        );
         assert!(!f.stable && (f.max_nontrivial_modulus - f.max_modulus).abs() < 1e-12);
     }
 }
@@ -203,16 +237,28 @@ fn eta_phys_and_the_laws_match_the_engine_scaled_laws() {
         let eta = eta_phys(&p).unwrap()[0];
         assert!((eta / (5e-5 * 120.0 / 11.0 * 1e-4) - 1.0).abs() < 1e-14);
         let sc = Scaling::new(&p, 1.0, 0).unwrap();
-        let pl = PointLaw { law, alpha: 50.0, gap: 0.01, eta };
+        let pl = PointLaw {
+            law,
+            alpha: 50.0,
+            gap: 0.01,
+            eta,
+        };
         let us: Vec<f64> = (0..41).map(|i| -0.03 + 0.0015 * i as f64).collect();
-        let scaled = if law == ShockLaw::Plan { ScaledLaw::Plan } else { ScaledLaw::BiPlan };
+        let scaled = if law == ShockLaw::Plan {
+            ScaledLaw::Plan
+        } else {
+            ScaledLaw::BiPlan
+        };
         let u_s: Vec<f64> = us.iter().map(|u| u / sc.g).collect();
         let own = own_from_u(scaled, 0.01 / sc.g, 50.0 / sc.k, 5e-5, &[u_s]).unwrap();
         for (u, f_s) in us.iter().zip(&own[0]) {
             let f_engine = f_s * sc.k * sc.g;
             let f = pl.eval(&[*u]).unwrap().0[0];
             // Two closed forms of the same root (bisection to 1e-15 for BI_PLAN).
-            assert!((f - f_engine).abs() <= 1e-12 * f_engine.abs().max(1e-12), "{law:?} u {u}: {f:e} vs {f_engine:e}");
+            assert!(
+                (f - f_engine).abs() <= 1e-12 * f_engine.abs().max(1e-12),
+                "{law:?} u {u}: {f:e} vs {f_engine:e}"
+            );
         }
     }
 }
@@ -227,7 +273,12 @@ fn pointwise_laws_reproduce_the_engine_contact_forces_in_time() {
     let cases = [
         (ShockLaw::Plan, vec![1]),
         (ShockLaw::BiPlan, vec![1]),
-        (ShockLaw::Cercle { origin: [0.001, 0.001] }, vec![0, 1]),
+        (
+            ShockLaw::Cercle {
+                origin: [0.001, 0.001],
+            },
+            vec![0, 1],
+        ),
     ];
     for (law, dofs) in cases {
         let p = pair(1.0, vec![shock(law, dofs.clone())]);
@@ -252,8 +303,14 @@ fn pointwise_laws_reproduce_the_engine_contact_forces_in_time() {
             }
         }
         // In contact: the peak force is many times α·(regularisation width).
-        assert!(peak > 0.05, "{law:?}: the orbit must reach the stop (peak force {peak:e})");
-        assert!(worst < 5e-3 * peak, "{law:?}: law vs engine {worst:e} (peak {peak:e})");
+        assert!(
+            peak > 0.05,
+            "{law:?}: the orbit must reach the stop (peak force {peak:e})"
+        );
+        assert!(
+            worst < 5e-3 * peak,
+            "{law:?}: law vs engine {worst:e} (peak {peak:e})"
+        );
     }
 }
 
@@ -263,11 +320,30 @@ fn law_jacobians_are_the_derivatives_of_the_forces() {
     // ~1e-16/1e-8: 1e-5 relative (to the largest entry) covers both with a wide margin.
     let (g, alpha, eta) = (0.01, 50.0, 5e-5 * 10.0 * 1e-4);
     let laws = [
-        PointLaw { law: ShockLaw::Plan, alpha, gap: g, eta },
-        PointLaw { law: ShockLaw::BiPlan, alpha, gap: g, eta },
-        PointLaw { law: ShockLaw::Cercle { origin: [0.001, -0.002] }, alpha, gap: g, eta },
+        PointLaw {
+            law: ShockLaw::Plan,
+            alpha,
+            gap: g,
+            eta,
+        },
+        PointLaw {
+            law: ShockLaw::BiPlan,
+            alpha,
+            gap: g,
+            eta,
+        },
+        PointLaw {
+            law: ShockLaw::Cercle {
+                origin: [0.001, -0.002],
+            },
+            alpha,
+            gap: g,
+            eta,
+        },
     ];
-    let samples = [-0.02, -0.0101, -0.005, 0.0, 0.003, 0.0099, 0.01, 0.0101, 0.013, 0.03];
+    let samples = [
+        -0.02, -0.0101, -0.005, 0.0, 0.003, 0.0099, 0.01, 0.0101, 0.013, 0.03,
+    ];
     for law in laws {
         let nc = law.n_comp();
         for (i, &a) in samples.iter().enumerate() {
@@ -318,11 +394,20 @@ fn sdnd122_is_stable_and_newmark_converges_to_rk4_at_second_order() {
         assert!((det - 1.0).abs() < 1e-9, "E {:e}: det Φ {det}", q.energy);
         let diffs: Vec<f64> = [500, 1000, 2000]
             .iter()
-            .map(|&nb| rel_diff(&monodromy(&lin, nb, Integrator::Newmark).unwrap(), &reference))
+            .map(|&nb| {
+                rel_diff(
+                    &monodromy(&lin, nb, Integrator::Newmark).unwrap(),
+                    &reference,
+                )
+            })
             .collect();
         // Second order: ×4 per halving of the step (measured 3.9–4.0); 3 leaves room for
         // the contact onsets, resolved only from ~500 steps per period.
-        assert!(diffs[0] > 3.0 * diffs[1] && diffs[1] > 3.0 * diffs[2], "E {:e}: {diffs:?}", q.energy);
+        assert!(
+            diffs[0] > 3.0 * diffs[1] && diffs[1] > 3.0 * diffs[2],
+            "E {:e}: {diffs:?}",
+            q.energy
+        );
         // At NB_INST = 1000 the two agree to 6e-5 (measured 3e-5 to 6e-5).
         assert!(diffs[1] < 1e-4, "E {:e}: {diffs:?}", q.energy);
         for integ in [Integrator::Newmark, Integrator::Rk4] {
@@ -331,7 +416,11 @@ fn sdnd122_is_stable_and_newmark_converges_to_rk4_at_second_order() {
             // tr Φ ≤ 2 it lies on the unit circle (|μ| = 1 to 2e-3, the Jordan block's √ of
             // Newmark's 3e-5 error on Φ), at the distance from +1 set by the H_l = 5 orbit.
             assert!(f.stable && f.multipliers.len() == 2, "{f:?}");
-            assert!((f.max_modulus - 1.0).abs() < 5e-3, "E {:e} {integ:?}: {f:?}", q.energy);
+            assert!(
+                (f.max_modulus - 1.0).abs() < 5e-3,
+                "E {:e} {integ:?}: {f:?}",
+                q.energy
+            );
         }
     }
 }
@@ -361,34 +450,64 @@ fn anti_phase_mode_is_unstable_between_its_energy_extrema_and_in_phase_mode_is_s
     let s = settings(10, 100, 25);
     let pts = branch(&p, &s, &[1.0, -1.0], 0.5, 12f64.sqrt());
     let e: Vec<f64> = pts.iter().map(|q| q.energy).collect();
-    let imax = (1..e.len() - 1).find(|&i| e[i] > e[i - 1] && e[i] >= e[i + 1]).expect("an energy maximum");
-    let imin = (imax + 1..e.len() - 1).find(|&i| e[i] < e[i - 1] && e[i] <= e[i + 1]).expect("an energy minimum");
+    let imax = (1..e.len() - 1)
+        .find(|&i| e[i] > e[i - 1] && e[i] >= e[i + 1])
+        .expect("an energy maximum");
+    let imin = (imax + 1..e.len() - 1)
+        .find(|&i| e[i] < e[i - 1] && e[i] <= e[i + 1])
+        .expect("an energy minimum");
     let verdicts: Vec<Floquet> = pts
         .iter()
         .map(|q| floquet(&p, &s, &q.x, 1000, Integrator::Rk4, 1e-2).unwrap())
         .collect();
     let unstable: Vec<usize> = (0..pts.len()).filter(|&i| !verdicts[i].stable).collect();
     let (a, b) = (unstable[0], unstable[unstable.len() - 1]);
-    assert_eq!(unstable.len(), b - a + 1, "one unstable stretch: {unstable:?}");
-    assert!(a.abs_diff(imax) <= 1 && b.abs_diff(imin) <= 1, "unstable {a}..={b}, energy max {imax}, min {imin}");
+    assert_eq!(
+        unstable.len(),
+        b - a + 1,
+        "one unstable stretch: {unstable:?}"
+    );
+    assert!(
+        a.abs_diff(imax) <= 1 && b.abs_diff(imin) <= 1,
+        "unstable {a}..={b}, energy max {imax}, min {imin}"
+    );
     // Far beyond TOLERANCE and beyond the trivial pair's own error (≤ 0.12 here).
-    let worst = verdicts.iter().map(|f| f.max_nontrivial_modulus).fold(0.0, f64::max);
+    let worst = verdicts
+        .iter()
+        .map(|f| f.max_nontrivial_modulus)
+        .fold(0.0, f64::max);
     assert!(worst > 1.4, "largest multiplier {worst}");
     for (i, f) in verdicts.iter().enumerate() {
         if i + 1 < a || i > b + 1 {
             // Stable rows: the nontrivial pair on the unit circle (RK4 error ~1e-8).
-            assert!((f.max_nontrivial_modulus - 1.0).abs() < 1e-4, "row {i}: {f:?}");
+            assert!(
+                (f.max_nontrivial_modulus - 1.0).abs() < 1e-4,
+                "row {i}: {f:?}"
+            );
             // Newmark agrees away from the boundaries.
-            assert!(floquet(&p, &s, &pts[i].x, 1000, Integrator::Newmark, 1e-2).unwrap().stable);
+            assert!(
+                floquet(&p, &s, &pts[i].x, 1000, Integrator::Newmark, 1e-2)
+                    .unwrap()
+                    .stable
+            );
         } else if i > a && i < b {
-            assert!(!floquet(&p, &s, &pts[i].x, 1000, Integrator::Newmark, 1e-2).unwrap().stable, "row {i}");
+            assert!(
+                !floquet(&p, &s, &pts[i].x, 1000, Integrator::Newmark, 1e-2)
+                    .unwrap()
+                    .stable,
+                "row {i}"
+            );
         }
     }
     // The in-phase NNM of the same system stays stable over the same energy range.
     let s = settings(10, 100, 12);
     for q in branch(&p, &s, &[1.0, 1.0], 0.5, 10f64.sqrt()) {
         let f = floquet(&p, &s, &q.x, 1000, Integrator::Rk4, 1e-2).unwrap();
-        assert!(f.stable && (f.max_nontrivial_modulus - 1.0).abs() < 1e-4, "E {:e}: {f:?}", q.energy);
+        assert!(
+            f.stable && (f.max_nontrivial_modulus - 1.0).abs() < 1e-4,
+            "E {:e}: {f:?}",
+            q.energy
+        );
     }
 }
 
@@ -399,11 +518,20 @@ fn bad_input_gives_keyword_errors() {
     let st = start_from_mode(&p, &s, &[1.0], 1.0, 10f64.sqrt()).unwrap();
     let x = &st.point.x;
     let kw = |r: Result<Floquet>| r.unwrap_err().keyword;
-    assert_eq!(kw(floquet(&p, &s, x, 1, Integrator::Newmark, 1e-2)).as_deref(), Some("SCHEMA_TEMPS/NB_INST"));
-    assert_eq!(kw(floquet(&p, &s, x, 100, Integrator::Newmark, -1.0)).as_deref(), Some("TOLERANCE"));
+    assert_eq!(
+        kw(floquet(&p, &s, x, 1, Integrator::Newmark, 1e-2)).as_deref(),
+        Some("SCHEMA_TEMPS/NB_INST")
+    );
+    assert_eq!(
+        kw(floquet(&p, &s, x, 100, Integrator::Newmark, -1.0)).as_deref(),
+        Some("TOLERANCE")
+    );
     assert!(floquet(&p, &s, &x[1..], 100, Integrator::Rk4, 1e-2).is_err());
     // A DOF without mass: M is not positive definite, refused rather than inverted.
-    let massless = Problem { m: sparse(2, &[(0, 0, 1.0)]), ..pair(1.0, vec![]) };
+    let massless = Problem {
+        m: sparse(2, &[(0, 0, 1.0)]),
+        ..pair(1.0, vec![])
+    };
     let coefs = vec![vec![0.0, 0.02, 0.0, 0.0, 0.0]; 2];
     let lin = Linearised::new(&massless, Orbit::new(coefs, 2, 3.0).unwrap()).unwrap();
     let err = monodromy(&lin, 100, Integrator::Newmark).unwrap_err();
