@@ -519,7 +519,7 @@ fn bad_input_gives_keyword_errors() {
     let x = &st.point.x;
     let kw = |r: Result<Floquet>| r.unwrap_err().keyword;
     assert_eq!(
-        kw(floquet(&p, &s, x, 1, Integrator::Newmark, 1e-2)).as_deref(),
+        kw(floquet(&p, &s, x, 0, Integrator::Newmark, 1e-2)).as_deref(),
         Some("SCHEMA_TEMPS/NB_INST")
     );
     assert_eq!(
@@ -536,4 +536,24 @@ fn bad_input_gives_keyword_errors() {
     let lin = Linearised::new(&massless, Orbit::new(coefs, 2, 3.0).unwrap()).unwrap();
     let err = monodromy(&lin, 100, Integrator::Newmark).unwrap_err();
     assert_eq!(err.keyword.as_deref(), Some("MODE_NON_LINE"));
+}
+
+#[test]
+fn trivial_pair_approaches_one_as_the_orbit_harmonics_grow() {
+    // The trivial pair is exact only on an exact orbit: its distance to +1 and the orbit
+    // defect measure the truncation of U(t) at NB_HARM_LINE. On sdnd122 at E ≈ 5.9e-4 J
+    // (measured distance 0.13, 0.030, 0.0088 and defect 9e-3, 5e-4, 4e-5 for H_l = 5, 10,
+    // 20) both must at least halve at each refinement.
+    let p = sdnd122();
+    let mut last = (f64::INFINITY, f64::INFINITY);
+    for hl in [5, 10, 20] {
+        let s = settings(hl, 100, 10);
+        let q = branch(&p, &s, &[1.0], 1.0, 10f64.sqrt()).pop().unwrap();
+        let f = floquet(&p, &s, &q.x, 2000, Integrator::Rk4, 1e-2).unwrap();
+        assert!(
+            f.trivial_distance < 0.5 * last.0 && f.orbit_defect < 0.5 * last.1,
+            "H_l {hl}: {f:?} after {last:?}"
+        );
+        last = (f.trivial_distance, f.orbit_defect);
+    }
 }
