@@ -8,13 +8,22 @@ use faer::linalg::solvers::Llt;
 use faer::prelude::Solve;
 use faer::Mat;
 
-/// Σ cᵢ Aᵢ (all the same shape).
+/// Σ cᵢ Aᵢ (all the same shape), column by column on contiguous storage.
 fn comb(terms: &[(f64, &Mat<f64>)]) -> Mat<f64> {
     let (r, c) = terms
         .first()
         .map(|t| (t.1.nrows(), t.1.ncols()))
         .unwrap_or((0, 0));
-    Mat::from_fn(r, c, |i, j| terms.iter().map(|(s, a)| s * a[(i, j)]).sum())
+    let mut out = Mat::zeros(r, c);
+    for j in 0..c {
+        let o = out.col_as_slice_mut(j);
+        for (s, a) in terms {
+            for (y, x) in o.iter_mut().zip(a.col_as_slice(j)) {
+                *y += s * x;
+            }
+        }
+    }
+    out
 }
 
 fn start(n: usize) -> (Mat<f64>, Mat<f64>) {
