@@ -68,6 +68,17 @@ pub struct Floquet {
     pub stable: bool,
 }
 
+impl Floquet {
+    /// Code_Aster's STABILITE value: 'STABLE' or 'INSTABLE'.
+    pub fn label(&self) -> &'static str {
+        if self.stable {
+            "STABLE"
+        } else {
+            "INSTABLE"
+        }
+    }
+}
+
 /// The orbit U(t) of a stored point, and its time derivatives, from its Fourier series.
 pub(crate) struct Orbit {
     pub omega: f64,
