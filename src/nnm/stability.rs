@@ -204,11 +204,8 @@ pub fn floquet(
     integrator: Integrator,
     tolerance: f64,
 ) -> Result<Floquet> {
-    if n_steps < 2 {
-        return Err(
-            Error::input(format!("NB_INST must be at least 2, got {n_steps}"))
-                .keyword("SCHEMA_TEMPS/NB_INST"),
-        );
+    if n_steps == 0 {
+        return Err(Error::input("NB_INST must be at least 1").keyword("SCHEMA_TEMPS/NB_INST"));
     }
     if !(tolerance.is_finite() && tolerance >= 0.0) {
         return Err(Error::input(format!(
