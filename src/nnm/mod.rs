@@ -25,6 +25,7 @@ mod linear_solver;
 mod newton;
 mod resolution;
 mod series;
+pub mod stability;
 mod system;
 
 #[cfg(test)]

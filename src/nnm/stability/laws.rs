@@ -1,0 +1,151 @@
+//! The regularised contact laws of the engine evaluated pointwise in physical units, with
+//! their derivatives: the tangent stiffness J(t) = ∂F/∂u that the variational equation needs.
+//!
+//! Same laws as `nnm::laws` (which works on Fourier series in scaled units); written out
+//! here in closed form per sample. With α = RIGI_NOR, g = JEU and
+//! η = PARA_REGUL·k_ref·JEU² (`eta_phys`):
+//! - PLAN:    f² − α f (u − g) − α η = 0, positive root; df/du = α f / √(α²(u−g)² + 4αη).
+//! - BI_PLAN: f ((f − α u)² − α² g²) + α² η u = 0 on the root through f(0) = 0 (the engine's
+//!   branch); df/du by implicit differentiation.
+//! - CERCLE:  r = |u − e|, f = PLAN law in r, force f (u − e)/r,
+//!   ∂F/∂u = f'(r) n nᵀ + (f/r)(I − n nᵀ), n = (u − e)/r.
+//!
+//! Sign: the force enters M Ü + K U + Pᵀ F = 0 with a plus sign (as in the engine's
+//! residual), so a compressed stop (u > g for PLAN) has f > 0 and J adds to K.
+
+use super::super::system::Scaling;
+use super::super::{Problem, ShockLaw};
+use crate::error::{Error, Result};
+
+/// Closest approach to the ring centre accepted, relative to JEU (as the engine's check).
+const RING_CENTRE_TOL: f64 = super::super::laws::RING_CENTRE_TOL;
+
+/// Physical regularisation η of each shock: PARA_REGUL·k_ref·JEU², with k_ref the engine's
+/// reference stiffness (1/(K⁻¹)pp at the DOF of the shock with the largest JEU).
+pub(crate) fn eta_phys(problem: &Problem) -> Result<Vec<f64>> {
+    if problem.shocks.is_empty() {
+        return Ok(Vec::new());
+    }
+    // With shocks the amplitude and fallback DOF arguments are not used by the scaling.
+    let sc = Scaling::new(problem, 1.0, 0)?;
+    Ok(problem
+        .shocks
+        .iter()
+        .map(|s| s.regul * sc.k * s.gap * s.gap)
+        .collect())
+}
+
+/// One shock's law in physical units.
+#[derive(Clone, Copy, Debug)]
+pub struct PointLaw {
+    pub law: ShockLaw,
+    pub alpha: f64,
+    pub gap: f64,
+    pub eta: f64,
+}
+
+/// PLAN force and df/du at penetration d = u − g, without cancellation on either side.
+fn plan(d: f64, alpha: f64, eta: f64) -> (f64, f64) {
+    let q = (alpha * alpha * d * d + 4.0 * alpha * eta).sqrt();
+    let f = if d > 0.0 {
+        0.5 * (alpha * d + q)
+    } else {
+        // f·(q − αd)/2 = αη: the product of the two roots.
+        2.0 * alpha * eta / (q - alpha * d)
+    };
+    (f, alpha * f / q)
+}
+
+/// BI_PLAN force and df/du. For u > 0 the root lies in (max(0, α(u−g)), α u), where
+/// ψ(f) = f (1 − ((f − αu)/(αg))²) − (η/g²) u goes from negative to positive; the law is odd.
+fn biplan(u: f64, alpha: f64, g: f64, eta: f64) -> Result<(f64, f64)> {
+    let ep = eta / (g * g);
+    let ag = alpha * g;
+    if alpha <= ep {
+        return Err(Error::input(format!(
+            "BI_PLAN: PARA_REGUL is too large for RIGI_NOR (η/JEU² = {ep:e} ≥ RIGI_NOR = {alpha:e}); \
+             the regularised law has no restoring branch"
+        ))
+        .keyword("CHOC/PARA_REGUL"));
+    }
+    let (sign, ua) = if u < 0.0 { (-1.0, -u) } else { (1.0, u) };
+    let psi = |f: f64| f * (1.0 - ((f - alpha * ua) / ag).powi(2)) - ep * ua;
+    let mut f = 0.0;
+    if ua > 0.0 {
+        let (mut lo, mut hi) = ((alpha * (ua - g)).max(0.0), alpha * ua);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if psi(mid) < 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+            if hi - lo <= 1e-15 * hi {
+                break;
+            }
+        }
+        f = 0.5 * (lo + hi);
+    }
+    // Implicit derivative of ψ(f, u) = 0 (the same in u and −u since the law is odd).
+    let w = (f - alpha * ua) / ag;
+    let psi_f = 1.0 - w * w - 2.0 * f * w / ag;
+    let psi_u = 2.0 * f * w / g - ep;
+    if !(psi_f.is_finite() && psi_f > 0.0) {
+        return Err(Error::numerical(format!(
+            "BI_PLAN: the regularised law is singular at u = {u:e} (∂ψ/∂f = {psi_f:e})"
+        )));
+    }
+    Ok((sign * f, -psi_u / psi_f))
+}
+
+impl PointLaw {
+    /// Number of displacement components (1, or 2 for CERCLE).
+    pub fn n_comp(&self) -> usize {
+        match self.law {
+            ShockLaw::Cercle { .. } => 2,
+            _ => 1,
+        }
+    }
+
+    /// Force components and their Jacobian (row-major n_comp × n_comp) at displacement `u`.
+    pub fn eval(&self, u: &[f64]) -> Result<(Vec<f64>, Vec<f64>)> {
+        let comp = |i: usize| {
+            u.get(i)
+                .copied()
+                .ok_or_else(|| Error::internal("contact law component missing"))
+        };
+        match self.law {
+            ShockLaw::Plan => {
+                let (f, df) = plan(comp(0)? - self.gap, self.alpha, self.eta);
+                Ok((vec![f], vec![df]))
+            }
+            ShockLaw::BiPlan => {
+                let (f, df) = biplan(comp(0)?, self.alpha, self.gap, self.eta)?;
+                Ok((vec![f], vec![df]))
+            }
+            ShockLaw::Cercle { origin } => {
+                let (dx, dy) = (comp(0)? - origin[0], comp(1)? - origin[1]);
+                let r = dx.hypot(dy);
+                // Also catches a NaN distance.
+                if r.is_nan() || r <= RING_CENTRE_TOL * self.gap {
+                    return Err(Error::numerical(format!(
+                        "CERCLE: the orbit passes through the ring centre (radial distance {:.3e} × JEU); \
+                         the contact force is not differentiable there",
+                        r / self.gap
+                    ))
+                    .keyword("CHOC/ORIG_OBST"));
+                }
+                let (f, df) = plan(r - self.gap, self.alpha, self.eta);
+                let (nx, ny) = (dx / r, dy / r);
+                let t = f / r;
+                let j = vec![
+                    df * nx * nx + t * (1.0 - nx * nx),
+                    (df - t) * nx * ny,
+                    (df - t) * nx * ny,
+                    df * ny * ny + t * (1.0 - ny * ny),
+                ];
+                Ok((vec![f * nx, f * ny], j))
+            }
+        }
+    }
+}
