@@ -240,13 +240,23 @@ fn sdnd122a_nonlinear_mode_end_to_end() {
 }
 
 #[test]
-fn sdnd122b_boundary_conditions_by_ddl_impo() {
-    let out = run_ok("sdnd122b.comm");
-    assert!(out.contains("MODE_NON_LINE MNL: 1050 point(s)"), "{out}");
-}
-
-#[test]
 fn sdnd122c_restart_into_a_new_concept() {
     let out = run_ok("sdnd122c.comm");
     assert!(out.contains("tests: 6 OK, 0 NOOK"), "{out}");
+}
+
+#[test]
+fn sdnd122b_ddl_impo_and_row_1000_is_stable() {
+    let out = run_ok("sdnd122b.comm");
+    assert!(out.contains("MODE_NON_LINE MNL: 1050 point(s)"), "{out}");
+    assert!(
+        out.contains("CALC_STABILITE MNL: 1 STABLE, 0 INSTABLE"),
+        "{out}"
+    );
+}
+
+#[test]
+fn two_dof_anti_phase_mode_loses_stability_between_its_energy_extrema() {
+    let out = run_ok("stability_2dof.comm");
+    assert!(out.contains("tests: 5 OK, 0 NOOK"), "{out}");
 }

@@ -13,6 +13,7 @@ pub mod asse_matrice;
 pub mod assemblage;
 pub mod calc_matr_elem;
 pub mod calc_modes;
+pub mod calc_stabilite;
 pub mod calc_table;
 pub mod crea_maillage;
 pub mod crea_table;
@@ -189,6 +190,7 @@ pub fn lookup(name: &str) -> Option<OpFn> {
         "CALC_MATR_ELEM" => calc_matr_elem::run,
         "NUME_DDL" => nume_ddl::run,
         "CALC_MODES" => calc_modes::run,
+        "CALC_STABILITE" => calc_stabilite::run,
         "MODE_NON_LINE" => mode_non_line::run,
         "REST_MODE_NONL" => rest_mode_nonl::run,
         "TEST_RESU" => test_resu::run,

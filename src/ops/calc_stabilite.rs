@@ -1,0 +1,108 @@
+//! CALC_STABILITE: stability of the rows of a MODE_NON_LINE table from the Floquet
+//! multipliers of their periodic solutions (monodromy over one period of the regularised
+//! system). Fills STABILITE ('STABLE'/'INSTABLE') on the filtered rows and stores every
+//! multiplier in the SQL table `mnl_floquet`.
+
+use crate::args::Args;
+use crate::error::{Error, Result};
+use crate::nnm::stability::{floquet, Integrator};
+use crate::ops::mnl_common::{engine_problem, row_of};
+use crate::ops::{progress::Progress, OpContext};
+use crate::store::{matrix, mnl as mnl_store, table as table_store};
+use crate::table::print::format_e;
+use crate::table::{Cell, Table};
+
+pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    let src = args.req_concept("MODE_NON_LINE")?.name.clone();
+    let name = match (ctx.reuse, ctx.result) {
+        (Some(r), _) | (None, Some(r)) => r.to_string(),
+        (None, None) => ctx.result_name()?.to_string(),
+    };
+    let mut table = table_store::load_table(ctx.store, &src)?;
+    let setup = mnl_store::load_setup(ctx.store, &src)?;
+    let k = matrix::load_matrix(ctx.store, &setup.matr_rigi)?;
+    let m = matrix::load_matrix(ctx.store, &setup.matr_mass)?;
+    let (problem, settings, _) = engine_problem(&setup, &k, &m)?;
+    let tolerance = args.real("TOLERANCE").unwrap_or(1e-2);
+    let schema = args.fact("SCHEMA_TEMPS");
+    let integrator = match schema.and_then(|s| s.text("SCHEMA")).unwrap_or("NEWMARK") {
+        "RUNGE_KUTTA_4" => Integrator::Rk4,
+        _ => Integrator::Newmark,
+    };
+    let n_inst = schema.and_then(|s| s.int("NB_INST")).unwrap_or(1000);
+    let n_inst = usize::try_from(n_inst).map_err(|_| {
+        Error::validation(format!("NB_INST must be positive, got {n_inst}"))
+            .keyword("CALC_STABILITE/SCHEMA_TEMPS/NB_INST")
+    })?;
+    let rows = selected_rows(&table, args.req_fact("FILTRE")?)?;
+    if rows.is_empty() {
+        return Err(Error::validation("FILTRE selects no row of the table")
+            .keyword("CALC_STABILITE/FILTRE")
+            .hint("check NUME_ORDRE, or widen FREQ_MIN/FREQ_MAX"));
+    }
+    if ctx.reuse.is_none() && name != src {
+        ctx.create(&name, "table_container")?;
+        mnl_store::copy_data(ctx.store, &src, &name)?;
+    }
+    let stab_col = table.req_col("STABILITE")?;
+    let order_col = table.req_col("NUME_ORDRE")?;
+    let progress = Progress::new(ctx.progress, rows.len() as u64, "CALC_STABILITE");
+    let (mut stable, mut unstable) = (0usize, 0usize);
+    for r in rows {
+        let order = match table.rows[r].get(order_col) {
+            Some(Cell::I(i)) => *i,
+            _ => continue,
+        };
+        let x = mnl_store::load_point(ctx.store, &src, order)?
+            .ok_or_else(|| Error::store(format!("{src}: row {order} has no stored point")))?;
+        let f = floquet(&problem, &settings, &x, n_inst, integrator, tolerance)
+            .map_err(|e| e.keyword(format!("CALC_STABILITE (row NUME_ORDRE={order})")))?;
+        mnl_store::save_multipliers(ctx.store, &name, order, &f.multipliers)?;
+        let verdict = if f.stable { "STABLE" } else { "INSTABLE" };
+        if f.stable {
+            stable += 1;
+        } else {
+            unstable += 1;
+        }
+        table.rows[r][stab_col] = Cell::K(verdict.to_string());
+        if ctx.info >= 2 {
+            ctx.say(&format!(
+                "  NUME_ORDRE {order:>5}: {verdict:<8} max |mu| (trivial pair excluded) {}  trivial pair at {} from +1",
+                format_e(f.max_nontrivial_modulus, 6),
+                format_e(f.trivial_distance, 2)
+            ))?;
+        }
+        progress.inc();
+    }
+    progress.finish();
+    table_store::save_table(ctx.store, &name, &table)?;
+    ctx.say(&format!(
+        "CALC_STABILITE {name}: {stable} STABLE, {unstable} INSTABLE (TOLERANCE={tolerance:e}); multipliers: SELECT * FROM mnl_floquet WHERE concept='{name}'"
+    ))
+}
+
+/// Rows chosen by FILTRE: NUME_ORDRE list, or a band FREQ_MIN..FREQ_MAX widened by
+/// PRECISION (relative).
+fn selected_rows(t: &Table, filtre: &Args) -> Result<Vec<usize>> {
+    if let Some(orders) = filtre.ints("NUME_ORDRE") {
+        return orders
+            .iter()
+            .map(|&o| {
+                row_of(t, o).ok_or_else(|| {
+                    Error::validation(format!("the table has no row NUME_ORDRE={o}"))
+                        .keyword("CALC_STABILITE/FILTRE/NUME_ORDRE")
+                })
+            })
+            .collect();
+    }
+    let (lo, hi) = (filtre.req_real("FREQ_MIN")?, filtre.req_real("FREQ_MAX")?);
+    let prec = filtre.real("PRECISION").unwrap_or(1e-3);
+    let (lo, hi) = (lo * (1.0 - prec), hi * (1.0 + prec));
+    Ok((0..t.nrows())
+        .filter(|&r| {
+            t.cell(r, "FREQUENCE")
+                .and_then(Cell::as_f64)
+                .is_some_and(|f| f >= lo && f <= hi)
+        })
+        .collect())
+}
