@@ -31,6 +31,8 @@ mod system;
 mod reference;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod hard_tests;
 
 pub use linear_solver::{BorderedSolver, SparseLu};
 pub use resolution::{resolution_warnings, tail_ratio};
