@@ -133,7 +133,11 @@ fn hard_stiff_wall_one_dof_rigi_nor_1_to_1e8() {
         );
         assert!(f > prev && f < rigid, "{f} not in ({prev}, {rigid})");
         prev = f;
+        // ECART_ENERGIE evaluates ½α(u − g)² on the 5-harmonic displacement: for a stiff stop
+        // that truncated u overshoots the wall and the spread measures the truncation, not
+        // the correction (measured 0.65 … 1.25 for α/k ≥ 1e2). Only the soft stop is bounded.
         if ratio == 1.0 {
+            assert!(st.spread < 1e-2, "{st:?}");
             let osc = Oscillator {
                 alpha: 10.0,
                 ..SDND
@@ -175,10 +179,12 @@ fn hard_stiff_stop_on_a_20_dof_chain() {
 
 #[test]
 fn hard_tiny_regularisation_down_to_1e_7() {
-    // PARA_REGUL = 1e-5, 1e-6, 1e-7 with NB_HARM_NONL raised as the force pulse sharpens.
-    // The error against the exact nonsmooth period (ehman.md §8) over E ∈ [1e-3, 3e-3]
-    // must stay small and the runs converge.
-    for (eta, hn, hl, nb) in [(1e-5, 100, 7, 40), (1e-6, 200, 7, 60), (1e-7, 200, 7, 60)] {
+    // PARA_REGUL = 1e-5 and 1e-7 with NB_HARM_NONL raised (100, 200). The error against
+    // the exact nonsmooth period (ehman.md §8) over E ∈ [1e-3, 3e-3] stays below 5e-4
+    // (measured 2.9e-4 for both: the truncation of the displacement at H_l = 7 dominates,
+    // not η), every branch end converges and the frequency rises with the energy.
+    // Smaller η shortens the steps near first contact: 60 branches reach E ≈ 7e-3.
+    for (eta, hn, hl, nb) in [(1e-5, 100, 7, 40), (1e-7, 200, 7, 60)] {
         let p = one_dof(ShockLaw::Plan, eta);
         let mut s = settings(hl, hn, nb, 1);
         s.prec_man = 1e-8;
@@ -197,24 +203,31 @@ fn hard_tiny_regularisation_down_to_1e_7() {
             pts.last().unwrap().energy,
             t0.elapsed()
         );
-        assert!(pts.last().unwrap().energy > 1.0e-3);
+        assert!(pts.last().unwrap().energy > 3e-3);
+        assert!(err > 0.0 && err < 5e-4, "{err}");
     }
 }
 
 #[test]
 fn hard_many_harmonics() {
-    // NB_HARM_LINE = 50, NB_HARM_NONL = 1000: few branches.
+    // NB_HARM_LINE = 50, NB_HARM_NONL = 500, one branch (the CLI case
+    // testcases/hard/harm_many.comm runs NB_HARM_NONL = 1000). Just above first contact
+    // the exact period holds to 5e-4 (measured 2e-4: PARA_REGUL = 1e-5 matters most
+    // there), and with 50 harmonics the energy is constant over the period to 1e-4
+    // (measured 1e-6).
     let p = one_dof(ShockLaw::Plan, 1e-5);
-    let mut s = settings(50, 1000, 1, 1);
+    let mut s = settings(50, 500, 1, 1);
     s.prec_man = 1e-8;
     let t0 = std::time::Instant::now();
     let pts = run_all(&p, &s, &[1.0], 1.0, 10f64.sqrt());
     let st = check_points(&pts, &s);
-    assert_hardening(&pts);
     for q in &pts {
         let ex = 1.0 / SDND.period_plan(q.energy);
         println!("E {:.4e} f {:.8} exact {:.8}", q.energy, q.frequency, ex);
+        assert!((q.frequency / ex - 1.0).abs() < 5e-4);
+        assert!(q.frequency > 10f64.sqrt() / (2.0 * std::f64::consts::PI));
     }
+    assert!(st.spread < 1e-4, "{st:?}");
     println!("many harmonics: {st:?} {:?}", t0.elapsed());
 }
 
@@ -224,31 +237,44 @@ fn hard_grazing_start_below_contact() {
     // (E = ½kJEU² = 5e-4). Below it the frequency is the linear one up to the
     // regularisation's effect; above it, it rises.
     let p = one_dof(ShockLaw::Plan, 1e-7);
-    let mut s = settings(5, 100, 30, 1);
+    let mut s = settings(7, 100, 30, 1);
     s.prec_man = 1e-8;
     let w0 = 10f64.sqrt();
     let f0 = w0 / (2.0 * std::f64::consts::PI);
     let t0 = std::time::Instant::now();
     let st0 = start_from_mode(&p, &s, &[1.0], 0.5, w0).unwrap();
-    println!("start: E/Ec {:.4} f/f0-1 {:.3e}", st0.point.energy / 5e-4, st0.point.frequency / f0 - 1.0);
+    // The start point itself, at half the gap: linear to 1e-6 (measured 6e-8).
+    assert!((st0.point.frequency / f0 - 1.0).abs() < 1e-6);
+    assert!((st0.point.energy / 1.25e-4 - 1.0).abs() < 1e-3);
     let pts = continue_branches(&p, &s, st0, &mut |_, _| {}).points;
     let st = check_points(&pts, &s);
     assert_hardening(&pts);
     let e_c = 0.5 * 10.0 * 0.01 * 0.01;
+    let mut below = 0;
     for q in &pts {
+        let exact = SDND.period_plan(q.energy).recip();
         println!(
             "E/Ec {:.4} f/f0-1 {:.3e} exact {:.3e}",
             q.energy / e_c,
             q.frequency / f0 - 1.0,
-            SDND.period_plan(q.energy).recip() / f0 - 1.0
+            exact / f0 - 1.0
         );
+        if q.energy < 0.99 * e_c {
+            // Inside the gap the regularised force η/(g − u) shifts the frequency by about
+            // PARA_REGUL (measured 3.6e-7 at 0.95 E_c).
+            assert!((q.frequency / f0 - 1.0).abs() < 1e-6);
+            below += 1;
+        }
+        // Everywhere: the exact nonsmooth frequency within 5e-4 (the truncation of the
+        // displacement at H_l = 7 dominates; 1.1e-3 with H_l = 5).
+        assert!((q.frequency / exact - 1.0).abs() < 5e-4);
     }
+    assert!(below >= 1);
+    assert!(pts.last().unwrap().frequency > 1.1 * f0);
     println!("grazing {st:?} {:?}", t0.elapsed());
 }
 
-/// Two unit masses on springs k to the ground, coupled by kc; a PLAN stop on each (same
-/// gap): the in-phase mode of this symmetric system is known to bifurcate toward localised
-/// modes when the stops' stiffening outweighs the weak coupling.
+/// Two unit masses on springs k = 10 to the ground, coupled by kc.
 fn two_mass(kc: f64, shocks: Vec<Shock>) -> Problem {
     Problem {
         k: sparse(
@@ -271,29 +297,25 @@ fn plan_on(dof: usize, law: ShockLaw) -> Shock {
 }
 
 #[test]
-fn hard_bifurcation_on_a_symmetric_two_mass_system() {
-    for (name, kc, shocks, mode, coef) in [
-        ("antiphase PLAN on 0 kc .5", 0.5, vec![plan_on(0, ShockLaw::Plan)], [1.0, -1.0], 0.5),
-        ("antiphase BI on 0 kc 2", 2.0, vec![plan_on(0, ShockLaw::BiPlan)], [1.0, -1.0], 1.0),
-        ("antiphase BI on 0 kc .5", 0.5, vec![plan_on(0, ShockLaw::BiPlan)], [1.0, -1.0], 1.0),
-    ] {
-        let p = two_mass(kc, shocks);
+fn hard_two_mass_branches_near_bifurcations() {
+    // Weakly coupled masses (kc = 0.5) with one stop on mass 1, anti-phase mode.
+    // PLAN (COEF_AMPL 0.5): the motion localises on the stopped mass smoothly, through a
+    // fold in energy (measured: E decreases over branches 5–13 while f rises), without a
+    // flagged bifurcation. BI_PLAN (COEF_AMPL 1): see the printout.
+    for (name, law, coef) in [("PLAN", ShockLaw::Plan, 0.5), ("BI_PLAN", ShockLaw::BiPlan, 1.0)] {
+        let p = two_mass(0.5, vec![plan_on(0, law)]);
         let mut s = settings(5, 60, 40, 1);
         s.prec_man = 1e-8;
-        let w = if mode[1] > 0.0 { 10f64.sqrt() } else { (10.0 + 2.0 * kc).sqrt() };
-        let t0 = std::time::Instant::now();
-        let st0 = start_from_mode(&p, &s, &mode, coef, w).unwrap();
+        let st0 = start_from_mode(&p, &s, &[1.0, -1.0], coef, 11f64.sqrt()).unwrap();
         let out = continue_branches(&p, &s, st0, &mut |_, _| {});
-        let bifs: Vec<usize> = out.points.iter().filter(|q| q.bifurcation).map(|q| q.branch).collect();
         let nl = 2 * s.h_lin + 1;
-        let last = out.points.last().unwrap();
         for q in &out.points {
-            println!("  b {} E {:.4e} f {:.6} bif {} res {:.1e} u0 {:.3e} u1 {:.3e}", q.branch, q.energy, q.frequency, q.bifurcation, q.residual, q.x[1], q.x[nl + 1]);
+            println!(
+                "{name} b {} E {:.4e} f {:.6} bif {} res {:.1e} u0 {:.3e} u1 {:.3e} hm {}",
+                q.branch, q.energy, q.frequency, q.bifurcation, q.residual, q.x[1], q.x[nl + 1], q.harm_max
+            );
         }
-        println!(
-            "{name}: {} pts err {:?} bif {bifs:?} E {:.3e} f {:.5} u0 {:.3e} u1 {:.3e} {:?}",
-            out.points.len(), out.error.as_ref().map(|e| e.message.clone()), last.energy, last.frequency, last.x[1], last.x[nl + 1], t0.elapsed()
-        );
+        println!("{name}: error {:?}", out.error.as_ref().map(|e| e.message.clone()));
     }
 }
 
@@ -323,48 +345,55 @@ fn hard_restart_reproduces_the_single_run() {
     s.n_branches = 5;
     let first = run_all(&p, &s, &[1.0], 1.0, 10f64.sqrt());
     let st = start_from_point(&p, &s, &first[4].x).unwrap();
-    println!("restart newton its {}", st.newton_iterations);
+    // The stored point is corrected: no Newton iteration on restart.
+    assert_eq!(st.newton_iterations, 0);
     let out = continue_branches(&p, &s, st, &mut |_, _| {});
     assert!(out.error.is_none());
+    assert_eq!(out.points.len(), 5);
+    // Exact restart: the scaling depends only on the shocks, the series at a point does not
+    // depend on the border (X_1 spans the kernel, X_p ⊥ X_1) and the branch orientation
+    // follows the energy as on the first run, so the restart retraces the single run; only
+    // the physical↔scaled round trip of the stored vector differs (1 ulp). Measured: 0 in
+    // frequency and ≤ 7e-16 in energy; asserted at 1e-12.
     for (a, b) in whole[5..].iter().zip(&out.points) {
-        println!(
-            "df {:.3e} dE {:.3e}",
-            b.frequency / a.frequency - 1.0,
-            b.energy / a.energy - 1.0
-        );
-    }
-    for (a, b) in whole[..5].iter().zip(&first) {
-        println!(
-            "first part df {:.3e} dE {:.3e}",
-            b.frequency / a.frequency - 1.0,
-            b.energy / a.energy - 1.0
-        );
+        let (df, de) = (b.frequency / a.frequency - 1.0, b.energy / a.energy - 1.0);
+        println!("restart: df {df:.3e} dE {de:.3e}");
+        assert!(df.abs() < 1e-12 && de.abs() < 1e-12);
     }
 }
 
 #[test]
 fn hard_failed_correction_keeps_the_points_before_it() {
-    for (pm, it, coef) in [(1e-8, 1, 0.5), (1e-6, 1, 0.5), (1e-4, 1, 0.5), (1e-6, 1, 0.2), (1e-2, 1, 0.2)] {
-        let p = one_dof(ShockLaw::Plan, 1e-4);
-        let mut s = settings(3, 30, 20, 1);
-        s.prec_man = pm;
-        s.iter_newton_max = it;
-        s.prec_newton = 1e-8;
-        match start_from_mode(&p, &s, &[1.0], coef, 10f64.sqrt()) {
-            Err(e) => println!("{pm} {it} {coef}: start failed {e}"),
-            Ok(st) => {
-                let out = continue_branches(&p, &s, st, &mut |_, _| {});
-                println!("{pm} {it} {coef}: {} points, error {:?}", out.points.len(), out.error.map(|e| e.message));
-            }
-        }
-    }
+    // ITER_NEWTON_MAXI = 1 and PREC_MAN = 1e-6 from inside the gap: branches 1 and 2 stay
+    // near the linear regime and converge in one iteration; branch 3 reaches contact and
+    // cannot. The run stops there and keeps the two points before it.
+    let p = one_dof(ShockLaw::Plan, 1e-4);
+    let mut s = settings(3, 30, 20, 1);
+    s.prec_man = 1e-6;
+    s.iter_newton_max = 1;
+    s.prec_newton = 1e-8;
+    let st = start_from_mode(&p, &s, &[1.0], 0.5, 10f64.sqrt()).unwrap();
+    let mut reported = 0;
+    let out = continue_branches(&p, &s, st, &mut |_, _| reported += 1);
+    let e = out.error.expect("the correction of branch 3 must fail");
+    println!("{} points: {e}", out.points.len());
+    assert_eq!((out.points.len(), reported), (2, 2));
+    check_points(&out.points, &s);
+    assert!(e.message.starts_with("branch 3: Newton correction did not converge"), "{e}");
+    assert!(e.message.contains("PREC_NEWTON"), "{e}");
+    assert_eq!(e.keyword.as_deref(), Some("RESOLUTION/ITER_NEWTON_MAXI"));
+    assert!(e.hint.as_deref().unwrap_or("").contains("ITER_NEWTON_MAXI"));
 }
 
 #[test]
-fn hard_cercle_whirl_attempt() {
-    // Isotropic node (k = 10 in x and y) in a centred ring: try a circular whirl of radius
-    // A. Exact: constant radial force f, root of f² − αf(A − g) − αη = 0, and
-    // ω² = (k + f/A)/m.
+fn hard_cercle_whirl_around_the_ring() {
+    // Isotropic node (k = 10 in x and y) in a centred ring: a circular whirl of radius r,
+    // started from a constructed point (x = A cos ωt, y ≈ A sin ωt: the .comm interface
+    // starts only from a real linear mode, whose orbit is planar). Exact: constant radial
+    // force f, root of f² − αf(r − g) − αη = 0 (η = PARA_REGUL·k·g²), and ω² = (k + f/r)/m.
+    // The whirl has a second conserved quantity (angular momentum), yet the correction and
+    // the continuation converge: every point within 1e-7 of the closed form (measured
+    // 2e-9), a circular orbit (|u_x| = |u_y| to 1e-6), energy increasing.
     let (g, alpha, k) = (0.01, 50.0, 10.0);
     let regul = 1e-4;
     let p = Problem {
@@ -402,17 +431,21 @@ fn hard_cercle_whirl_attempt() {
     x[o + 3 * nn + hn + 1] = f;
     let n = x.len();
     x[n - 2] = w;
-    match start_from_point(&p, &s, &x) {
-        Err(e) => println!("whirl start failed: {e}"),
-        Ok(st) => {
-            println!("whirl start: ω {} vs {} its {}", st.point.omega, w, st.newton_iterations);
-            let out = continue_branches(&p, &s, st, &mut |_, _| {});
-            println!("whirl: {} pts err {:?}", out.points.len(), out.error.map(|e| e.message));
-            for q in &out.points {
-                let r = q.x[o + nn];
-                let fr = q.x[o];
-                println!("E {:.4e} ω {:.8} r0 {:.5e} closed {:.8} ux {:.4e} uy {:.4e}", q.energy, q.omega, r, ((k + fr / r)).sqrt(), q.x[1], q.x[nl + hl + 1]);
-            }
-        }
+    let st = start_from_point(&p, &s, &x).unwrap();
+    let out = continue_branches(&p, &s, st, &mut |_, _| {});
+    assert!(out.error.is_none(), "{:?}", out.error);
+    let stats = check_points(&out.points, &s);
+    let mut worst = 0.0f64;
+    for q in &out.points {
+        let r = q.x[o + nn];
+        let fr = (alpha * (r - g) + ((alpha * (r - g)).powi(2) + 4.0 * alpha * eta).sqrt()) / 2.0;
+        let closed = (k + fr / r).sqrt();
+        worst = worst.max((q.omega / closed - 1.0).abs());
+        let (ux, uy) = (q.x[1], q.x[nl + hl + 1]);
+        assert!((ux.abs() / uy.abs() - 1.0).abs() < 1e-6, "{ux} {uy}");
+        assert!(r > g);
     }
+    println!("whirl: worst rel ω error {worst:.2e} {stats:?}");
+    assert!(worst < 1e-7);
+    assert!(out.points.windows(2).all(|w| w[1].energy > w[0].energy));
 }
