@@ -181,6 +181,23 @@ fn hard_two_laws_on_one_model() {
 }
 
 #[test]
+fn hard_branch_carries_on_past_flagged_bifurcations() {
+    // See the .comm: the flags are real output of the series test, the branch itself is a
+    // non-physical root of the BI_PLAN recast (docs/hard_cases.md).
+    let (_d, c) = run_ok("bifurcation.comm", 4);
+    let v = rows(&c, "MNL");
+    let flags: Vec<i64> = c
+        .prepare("SELECT NUME_ORDRE FROM MNL WHERE BIFURCATION = 'OUI' ORDER BY NUME_ORDRE")
+        .unwrap()
+        .query_map([], |r| r.get(0))
+        .unwrap()
+        .collect::<Result<_, _>>()
+        .unwrap();
+    assert!(!flags.is_empty());
+    assert!(flags[0] + 5 <= v.len() as i64, "{flags:?}");
+}
+
+#[test]
 fn hard_cercle_off_centre() {
     let (_d, c) = run_ok("cercle_offset.comm", 5);
     let ring = rows(&c, "MNL");

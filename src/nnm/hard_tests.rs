@@ -298,25 +298,32 @@ fn plan_on(dof: usize, law: ShockLaw) -> Shock {
 
 #[test]
 fn hard_two_mass_branches_near_bifurcations() {
-    // Weakly coupled masses (kc = 0.5) with one stop on mass 1, anti-phase mode.
-    // PLAN (COEF_AMPL 0.5): the motion localises on the stopped mass smoothly, through a
-    // fold in energy (measured: E decreases over branches 5–13 while f rises), without a
-    // flagged bifurcation. BI_PLAN (COEF_AMPL 1): see the printout.
-    for (name, law, coef) in [("PLAN", ShockLaw::Plan, 0.5), ("BI_PLAN", ShockLaw::BiPlan, 1.0)] {
-        let p = two_mass(0.5, vec![plan_on(0, law)]);
-        let mut s = settings(5, 60, 40, 1);
-        s.prec_man = 1e-8;
-        let st0 = start_from_mode(&p, &s, &[1.0, -1.0], coef, 11f64.sqrt()).unwrap();
-        let out = continue_branches(&p, &s, st0, &mut |_, _| {});
-        let nl = 2 * s.h_lin + 1;
-        for q in &out.points {
-            println!(
-                "{name} b {} E {:.4e} f {:.6} bif {} res {:.1e} u0 {:.3e} u1 {:.3e} hm {}",
-                q.branch, q.energy, q.frequency, q.bifurcation, q.residual, q.x[1], q.x[nl + 1], q.harm_max
-            );
-        }
-        println!("{name}: error {:?}", out.error.as_ref().map(|e| e.message.clone()));
-    }
+    // Weakly coupled masses (kc = 0.5) with one stop on mass 1, anti-phase mode, 40
+    // branches.
+    // PLAN (COEF_AMPL 0.5): the motion localises on the stopped mass through a fold in
+    // energy (E decreases over branches 5–13 while f rises), with no flagged bifurcation:
+    // every point converged, localised at the end (|u_1| > 10 |u_2|, measured 21).
+    // BI_PLAN (COEF_AMPL 1): the series' bifurcation test flags rows (measured 23, 37, 39)
+    // and the run carries on past them with every point converged. That branch is not
+    // physical (mass 1 held inside its gap by a contact force equal to the coupling force;
+    // frequencies down to 0.26 Hz past the fold): a non-physical root of the BI_PLAN
+    // recast, undetected by the residual/γ/energy indicators — docs/hard_cases.md. The
+    // flags are not verified as true bifurcations.
+    let nl = 11;
+    let mut s = settings(5, 60, 40, 1);
+    s.prec_man = 1e-8;
+    let p = two_mass(0.5, vec![plan_on(0, ShockLaw::Plan)]);
+    let pts = run_all(&p, &s, &[1.0, -1.0], 0.5, 11f64.sqrt());
+    check_points(&pts, &s);
+    assert!(pts.iter().all(|q| !q.bifurcation));
+    let last = pts.last().unwrap();
+    assert!(last.x[1].abs() > 10.0 * last.x[nl + 1].abs());
+    let p = two_mass(0.5, vec![plan_on(0, ShockLaw::BiPlan)]);
+    let pts = run_all(&p, &s, &[1.0, -1.0], 1.0, 11f64.sqrt());
+    check_points(&pts, &s);
+    let first_flag = pts.iter().position(|q| q.bifurcation).expect("a flagged row");
+    println!("BI_PLAN: first flagged row {}", first_flag + 1);
+    assert!(first_flag + 5 < pts.len());
 }
 
 #[test]
@@ -393,7 +400,7 @@ fn hard_cercle_whirl_around_the_ring() {
     // force f, root of f² − αf(r − g) − αη = 0 (η = PARA_REGUL·k·g²), and ω² = (k + f/r)/m.
     // The whirl has a second conserved quantity (angular momentum), yet the correction and
     // the continuation converge: every point within 1e-7 of the closed form (measured
-    // 2e-9), a circular orbit (|u_x| = |u_y| to 1e-6), energy increasing.
+    // 5.5e-10), a circular orbit (|u_x| = |u_y| to 1e-6), energy increasing.
     let (g, alpha, k) = (0.01, 50.0, 10.0);
     let regul = 1e-4;
     let p = Problem {
