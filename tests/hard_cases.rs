@@ -41,7 +41,10 @@ fn run_ok(name: &str, ok: usize) -> (tempfile::TempDir, Connection) {
     let o = run(name, &db);
     let out = text(&o);
     assert_eq!(o.status.code(), Some(0), "{name}:\n{out}");
-    assert!(out.contains(&format!("tests: {ok} OK, 0 NOOK")), "{name}:\n{out}");
+    assert!(
+        out.contains(&format!("tests: {ok} OK, 0 NOOK")),
+        "{name}:\n{out}"
+    );
     let c = Connection::open(&db).unwrap();
     (dir, c)
 }

@@ -279,7 +279,12 @@ fn two_mass(kc: f64, shocks: Vec<Shock>) -> Problem {
     Problem {
         k: sparse(
             2,
-            &[(0, 0, 10.0 + kc), (0, 1, -kc), (1, 0, -kc), (1, 1, 10.0 + kc)],
+            &[
+                (0, 0, 10.0 + kc),
+                (0, 1, -kc),
+                (1, 0, -kc),
+                (1, 1, 10.0 + kc),
+            ],
         ),
         m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),
         shocks,
@@ -321,7 +326,10 @@ fn hard_two_mass_branches_near_bifurcations() {
     let p = two_mass(0.5, vec![plan_on(0, ShockLaw::BiPlan)]);
     let pts = run_all(&p, &s, &[1.0, -1.0], 1.0, 11f64.sqrt());
     check_points(&pts, &s);
-    let first_flag = pts.iter().position(|q| q.bifurcation).expect("a flagged row");
+    let first_flag = pts
+        .iter()
+        .position(|q| q.bifurcation)
+        .expect("a flagged row");
     println!("BI_PLAN: first flagged row {}", first_flag + 1);
     assert!(first_flag + 5 < pts.len());
 }
@@ -386,7 +394,11 @@ fn hard_failed_correction_keeps_the_points_before_it() {
     println!("{} points: {e}", out.points.len());
     assert_eq!((out.points.len(), reported), (2, 2));
     check_points(&out.points, &s);
-    assert!(e.message.starts_with("branch 3: Newton correction did not converge"), "{e}");
+    assert!(
+        e.message
+            .starts_with("branch 3: Newton correction did not converge"),
+        "{e}"
+    );
     assert!(e.message.contains("PREC_NEWTON"), "{e}");
     assert_eq!(e.keyword.as_deref(), Some("RESOLUTION/ITER_NEWTON_MAXI"));
     assert!(e.hint.as_deref().unwrap_or("").contains("ITER_NEWTON_MAXI"));

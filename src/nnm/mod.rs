@@ -28,11 +28,11 @@ mod series;
 mod system;
 
 #[cfg(test)]
+mod hard_tests;
+#[cfg(test)]
 mod reference;
 #[cfg(test)]
 mod tests;
-#[cfg(test)]
-mod hard_tests;
 
 pub use linear_solver::{BorderedSolver, SparseLu};
 pub use resolution::{resolution_warnings, tail_ratio};
