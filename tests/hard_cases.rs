@@ -228,7 +228,7 @@ fn hard_cercle_through_its_centre_is_a_clear_error() {
     // Names the shock and the keyword, says why, suggests the fix; no NaN anywhere.
     for want in [
         "CHOC[1]/ORIG_OBST",
-        "CHOC 1 (CERCLE)",
+        "CHOC 1: CERCLE: the orbit",
         "passes through the ring centre",
         "not smooth",
         "BI_PLAN",

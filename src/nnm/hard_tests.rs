@@ -469,3 +469,31 @@ fn hard_cercle_whirl_around_the_ring() {
     assert!(worst < 1e-7);
     assert!(out.points.windows(2).all(|w| w[1].energy > w[0].energy));
 }
+
+#[test]
+fn hard_ring_centre_error_names_its_shock() {
+    // A PLAN shock first, then a ring centred on the planar orbit of DOF 0: the error must
+    // name the second CHOC occurrence, say why, and not produce NaN.
+    let p = Problem {
+        k: sparse(2, &[(0, 0, 10.0), (1, 1, 25.0)]),
+        m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),
+        shocks: vec![
+            plan_on(1, ShockLaw::Plan),
+            Shock {
+                law: ShockLaw::Cercle { origin: [0.0, 0.0] },
+                dofs: vec![0, 1],
+                gap: 0.01,
+                stiffness: 50.0,
+                regul: 1e-4,
+            },
+        ],
+    };
+    let e =
+        start_from_mode(&p, &settings(3, 20, 1, 1), &[1.0, 0.0], 1.0, 10f64.sqrt()).unwrap_err();
+    assert_eq!(e.keyword.as_deref(), Some("CHOC[2]/ORIG_OBST"), "{e}");
+    assert!(
+        e.message
+            .starts_with("CHOC 2: CERCLE: the orbit passes through the ring centre"),
+        "{e}"
+    );
+}

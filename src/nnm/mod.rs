@@ -185,7 +185,7 @@ fn in_branch(mut e: Error, b: usize) -> Error {
 /// A ring error naming its shock (CHOC occurrence, 1-based): a model may carry several.
 fn ring_error(i: usize, e: Error) -> Error {
     Error {
-        message: format!("CHOC {} (CERCLE): {}", i + 1, e.message),
+        message: format!("CHOC {}: {}", i + 1, e.message),
         keyword: Some(format!("CHOC[{}]/ORIG_OBST", i + 1)),
         ..e
     }
