@@ -29,6 +29,8 @@ pub mod stability;
 mod system;
 
 #[cfg(test)]
+mod hard_tests;
+#[cfg(test)]
 mod reference;
 #[cfg(test)]
 mod tests;
@@ -181,12 +183,21 @@ fn in_branch(mut e: Error, b: usize) -> Error {
     e
 }
 
+/// A ring error naming its shock (CHOC occurrence, 1-based): a model may carry several.
+fn ring_error(i: usize, e: Error) -> Error {
+    Error {
+        message: format!("CHOC {}: {}", i + 1, e.message),
+        keyword: Some(format!("CHOC[{}]/ORIG_OBST", i + 1)),
+        ..e
+    }
+}
+
 /// Samples of the contact unknowns consistent with the displacements of `x` (scaled).
 fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
     let l = sys.lay;
     let smp = sys.sampler();
     let ns = smp.n();
-    for sh in &sys.shocks {
+    for (i, sh) in sys.shocks.iter().enumerate() {
         let u: Vec<Vec<f64>> = sh
             .dofs
             .iter()
@@ -196,7 +207,13 @@ fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
                 s
             })
             .collect();
-        let own = laws::own_from_u(sh.law, sh.s, sh.alpha, sh.eta, &u)?;
+        let own = laws::own_from_u(sh.law, sh.s, sh.alpha, sh.eta, &u).map_err(|e| {
+            if matches!(sh.law, ScaledLaw::Cercle { .. }) {
+                ring_error(i, e)
+            } else {
+                e
+            }
+        })?;
         for (v, mut s) in own.into_iter().enumerate() {
             let o = sh.offset + v * l.nn;
             smp.analyse(&mut s, l.hn, &mut x[o..o + l.nn]);
@@ -209,8 +226,9 @@ fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
 fn check_rings(sys: &System, x: &[f64]) -> Result<()> {
     let l = sys.lay;
     let smp = sys.sampler();
-    for sh in &sys.shocks {
+    for (i, sh) in sys.shocks.iter().enumerate() {
         if let ScaledLaw::Cercle { ex, ey } = sh.law {
+            let name = |e: Error| ring_error(i, e);
             let mut s = vec![vec![0.0; smp.n()]; 3];
             smp.synth(&x[sh.offset + l.nn..sh.offset + 2 * l.nn], l.hn, &mut s[0]);
             for c in 0..2 {
@@ -218,11 +236,11 @@ fn check_rings(sys: &System, x: &[f64]) -> Result<()> {
                 smp.synth(&x[l.u(d)..l.u(d) + l.nl], l.hl, &mut s[c + 1]);
             }
             // Both the unknown r and the true distance must stay clear of zero.
-            laws::check_ring_radius(&s[0], sh.s)?;
+            laws::check_ring_radius(&s[0], sh.s).map_err(name)?;
             let dist: Vec<f64> = (0..smp.n())
                 .map(|j| (s[1][j] - ex).hypot(s[2][j] - ey))
                 .collect();
-            laws::check_ring_radius(&dist, sh.s)?;
+            laws::check_ring_radius(&dist, sh.s).map_err(name)?;
         }
     }
     Ok(())

@@ -219,11 +219,14 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         ctx.alarm("MODE_NON_LINE_1", &w)?;
     }
     if let Some(e) = outcome.error {
-        // Keep every branch computed so far (committed), then stop the run.
-        ctx.deferred_error = Some(
-            e.keyword("MODE_NON_LINE")
-                .hint("the rows computed before the failure are stored; restart from the last one with ETAT_INIT=_F(MODE_NON_LINE=..., NUME_ORDRE=...)"),
-        );
+        // Keep every branch computed so far (committed), then stop the run. The engine's
+        // own hint (what to change) is kept in front of the restart advice.
+        let keep = "the rows computed before the failure are stored; restart from the last one with ETAT_INIT=_F(MODE_NON_LINE=..., NUME_ORDRE=...)";
+        let hint = match &e.hint {
+            Some(h) => format!("{h}; {keep}"),
+            None => keep.to_string(),
+        };
+        ctx.deferred_error = Some(e.keyword("MODE_NON_LINE").hint(hint));
     }
     Ok(())
 }
