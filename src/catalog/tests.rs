@@ -434,7 +434,7 @@ fn concept_types_with_alternatives_and_any() {
     let e = single_error(&tab("fonction_sdaster"), "IMPR_TABLE/TABLE", 2);
     assert_eq!(
         e.message,
-        "expected a concept of type table_sdaster or table_container, got T of type fonction_sdaster"
+        "expected a concept of type table_sdaster or table_container or dyna_trans, got T of type fonction_sdaster"
     );
     // DETRUIRE takes concepts of any type, as a list.
     let c = call(
