@@ -20,6 +20,7 @@
 
 mod anm;
 mod energy;
+mod law_check;
 mod laws;
 mod linear_solver;
 mod newton;
@@ -35,6 +36,7 @@ mod reference;
 #[cfg(test)]
 mod tests;
 
+pub use law_check::{contact_law_defect, LAW_DEFECT_ALARM};
 pub use linear_solver::{BorderedSolver, SparseLu};
 pub use resolution::{resolution_warnings, tail_ratio};
 

@@ -38,7 +38,7 @@ use super::{displacement_coefficients, series, Problem, Settings};
 use crate::error::{Error, Result};
 use faer::{Mat, Side};
 pub(crate) use laws::eta_phys;
-use laws::PointLaw;
+pub(crate) use laws::PointLaw;
 
 /// Time integrator of the variational equation (SCHEMA_TEMPS/SCHEMA).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

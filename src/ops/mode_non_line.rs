@@ -34,6 +34,9 @@ const COLUMNS: &[(&str, ColKind)] = &[
     ("RESIDU", ColKind::R),
     ("AMOR_FICTIF", ColKind::R),
     ("ECART_ENERGIE", ColKind::R),
+    // The contact laws checked in time: max |f_series − f_law(u)| / (RIGI_NOR·JEU); O(1)
+    // when the branch has drifted onto a non-physical root of an implicit law.
+    ("ECART_LOI_CHOC", ColKind::R),
     ("BRANCHE", ColKind::I),
 ];
 
@@ -204,9 +207,16 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         })
         .collect();
     let ncoef = 2 * settings.h_lin as i64 + 1;
+    let mut suspect: Vec<i64> = Vec::new();
+    let mut worst_defect = 0.0f64;
     for (j, p) in outcome.points.iter().enumerate() {
         let order = first_order + j as i64;
-        table.push_row(row(&name, &cara_choc, order, ncoef, reprise, p))?;
+        let defect = nnm::contact_law_defect(&problem, &settings, &p.x)?;
+        if defect > nnm::LAW_DEFECT_ALARM {
+            suspect.push(order);
+        }
+        worst_defect = worst_defect.max(defect);
+        table.push_row(row(&name, &cara_choc, order, ncoef, reprise, p, defect))?;
         mnl_store::save_point(ctx.store, &name, order, p.omega, &p.x)?;
         let coefs = nnm::displacement_coefficients(&problem, &settings, &p.x)?;
         mnl_store::save_fourier(ctx.store, &name, order, &dof_names, &coefs)?;
@@ -215,6 +225,19 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     ctx.say(&format!(
         "  frequency against energy: SELECT NUME_ORDRE, ENERGIE, FREQUENCE FROM {name} ORDER BY NUME_ORDRE"
     ))?;
+    if let (Some(first), Some(last)) = (suspect.first(), suspect.last()) {
+        ctx.alarm(
+            "MODE_NON_LINE_3",
+            &format!(
+                "{} row(s) between NUME_ORDRE {first} and {last} satisfy their contact law in time only \
+                 to {:.2} x RIGI_NOR*JEU (column ECART_LOI_CHOC): either the force series is too poorly \
+                 resolved there (raise NB_HARM_NONL, and NB_HARM_LINE at high energy) or the branch has \
+                 left the physical root of the regularised law; treat those rows as suspect",
+                suspect.len(),
+                worst_defect
+            ),
+        )?;
+    }
     for w in nnm::resolution_warnings(&problem, &settings, &outcome.points) {
         ctx.alarm("MODE_NON_LINE_1", &w)?;
     }
@@ -384,7 +407,15 @@ fn new_table() -> Table {
     t
 }
 
-fn row(name: &str, cara_choc: &str, order: i64, ncoef: i64, reprise: i64, p: &Point) -> Vec<Cell> {
+fn row(
+    name: &str,
+    cara_choc: &str,
+    order: i64,
+    ncoef: i64,
+    reprise: i64,
+    p: &Point,
+    law_defect: f64,
+) -> Vec<Cell> {
     vec![
         Cell::I(order),
         Cell::R(p.frequency),
@@ -401,6 +432,7 @@ fn row(name: &str, cara_choc: &str, order: i64, ncoef: i64, reprise: i64, p: &Po
         Cell::R(p.residual),
         Cell::R(p.gamma.abs()),
         Cell::R(p.energy_spread),
+        Cell::R(law_defect),
         Cell::I(p.branch as i64),
     ]
 }
