@@ -122,13 +122,25 @@ fn sparse(n: usize, e: &[(usize, usize, f64)]) -> SparseColMat<usize, f64> {
     SparseColMat::try_new_from_triplets(n, n, &t).unwrap_or_else(|_| unreachable!())
 }
 
-/// The base of the sweeps: sdnd122's settings with the default PREC_MAN.
+/// The base of the sweeps. NB_HARM_LINE = 15, not sdnd122's 5: measured, the truncation of
+/// the displacements (H_l) alone costs 1.3e-3 at H_l = 5 and 7.6e-5 at H_l = 15 over the
+/// range (the orbits just past grazing need the most harmonics), so at H_l = 5 the effects
+/// of NB_HARM_NONL and PARA_REGUL would be invisible.
 pub const BASE: Config = Config {
     sweep: "base",
+    h_lin: 15,
+    h_nonl: 100,
+    regul: 1e-5,
+    prec_man: 1e-9,
+};
+
+/// sdnd122's own settings (Code_Aster's validation case), measured as they are.
+pub const SDND122: Config = Config {
+    sweep: "sdnd122",
     h_lin: 5,
     h_nonl: 200,
     regul: 5e-5,
-    prec_man: 1e-9,
+    prec_man: 1e-14,
 };
 
 fn with(sweep: &'static str, h_lin: usize, h_nonl: usize, regul: f64, prec_man: f64) -> Config {
@@ -144,50 +156,86 @@ fn with(sweep: &'static str, h_lin: usize, h_nonl: usize, regul: f64, prec_man: 
 /// The settings measured for a case. Full: one-at-a-time sweeps around `BASE` plus a
 /// diagonal in (NB_HARM_NONL, PARA_REGUL), refined together since the regularisation and
 /// the truncation errors interact (a sharper law needs more harmonics): η ∝ H_nl⁻², the
-/// width of the smoothed kink in time scaling like √η. Small: a cheap grid for the tests
-/// and a quick look (H_l = 3, PREC_MAN = 1e-6).
+/// width of the smoothed kink in time scaling like √η. The wall's η sweep sits at
+/// H_nl = 200 (where the small η show where Newton gives up). BI_PLAN (chain2) carries two
+/// contact unknowns, so its H_nl stay lower for the same time budget. Small: a cheap grid
+/// for the tests and a quick look (H_l = 10, PREC_MAN = 1e-6).
 pub fn grid(kind: CaseKind, size: GridSize) -> Vec<Config> {
     let mut v = Vec::new();
-    match size {
-        GridSize::Small => {
-            for hn in [15, 30, 60, 120] {
-                v.push(with("H_nl", 3, hn, 1e-5, 1e-6));
+    let b = BASE;
+    match (size, kind) {
+        (GridSize::Small, _) => {
+            for hn in [10, 20, 40] {
+                v.push(with("H_nl", 10, hn, 1e-5, 1e-6));
             }
             for eta in [1e-3, 1e-4] {
-                v.push(with("eta", 3, 120, eta, 1e-6));
+                v.push(with("eta", 10, 80, eta, 1e-6));
             }
         }
-        GridSize::Full => {
-            v.push(BASE);
-            let hns: &[usize] = match kind {
-                CaseKind::Wall => &[25, 50, 100, 400, 800],
-                CaseKind::Chain2 => &[25, 50, 100, 400],
-            };
-            for &hn in hns {
-                v.push(with("H_nl", 5, hn, BASE.regul, BASE.prec_man));
+        (GridSize::Full, CaseKind::Wall) => {
+            v.push(b);
+            v.push(SDND122);
+            for hl in [5, 10, 20, 30, 40] {
+                v.push(with("H_l", hl, b.h_nonl, b.regul, b.prec_man));
+            }
+            for hn in [30, 60, 200, 400] {
+                v.push(with("H_nl", b.h_lin, hn, b.regul, b.prec_man));
             }
             for eta in [1e-3, 1e-4, 1e-5, 1e-6, 1e-7] {
-                v.push(with("eta", 5, 400, eta, BASE.prec_man));
-            }
-            for hl in [3, 10] {
-                v.push(with("H_l", hl, BASE.h_nonl, BASE.regul, BASE.prec_man));
+                v.push(with("eta", 20, 200, eta, b.prec_man));
             }
             for pm in [1e-6, 1e-14] {
-                v.push(with("PREC_MAN", 5, BASE.h_nonl, BASE.regul, pm));
+                v.push(with("PREC_MAN", b.h_lin, b.h_nonl, b.regul, pm));
             }
-            for (hn, eta) in [(25, 1e-3), (50, 2.5e-4), (100, 6e-5), (400, 4e-6)] {
-                v.push(with("diagonal", 5, hn, eta, 1e-6));
+            for (hn, eta) in [(30, 1e-3), (60, 2.5e-4), (120, 6e-5), (240, 1.5e-5), (400, 4e-6)] {
+                v.push(with("diagonal", 20, hn, eta, 1e-6));
             }
+            // Coarse everything, for the cheapest 1e-3.
+            for (hl, hn) in [(7, 30), (10, 30), (10, 60)] {
+                v.push(with("coarse", hl, hn, 1e-4, 1e-6));
+            }
+            // Everything refined at once, toward 1e-5.
+            v.push(with("fine", 30, 200, 1e-6, 1e-9));
+            v.push(with("fine", 40, 400, 1e-7, 1e-9));
+        }
+        (GridSize::Full, CaseKind::Chain2) => {
+            // Two impacts per period on the end mass of a chain: NB_HARM_LINE limits the
+            // accuracy even more than on the wall, so the sweeps sit at H_l = 20.
+            let b = Config {
+                h_lin: 20,
+                h_nonl: 60,
+                ..b
+            };
+            v.push(b);
+            for hl in [5, 10, 15, 30] {
+                v.push(with("H_l", hl, b.h_nonl, b.regul, b.prec_man));
+            }
+            for hn in [20, 30, 120] {
+                v.push(with("H_nl", b.h_lin, hn, b.regul, b.prec_man));
+            }
+            for eta in [1e-3, 1e-4, 1e-6] {
+                v.push(with("eta", b.h_lin, 120, eta, b.prec_man));
+            }
+            for pm in [1e-6, 1e-14] {
+                v.push(with("PREC_MAN", b.h_lin, b.h_nonl, b.regul, pm));
+            }
+            for (hn, eta) in [(20, 1e-3), (40, 2.5e-4), (80, 6e-5)] {
+                v.push(with("diagonal", b.h_lin, hn, eta, 1e-6));
+            }
+            for (hl, hn) in [(10, 30), (15, 30)] {
+                v.push(with("coarse", hl, hn, 1e-4, 1e-6));
+            }
+            v.push(with("fine", 30, 120, 1e-6, 1e-9));
         }
     }
     v
 }
 
-/// The reference of chain2: the finest settings of its grid and beyond (state them in the
-/// report). NB_PAS_MAN is raised by `reference_curve` for a dense curve.
+/// The reference of chain2: finer than every measured setting in each parameter (state
+/// them in the report). NB_PAS_MAN is raised by `reference_curve` for a dense curve.
 pub fn chain2_reference_config(size: GridSize) -> Config {
     match size {
-        GridSize::Small => with("reference", 5, 240, 1e-6, 1e-9),
-        GridSize::Full => with("reference", 7, 800, 1e-7, 1e-10),
+        GridSize::Small => with("reference", 15, 100, 1e-6, 1e-9),
+        GridSize::Full => with("reference", 40, 240, 2e-6, 1e-10),
     }
 }

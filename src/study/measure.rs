@@ -55,6 +55,9 @@ pub struct Measurement {
     pub max_rel_error: f64,
     /// Wall time of the whole run: start point and every branch up to the top of the range.
     pub seconds: f64,
+    /// CPU time of the same run (the measuring thread; NaN where the OS does not say). On a
+    /// shared machine it is the repeatable cost: wall time also counts the other processes.
+    pub cpu_seconds: f64,
     pub branches: usize,
     pub points: usize,
     pub points_in_range: usize,
@@ -66,6 +69,28 @@ impl Measurement {
     pub fn ok(&self) -> bool {
         self.failure.is_none() && self.max_rel_error.is_finite()
     }
+
+    /// The cost the study ranks by: CPU time when known, else wall time.
+    pub fn cost(&self) -> f64 {
+        if self.cpu_seconds.is_finite() {
+            self.cpu_seconds
+        } else {
+            self.seconds
+        }
+    }
+}
+
+/// CPU time (user + system) of the calling thread from /proc (Linux); None elsewhere.
+/// The kernel reports it in clock ticks, 100 per second on Linux (USER_HZ).
+pub fn thread_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/thread-self/stat").ok()?;
+    // Fields after the command name (which may hold spaces) closed by the last ')':
+    // state is the first, utime the 12th, stime the 13th.
+    let rest = &stat[stat.rfind(')')? + 1..];
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let utime: f64 = f.get(11)?.parse().ok()?;
+    let stime: f64 = f.get(12)?.parse().ok()?;
+    Some((utime + stime) / 100.0)
 }
 
 /// The frequency (Hz) a computed point is compared with, at its energy.
@@ -121,20 +146,37 @@ impl Reference {
     }
 }
 
+struct Run {
+    points: Vec<Point>,
+    branches: usize,
+    seconds: f64,
+    cpu_seconds: f64,
+    failure: Option<String>,
+}
+
 /// Runs a branch until its energy passes the top of the range; returns the points, the
-/// number of branches and the wall time, or the failure with what was computed.
-fn timed_run(
-    case: &StudyCase,
-    cfg: &Config,
-    points_per_branch: usize,
-) -> (Vec<Point>, usize, f64, Option<String>) {
+/// number of branches and the times, or the failure with what was computed.
+fn timed_run(case: &StudyCase, cfg: &Config, points_per_branch: usize) -> Run {
     let problem = case.problem_with(cfg.regul);
     let s = settings(cfg, points_per_branch);
     let (_, hi) = case.range();
+    let c0 = thread_cpu_seconds();
     let t0 = Instant::now();
+    let cpu = |c0: Option<f64>| match (c0, thread_cpu_seconds()) {
+        (Some(a), Some(b)) => b - a,
+        _ => f64::NAN,
+    };
     let st = match start_from_mode(&problem, &s, &case.mode, 1.0, case.omega) {
         Ok(st) => st,
-        Err(e) => return (vec![], 0, t0.elapsed().as_secs_f64(), Some(e.message)),
+        Err(e) => {
+            return Run {
+                points: vec![],
+                branches: 0,
+                seconds: t0.elapsed().as_secs_f64(),
+                cpu_seconds: cpu(c0),
+                failure: Some(e.message),
+            }
+        }
     };
     let mut branches = 0;
     let out = continue_while(&problem, &s, st, &mut |r, _| {
@@ -142,6 +184,7 @@ fn timed_run(
         r.energy_range.1 <= hi
     });
     let seconds = t0.elapsed().as_secs_f64();
+    let cpu_seconds = cpu(c0);
     let top = out.points.iter().map(|p| p.energy).fold(0.0, f64::max);
     let failure = match out.error {
         Some(e) => Some(e.message),
@@ -150,12 +193,24 @@ fn timed_run(
         )),
         None => None,
     };
-    (out.points, branches, seconds, failure)
+    Run {
+        points: out.points,
+        branches,
+        seconds,
+        cpu_seconds,
+        failure,
+    }
 }
 
 /// Measures one setting against `reference`.
 pub fn measure(case: &StudyCase, cfg: &Config, reference: &Reference) -> Measurement {
-    let (points, branches, seconds, mut failure) = timed_run(case, cfg, POINTS_PER_BRANCH);
+    let Run {
+        points,
+        branches,
+        seconds,
+        cpu_seconds,
+        mut failure,
+    } = timed_run(case, cfg, POINTS_PER_BRANCH);
     let (lo, hi) = case.range();
     let mut err: f64 = 0.0;
     let mut in_range = 0;
@@ -177,6 +232,7 @@ pub fn measure(case: &StudyCase, cfg: &Config, reference: &Reference) -> Measure
         config: *cfg,
         max_rel_error: if failure.is_none() { err } else { f64::NAN },
         seconds,
+        cpu_seconds,
         branches,
         points: points.len(),
         points_in_range: in_range,
@@ -190,8 +246,13 @@ pub const REFERENCE_POINTS_PER_BRANCH: usize = 10;
 /// Computes a reference curve (a branch slightly past the range so that interpolation never
 /// needs to extrapolate); the measurement records its cost, its error is not known (NaN).
 pub fn reference_curve(case: &StudyCase, cfg: &Config) -> Result<(Reference, Measurement)> {
-    let (points, branches, seconds, failure) =
-        timed_run(case, cfg, REFERENCE_POINTS_PER_BRANCH);
+    let Run {
+        points,
+        branches,
+        seconds,
+        cpu_seconds,
+        failure,
+    } = timed_run(case, cfg, REFERENCE_POINTS_PER_BRANCH);
     if let Some(f) = &failure {
         return Err(Error::numerical(format!(
             "the reference run of {} failed: {f}",
@@ -214,6 +275,7 @@ pub fn reference_curve(case: &StudyCase, cfg: &Config) -> Result<(Reference, Mea
         config: *cfg,
         max_rel_error: f64::NAN,
         seconds,
+        cpu_seconds,
         branches,
         points: points.len(),
         points_in_range: points

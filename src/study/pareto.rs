@@ -44,17 +44,17 @@ pub fn recommend(ms: &[Measurement], targets: &[f64]) -> Vec<Recommendation> {
             target,
             index: (0..ms.len())
                 .filter(|&i| ms[i].ok() && ms[i].max_rel_error <= target)
-                .min_by(|&a, &b| ms[a].seconds.total_cmp(&ms[b].seconds)),
+                .min_by(|&a, &b| ms[a].cost().total_cmp(&ms[b].cost())),
         })
         .collect()
 }
 
-/// The (time, error) pairs of measurements, NaN for failed runs.
+/// The (cost, error) pairs (cost: `Measurement::cost`) of measurements, NaN for failed runs.
 pub fn cost_error(ms: &[Measurement]) -> Vec<(f64, f64)> {
     ms.iter()
         .map(|m| {
             if m.ok() {
-                (m.seconds, m.max_rel_error)
+                (m.cost(), m.max_rel_error)
             } else {
                 (f64::NAN, f64::NAN)
             }

@@ -20,13 +20,16 @@ fn io(what: &Path, e: impl std::fmt::Display) -> Error {
     )
 }
 
-const SWEEPS: [(&str, RGBColor); 7] = [
+const SWEEPS: [(&str, RGBColor); 10] = [
     ("base", RGBColor(0, 0, 0)),
+    ("sdnd122", RGBColor(140, 86, 75)),
     ("H_nl", RGBColor(31, 119, 180)),
     ("eta", RGBColor(214, 39, 40)),
     ("H_l", RGBColor(44, 160, 44)),
     ("PREC_MAN", RGBColor(148, 103, 189)),
     ("diagonal", RGBColor(255, 127, 14)),
+    ("coarse", RGBColor(188, 189, 34)),
+    ("fine", RGBColor(23, 190, 207)),
     ("reference", RGBColor(127, 127, 127)),
 ];
 
@@ -59,7 +62,7 @@ fn draw<DB: DrawingBackend>(
     let mut chart = ChartBuilder::on(&root)
         .caption(
             format!(
-                "{}: max relative frequency error against wall time",
+                "{}: max relative frequency error against CPU time",
                 r.case.kind.name()
             ),
             ("sans-serif", 22),
@@ -70,7 +73,7 @@ fn draw<DB: DrawingBackend>(
         .build_cartesian_2d((t0..t1).log_scale(), (e0..e1).log_scale())?;
     chart
         .configure_mesh()
-        .x_desc("wall time of the whole branch (s, one thread)")
+        .x_desc("CPU time of the whole branch (s, one thread)")
         .y_desc("max |f / f_ref - 1| over the range")
         .x_label_formatter(&|x| format!("{x:.0e}"))
         .y_label_formatter(&|y| format!("{y:.0e}"))
@@ -124,24 +127,24 @@ fn draw<DB: DrawingBackend>(
         .draw()?;
     root.draw(&Text::new(
         "labels: NB_HARM_LINE/NB_HARM_NONL/PARA_REGUL/PREC_MAN",
-        (80, 575),
+        (80, 628),
         ("sans-serif", 12).into_font(),
     ))?;
     root.present()
 }
 
-/// Writes `<stem>.png` and `<stem>.svg` (800×600).
+/// Writes `<stem>.png` and `<stem>.svg` (800×650).
 pub fn plot(r: &CaseResult, stem: &Path) -> Result<()> {
     // Registering twice replaces the same font: harmless.
     plotters::style::register_font("sans-serif", FontStyle::Normal, FONT)
         .map_err(|_| Error::internal("the embedded DejaVu Sans font is invalid"))?;
     let png = stem.with_extension("png");
     draw(
-        BitMapBackend::new(&png, (800, 600)).into_drawing_area(),
+        BitMapBackend::new(&png, (800, 650)).into_drawing_area(),
         r,
     )
     .map_err(|e| io(&png, e))?;
     let svg = stem.with_extension("svg");
-    draw(SVGBackend::new(&svg, (800, 600)).into_drawing_area(), r).map_err(|e| io(&svg, e))?;
+    draw(SVGBackend::new(&svg, (800, 650)).into_drawing_area(), r).map_err(|e| io(&svg, e))?;
     Ok(())
 }

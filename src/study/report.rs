@@ -42,7 +42,8 @@ pub fn markdown(r: &CaseResult) -> String {
         s,
         "Case `{}`: energy range [{lo:.3e}, {hi:.3e}] J (1.2 to 20 times the first-contact \
          energy {:.3e} J); NB_ORDRE_MAN = {ORDER}, NB_PAS_MAN = {POINTS_PER_BRANCH}, \
-         PREC_NEWTON = {PREC_NEWTON:.0e}; one thread.\n",
+         PREC_NEWTON = {PREC_NEWTON:.0e}; one thread. Cost = CPU time of the run (the \
+         machine is shared: wall time also counts other processes).\n",
         r.case.kind.name(),
         r.case.contact_energy
     );
@@ -51,7 +52,7 @@ pub fn markdown(r: &CaseResult) -> String {
         let _ = writeln!(
             s,
             "Reference: NB_HARM_LINE = {}, NB_HARM_NONL = {}, PARA_REGUL = {:.0e}, PREC_MAN = \
-             {:.0e}, NB_PAS_MAN = {} ({} branches, {} points, {:.1} s).\n",
+             {:.0e}, NB_PAS_MAN = {} ({} branches, {} points, {:.1} s CPU).\n",
             c.h_lin,
             c.h_nonl,
             c.regul,
@@ -59,20 +60,21 @@ pub fn markdown(r: &CaseResult) -> String {
             super::measure::REFERENCE_POINTS_PER_BRANCH,
             m.branches,
             m.points,
-            m.seconds
+            m.cpu_seconds
         );
     }
     let front = on_front(ms);
     s.push_str(
-        "| sweep | NB_HARM_LINE | NB_HARM_NONL | PARA_REGUL | PREC_MAN | max rel. error | time (s) | branches | points | Pareto |\n",
+        "| sweep | NB_HARM_LINE | NB_HARM_NONL | PARA_REGUL | PREC_MAN | max rel. error | CPU (s) | wall (s) | branches | points | Pareto |\n",
     );
-    s.push_str("|---|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n");
+    s.push_str("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n");
     for (m, &p) in ms.iter().zip(&front) {
         let _ = writeln!(
             s,
-            "| {} | {} | {:.2} | {} | {} | {} |",
+            "| {} | {} | {:.2} | {:.2} | {} | {} | {} |",
             settings_cells(m),
             error_cell(m),
+            m.cpu_seconds,
             m.seconds,
             m.branches,
             m.points,
@@ -90,7 +92,7 @@ pub fn markdown(r: &CaseResult) -> String {
     if !failures.is_empty() {
         let _ = writeln!(s, "\nFailed runs:\n{}", failures.join("\n"));
     }
-    s.push_str("\n| target | cheapest setting meeting it | error | time (s) |\n");
+    s.push_str("\n| target | cheapest setting meeting it | error | CPU (s) |\n");
     s.push_str("|---:|---|---:|---:|\n");
     for rec in recommend(ms, &TARGETS) {
         match rec.index {
@@ -100,7 +102,7 @@ pub fn markdown(r: &CaseResult) -> String {
                 let _ = writeln!(
                     s,
                     "| {:.0e} | NB_HARM_LINE={}, NB_HARM_NONL={}, PARA_REGUL={:.0e}, PREC_MAN={:.0e} | {:.2e} | {:.2} |",
-                    rec.target, c.h_lin, c.h_nonl, c.regul, c.prec_man, m.max_rel_error, m.seconds
+                    rec.target, c.h_lin, c.h_nonl, c.regul, c.prec_man, m.max_rel_error, m.cost()
                 );
             }
             None => {
@@ -115,13 +117,13 @@ pub fn markdown(r: &CaseResult) -> String {
 pub fn csv(r: &CaseResult) -> String {
     let front = on_front(&r.measurements);
     let mut s = String::from(
-        "case,sweep,nb_harm_line,nb_harm_nonl,para_regul,prec_man,nb_ordre_man,nb_pas_man,max_rel_error,time_s,branches,points,points_in_range,pareto,failure\n",
+        "case,sweep,nb_harm_line,nb_harm_nonl,para_regul,prec_man,nb_ordre_man,nb_pas_man,max_rel_error,cpu_s,wall_s,branches,points,points_in_range,pareto,failure\n",
     );
     for (m, &p) in r.measurements.iter().zip(&front) {
         let c = &m.config;
         let _ = writeln!(
             s,
-            "{},{},{},{},{:e},{:e},{ORDER},{POINTS_PER_BRANCH},{},{:.4},{},{},{},{},\"{}\"",
+            "{},{},{},{},{:e},{:e},{ORDER},{POINTS_PER_BRANCH},{},{:.3},{:.3},{},{},{},{},\"{}\"",
             r.case.kind.name(),
             c.sweep,
             c.h_lin,
@@ -133,6 +135,7 @@ pub fn csv(r: &CaseResult) -> String {
             } else {
                 String::new()
             },
+            m.cpu_seconds,
             m.seconds,
             m.branches,
             m.points,
