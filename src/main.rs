@@ -223,7 +223,10 @@ fn study(grid: GridArg, out: &Path, case: CaseArg) -> ExitCode {
     };
     if let Err(e) = std::fs::create_dir_all(out) {
         return fail(
-            &Error::new(ErrorKind::Io, format!("cannot create {}: {e}", out.display())),
+            &Error::new(
+                ErrorKind::Io,
+                format!("cannot create {}: {e}", out.display()),
+            ),
             None,
         );
     }
@@ -257,7 +260,10 @@ fn study(grid: GridArg, out: &Path, case: CaseArg) -> ExitCode {
         for (path, text) in files {
             if let Err(e) = std::fs::write(&path, text) {
                 return fail(
-                    &Error::new(ErrorKind::Io, format!("cannot write {}: {e}", path.display())),
+                    &Error::new(
+                        ErrorKind::Io,
+                        format!("cannot write {}: {e}", path.display()),
+                    ),
                     None,
                 );
             }

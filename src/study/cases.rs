@@ -187,7 +187,13 @@ pub fn grid(kind: CaseKind, size: GridSize) -> Vec<Config> {
             for pm in [1e-6, 1e-14] {
                 v.push(with("PREC_MAN", b.h_lin, b.h_nonl, b.regul, pm));
             }
-            for (hn, eta) in [(30, 1e-3), (60, 2.5e-4), (120, 6e-5), (240, 1.5e-5), (400, 4e-6)] {
+            for (hn, eta) in [
+                (30, 1e-3),
+                (60, 2.5e-4),
+                (120, 6e-5),
+                (240, 1.5e-5),
+                (400, 4e-6),
+            ] {
                 v.push(with("diagonal", 20, hn, eta, 1e-6));
             }
             // Coarse everything, for the cheapest 1e-3.

@@ -139,11 +139,7 @@ pub fn plot(r: &CaseResult, stem: &Path) -> Result<()> {
     plotters::style::register_font("sans-serif", FontStyle::Normal, FONT)
         .map_err(|_| Error::internal("the embedded DejaVu Sans font is invalid"))?;
     let png = stem.with_extension("png");
-    draw(
-        BitMapBackend::new(&png, (800, 650)).into_drawing_area(),
-        r,
-    )
-    .map_err(|e| io(&png, e))?;
+    draw(BitMapBackend::new(&png, (800, 650)).into_drawing_area(), r).map_err(|e| io(&png, e))?;
     let svg = stem.with_extension("svg");
     draw(SVGBackend::new(&svg, (800, 650)).into_drawing_area(), r).map_err(|e| io(&svg, e))?;
     Ok(())

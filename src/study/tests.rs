@@ -38,7 +38,11 @@ fn wall_errors(configs: &[Config]) -> Vec<f64> {
         .map(|c| {
             let m = measure(&case, c, &reference);
             assert!(m.ok(), "{c:?}: {:?}", m.failure);
-            assert!(m.points_in_range > 20, "{c:?}: {} points", m.points_in_range);
+            assert!(
+                m.points_in_range > 20,
+                "{c:?}: {} points",
+                m.points_in_range
+            );
             println!("{c:?}: max rel error {:.3e}", m.max_rel_error);
             m.max_rel_error
         })
@@ -71,7 +75,13 @@ fn prec_man_changes_the_cost_not_the_error() {
         regul: 1e-5,
         prec_man: 1e-6,
     };
-    let e = wall_errors(&[base, Config { prec_man: 1e-9, ..base }]);
+    let e = wall_errors(&[
+        base,
+        Config {
+            prec_man: 1e-9,
+            ..base
+        },
+    ]);
     assert!((e[0] / e[1] - 1.0).abs() < 0.01, "{e:?}");
 }
 
@@ -80,7 +90,9 @@ fn reference_curve_interpolation_is_exact_for_a_log_log_quadratic() {
     // ln f = 0.3 + 0.1 ln E − 0.02 (ln E)²: the three-point quadratic reproduces it to
     // round-off (1e-12 relative), at nodes, between them and at the ends.
     let g = |x: f64| 0.3 + 0.1 * x - 0.02 * x * x;
-    let xs: Vec<f64> = (0..12).map(|i| -8.0 + 0.37 * i as f64 + 0.01 * (i * i) as f64).collect();
+    let xs: Vec<f64> = (0..12)
+        .map(|i| -8.0 + 0.37 * i as f64 + 0.01 * (i * i) as f64)
+        .collect();
     let r = Reference::Curve(xs.iter().map(|&x| (x, g(x))).collect());
     for i in 0..=100 {
         let x = xs[0] + (xs[11] - xs[0]) * i as f64 / 100.0;
