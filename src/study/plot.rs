@@ -57,9 +57,10 @@ fn draw<DB: DrawingBackend>(
     let ce = cost_error(ms);
     let front = pareto_front(&ce);
     root.fill(&WHITE)?;
+    let (area, note) = root.split_vertically(615);
     let (t0, t1) = bounds(ce.iter().map(|p| p.0));
     let (e0, e1) = bounds(ce.iter().map(|p| p.1));
-    let mut chart = ChartBuilder::on(&root)
+    let mut chart = ChartBuilder::on(&area)
         .caption(
             format!(
                 "{}: max relative frequency error against CPU time",
@@ -109,14 +110,13 @@ fn draw<DB: DrawingBackend>(
     // Label the Pareto points with their (H_l, H_nl, η, PREC_MAN).
     chart.draw_series(front.iter().map(|&i| {
         let c = &ms[i].config;
-        Text::new(
-            format!(
-                "{}/{}/{:.0e}/{:.0e}",
-                c.h_lin, c.h_nonl, c.regul, c.prec_man
-            ),
-            ce[i],
-            ("sans-serif", 11).into_font(),
-        )
+        // Beside the ring, not on it.
+        EmptyElement::at(ce[i])
+            + Text::new(
+                format!("{}/{}/{:e}/{:e}", c.h_lin, c.h_nonl, c.regul, c.prec_man),
+                (11, 2),
+                ("sans-serif", 11).into_font(),
+            )
     }))?;
     chart
         .configure_series_labels()
@@ -125,9 +125,9 @@ fn draw<DB: DrawingBackend>(
         .border_style(BLACK)
         .label_font(("sans-serif", 13))
         .draw()?;
-    root.draw(&Text::new(
+    note.draw(&Text::new(
         "labels: NB_HARM_LINE/NB_HARM_NONL/PARA_REGUL/PREC_MAN",
-        (80, 628),
+        (80, 10),
         ("sans-serif", 12).into_font(),
     ))?;
     root.present()

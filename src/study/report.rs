@@ -19,7 +19,7 @@ fn on_front(ms: &[Measurement]) -> Vec<bool> {
 fn settings_cells(m: &Measurement) -> String {
     let c = &m.config;
     format!(
-        "{} | {} | {} | {:.0e} | {:.0e}",
+        "{} | {} | {} | {:e} | {:e}",
         c.sweep, c.h_lin, c.h_nonl, c.regul, c.prec_man
     )
 }
@@ -51,8 +51,8 @@ pub fn markdown(r: &CaseResult) -> String {
         let c = &m.config;
         let _ = writeln!(
             s,
-            "Reference: NB_HARM_LINE = {}, NB_HARM_NONL = {}, PARA_REGUL = {:.0e}, PREC_MAN = \
-             {:.0e}, NB_PAS_MAN = {} ({} branches, {} points, {:.1} s CPU).\n",
+            "Reference: NB_HARM_LINE = {}, NB_HARM_NONL = {}, PARA_REGUL = {:e}, PREC_MAN = \
+             {:e}, NB_PAS_MAN = {} ({} branches, {} points, {:.1} s CPU).\n",
             c.h_lin,
             c.h_nonl,
             c.regul,
@@ -101,7 +101,7 @@ pub fn markdown(r: &CaseResult) -> String {
                 let c = &m.config;
                 let _ = writeln!(
                     s,
-                    "| {:.0e} | NB_HARM_LINE={}, NB_HARM_NONL={}, PARA_REGUL={:.0e}, PREC_MAN={:.0e} | {:.2e} | {:.2} |",
+                    "| {:.0e} | NB_HARM_LINE={}, NB_HARM_NONL={}, PARA_REGUL={:e}, PREC_MAN={:e} | {:.2e} | {:.2} |",
                     rec.target, c.h_lin, c.h_nonl, c.regul, c.prec_man, m.max_rel_error, m.cost()
                 );
             }
