@@ -11,6 +11,7 @@
 //! - [`table`], [`function`]: in-memory tables and functions (filters, sorts, interpolation).
 //! - [`ops`]: one thin file per operator.
 //! - [`interp`]: runs a command file, one store transaction per operator.
+//! - [`study`]: the measured accuracy-versus-time study of the engine (`aster-nl study`).
 
 // `Error` carries a location, a keyword and a hint for the user: it is larger than clippy's
 // default budget for error types, on purpose, and never sits on a hot path.
@@ -30,5 +31,6 @@ pub mod nnm;
 pub mod ops;
 pub mod plot;
 pub mod store;
+pub mod study;
 pub mod table;
 pub mod value;

@@ -44,6 +44,31 @@ enum Command {
     Catalog { operator: Option<String> },
     /// List the concepts and SQL tables of a database.
     Tables { db: PathBuf },
+    /// Measure accuracy against time of MODE_NON_LINE settings (tables, CSV, plots).
+    Study {
+        /// Grid of settings: small (a quick look) or full (the documented study).
+        #[arg(long, value_enum, default_value = "small")]
+        grid: GridArg,
+        /// Directory receiving accuracy_<case>.csv/.md/.png/.svg.
+        #[arg(long, default_value = "docs")]
+        out: PathBuf,
+        /// Which system: the one-DOF wall (exact reference), the 2-DOF chain, or both.
+        #[arg(long, value_enum, default_value = "both")]
+        case: CaseArg,
+    },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum GridArg {
+    Small,
+    Full,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum CaseArg {
+    Wall,
+    Chain2,
+    Both,
 }
 
 fn main() -> ExitCode {
@@ -53,6 +78,7 @@ fn main() -> ExitCode {
         Command::Check { file } => check(&file),
         Command::Catalog { operator } => print_catalog(operator.as_deref()),
         Command::Tables { db } => tables(&db),
+        Command::Study { grid, out, case } => study(grid, &out, case),
     }
 }
 
@@ -199,4 +225,71 @@ fn tables(db: &Path) -> ExitCode {
         }
         Err(e) => fail(&e, None),
     }
+}
+
+fn study(grid: GridArg, out: &Path, case: CaseArg) -> ExitCode {
+    use aster_nl::study::{self, CaseKind, GridSize};
+    let size = match grid {
+        GridArg::Small => GridSize::Small,
+        GridArg::Full => GridSize::Full,
+    };
+    let kinds: &[CaseKind] = match case {
+        CaseArg::Wall => &[CaseKind::Wall],
+        CaseArg::Chain2 => &[CaseKind::Chain2],
+        CaseArg::Both => &[CaseKind::Wall, CaseKind::Chain2],
+    };
+    if let Err(e) = std::fs::create_dir_all(out) {
+        return fail(
+            &Error::new(
+                ErrorKind::Io,
+                format!("cannot create {}: {e}", out.display()),
+            ),
+            None,
+        );
+    }
+    for &kind in kinds {
+        let mut progress = |m: &study::Measurement| {
+            let c = &m.config;
+            eprintln!(
+                "{} {:>9} H_l {:>2} H_nl {:>4} eta {:.0e} PREC_MAN {:.0e}: error {:.3e}, {:.2} s, {} branches{}",
+                kind.name(),
+                c.sweep,
+                c.h_lin,
+                c.h_nonl,
+                c.regul,
+                c.prec_man,
+                m.max_rel_error,
+                m.seconds,
+                m.branches,
+                m.failure.as_deref().map(|f| format!(" ({f})")).unwrap_or_default()
+            );
+        };
+        let r = match study::run_case(kind, size, &mut progress) {
+            Ok(r) => r,
+            Err(e) => return fail(&e, None),
+        };
+        let stem = out.join(format!("accuracy_{}", kind.name()));
+        let md = study::report::markdown(&r);
+        let files = [
+            (stem.with_extension("md"), md.clone()),
+            (stem.with_extension("csv"), study::report::csv(&r)),
+        ];
+        for (path, text) in files {
+            if let Err(e) = std::fs::write(&path, text) {
+                return fail(
+                    &Error::new(
+                        ErrorKind::Io,
+                        format!("cannot write {}: {e}", path.display()),
+                    ),
+                    None,
+                );
+            }
+        }
+        if let Err(e) = study::plot::plot(&r, &stem) {
+            return fail(&e, None);
+        }
+        println!("{md}");
+        println!("written: {}.{{md,csv,png,svg}}\n", stem.display());
+    }
+    ExitCode::SUCCESS
 }

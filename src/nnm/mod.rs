@@ -20,6 +20,7 @@
 
 mod anm;
 mod energy;
+pub mod exact;
 mod law_check;
 mod laws;
 mod linear_solver;
@@ -457,6 +458,20 @@ pub fn continue_branches(
     start: StartState,
     on_branch: &mut dyn FnMut(&BranchReport, &[Point]),
 ) -> Outcome {
+    continue_while(problem, settings, start, &mut |r, p| {
+        on_branch(r, p);
+        true
+    })
+}
+
+/// As [`continue_branches`], but stops after the first branch for which `on_branch` returns
+/// false (e.g. once the energy has passed a bound); at most `settings.n_branches` branches.
+pub fn continue_while(
+    problem: &Problem,
+    settings: &Settings,
+    start: StartState,
+    on_branch: &mut dyn FnMut(&BranchReport, &[Point]) -> bool,
+) -> Outcome {
     let mut points = Vec::new();
     let error = run(problem, settings, start, on_branch, &mut points).err();
     Outcome { points, error }
@@ -466,7 +481,7 @@ fn run(
     problem: &Problem,
     settings: &Settings,
     st: StartState,
-    on_branch: &mut dyn FnMut(&BranchReport, &[Point]),
+    on_branch: &mut dyn FnMut(&BranchReport, &[Point]) -> bool,
     out: &mut Vec<Point>,
 ) -> Result<()> {
     let sys = System::new(problem, settings, st.scaling, st.ref_dof)?;
@@ -585,8 +600,11 @@ fn run(
             newton_iterations,
             bifurcation: ser.bifurcation.is_some(),
         };
-        on_branch(&report, &branch_points);
+        let go_on = on_branch(&report, &branch_points);
         out.extend(branch_points);
+        if !go_on {
+            break;
+        }
         border = tangent.clone();
         prev_tangent = Some(tangent);
     }

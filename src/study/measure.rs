@@ -1,0 +1,288 @@
+//! One measurement: a timed branch over the case's energy range and its frequency error.
+
+use super::cases::StudyCase;
+use crate::error::{Error, Result};
+use crate::nnm::exact::Oscillator;
+use crate::nnm::{continue_while, start_from_mode, Point, Settings};
+use std::time::Instant;
+
+/// The settings that vary in the study; the others are fixed (`settings`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Config {
+    /// Which sweep the setting belongs to ("base", "H_nl", "eta", "H_l", "PREC_MAN",
+    /// "diagonal", "reference").
+    pub sweep: &'static str,
+    /// NB_HARM_LINE.
+    pub h_lin: usize,
+    /// NB_HARM_NONL.
+    pub h_nonl: usize,
+    /// PARA_REGUL.
+    pub regul: f64,
+    /// PREC_MAN.
+    pub prec_man: f64,
+}
+
+/// NB_ORDRE_MAN (Code_Aster's default).
+pub const ORDER: usize = 20;
+/// NB_PAS_MAN of the measured runs: dense enough that every part of the range is checked.
+pub const POINTS_PER_BRANCH: usize = 5;
+/// PREC_NEWTON of the branch ends.
+pub const PREC_NEWTON: f64 = 1e-9;
+/// A run that has not reached the top of the range after this many branches is a failure.
+pub const MAX_BRANCHES: usize = 3000;
+
+/// Engine settings of a measurement.
+pub fn settings(cfg: &Config, points_per_branch: usize) -> Settings {
+    Settings {
+        h_lin: cfg.h_lin,
+        h_nonl: cfg.h_nonl,
+        n_branches: MAX_BRANCHES,
+        n_points_per_branch: points_per_branch,
+        order: ORDER,
+        prec_man: cfg.prec_man,
+        prec_newton: PREC_NEWTON,
+        iter_newton_max: 15,
+        bif_terms: 3,
+        bif_tol: 1e-4,
+        direction: 1,
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Measurement {
+    pub config: Config,
+    /// max |f/f_ref − 1| over the computed points with energy in the range (NaN on failure).
+    pub max_rel_error: f64,
+    /// Wall time of the whole run: start point and every branch up to the top of the range.
+    pub seconds: f64,
+    /// CPU time of the same run (the measuring thread; NaN where the OS does not say). On a
+    /// shared machine it is the repeatable cost: wall time also counts the other processes.
+    pub cpu_seconds: f64,
+    pub branches: usize,
+    pub points: usize,
+    pub points_in_range: usize,
+    /// Why the run did not measure (engine error, range not reached).
+    pub failure: Option<String>,
+}
+
+impl Measurement {
+    pub fn ok(&self) -> bool {
+        self.failure.is_none() && self.max_rel_error.is_finite()
+    }
+
+    /// The cost the study ranks by: CPU time when known, else wall time.
+    pub fn cost(&self) -> f64 {
+        if self.cpu_seconds.is_finite() {
+            self.cpu_seconds
+        } else {
+            self.seconds
+        }
+    }
+}
+
+/// CPU time (user + system) of the calling thread from /proc (Linux); None elsewhere.
+/// The kernel reports it in clock ticks, 100 per second on Linux (USER_HZ).
+pub fn thread_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/thread-self/stat").ok()?;
+    // Fields after the command name (which may hold spaces) closed by the last ')':
+    // state is the first, utime the 12th, stime the 13th.
+    let rest = &stat[stat.rfind(')')? + 1..];
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let utime: f64 = f.get(11)?.parse().ok()?;
+    let stime: f64 = f.get(12)?.parse().ok()?;
+    Some((utime + stime) / 100.0)
+}
+
+/// The frequency (Hz) a computed point is compared with, at its energy.
+pub enum Reference {
+    ExactPlan(Oscillator),
+    /// A computed branch: (ln E, ln f), sorted by energy.
+    Curve(Vec<(f64, f64)>),
+}
+
+impl Reference {
+    pub fn exact_plan(o: Oscillator) -> Reference {
+        Reference::ExactPlan(o)
+    }
+
+    /// From computed points (sorted here); None if fewer than 3 usable points.
+    pub fn from_points(points: &[Point]) -> Option<Reference> {
+        let mut v: Vec<(f64, f64)> = points
+            .iter()
+            .filter(|p| p.energy > 0.0 && p.frequency > 0.0)
+            .map(|p| (p.energy.ln(), p.frequency.ln()))
+            .collect();
+        v.sort_by(|a, b| a.0.total_cmp(&b.0));
+        v.dedup_by(|a, b| a.0 == b.0);
+        (v.len() >= 3).then_some(Reference::Curve(v))
+    }
+
+    /// Reference frequency at energy e; None outside a computed curve.
+    pub fn frequency(&self, e: f64) -> Option<f64> {
+        match self {
+            Reference::ExactPlan(o) => Some(o.frequency_plan(e)),
+            Reference::Curve(v) => {
+                let x = e.ln();
+                let n = v.len();
+                if n < 3 || x < v[0].0 || x > v[n - 1].0 {
+                    return None;
+                }
+                // Quadratic through the three nearest points in (ln E, ln f): on the dense
+                // reference branch its error is far below the errors measured.
+                let i = v.partition_point(|p| p.0 < x).clamp(1, n - 1);
+                let j = if i + 1 < n && (i == 1 || x - v[i - 1].0 > v[i].0 - x) {
+                    i - 1
+                } else {
+                    i - 2
+                };
+                let (x0, x1, x2) = (v[j].0, v[j + 1].0, v[j + 2].0);
+                let (y0, y1, y2) = (v[j].1, v[j + 1].1, v[j + 2].1);
+                let l0 = (x - x1) * (x - x2) / ((x0 - x1) * (x0 - x2));
+                let l1 = (x - x0) * (x - x2) / ((x1 - x0) * (x1 - x2));
+                let l2 = (x - x0) * (x - x1) / ((x2 - x0) * (x2 - x1));
+                Some((y0 * l0 + y1 * l1 + y2 * l2).exp())
+            }
+        }
+    }
+}
+
+struct Run {
+    points: Vec<Point>,
+    branches: usize,
+    seconds: f64,
+    cpu_seconds: f64,
+    failure: Option<String>,
+}
+
+/// Runs a branch until its energy passes the top of the range; returns the points, the
+/// number of branches and the times, or the failure with what was computed.
+fn timed_run(case: &StudyCase, cfg: &Config, points_per_branch: usize) -> Run {
+    let problem = case.problem_with(cfg.regul);
+    let s = settings(cfg, points_per_branch);
+    let (_, hi) = case.range();
+    let c0 = thread_cpu_seconds();
+    let t0 = Instant::now();
+    let cpu = |c0: Option<f64>| match (c0, thread_cpu_seconds()) {
+        (Some(a), Some(b)) => b - a,
+        _ => f64::NAN,
+    };
+    let st = match start_from_mode(&problem, &s, &case.mode, 1.0, case.omega) {
+        Ok(st) => st,
+        Err(e) => {
+            return Run {
+                points: vec![],
+                branches: 0,
+                seconds: t0.elapsed().as_secs_f64(),
+                cpu_seconds: cpu(c0),
+                failure: Some(e.message),
+            }
+        }
+    };
+    let mut branches = 0;
+    let out = continue_while(&problem, &s, st, &mut |r, _| {
+        branches = r.branch;
+        r.energy_range.1 <= hi
+    });
+    let seconds = t0.elapsed().as_secs_f64();
+    let cpu_seconds = cpu(c0);
+    let top = out.points.iter().map(|p| p.energy).fold(0.0, f64::max);
+    let failure = match out.error {
+        Some(e) => Some(e.message),
+        None if top <= hi => Some(format!(
+            "stopped at E = {top:.3e} below the top of the range {hi:.3e} after {branches} branches"
+        )),
+        None => None,
+    };
+    Run {
+        points: out.points,
+        branches,
+        seconds,
+        cpu_seconds,
+        failure,
+    }
+}
+
+/// Measures one setting against `reference`.
+pub fn measure(case: &StudyCase, cfg: &Config, reference: &Reference) -> Measurement {
+    let Run {
+        points,
+        branches,
+        seconds,
+        cpu_seconds,
+        mut failure,
+    } = timed_run(case, cfg, POINTS_PER_BRANCH);
+    let (lo, hi) = case.range();
+    let mut err: f64 = 0.0;
+    let mut in_range = 0;
+    for p in points.iter().filter(|p| p.energy >= lo && p.energy <= hi) {
+        match reference.frequency(p.energy) {
+            Some(f) => {
+                err = err.max((p.frequency / f - 1.0).abs());
+                in_range += 1;
+            }
+            None => {
+                failure.get_or_insert(format!("no reference at E = {:.3e}", p.energy));
+            }
+        }
+    }
+    if in_range == 0 {
+        failure.get_or_insert("no computed point inside the range".into());
+    }
+    Measurement {
+        config: *cfg,
+        max_rel_error: if failure.is_none() { err } else { f64::NAN },
+        seconds,
+        cpu_seconds,
+        branches,
+        points: points.len(),
+        points_in_range: in_range,
+        failure,
+    }
+}
+
+/// NB_PAS_MAN of a reference run: a dense curve for the interpolation.
+pub const REFERENCE_POINTS_PER_BRANCH: usize = 10;
+
+/// Computes a reference curve (a branch slightly past the range so that interpolation never
+/// needs to extrapolate); the measurement records its cost, its error is not known (NaN).
+pub fn reference_curve(case: &StudyCase, cfg: &Config) -> Result<(Reference, Measurement)> {
+    let Run {
+        points,
+        branches,
+        seconds,
+        cpu_seconds,
+        failure,
+    } = timed_run(case, cfg, REFERENCE_POINTS_PER_BRANCH);
+    if let Some(f) = &failure {
+        return Err(Error::numerical(format!(
+            "the reference run of {} failed: {f}",
+            case.kind.name()
+        )));
+    }
+    let (lo, _) = case.range();
+    let reference = Reference::from_points(&points)
+        .filter(|r| match r {
+            Reference::Curve(v) => v.first().is_some_and(|p| p.0 <= lo.ln()),
+            Reference::ExactPlan(_) => true,
+        })
+        .ok_or_else(|| {
+            Error::numerical(format!(
+                "the reference run of {} does not cover the range",
+                case.kind.name()
+            ))
+        })?;
+    let m = Measurement {
+        config: *cfg,
+        max_rel_error: f64::NAN,
+        seconds,
+        cpu_seconds,
+        branches,
+        points: points.len(),
+        points_in_range: points
+            .iter()
+            .filter(|p| p.energy >= lo && p.energy <= case.range().1)
+            .count(),
+        failure: None,
+    };
+    Ok((reference, m))
+}

@@ -1,0 +1,71 @@
+//! Accuracy against cost of the EHMAN engine: a measured study, not a claim.
+//!
+//! For each setting of (NB_HARM_LINE, NB_HARM_NONL, PARA_REGUL, PREC_MAN) a whole branch is
+//! run over a fixed energy range and timed; its error is the largest relative deviation of
+//! the frequency of the computed points from a reference curve at the same energy (every
+//! computed point with its energy inside the range is compared, corrected branch ends and
+//! uncorrected intermediate series points alike, so no interpolation of the computed curve
+//! enters the error). The references:
+//! - `wall`: the one-DOF oscillator of sdnd122 against its exact nonsmooth f(E)
+//!   (`nnm::exact`, ehman.md §8);
+//! - `chain2`: two masses (wall–m1–m2 springs) with a BI_PLAN stop on m2, against the
+//!   branch computed at the finest settings (`cases::chain2_reference_config`).
+//!
+//! Pure numerics and files: no SQL. `run_case` measures, `pareto` ranks, `report` writes the
+//! table and CSV, `plot` draws error against time.
+
+#![allow(clippy::result_large_err)]
+
+pub mod cases;
+pub mod measure;
+pub mod pareto;
+pub mod plot;
+pub mod report;
+
+#[cfg(test)]
+mod tests;
+
+pub use cases::{grid, CaseKind, GridSize, StudyCase};
+pub use measure::{measure, Config, Measurement, Reference};
+pub use pareto::{pareto_front, recommend, Recommendation};
+
+use crate::error::Result;
+
+/// Everything measured for one case.
+pub struct CaseResult {
+    pub case: StudyCase,
+    pub measurements: Vec<Measurement>,
+    /// The reference run (chain2 only): its settings and cost.
+    pub reference: Option<Measurement>,
+}
+
+/// Runs the whole grid of one case; `progress` is told about each measurement as it ends.
+pub fn run_case(
+    kind: CaseKind,
+    size: GridSize,
+    progress: &mut dyn FnMut(&Measurement),
+) -> Result<CaseResult> {
+    // Single-threaded for repeatable timings on a shared machine.
+    faer::set_global_parallelism(faer::Par::Seq);
+    let case = StudyCase::new(kind);
+    let (reference, ref_run) = match kind {
+        CaseKind::Wall => (Reference::exact_plan(cases::WALL), None),
+        CaseKind::Chain2 => {
+            let cfg = cases::chain2_reference_config(size);
+            let (curve, m) = measure::reference_curve(&case, &cfg)?;
+            progress(&m);
+            (curve, Some(m))
+        }
+    };
+    let mut measurements = Vec::new();
+    for cfg in grid(kind, size) {
+        let m = measure(&case, &cfg, &reference);
+        progress(&m);
+        measurements.push(m);
+    }
+    Ok(CaseResult {
+        case,
+        measurements,
+        reference: ref_run,
+    })
+}
