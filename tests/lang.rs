@@ -34,7 +34,8 @@ fn run(text: &str) -> bool {
     let result = lang::run(&src, &mut Env::new(), &mut AnyOperator);
     if let Err(e) = &result {
         let r = lang::render_plain(e, Some(&src));
-        assert!(r.starts_with("error: "));
+        assert!(r.starts_with("  × "), "{r}");
+        assert!(r.contains(&e.message), "{r}");
         if let Some(loc) = &e.location {
             assert!(loc.span.line >= 1 && loc.span.col >= 1, "{e}");
             assert!(

@@ -1,9 +1,13 @@
-//! Diagnostics: byte offsets to line/column, rendering an error with its source line and
-//! a caret, and "did you mean" suggestions.
+//! Diagnostics: byte offsets to line/column, rendering an error with its source line
+//! (miette's graphical report), and "did you mean" suggestions.
 
 use super::Source;
 use crate::error::Error;
 use crate::value::Span;
+use miette::{
+    GraphicalReportHandler, GraphicalTheme, LabeledSpan, MietteDiagnostic, NamedSource, Report,
+    SourceSpan,
+};
 use std::io::IsTerminal;
 
 /// Maps byte offsets of one text to 1-based lines and columns (columns count characters).
@@ -59,79 +63,66 @@ pub fn render_plain(error: &Error, src: Option<&Source>) -> String {
     render_styled(error, src, false)
 }
 
-/// Renders an error as
-/// ```text
-/// error: unknown operator 'FOO'
-///   --> study.comm:3:5
-///    |
-///  3 | X = FOO(A=1)
-///    |     ^^^
-///    = hint: did you mean 'FOX'?
-/// ```
-/// The source line is shown when `src` is the file the error points into.
+/// Renders an error with miette's graphical report: the message (with the keyword it is
+/// about), then, when `src` is the file the error points into, the offending line with the
+/// span underlined and its `file:line:col`; otherwise a `--> file:line:col` line. The hint
+/// comes last.
 pub fn render_styled(error: &Error, src: Option<&Source>, color: bool) -> String {
-    let paint = |code: &str, s: &str| {
-        if color {
-            format!("\x1b[{code}m{s}\x1b[0m")
-        } else {
-            s.to_string()
-        }
-    };
-    let mut out = String::new();
     let head = match &error.keyword {
         Some(kw) => format!("{kw}: {}", error.message),
         None => error.message.clone(),
     };
-    out.push_str(&format!("{}: {head}\n", paint("1;31", "error")));
-    if let Some(loc) = &error.location {
-        let sp = loc.span;
-        out.push_str(&format!("  --> {}:{}:{}\n", loc.file, sp.line, sp.col));
-        let line_text = src
-            .filter(|s| s.name == loc.file && sp.line > 0)
-            .and_then(|s| s.text.split('\n').nth(sp.line - 1));
-        if let Some(text) = line_text {
-            let text = text.trim_end_matches('\r');
-            let num = sp.line.to_string();
-            let pad = " ".repeat(num.len());
-            // Tabs are shown as 4 spaces; the caret column follows.
-            let shown: String = text
-                .chars()
-                .map(|c| {
-                    if c == '\t' {
-                        "    ".to_string()
-                    } else {
-                        c.to_string()
-                    }
-                })
-                .collect();
-            let before: usize = text
-                .chars()
-                .take(sp.col.saturating_sub(1))
-                .map(|c| if c == '\t' { 4 } else { 1 })
-                .sum();
-            let line_chars = text.chars().count();
-            let span_chars = src
-                .and_then(|s| s.text.get(sp.start..sp.end))
-                .map_or(1, |t| t.split('\n').next().unwrap_or("").chars().count());
-            let width = span_chars
-                .min(line_chars.saturating_sub(sp.col.saturating_sub(1)))
-                .max(1);
-            out.push_str(&format!(" {pad} {}\n", paint("34", "|")));
-            out.push_str(&format!(
-                " {} {} {shown}\n",
-                paint("34", &num),
-                paint("34", "|")
-            ));
-            out.push_str(&format!(
-                " {pad} {} {}{}\n",
-                paint("34", "|"),
-                " ".repeat(before),
-                paint("1;31", &"^".repeat(width))
-            ));
-        }
-    }
+    let mut diag = MietteDiagnostic::new(head);
     if let Some(h) = &error.hint {
-        out.push_str(&format!("  = {}: {h}\n", paint("1", "hint")));
+        diag = diag.with_help(h.clone());
+    }
+    let theme = if color {
+        GraphicalTheme::unicode()
+    } else {
+        GraphicalTheme::unicode_nocolor()
+    };
+    let handler = GraphicalReportHandler::new_themed(theme)
+        .with_context_lines(1)
+        .with_width(120);
+    let mut out = String::new();
+    let in_source = error.location.as_ref().and_then(|loc| {
+        src.filter(|s| s.name == loc.file && loc.span.line > 0)
+            .map(|s| (loc.span, s))
+    });
+    let rendered = match (in_source, &error.location) {
+        (Some((sp, s)), _) => {
+            // Underline the first line of the span (at least one character).
+            let start = floor_char(&s.text, sp.start.min(s.text.len()));
+            let line_end = s.text[start..]
+                .find('\n')
+                .map_or(s.text.len(), |i| start + i);
+            let end = sp.end.clamp(start, line_end);
+            let len = if end > start {
+                end - start
+            } else {
+                s.text[start..line_end]
+                    .chars()
+                    .next()
+                    .map_or(0, char::len_utf8)
+            };
+            let diag = diag.with_label(LabeledSpan::underline(SourceSpan::new(start.into(), len)));
+            let report = Report::new(diag)
+                .with_source_code(NamedSource::new(s.name.clone(), s.text.clone()));
+            handler.render_report(&mut out, &*report)
+        }
+        (None, Some(loc)) => {
+            let r = handler.render_report(&mut out, &diag);
+            out.push_str(&format!(
+                "  --> {}:{}:{}\n",
+                loc.file, loc.span.line, loc.span.col
+            ));
+            r
+        }
+        (None, None) => handler.render_report(&mut out, &diag),
+    };
+    if rendered.is_err() {
+        // Formatting into a String cannot fail; keep the plain message if it ever does.
+        return format!("error: {error}\n");
     }
     out
 }
@@ -198,33 +189,28 @@ mod tests {
             .hint("did you mean 'FOX'?");
         let r = render_plain(&e, Some(&src));
         let lines: Vec<&str> = r.lines().collect();
-        assert_eq!(lines[0], "error: unknown operator 'FOO'");
-        assert_eq!(lines[1], "  --> f.comm:2:5");
-        assert_eq!(lines[3], " 2 | X = FOO(A=1)");
-        assert_eq!(lines[4], "   |     ^^^");
-        assert_eq!(lines[5], "  = hint: did you mean 'FOX'?");
+        assert_eq!(lines[0], "  × unknown operator 'FOO'", "{r}");
+        assert_eq!(lines[1], "   ╭─[f.comm:2:5]", "{r}");
+        assert_eq!(lines[3], " 2 │ X = FOO(A=1)", "{r}");
+        assert_eq!(lines[4], "   ·     ───", "{r}");
+        assert!(r.contains("help: did you mean 'FOX'?"), "{r}");
         assert!(!r.contains('\x1b'));
-        assert!(render_styled(&e, Some(&src), true).contains("\x1b[1;31m^^^"));
+        assert!(render_styled(&e, Some(&src), true).contains('\x1b'));
     }
 
     #[test]
-    fn caret_after_tabs_and_without_source() {
-        let src = Source {
-            name: "f.comm".into(),
-            text: "\tX = y\n".into(),
-        };
-        let span = LineIndex::new(&src.text).span(5, 6);
+    fn without_the_source_the_location_is_still_given() {
+        let span = LineIndex::new("\tX = y\n").span(5, 6);
         let e = Error::input("name 'y' is not defined").at("f.comm", span);
-        let r = render_plain(&e, Some(&src));
-        assert!(r.contains("     X = y\n"), "{r}");
-        assert!(r.contains("   |         ^\n"), "{r}");
-        // Another file: location only.
+        // Another file than the one the error points into: location only.
         let other = Source {
             name: "g.comm".into(),
             text: String::new(),
         };
-        assert_eq!(render_plain(&e, Some(&other)).lines().count(), 2);
-        assert_eq!(render_plain(&e, None).lines().count(), 2);
+        for r in [render_plain(&e, Some(&other)), render_plain(&e, None)] {
+            assert!(r.contains("name 'y' is not defined"), "{r}");
+            assert!(r.contains("--> f.comm:1:6"), "{r}");
+        }
     }
 
     #[test]
