@@ -198,6 +198,18 @@ fn hard_branch_carries_on_past_flagged_bifurcations() {
         .unwrap();
     assert!(!flags.is_empty());
     assert!(flags[0] + 5 <= v.len() as i64, "{flags:?}");
+    // The time-domain check of the contact law exposes the non-physical root: O(1) defect
+    // on the late rows, against < 0.1 on the first rows (still near the linear mode).
+    let defect = |order: i64| -> f64 {
+        c.query_row(
+            "SELECT ECART_LOI_CHOC FROM MNL WHERE NUME_ORDRE = ?1",
+            [order],
+            |r| r.get(0),
+        )
+        .unwrap()
+    };
+    assert!(defect(1) < 0.1, "{}", defect(1));
+    assert!(defect(20) > 0.5, "{}", defect(20));
 }
 
 #[test]
