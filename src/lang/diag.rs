@@ -83,7 +83,8 @@ pub fn render_styled(error: &Error, src: Option<&Source>, color: bool) -> String
     };
     let handler = GraphicalReportHandler::new_themed(theme)
         .with_context_lines(1)
-        .with_width(120);
+        // No wrapping: messages stay on one line, whole in logs and searchable.
+        .with_width(100_000);
     let mut out = String::new();
     let in_source = error.location.as_ref().and_then(|loc| {
         src.filter(|s| s.name == loc.file && loc.span.line > 0)
