@@ -50,7 +50,8 @@ impl RunSummary {
     }
 }
 
-/// Alarms we know about; DEBUT(IGNORE_ALARM=...) names them.
+/// DEBUT/POURSUITE keywords accepted for compatibility with Code_Aster files that have no
+/// effect in aster-nl; the run says so when a file gives them.
 const DEBUT_NO_EFFECT: &[&str] = &[
     "CODE",
     "DEBUG",

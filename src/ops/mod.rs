@@ -23,6 +23,7 @@ pub mod defi_materiau;
 pub mod detruire;
 pub mod extr_table;
 #[cfg(test)]
+#[cfg(test)]
 pub mod harness;
 pub mod impr_fonction;
 pub mod impr_table;
