@@ -23,8 +23,21 @@ pub fn math_const(name: &str) -> Option<f64> {
 
 /// Builtin functions, always available.
 pub const BUILTINS: &[&str] = &[
-    "abs", "float", "int", "min", "max", "len", "range", "list", "tuple", "sum", "str", "round",
+    "abs",
+    "float",
+    "int",
+    "min",
+    "max",
+    "len",
+    "range",
+    "list",
+    "tuple",
+    "sum",
+    "str",
+    "round",
     "print",
+    "enumerate",
+    "zip",
 ];
 
 type R = std::result::Result<Value, String>;
@@ -232,6 +245,25 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
             }
         }
         "range" => range(args),
+        "enumerate" => {
+            arity(f, args, 1, 1)?;
+            let items = seq_items(f, &args[0])?;
+            let out = items
+                .into_iter()
+                .enumerate()
+                .map(|(i, v)| Value::Seq(vec![Value::Int(i as i64), v]));
+            Ok(Value::Seq(out.collect()))
+        }
+        "zip" => {
+            let lists = args
+                .iter()
+                .map(|a| seq_items(f, a))
+                .collect::<Result<Vec<_>, _>>()?;
+            let n = lists.iter().map(Vec::len).min().unwrap_or(0);
+            let rows = (0..n)
+                .map(|i| Value::Seq(lists.iter().filter_map(|l| l.get(i).cloned()).collect()));
+            Ok(Value::Seq(rows.collect()))
+        }
         "list" | "tuple" => {
             arity(f, args, 0, 1)?;
             match args.first() {
@@ -265,6 +297,18 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
             Ok(Value::Str(to_text(&args[0])))
         }
         _ => Err(format!("name '{f}' is not defined")),
+    }
+}
+
+/// The items of a list, or the characters of a text.
+fn seq_items(f: &str, v: &Value) -> Result<Vec<Value>, String> {
+    match v {
+        Value::Seq(items) => Ok(items.clone()),
+        Value::Str(s) => Ok(s.chars().map(|c| Value::Str(c.to_string())).collect()),
+        v => Err(format!(
+            "{f}() needs a list, a tuple or a text, got {}",
+            v.kind_name()
+        )),
     }
 }
 
@@ -377,5 +421,15 @@ mod tests {
         assert!(call_builtin("abs", &[Int(i64::MIN)]).is_err());
         assert!(call_builtin("max", &[Seq(vec![])]).is_err());
         assert!(call_builtin("int", &[Real(f64::MAX)]).is_err());
+        let pairs = call_builtin("zip", &[ints(&[1, 2, 3]), Value::Str("ab".into())]);
+        let want = Seq(vec![
+            Seq(vec![Int(1), Value::Str("a".into())]),
+            Seq(vec![Int(2), Value::Str("b".into())]),
+        ]);
+        assert_eq!(pairs, Ok(want));
+        assert_eq!(
+            call_builtin("enumerate", &[ints(&[7])]),
+            Ok(Seq(vec![ints(&[0, 7])]))
+        );
     }
 }

@@ -45,7 +45,7 @@ pub fn parse(src: &Source) -> Result<Program> {
 enum Line {
     Simple(Vec<Stmt>),
     For {
-        var: Name,
+        var: Target,
         iter: Expr,
         inline: Option<Vec<Stmt>>,
         span: Span,
@@ -147,7 +147,7 @@ impl LineParser<'_> {
         let mut inline = None;
         for q in p.into_inner() {
             match q.as_rule() {
-                Rule::name => var = Some(self.name(&q, off)),
+                Rule::targets => var = Some(self.targets(q, off)),
                 Rule::expr_list => iter = Some(self.expr_list(q, off)?),
                 Rule::simple_stmts => inline = Some(self.simple_stmts(q, off)?),
                 _ => {}
@@ -161,6 +161,26 @@ impl LineParser<'_> {
                 span,
             }),
             _ => Err(Error::internal("malformed for statement").at(&self.src.name, span)),
+        }
+    }
+
+    fn targets(&self, p: Pair<Rule>, off: usize) -> Target {
+        let span = self.span(&p, off);
+        let mut names = Vec::new();
+        let mut comma = false;
+        for q in p.into_inner() {
+            match q.as_rule() {
+                Rule::comma => comma = true,
+                _ => names.push(self.name(&q, off)),
+            }
+        }
+        match names.pop() {
+            Some(n) if names.is_empty() && !comma => Target::Name(n),
+            Some(n) => {
+                names.push(n);
+                Target::Tuple(names, span)
+            }
+            None => Target::Tuple(names, span),
         }
     }
 
@@ -183,7 +203,7 @@ impl LineParser<'_> {
             Rule::assign if inner.len() == 2 => {
                 let value = self.expr_list(inner.remove(1), off)?;
                 StmtKind::Assign {
-                    target: self.name(&inner[0], off),
+                    target: self.targets(inner.remove(0), off),
                     value,
                 }
             }
@@ -674,7 +694,7 @@ fn expected_text(positives: &[Rule]) -> String {
             | Rule::list
             | Rule::expr_list
             | Rule::sign => "an expression",
-            Rule::name | Rule::kwarg => "a name",
+            Rule::name | Rule::kwarg | Rule::targets => "a name",
             Rule::EOI => "the end of the statement (or ';')",
             Rule::add_op | Rule::mul_op | Rule::pow_op => "an operator",
             Rule::call | Rule::index | Rule::attr => "'(' '[' or '.'",
