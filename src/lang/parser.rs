@@ -31,7 +31,13 @@ pub fn parse(src: &Source) -> Result<Program> {
     }
     if let Some(e) = scan_error {
         let mut err = Error::syntax(e.message).at(&src.name, idx.span(e.start, e.end));
-        if let Some(h) = e.hint {
+        if let Some(open) = e.open_at {
+            let at = idx.span(open, open + 1);
+            err = err.hint(format!(
+                "it was opened at line {}, column {}",
+                at.line, at.col
+            ));
+        } else if let Some(h) = e.hint {
             err = err.hint(h);
         }
         return Err(err);
@@ -121,6 +127,7 @@ impl LineParser<'_> {
         if next.starts_with("==") {
             err = err.hint("comparisons are not supported; a keyword is written KEY=value");
         } else if expected.contains("','")
+            && (expected.contains("')'") || expected.contains("']'"))
             && next.starts_with(|c: char| c.is_alphanumeric() || c == '_' || c == '\'' || c == '"')
         {
             err = err.hint("a ',' may be missing");
@@ -699,6 +706,7 @@ fn expected_text(positives: &[Rule]) -> String {
             Rule::add_op | Rule::mul_op | Rule::pow_op => "an operator",
             Rule::call | Rule::index | Rule::attr => "'(' '[' or '.'",
             Rule::comma => "','",
+            Rule::colon => "':'",
             Rule::rpar => "')'",
             Rule::rbrack => "']'",
             Rule::aug_op => "'='",
@@ -727,6 +735,9 @@ fn expected_text(positives: &[Rule]) -> String {
     let weak = ["an operator", "'(' '[' or '.'"];
     if names.iter().any(|n| !weak.contains(n)) {
         names.retain(|n| !weak.contains(n));
+    }
+    if names.contains(&"a statement") {
+        names.retain(|n| !["an expression", "a name", "'import'"].contains(n));
     }
     if names.contains(&"an expression") {
         names.retain(|n| *n != "a name");

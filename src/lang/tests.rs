@@ -469,7 +469,17 @@ fn syntax_errors_are_located() {
         run_err("a = [1, 2)", 1, 10).message,
         "closing ')' does not match '['"
     );
+    let e = run_err("a = (1,\n  2]", 2, 4);
+    assert_eq!(e.hint.as_deref(), Some("it was opened at line 1, column 5"));
     assert_eq!(run_err("a = 1)", 1, 6).message, "unmatched ')'");
+    let e = run_err("for i in range(3)\n    x = 1", 1, 18);
+    assert_eq!(
+        e.message,
+        "invalid syntax: expected ':' or ',', found the end of the statement"
+    );
+    let e = run_err("DEBUT(A=1 B=2)", 1, 11);
+    assert_eq!(e.message, "invalid syntax: expected ',' or ')', found 'B'");
+    assert_eq!(e.hint.as_deref(), Some("a ',' may be missing"));
     assert_eq!(
         run_err("a = 1\ns = 'abc", 2, 5).message,
         "unterminated string"
