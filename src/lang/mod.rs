@@ -6,7 +6,8 @@
 //! source line and a caret.
 //!
 //! Layout: `scan` (logical lines, indentation, lexical errors) -> `parser` (pest grammar
-//! `grammar/comm.pest` -> `ast`) -> `eval` (with `arith` and `builtins`); `diag` renders.
+//! `grammar/comm.pest` -> `ast`) -> `blocks` (`for` bodies by indentation) -> `eval`
+//! (with `arith` and `builtins`); `diag` renders errors.
 
 // `error::Error` (the shared contract) is large; every fallible function here returns it.
 // Boxing it is the integrator's call, so the lint is silenced for this module only.
@@ -14,6 +15,7 @@
 
 mod arith;
 pub mod ast;
+mod blocks;
 mod builtins;
 pub mod diag;
 mod eval;

@@ -2,6 +2,7 @@
 //! grammar `grammar/comm.pest`, then grouped into `for` blocks by indentation.
 
 use super::ast::*;
+use super::blocks::{self, Line, Parsed};
 use super::diag::LineIndex;
 use super::scan::{scan, LogicalLine};
 use super::Source;
@@ -13,9 +14,6 @@ use pest::Parser as _;
 #[derive(pest_derive::Parser)]
 #[grammar = "../grammar/comm.pest"]
 struct CommParser;
-
-/// Deepest nesting of `for` blocks.
-const MAX_BLOCK_DEPTH: usize = 20;
 
 const SUPPORTED: &str = "a .comm file may contain assignments, operator calls, `for` loops \
 over lists or ranges and `from math import ...`";
@@ -42,26 +40,8 @@ pub fn parse(src: &Source) -> Result<Program> {
         }
         return Err(err);
     }
-    let mut pos = 0;
-    let stmts = p.block(&parsed, &mut pos, 0, 0)?;
+    let stmts = blocks::build(&parsed, &src.name, &idx)?;
     Ok(Program { stmts })
-}
-
-/// A parsed logical line before blocks are built.
-enum Line {
-    Simple(Vec<Stmt>),
-    For {
-        var: Target,
-        iter: Expr,
-        inline: Option<Vec<Stmt>>,
-        span: Span,
-    },
-}
-
-struct Parsed {
-    indent: usize,
-    start: usize,
-    line: Line,
 }
 
 struct LineParser<'a> {
@@ -609,76 +589,6 @@ impl LineParser<'_> {
             }
             _ => self.expr(p, off),
         }
-    }
-
-    // ---- blocks ------------------------------------------------------------------
-
-    /// Statements of the block whose lines are indented by `indent`, from `pos`.
-    fn block(
-        &self,
-        lines: &[Parsed],
-        pos: &mut usize,
-        indent: usize,
-        depth: usize,
-    ) -> Result<Vec<Stmt>> {
-        let mut out = Vec::new();
-        while let Some(l) = lines.get(*pos) {
-            if l.indent < indent {
-                break;
-            }
-            if l.indent > indent {
-                return Err(self.err("unexpected indent", self.idx.span(l.start, l.start + 1)));
-            }
-            *pos += 1;
-            match &l.line {
-                Line::Simple(stmts) => out.extend(stmts.iter().cloned()),
-                Line::For {
-                    var,
-                    iter,
-                    inline,
-                    span,
-                } => {
-                    let body = match inline {
-                        Some(b) => b.clone(),
-                        None => {
-                            let next = lines.get(*pos).filter(|n| n.indent > indent);
-                            let Some(next) = next else {
-                                return Err(self
-                                    .err("expected an indented block after 'for'", *span)
-                                    .hint("indent the loop body, e.g. by 4 spaces"));
-                            };
-                            if depth >= MAX_BLOCK_DEPTH {
-                                return Err(self.err(
-                                    format!(
-                                        "loops are nested too deeply (more than {MAX_BLOCK_DEPTH})"
-                                    ),
-                                    *span,
-                                ));
-                            }
-                            let body = self.block(lines, pos, next.indent, depth + 1)?;
-                            if let Some(after) = lines.get(*pos) {
-                                if after.indent > indent {
-                                    return Err(self.err(
-                                        "unindent does not match any outer indentation level",
-                                        self.idx.span(after.start, after.start + 1),
-                                    ));
-                                }
-                            }
-                            body
-                        }
-                    };
-                    out.push(Stmt {
-                        kind: StmtKind::For {
-                            var: var.clone(),
-                            iter: iter.clone(),
-                            body,
-                        },
-                        span: *span,
-                    });
-                }
-            }
-        }
-        Ok(out)
     }
 }
 
