@@ -1,4 +1,4 @@
-//! Syntax tree of a `.comm` file, produced by [`super::parser`] and walked by [`super::eval`].
+//! Syntax tree of a `.comm` file, produced by the parser and walked by the evaluator.
 
 use crate::value::Span;
 
