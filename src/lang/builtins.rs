@@ -57,6 +57,12 @@ fn arity(f: &str, args: &[Value], min: usize, max: usize) -> Result<(), String> 
     Ok(())
 }
 
+/// Argument `i` (arity is checked before, so a miss is only a defensive error).
+fn nth<'a>(f: &str, args: &'a [Value], i: usize) -> Result<&'a Value, String> {
+    args.get(i)
+        .ok_or_else(|| format!("{f}() is missing argument {}", i + 1))
+}
+
 fn num(f: &str, v: &Value) -> Result<f64, String> {
     num_of(v).ok_or_else(|| format!("{f}() needs a number, got {}", v.kind_name()))
 }
@@ -94,11 +100,11 @@ fn to_int(f: &str, x: f64) -> R {
 pub fn call_math(f: &str, args: &[Value]) -> R {
     let one = |args: &[Value]| -> Result<f64, String> {
         arity(f, args, 1, 1)?;
-        num(f, &args[0])
+        num(f, nth(f, args, 0)?)
     };
     let two = |args: &[Value]| -> Result<(f64, f64), String> {
         arity(f, args, 2, 2)?;
-        Ok((num(f, &args[0])?, num(f, &args[1])?))
+        Ok((num(f, nth(f, args, 0)?)?, num(f, nth(f, args, 1)?)?))
     };
     match f {
         "sqrt" => {
@@ -129,7 +135,7 @@ pub fn call_math(f: &str, args: &[Value]) -> R {
         }
         "log" => {
             arity(f, args, 1, 2)?;
-            let x = num(f, &args[0])?;
+            let x = num(f, nth(f, args, 0)?)?;
             domain(f, x > 0.0, x)?;
             match args.get(1) {
                 None => finite(f, x.ln()),
@@ -163,7 +169,7 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
     match f {
         "abs" => {
             arity(f, args, 1, 1)?;
-            match &args[0] {
+            match nth(f, args, 0)? {
                 Value::Real(r) => Ok(Value::Real(r.abs())),
                 v => match num_of(v) {
                     Some(_) => arith::unary(super::ast::UnOp::Plus, v).and_then(|v| match v {
@@ -179,7 +185,7 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
         }
         "float" => {
             arity(f, args, 1, 1)?;
-            match &args[0] {
+            match nth(f, args, 0)? {
                 Value::Str(s) => match s.trim().parse::<f64>() {
                     Ok(x) if x.is_finite() => Ok(Value::Real(x)),
                     _ => Err(format!("could not convert '{s}' to a real")),
@@ -189,7 +195,7 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
         }
         "int" => {
             arity(f, args, 1, 1)?;
-            match &args[0] {
+            match nth(f, args, 0)? {
                 Value::Str(s) => s
                     .trim()
                     .parse::<i64>()
@@ -201,7 +207,7 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
         }
         "round" => {
             arity(f, args, 1, 2)?;
-            let x = num(f, &args[0])?;
+            let x = num(f, nth(f, args, 0)?)?;
             match args.get(1) {
                 // Python rounds halves to even.
                 None => to_int(f, x.round_ties_even()),
@@ -237,7 +243,7 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
         }
         "len" => {
             arity(f, args, 1, 1)?;
-            match &args[0] {
+            match nth(f, args, 0)? {
                 Value::Seq(items) => Ok(Value::Int(items.len() as i64)),
                 Value::Str(s) => Ok(Value::Int(s.chars().count() as i64)),
                 Value::Fact(k) => Ok(Value::Int(k.len() as i64)),
@@ -247,7 +253,7 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
         "range" => range(args),
         "enumerate" => {
             arity(f, args, 1, 1)?;
-            let items = seq_items(f, &args[0])?;
+            let items = seq_items(f, nth(f, args, 0)?)?;
             let out = items
                 .into_iter()
                 .enumerate()
@@ -280,8 +286,9 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
         }
         "sum" => {
             arity(f, args, 1, 2)?;
-            let Value::Seq(items) = &args[0] else {
-                return Err(format!("sum() needs a list, got {}", args[0].kind_name()));
+            let first = nth(f, args, 0)?;
+            let Value::Seq(items) = first else {
+                return Err(format!("sum() needs a list, got {}", first.kind_name()));
             };
             let mut acc = args.get(1).cloned().unwrap_or(Value::Int(0));
             for v in items {
@@ -294,7 +301,7 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
         }
         "str" => {
             arity(f, args, 1, 1)?;
-            Ok(Value::Str(to_text(&args[0])))
+            Ok(Value::Str(to_text(nth(f, args, 0)?)))
         }
         _ => Err(format!("name '{f}' is not defined")),
     }

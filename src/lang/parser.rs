@@ -195,15 +195,16 @@ impl LineParser<'_> {
                 }
             }
             Rule::aug_assign if inner.len() == 3 => {
-                let op = match inner[1].as_str() {
-                    "+=" => BinOp::Add,
-                    "-=" => BinOp::Sub,
-                    "*=" => BinOp::Mul,
+                let op = match inner.get(1).map(|p| p.as_str()) {
+                    Some("+=") => BinOp::Add,
+                    Some("-=") => BinOp::Sub,
+                    Some("*=") => BinOp::Mul,
                     _ => BinOp::Div,
                 };
                 let value = self.expr(inner.remove(2), off)?;
+                let target = inner.remove(0);
                 StmtKind::AugAssign {
-                    target: self.name(&inner[0], off),
+                    target: self.name(&target, off),
                     op,
                     value,
                 }
