@@ -1,4 +1,4 @@
-//! Syntax tree of a `.comm` file, produced by [`super::parser`] and walked by [`super::eval`].
+//! Syntax tree of a `.comm` file, produced by the parser and walked by the evaluator.
 
 use crate::value::Span;
 
@@ -22,10 +22,18 @@ pub struct Name {
     pub span: Span,
 }
 
+/// What an assignment or a `for` loop binds.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Target {
+    Name(Name),
+    /// `a, b` (also `a,`): the value is unpacked.
+    Tuple(Vec<Name>, Span),
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub enum StmtKind {
-    /// `NAME = expr`
-    Assign { target: Name, value: Expr },
+    /// `NAME = expr` or `A, B = expr`.
+    Assign { target: Target, value: Expr },
     /// `NAME += expr` (also `-=`, `*=`, `/=`).
     AugAssign {
         target: Name,
@@ -36,7 +44,7 @@ pub enum StmtKind {
     Call(Expr),
     /// `for NAME in iter:` + indented body.
     For {
-        var: Name,
+        var: Target,
         iter: Expr,
         body: Vec<Stmt>,
     },

@@ -23,8 +23,21 @@ pub fn math_const(name: &str) -> Option<f64> {
 
 /// Builtin functions, always available.
 pub const BUILTINS: &[&str] = &[
-    "abs", "float", "int", "min", "max", "len", "range", "list", "tuple", "sum", "str", "round",
+    "abs",
+    "float",
+    "int",
+    "min",
+    "max",
+    "len",
+    "range",
+    "list",
+    "tuple",
+    "sum",
+    "str",
+    "round",
     "print",
+    "enumerate",
+    "zip",
 ];
 
 type R = std::result::Result<Value, String>;
@@ -42,6 +55,12 @@ fn arity(f: &str, args: &[Value], min: usize, max: usize) -> Result<(), String> 
         ));
     }
     Ok(())
+}
+
+/// Argument `i` (arity is checked before, so a miss is only a defensive error).
+fn nth<'a>(f: &str, args: &'a [Value], i: usize) -> Result<&'a Value, String> {
+    args.get(i)
+        .ok_or_else(|| format!("{f}() is missing argument {}", i + 1))
 }
 
 fn num(f: &str, v: &Value) -> Result<f64, String> {
@@ -81,11 +100,11 @@ fn to_int(f: &str, x: f64) -> R {
 pub fn call_math(f: &str, args: &[Value]) -> R {
     let one = |args: &[Value]| -> Result<f64, String> {
         arity(f, args, 1, 1)?;
-        num(f, &args[0])
+        num(f, nth(f, args, 0)?)
     };
     let two = |args: &[Value]| -> Result<(f64, f64), String> {
         arity(f, args, 2, 2)?;
-        Ok((num(f, &args[0])?, num(f, &args[1])?))
+        Ok((num(f, nth(f, args, 0)?)?, num(f, nth(f, args, 1)?)?))
     };
     match f {
         "sqrt" => {
@@ -116,7 +135,7 @@ pub fn call_math(f: &str, args: &[Value]) -> R {
         }
         "log" => {
             arity(f, args, 1, 2)?;
-            let x = num(f, &args[0])?;
+            let x = num(f, nth(f, args, 0)?)?;
             domain(f, x > 0.0, x)?;
             match args.get(1) {
                 None => finite(f, x.ln()),
@@ -150,7 +169,7 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
     match f {
         "abs" => {
             arity(f, args, 1, 1)?;
-            match &args[0] {
+            match nth(f, args, 0)? {
                 Value::Real(r) => Ok(Value::Real(r.abs())),
                 v => match num_of(v) {
                     Some(_) => arith::unary(super::ast::UnOp::Plus, v).and_then(|v| match v {
@@ -166,7 +185,7 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
         }
         "float" => {
             arity(f, args, 1, 1)?;
-            match &args[0] {
+            match nth(f, args, 0)? {
                 Value::Str(s) => match s.trim().parse::<f64>() {
                     Ok(x) if x.is_finite() => Ok(Value::Real(x)),
                     _ => Err(format!("could not convert '{s}' to a real")),
@@ -176,7 +195,7 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
         }
         "int" => {
             arity(f, args, 1, 1)?;
-            match &args[0] {
+            match nth(f, args, 0)? {
                 Value::Str(s) => s
                     .trim()
                     .parse::<i64>()
@@ -188,7 +207,7 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
         }
         "round" => {
             arity(f, args, 1, 2)?;
-            let x = num(f, &args[0])?;
+            let x = num(f, nth(f, args, 0)?)?;
             match args.get(1) {
                 // Python rounds halves to even.
                 None => to_int(f, x.round_ties_even()),
@@ -224,7 +243,7 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
         }
         "len" => {
             arity(f, args, 1, 1)?;
-            match &args[0] {
+            match nth(f, args, 0)? {
                 Value::Seq(items) => Ok(Value::Int(items.len() as i64)),
                 Value::Str(s) => Ok(Value::Int(s.chars().count() as i64)),
                 Value::Fact(k) => Ok(Value::Int(k.len() as i64)),
@@ -232,6 +251,25 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
             }
         }
         "range" => range(args),
+        "enumerate" => {
+            arity(f, args, 1, 1)?;
+            let items = seq_items(f, nth(f, args, 0)?)?;
+            let out = items
+                .into_iter()
+                .enumerate()
+                .map(|(i, v)| Value::Seq(vec![Value::Int(i as i64), v]));
+            Ok(Value::Seq(out.collect()))
+        }
+        "zip" => {
+            let lists = args
+                .iter()
+                .map(|a| seq_items(f, a))
+                .collect::<Result<Vec<_>, _>>()?;
+            let n = lists.iter().map(Vec::len).min().unwrap_or(0);
+            let rows = (0..n)
+                .map(|i| Value::Seq(lists.iter().filter_map(|l| l.get(i).cloned()).collect()));
+            Ok(Value::Seq(rows.collect()))
+        }
         "list" | "tuple" => {
             arity(f, args, 0, 1)?;
             match args.first() {
@@ -248,8 +286,9 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
         }
         "sum" => {
             arity(f, args, 1, 2)?;
-            let Value::Seq(items) = &args[0] else {
-                return Err(format!("sum() needs a list, got {}", args[0].kind_name()));
+            let first = nth(f, args, 0)?;
+            let Value::Seq(items) = first else {
+                return Err(format!("sum() needs a list, got {}", first.kind_name()));
             };
             let mut acc = args.get(1).cloned().unwrap_or(Value::Int(0));
             for v in items {
@@ -262,9 +301,21 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
         }
         "str" => {
             arity(f, args, 1, 1)?;
-            Ok(Value::Str(to_text(&args[0])))
+            Ok(Value::Str(to_text(nth(f, args, 0)?)))
         }
         _ => Err(format!("name '{f}' is not defined")),
+    }
+}
+
+/// The items of a list, or the characters of a text.
+fn seq_items(f: &str, v: &Value) -> Result<Vec<Value>, String> {
+    match v {
+        Value::Seq(items) => Ok(items.clone()),
+        Value::Str(s) => Ok(s.chars().map(|c| Value::Str(c.to_string())).collect()),
+        v => Err(format!(
+            "{f}() needs a list, a tuple or a text, got {}",
+            v.kind_name()
+        )),
     }
 }
 
@@ -377,5 +428,15 @@ mod tests {
         assert!(call_builtin("abs", &[Int(i64::MIN)]).is_err());
         assert!(call_builtin("max", &[Seq(vec![])]).is_err());
         assert!(call_builtin("int", &[Real(f64::MAX)]).is_err());
+        let pairs = call_builtin("zip", &[ints(&[1, 2, 3]), Value::Str("ab".into())]);
+        let want = Seq(vec![
+            Seq(vec![Int(1), Value::Str("a".into())]),
+            Seq(vec![Int(2), Value::Str("b".into())]),
+        ]);
+        assert_eq!(pairs, Ok(want));
+        assert_eq!(
+            call_builtin("enumerate", &[ints(&[7])]),
+            Ok(Seq(vec![ints(&[0, 7])]))
+        );
     }
 }

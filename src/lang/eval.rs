@@ -95,13 +95,13 @@ impl Evaluator<'_> {
         }
         match &s.kind {
             StmtKind::Assign { target, value } => {
-                let v = match &value.kind {
-                    ExprKind::Call { func, args } => {
-                        self.call(func, args, value.span, Site::Assign(target, s.span))?
+                let v = match (&value.kind, target) {
+                    (ExprKind::Call { func, args }, Target::Name(t)) => {
+                        self.call(func, args, value.span, Site::Assign(t, s.span))?
                     }
                     _ => self.eval(value)?,
                 };
-                self.env.bind(&target.text, v);
+                self.bind_target(target, v, value.span)?;
             }
             StmtKind::AugAssign { target, op, value } => {
                 let cur = self.name_value(&target.text, target.span)?;
@@ -130,7 +130,7 @@ impl Evaluator<'_> {
                     }
                 };
                 for item in items {
-                    self.env.bind(&var.text, item);
+                    self.bind_target(var, item, iter.span)?;
                     self.block(body)?;
                 }
             }
@@ -139,6 +139,37 @@ impl Evaluator<'_> {
                 if module.text == "math" {
                     self.env.modules.insert(alias.text.clone());
                     self.env.vars.remove(&alias.text);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Binds a name, or unpacks `value` (built at `span`) into a tuple of names.
+    fn bind_target(&mut self, target: &Target, value: Value, span: Span) -> Result<()> {
+        match target {
+            Target::Name(n) => self.env.bind(&n.text, value),
+            Target::Tuple(names, tspan) => {
+                let items = match value {
+                    Value::Seq(items) if items.len() == names.len() => items,
+                    Value::Seq(items) => {
+                        return Err(self.input(
+                            format!(
+                                "cannot unpack {} values into {} names",
+                                items.len(),
+                                names.len()
+                            ),
+                            span,
+                        ))
+                    }
+                    v => {
+                        let msg =
+                            format!("cannot unpack {} into {} names", v.kind_name(), names.len());
+                        return Err(self.input(msg, *tspan));
+                    }
+                };
+                for (n, v) in names.iter().zip(items) {
+                    self.env.bind(&n.text, v);
                 }
             }
         }

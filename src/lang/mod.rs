@@ -5,8 +5,20 @@
 //! operator call to a [`Host`] as a [`CommandCall`]; [`render`] shows an error with its
 //! source line and a caret.
 //!
+//! Supported subset: `NAME = OP(...)` and bare `OP(...)` statements, `;` separators,
+//! `#` comments, continuation inside brackets and after `\\`; keyword arguments,
+//! `reuse=`, `_F(...)`, `CO('N')`; ints, reals and strings in every Python form, tuples and
+//! lists, `True`/`False`/`None`; `+ - * / // % **` with Python precedence and Python 3
+//! semantics; variables, `+= -= *= /=`, tuple unpacking, indexing `L[i]` (negative too);
+//! `for` loops with indented or inline bodies; `import math [as m]`,
+//! `from math import *|names`; builtins abs float int round min max len range list tuple
+//! sum str print enumerate zip; lone strings (docstrings). Anything else (def, class,
+//! while, if, lambda, comparisons, methods, dictionaries, other modules) is an error
+//! naming file, line and column. Evaluation is bounded ([`Limits`]) and never panics.
+//!
 //! Layout: `scan` (logical lines, indentation, lexical errors) -> `parser` (pest grammar
-//! `grammar/comm.pest` -> `ast`) -> `eval` (with `arith` and `builtins`); `diag` renders.
+//! `grammar/comm.pest` -> `ast`) -> `blocks` (`for` bodies by indentation) -> `eval`
+//! (with `arith` and `builtins`); `diag` renders errors.
 
 // `error::Error` (the shared contract) is large; every fallible function here returns it.
 // Boxing it is the integrator's call, so the lint is silenced for this module only.
@@ -14,6 +26,7 @@
 
 mod arith;
 pub mod ast;
+mod blocks;
 mod builtins;
 pub mod diag;
 mod eval;

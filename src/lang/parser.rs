@@ -2,6 +2,7 @@
 //! grammar `grammar/comm.pest`, then grouped into `for` blocks by indentation.
 
 use super::ast::*;
+use super::blocks::{self, Line, Parsed};
 use super::diag::LineIndex;
 use super::scan::{scan, LogicalLine};
 use super::Source;
@@ -13,9 +14,6 @@ use pest::Parser as _;
 #[derive(pest_derive::Parser)]
 #[grammar = "../grammar/comm.pest"]
 struct CommParser;
-
-/// Deepest nesting of `for` blocks.
-const MAX_BLOCK_DEPTH: usize = 20;
 
 const SUPPORTED: &str = "a .comm file may contain assignments, operator calls, `for` loops \
 over lists or ranges and `from math import ...`";
@@ -31,31 +29,19 @@ pub fn parse(src: &Source) -> Result<Program> {
     }
     if let Some(e) = scan_error {
         let mut err = Error::syntax(e.message).at(&src.name, idx.span(e.start, e.end));
-        if let Some(h) = e.hint {
+        if let Some(open) = e.open_at {
+            let at = idx.span(open, open + 1);
+            err = err.hint(format!(
+                "it was opened at line {}, column {}",
+                at.line, at.col
+            ));
+        } else if let Some(h) = e.hint {
             err = err.hint(h);
         }
         return Err(err);
     }
-    let mut pos = 0;
-    let stmts = p.block(&parsed, &mut pos, 0, 0)?;
+    let stmts = blocks::build(&parsed, &src.name, &idx)?;
     Ok(Program { stmts })
-}
-
-/// A parsed logical line before blocks are built.
-enum Line {
-    Simple(Vec<Stmt>),
-    For {
-        var: Name,
-        iter: Expr,
-        inline: Option<Vec<Stmt>>,
-        span: Span,
-    },
-}
-
-struct Parsed {
-    indent: usize,
-    start: usize,
-    line: Line,
 }
 
 struct LineParser<'a> {
@@ -121,6 +107,7 @@ impl LineParser<'_> {
         if next.starts_with("==") {
             err = err.hint("comparisons are not supported; a keyword is written KEY=value");
         } else if expected.contains("','")
+            && (expected.contains("')'") || expected.contains("']'"))
             && next.starts_with(|c: char| c.is_alphanumeric() || c == '_' || c == '\'' || c == '"')
         {
             err = err.hint("a ',' may be missing");
@@ -147,7 +134,7 @@ impl LineParser<'_> {
         let mut inline = None;
         for q in p.into_inner() {
             match q.as_rule() {
-                Rule::name => var = Some(self.name(&q, off)),
+                Rule::targets => var = Some(self.targets(q, off)),
                 Rule::expr_list => iter = Some(self.expr_list(q, off)?),
                 Rule::simple_stmts => inline = Some(self.simple_stmts(q, off)?),
                 _ => {}
@@ -161,6 +148,26 @@ impl LineParser<'_> {
                 span,
             }),
             _ => Err(Error::internal("malformed for statement").at(&self.src.name, span)),
+        }
+    }
+
+    fn targets(&self, p: Pair<Rule>, off: usize) -> Target {
+        let span = self.span(&p, off);
+        let mut names = Vec::new();
+        let mut comma = false;
+        for q in p.into_inner() {
+            match q.as_rule() {
+                Rule::comma => comma = true,
+                _ => names.push(self.name(&q, off)),
+            }
+        }
+        match names.pop() {
+            Some(n) if names.is_empty() && !comma => Target::Name(n),
+            Some(n) => {
+                names.push(n);
+                Target::Tuple(names, span)
+            }
+            None => Target::Tuple(names, span),
         }
     }
 
@@ -183,20 +190,21 @@ impl LineParser<'_> {
             Rule::assign if inner.len() == 2 => {
                 let value = self.expr_list(inner.remove(1), off)?;
                 StmtKind::Assign {
-                    target: self.name(&inner[0], off),
+                    target: self.targets(inner.remove(0), off),
                     value,
                 }
             }
             Rule::aug_assign if inner.len() == 3 => {
-                let op = match inner[1].as_str() {
-                    "+=" => BinOp::Add,
-                    "-=" => BinOp::Sub,
-                    "*=" => BinOp::Mul,
+                let op = match inner.get(1).map(|p| p.as_str()) {
+                    Some("+=") => BinOp::Add,
+                    Some("-=") => BinOp::Sub,
+                    Some("*=") => BinOp::Mul,
                     _ => BinOp::Div,
                 };
                 let value = self.expr(inner.remove(2), off)?;
+                let target = inner.remove(0);
                 StmtKind::AugAssign {
-                    target: self.name(&inner[0], off),
+                    target: self.name(&target, off),
                     op,
                     value,
                 }
@@ -583,76 +591,6 @@ impl LineParser<'_> {
             _ => self.expr(p, off),
         }
     }
-
-    // ---- blocks ------------------------------------------------------------------
-
-    /// Statements of the block whose lines are indented by `indent`, from `pos`.
-    fn block(
-        &self,
-        lines: &[Parsed],
-        pos: &mut usize,
-        indent: usize,
-        depth: usize,
-    ) -> Result<Vec<Stmt>> {
-        let mut out = Vec::new();
-        while let Some(l) = lines.get(*pos) {
-            if l.indent < indent {
-                break;
-            }
-            if l.indent > indent {
-                return Err(self.err("unexpected indent", self.idx.span(l.start, l.start + 1)));
-            }
-            *pos += 1;
-            match &l.line {
-                Line::Simple(stmts) => out.extend(stmts.iter().cloned()),
-                Line::For {
-                    var,
-                    iter,
-                    inline,
-                    span,
-                } => {
-                    let body = match inline {
-                        Some(b) => b.clone(),
-                        None => {
-                            let next = lines.get(*pos).filter(|n| n.indent > indent);
-                            let Some(next) = next else {
-                                return Err(self
-                                    .err("expected an indented block after 'for'", *span)
-                                    .hint("indent the loop body, e.g. by 4 spaces"));
-                            };
-                            if depth >= MAX_BLOCK_DEPTH {
-                                return Err(self.err(
-                                    format!(
-                                        "loops are nested too deeply (more than {MAX_BLOCK_DEPTH})"
-                                    ),
-                                    *span,
-                                ));
-                            }
-                            let body = self.block(lines, pos, next.indent, depth + 1)?;
-                            if let Some(after) = lines.get(*pos) {
-                                if after.indent > indent {
-                                    return Err(self.err(
-                                        "unindent does not match any outer indentation level",
-                                        self.idx.span(after.start, after.start + 1),
-                                    ));
-                                }
-                            }
-                            body
-                        }
-                    };
-                    out.push(Stmt {
-                        kind: StmtKind::For {
-                            var: var.clone(),
-                            iter: iter.clone(),
-                            body,
-                        },
-                        span: *span,
-                    });
-                }
-            }
-        }
-        Ok(out)
-    }
 }
 
 /// Human names of what the parser expected.
@@ -674,11 +612,12 @@ fn expected_text(positives: &[Rule]) -> String {
             | Rule::list
             | Rule::expr_list
             | Rule::sign => "an expression",
-            Rule::name | Rule::kwarg => "a name",
+            Rule::name | Rule::kwarg | Rule::targets => "a name",
             Rule::EOI => "the end of the statement (or ';')",
             Rule::add_op | Rule::mul_op | Rule::pow_op => "an operator",
             Rule::call | Rule::index | Rule::attr => "'(' '[' or '.'",
             Rule::comma => "','",
+            Rule::colon => "':'",
             Rule::rpar => "')'",
             Rule::rbrack => "']'",
             Rule::aug_op => "'='",
@@ -707,6 +646,9 @@ fn expected_text(positives: &[Rule]) -> String {
     let weak = ["an operator", "'(' '[' or '.'"];
     if names.iter().any(|n| !weak.contains(n)) {
         names.retain(|n| !weak.contains(n));
+    }
+    if names.contains(&"a statement") {
+        names.retain(|n| !["an expression", "a name", "'import'"].contains(n));
     }
     if names.contains(&"an expression") {
         names.retain(|n| *n != "a name");

@@ -24,6 +24,8 @@ pub struct LogicalLine {
 pub struct ScanError {
     pub message: String,
     pub hint: Option<String>,
+    /// For a mismatched closing bracket: where the opening one is.
+    pub open_at: Option<usize>,
     pub start: usize,
     pub end: usize,
 }
@@ -94,6 +96,7 @@ pub fn scan(text: &str) -> (Vec<LogicalLine>, Option<ScanError>) {
                     stack.push((c, i));
                     if stack.len() > MAX_BRACKET_DEPTH {
                         let e = ScanError {
+                open_at: None,
                             message: format!(
                                 "brackets are nested too deeply (more than {MAX_BRACKET_DEPTH} levels)"
                             ),
@@ -115,14 +118,12 @@ pub fn scan(text: &str) -> (Vec<LogicalLine>, Option<ScanError>) {
                         Some((o, _)) if o == open => {}
                         Some((o, at)) => {
                             let e = ScanError {
+                                open_at: Some(at),
                                 message: format!(
                                     "closing '{}' does not match '{}'",
                                     c as char, o as char
                                 ),
-                                hint: Some(format!(
-                                    "the '{}' is at byte {at}; check the brackets",
-                                    o as char
-                                )),
+                                hint: None,
                                 start: i,
                                 end: i + 1,
                             };
@@ -130,6 +131,7 @@ pub fn scan(text: &str) -> (Vec<LogicalLine>, Option<ScanError>) {
                         }
                         None => {
                             let e = ScanError {
+                                open_at: None,
                                 message: format!("unmatched '{}'", c as char),
                                 hint: None,
                                 start: i,
@@ -171,6 +173,7 @@ pub fn scan(text: &str) -> (Vec<LogicalLine>, Option<ScanError>) {
         }
         if let Some(&(o, at)) = stack.last() {
             let e = ScanError {
+                open_at: None,
                 message: format!("'{}' was never closed", o as char),
                 hint: Some("add the closing bracket".into()),
                 start: at,
@@ -211,6 +214,7 @@ fn skip_string(b: &[u8], i: usize) -> Result<usize, ScanError> {
         j += 1;
     }
     Err(ScanError {
+        open_at: None,
         message: "unterminated string".into(),
         hint: Some(format!("close it with {}", q as char)),
         start: i,

@@ -358,6 +358,26 @@ fn parsing_alone_needs_no_host_and_keeps_statement_order() {
 }
 
 #[test]
+fn tuple_unpacking_in_assignments_and_loops() {
+    let (env, host) = run_ok(
+        "a, b = 1, 2.5\nc, = (3,)\nfor i, f in enumerate((10., 20.)):\n    T = CREA_TABLE(I=i, F=f)\nfor x, y in zip((1, 2), 'ab'): last = y",
+    );
+    assert_eq!(env.get("a"), Some(&Int(1)));
+    assert_eq!(env.get("b"), Some(&Real(2.5)));
+    assert_eq!(env.get("c"), Some(&Int(3)));
+    assert_eq!(env.get("last"), Some(&Str("b".into())));
+    assert_eq!(kw(&host.calls[1].args, "F"), &Real(20.));
+    assert_eq!(
+        run_err("a, b = 1, 2, 3", 1, 8).message,
+        "cannot unpack 3 values into 2 names"
+    );
+    assert_eq!(
+        run_err("a, b = 1", 1, 1).message,
+        "cannot unpack an integer into 2 names"
+    );
+}
+
+#[test]
 fn loop_bodies_with_tabs_comments_and_blank_lines() {
     let (env, _) = run_ok(
         "n = 0\nfor i in 1, 2:\n\n\t# comment at another indentation\n\tn += i\n\n\tn += 1\nend=n",
@@ -470,7 +490,17 @@ fn syntax_errors_are_located() {
         run_err("a = [1, 2)", 1, 10).message,
         "closing ')' does not match '['"
     );
+    let e = run_err("a = (1,\n  2]", 2, 4);
+    assert_eq!(e.hint.as_deref(), Some("it was opened at line 1, column 5"));
     assert_eq!(run_err("a = 1)", 1, 6).message, "unmatched ')'");
+    let e = run_err("for i in range(3)\n    x = 1", 1, 18);
+    assert_eq!(
+        e.message,
+        "invalid syntax: expected ':' or ',', found the end of the statement"
+    );
+    let e = run_err("DEBUT(A=1 B=2)", 1, 11);
+    assert_eq!(e.message, "invalid syntax: expected ',' or ')', found 'B'");
+    assert_eq!(e.hint.as_deref(), Some("a ',' may be missing"));
     assert_eq!(
         run_err("a = 1\ns = 'abc", 2, 5).message,
         "unterminated string"
