@@ -64,11 +64,20 @@ impl KinematicLoad {
                     .keyword(occ.path.clone())
                     .hint("give at least one of DX DY DZ DRX DRY DRZ (or LIAISON='ENCASTRE')"));
             }
+            // TOUT='OUI' means the model's nodes: nodes without DOFs and components a node
+            // does not carry are skipped (a mixed DIS_T/DIS_TR model with TOUT, DRX=0), but
+            // each component must exist somewhere. Explicit NOEUD/GROUP_NO/GROUP_MA
+            // selections are strict, as Code_Aster's "component absent on node" error.
+            let everywhere = occ.text("TOUT") == Some("OUI");
+            let mut used: Vec<Cmp> = Vec::new();
             for n in nodes {
                 let Some(node) = mesh.nodes.get(n) else {
                     continue;
                 };
                 let Some(cmps) = carried.get(&n) else {
+                    if everywhere {
+                        continue;
+                    }
                     return Err(Error::input(format!(
                         "node {} carries no DOF in model {model_name}",
                         node.name
@@ -82,6 +91,9 @@ impl KinematicLoad {
                 }
                 for (c, v) in these {
                     if !cmps.contains(&c) {
+                        if everywhere {
+                            continue;
+                        }
                         return Err(Error::input(format!(
                             "component {c} does not exist on node {} in model {model_name}",
                             node.name
@@ -91,6 +103,9 @@ impl KinematicLoad {
                             "the node carries {}",
                             cmps.iter().map(|c| c.name()).collect::<Vec<_>>().join(" ")
                         )));
+                    }
+                    if !used.contains(&c) {
+                        used.push(c);
                     }
                     if let Some(b) = seen.get(&(n, c)).and_then(|&i| blocked.get_mut(i)) {
                         b.value = v;
@@ -103,6 +118,12 @@ impl KinematicLoad {
                         });
                     }
                 }
+            }
+            if let Some((c, _)) = given.iter().find(|(c, _)| !used.contains(c)) {
+                return Err(Error::input(format!(
+                    "component {c} exists on none of the selected nodes in model {model_name}"
+                ))
+                .keyword(occ.key_path(c.name())));
             }
         }
         Ok(KinematicLoad {

@@ -900,3 +900,63 @@ fn numbering_from_model_and_loads_equals_numbering_from_matrices() {
     assert_eq!(num.dofs, km.numbering.dofs);
     assert_eq!(num.eliminated, km.numbering.eliminated);
 }
+
+#[test]
+fn tout_skips_nodes_and_components_not_carried() {
+    // DIS_TR on the segments, DIS_T on an extra POI1 (on an orphan node N9 too): TOUT with
+    // DRX blocks DRX where it exists, skips the translation-only node; a component carried
+    // nowhere is still an error.
+    let mut mesh = line_mesh(2, [0.0; 3], [2.0, 0.0, 0.0]);
+    mesh.nodes.push(Node {
+        name: "N9".into(),
+        coords: [5.0, 5.0, 5.0],
+    });
+    mesh.nodes.push(Node {
+        name: "N10".into(),
+        coords: [6.0, 5.0, 5.0],
+    });
+    mesh.cells.push(Cell {
+        name: "PX".into(),
+        kind: CellKind::Poi1,
+        nodes: vec![4],
+    });
+    mesh.cell_groups.push(Group {
+        name: "PX".into(),
+        members: vec![mesh.cells.len() - 1],
+    });
+    let affe = vec![
+        fact(
+            "AFFE_MODELE/AFFE",
+            vec![
+                ("GROUP_MA", s("LINE")),
+                ("PHENOMENE", s("MECANIQUE")),
+                ("MODELISATION", s("DIS_TR")),
+            ],
+        ),
+        fact(
+            "AFFE_MODELE/AFFE",
+            vec![
+                ("GROUP_MA", s("PX")),
+                ("PHENOMENE", s("MECANIQUE")),
+                ("MODELISATION", s("DIS_T")),
+            ],
+        ),
+    ];
+    let model = Model::build("MA", &mesh, &affe).unwrap();
+    let occ = vec![fact("X", vec![("TOUT", s("OUI")), ("DRX", r(0.0))])];
+    let l = KinematicLoad::build(LoadKind::Cine, "MO", &model, &mesh, &occ).unwrap();
+    let nodes: Vec<&str> = l.blocked.iter().map(|b| b.node.as_str()).collect();
+    assert_eq!(nodes, ["N1", "N2", "N3"]);
+    // Explicitly naming the translation-only node is an error.
+    let occ = vec![fact("X", vec![("NOEUD", s("N10")), ("DRX", r(0.0))])];
+    let e = KinematicLoad::build(LoadKind::Cine, "MO", &model, &mesh, &occ).unwrap_err();
+    assert!(
+        e.message
+            .contains("component DRX does not exist on node N10"),
+        "{e}"
+    );
+    let only_t = Model::build("MA", &mesh, &dis_t_all()).unwrap();
+    let occ = vec![fact("X", vec![("TOUT", s("OUI")), ("DRZ", r(0.0))])];
+    let e = KinematicLoad::build(LoadKind::Cine, "MO", &only_t, &mesh, &occ).unwrap_err();
+    assert!(e.message.contains("component DRZ exists on none"), "{e}");
+}
