@@ -68,18 +68,17 @@ pub struct AnmParams {
     pub bif_tol: f64,
 }
 
-/// Compute the series at `x0` with border `border`; `orient(X_1)` returns ±1, the sign that
-/// X_1 must take to keep the wanted direction.
+/// Compute the series at `x0`, `solver` holding the factorisation of the bordered tangent
+/// [R_X(x0); borderᵀ]; `orient(X_1)` returns ±1, the sign that X_1 must take to keep the
+/// wanted direction.
 pub fn compute(
     sys: &System,
     solver: &mut dyn BorderedSolver,
     x0: &[f64],
-    border: &[f64],
     p: &AnmParams,
     orient: &dyn Fn(&[f64]) -> f64,
 ) -> Result<Series> {
     let n = sys.lay.n_unk;
-    solver.factor(n, &sys.tangent(x0, border))?;
     let mut y = vec![0.0; n];
     y[n - 1] = 1.0;
     solver.solve(&mut y)?;

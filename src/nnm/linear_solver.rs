@@ -11,6 +11,17 @@ pub trait BorderedSolver {
     fn factor(&mut self, n: usize, triplets: &[Triplet<usize, usize, f64>]) -> Result<()>;
     /// Solve in place; `rhs` has length n.
     fn solve(&self, rhs: &mut [f64]) -> Result<()>;
+    /// Solve for `ncols` right-hand sides stored column after column (length n·ncols).
+    fn solve_block(&self, rhs: &mut [f64], ncols: usize) -> Result<()> {
+        if ncols == 0 {
+            return Ok(());
+        }
+        let n = rhs.len() / ncols;
+        for col in rhs.chunks_mut(n) {
+            self.solve(col)?;
+        }
+        Ok(())
+    }
 }
 
 /// (row, col) sequence of the triplets, compressed pattern, sorting permutation.
@@ -103,6 +114,23 @@ impl BorderedSolver for SparseLu {
             return Err(Error::internal("right-hand side of the wrong length"));
         }
         lu.solve_in_place(MatMut::from_column_major_slice_mut(rhs, *n, 1));
+        if rhs.iter().any(|v| !v.is_finite()) {
+            return Err(Error::numerical(
+                "the bordered tangent is numerically singular (solution not finite)",
+            ));
+        }
+        Ok(())
+    }
+
+    fn solve_block(&self, rhs: &mut [f64], ncols: usize) -> Result<()> {
+        let (n, lu) = self
+            .lu
+            .as_ref()
+            .ok_or_else(|| Error::internal("solve called before factor"))?;
+        if rhs.len() != *n * ncols {
+            return Err(Error::internal("right-hand sides of the wrong length"));
+        }
+        lu.solve_in_place(MatMut::from_column_major_slice_mut(rhs, *n, ncols));
         if rhs.iter().any(|v| !v.is_finite()) {
             return Err(Error::numerical(
                 "the bordered tangent is numerically singular (solution not finite)",

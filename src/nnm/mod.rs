@@ -19,6 +19,7 @@
 #![allow(clippy::result_large_err)]
 
 mod anm;
+mod bifurcation;
 mod energy;
 pub mod exact;
 mod law_check;
@@ -91,6 +92,9 @@ pub struct Settings {
     pub bif_terms: usize,
     /// RESI_RELA_BIFURCATION.
     pub bif_tol: f64,
+    /// TEST_BIFURCATION = 'SERIE_DETERMINANT': also test the sign of the bordered
+    /// tangent's determinant at every branch end (bifurcation.rs).
+    pub det_test: bool,
     /// +1: increasing energy, −1: decreasing.
     pub direction: i32,
 }
@@ -495,8 +499,22 @@ fn run(
         bif_tol: settings.bif_tol,
     };
     let mut solver = SparseLu::default();
+    // A second factorisation for the points inside a branch where the bifurcation test
+    // looks for the sign change (the main one holds the next branch's tangent then).
+    let mut probe = SparseLu::default();
     let mut x0 = st.x;
-    let mut border = st.border;
+    let border = st.border;
+    solver
+        .factor(sys.lay.n_unk, &sys.tangent(&x0, &border))
+        .map_err(|e| in_branch(e, 1))?;
+    let det_sign_at = |solver: &SparseLu| {
+        if settings.det_test {
+            bifurcation::condensed_det_sign(&sys, solver).ok()
+        } else {
+            None
+        }
+    };
+    let mut det_sign = det_sign_at(&solver);
     let mut prev_tangent: Option<Vec<f64>> = None;
     let dir = if settings.direction < 0 { -1.0 } else { 1.0 };
     for b in 1..=settings.n_branches {
@@ -523,8 +541,8 @@ fn run(
                 }
             }
         };
-        let mut ser = anm::compute(&sys, &mut solver, &x0, &border, &params, &orient)
-            .map_err(|e| in_branch(e, b))?;
+        let mut ser =
+            anm::compute(&sys, &mut solver, &x0, &params, &orient).map_err(|e| in_branch(e, b))?;
         // Safeguard: the step-length estimate assumes the series converges at a_max; where it
         // does not (nearly homogeneous regimes far up a branch, where the estimate grows
         // without bound), the end residual says so: halve the step until it is credible.
@@ -547,9 +565,10 @@ fn run(
                 b,
             ));
         }
-        let bif_index = ser
+        let series_bif = ser
             .bifurcation
             .map(|ab| (((ab / ser.a_max) * np as f64).round() as usize).clamp(1, np));
+        let x_start = x0.clone();
         for i in 1..=np {
             let a = ser.a_max * i as f64 / np as f64;
             let mut x = ser.eval(&x0, a);
@@ -575,7 +594,7 @@ fn run(
                 check_rings(&sys, &x).map_err(|e| in_branch(e, b))?;
                 x0 = x.clone();
             }
-            let p = make_point(&sys, &x, res, b, bif_index == Some(i));
+            let p = make_point(&sys, &x, res, b, series_bif == Some(i));
             if !(p.energy.is_finite() && p.omega.is_finite() && p.energy_spread.is_finite()) {
                 return Err(in_branch(
                     Error::numerical(format!("energy or frequency not finite at point {i}")),
@@ -584,6 +603,22 @@ fn run(
             }
             branch_points.push(p);
         }
+        // The next branch starts from the corrected end point with this branch's end tangent
+        // as border: factor that tangent now, and compare the sign of its determinant with
+        // the one at the start of this branch.
+        solver
+            .factor(sys.lay.n_unk, &sys.tangent(&x0, &tangent))
+            .map_err(|e| in_branch(e, b + 1))?;
+        let end_sign = det_sign_at(&solver);
+        if let (Some(s0), Some(s1)) = (det_sign, end_sign) {
+            if s0 != s1 {
+                let row = first_row_past_sign_change(&sys, &mut probe, &ser, &x_start, np, s1);
+                if let Some(p) = branch_points.get_mut(row - 1) {
+                    p.bifurcation = true;
+                }
+            }
+        }
+        det_sign = end_sign;
         let range = |f: &dyn Fn(&Point) -> f64| {
             branch_points
                 .iter()
@@ -598,17 +633,41 @@ fn run(
             energy_range: range(&|p| p.energy),
             a_max: ser.a_max,
             newton_iterations,
-            bifurcation: ser.bifurcation.is_some(),
+            bifurcation: branch_points.iter().any(|p| p.bifurcation),
         };
         let go_on = on_branch(&report, &branch_points);
         out.extend(branch_points);
         if !go_on {
             break;
         }
-        border = tangent.clone();
         prev_tangent = Some(tangent);
     }
     Ok(())
+}
+
+/// The first point of a branch (1-based, among its `np` points) where the bordered tangent's
+/// determinant already has the sign `end_sign` of the branch end: the first row past the
+/// bifurcation. Points whose test cannot decide count as not yet past it.
+fn first_row_past_sign_change(
+    sys: &System,
+    probe: &mut SparseLu,
+    ser: &anm::Series,
+    x_start: &[f64],
+    np: usize,
+    end_sign: f64,
+) -> usize {
+    for i in 1..np {
+        let a = ser.a_max * i as f64 / np as f64;
+        let x = ser.eval(x_start, a);
+        let t = ser.unit_tangent(a);
+        let sign = probe
+            .factor(sys.lay.n_unk, &sys.tangent(&x, &t))
+            .and_then(|_| bifurcation::condensed_det_sign(sys, probe));
+        if sign.ok() == Some(end_sign) {
+            return i;
+        }
+    }
+    np
 }
 
 /// One period sampled at `n_inst` instants t_j = j·T/(n_inst − 1), j = 0..n_inst−1 (both

@@ -24,6 +24,7 @@ pub fn settings(hl: usize, hn: usize, branches: usize, points: usize) -> Setting
         iter_newton_max: 15,
         bif_terms: 3,
         bif_tol: 1e-4,
+        det_test: true,
         direction: 1,
     }
 }

@@ -100,6 +100,7 @@ pub fn engine_problem(
         iter_newton_max: 15,
         bif_terms: 3,
         bif_tol: 1e-4,
+        det_test: false,
         direction: 1,
     };
     Ok((problem, settings, free))

@@ -287,6 +287,7 @@ fn settings(args: &Args) -> Result<Settings> {
         iter_newton_max: usize_of("ITER_NEWTON_MAXI")?,
         bif_terms: usize_of("CRIT_ORDR_BIFURCATION")?,
         bif_tol: r.req_real("RESI_RELA_BIFURCATION")?,
+        det_test: r.text("TEST_BIFURCATION") != Some("SERIE"),
         direction: if direction >= 0 { 1 } else { -1 },
     })
 }

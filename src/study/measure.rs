@@ -44,6 +44,7 @@ pub fn settings(cfg: &Config, points_per_branch: usize) -> Settings {
         iter_newton_max: 15,
         bif_terms: 3,
         bif_tol: 1e-4,
+        det_test: true,
         direction: 1,
     }
 }
