@@ -98,7 +98,7 @@ fn permutation_sign(fwd: &[usize]) -> f64 {
             i = fwd[i];
         }
     }
-    if (m - cycles) % 2 == 0 {
+    if (m - cycles).is_multiple_of(2) {
         1.0
     } else {
         -1.0
