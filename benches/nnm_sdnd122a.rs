@@ -24,6 +24,7 @@ fn settings(h_nonl: usize, n_branches: usize) -> Settings {
         iter_newton_max: 15,
         bif_terms: 3,
         bif_tol: 1e-4,
+        det_test: true,
         direction: 1,
     }
 }
