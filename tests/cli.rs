@@ -256,6 +256,12 @@ fn sdnd122b_ddl_impo_and_row_1000_is_stable() {
 }
 
 #[test]
+fn symmetric_pitchfork_flagged_by_mode_non_line_where_calc_stabilite_switches() {
+    let out = run_ok("bifurcation_2dof.comm");
+    assert!(out.contains("tests: 11 OK, 0 NOOK"), "{out}");
+}
+
+#[test]
 fn two_dof_anti_phase_mode_loses_stability_between_its_energy_extrema() {
     let out = run_ok("stability_2dof.comm");
     assert!(out.contains("tests: 5 OK, 0 NOOK"), "{out}");

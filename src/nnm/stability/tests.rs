@@ -514,6 +514,44 @@ fn anti_phase_mode_is_unstable_between_its_energy_extrema_and_in_phase_mode_is_s
 }
 
 #[test]
+fn symmetric_pair_pitchfork_is_flagged_where_stability_switches() {
+    // The same pair with the same stop on BOTH masses is symmetric under their exchange:
+    // its anti-phase NNM meets a pitchfork (two localised modes branch off) and is unstable
+    // beyond it. The determinant test of the continuation must flag the first branch end
+    // past the pitchfork, and the Floquet multipliers (RK4, 1000 steps: error ~1e-8 on a
+    // stable orbit) must leave the unit circle exactly there: every earlier row on the
+    // circle to 1e-4, the flagged row and every later one off it by more than TOLERANCE.
+    let p = pair(
+        1.0,
+        vec![
+            shock(ShockLaw::Plan, vec![0]),
+            shock(ShockLaw::Plan, vec![1]),
+        ],
+    );
+    let s = settings(10, 100, 40);
+    let pts = branch(&p, &s, &[1.0, -1.0], 0.9, 12f64.sqrt());
+    let flagged: Vec<usize> = (0..pts.len()).filter(|&i| pts[i].bifurcation).collect();
+    assert_eq!(flagged.len(), 1, "one flagged row: {flagged:?}");
+    let f = flagged[0];
+    assert!(f > 2 && f + 5 < pts.len(), "flag at row {f} of {}", pts.len());
+    let moduli: Vec<f64> = pts
+        .iter()
+        .map(|q| {
+            floquet(&p, &s, &q.x, 1000, Integrator::Rk4, 1e-2)
+                .unwrap()
+                .max_nontrivial_modulus
+        })
+        .collect();
+    for (i, m) in moduli.iter().enumerate() {
+        if i < f {
+            assert!((m - 1.0).abs() < 1e-4, "row {i} before the flag: |mu| {m}");
+        } else {
+            assert!(*m > 1.0 + 1e-2, "row {i} from the flag on: |mu| {m}");
+        }
+    }
+}
+
+#[test]
 fn bad_input_gives_keyword_errors() {
     let p = sdnd122();
     let s = settings(5, 50, 1);
