@@ -265,4 +265,29 @@ fn symmetric_pitchfork_flagged_by_mode_non_line_where_calc_stabilite_switches() 
 fn two_dof_anti_phase_mode_loses_stability_between_its_energy_extrema() {
     let out = run_ok("stability_2dof.comm");
     assert!(out.contains("tests: 5 OK, 0 NOOK"), "{out}");
+    assert!(!out.contains("CALC_STABILITE_1"), "{out}");
+}
+
+#[test]
+fn calc_stabilite_warns_when_the_monodromy_is_too_coarse_to_judge() {
+    // stability_2dof's first branches, but 20 Newmark steps per period instead of 1000:
+    // the monodromy no longer maps the orbit's velocity onto itself within TOLERANCE.
+    let dir = tempfile::tempdir().unwrap();
+    let src = std::fs::read_to_string(case("stability_2dof.comm")).unwrap();
+    let cut = src.find("IMPR_TABLE(").unwrap();
+    let comm = src[..cut]
+        .replace("NB_BRANCHE=40", "NB_BRANCHE=4")
+        .replace("NB_INST=1000", "NB_INST=20")
+        + "FIN()\n";
+    std::fs::write(dir.path().join("coarse.comm"), comm).unwrap();
+    std::fs::copy(case("stability_2dof.mail"), dir.path().join("coarse.mail")).unwrap();
+    let o = bin()
+        .arg("run")
+        .arg(dir.path().join("coarse.comm"))
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert!(out.contains("<A> <CALC_STABILITE_1>"), "{out}");
+    assert!(out.contains("NB_INST"), "{out}");
 }
