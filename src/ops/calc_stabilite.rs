@@ -84,7 +84,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     progress.finish();
     table_store::save_table(ctx.store, &name, &table)?;
     if !unreliable.is_empty() {
-        ctx.alarm("CALC_STABILITE_1", &unreliable_message(&unreliable, tolerance))?;
+        ctx.alarm(
+            "CALC_STABILITE_1",
+            &unreliable_message(&unreliable, tolerance),
+        )?;
     }
     ctx.say(&format!(
         "CALC_STABILITE {name}: {stable} STABLE, {unstable} INSTABLE (TOLERANCE={tolerance:e}); multipliers: SELECT * FROM mnl_floquet WHERE concept='{name}'"
