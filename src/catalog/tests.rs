@@ -272,8 +272,8 @@ fn validates_a_real_mode_non_line_call_with_defaults() {
     let c = &chocs[0];
     assert_eq!(c.path, "MODE_NON_LINE/CHOC");
     assert_eq!(c.real("PARA_REGUL"), Some(5e-5));
-    // A scalar given to a list keyword becomes a one-element list.
-    assert_eq!(c.value("NOM_CMP"), Some(&seq(vec![s("DX")])));
+    // NOM_CMP is a single component for a PLAN shock.
+    assert_eq!(c.value("NOM_CMP"), Some(&s("DX")));
     // List default.
     assert_eq!(c.reals("ORIG_OBST"), Some(vec![0.0, 0.0, 0.0]));
     // An integer given to a real keyword is accepted.
@@ -505,7 +505,26 @@ fn scalar_and_list_handling() {
         "MODE_NON_LINE/CHOC/NOM_CMP",
         51,
     );
-    assert_eq!(e.message, "expected 1 to 2 value(s) (a text), got 3");
+    assert_eq!(
+        e.message,
+        "expected a single value (a text), got a list of 3 values"
+    );
+    // A CERCLE shock takes two components (the definition of NOM_CMP follows OBSTACLE).
+    let mut c = mnl_with("CHOC", "OBSTACLE", Some(s("CERCLE")), 53);
+    let e = single_error(&c, "MODE_NON_LINE/CHOC/NOM_CMP", 11);
+    assert_eq!(e.message, "expected 2 value(s) (a text), got 1");
+    for kw in c.args.iter_mut().filter(|kw| kw.name == "CHOC") {
+        if let Value::Fact(items) = &mut kw.value {
+            for it in items.iter_mut().filter(|it| it.name == "NOM_CMP") {
+                it.value = seq(vec![s("DY"), s("DZ")]);
+            }
+        }
+    }
+    let a = validate(&c, FILE).expect("CERCLE with two components");
+    assert_eq!(
+        a.fact("CHOC").and_then(|o| o.texts("NOM_CMP")),
+        Some(vec!["DY".to_string(), "DZ".to_string()])
+    );
     // Each wrong item of a list is reported.
     let c = mnl_with(
         "CHOC",
@@ -709,7 +728,8 @@ fn rule_ensemble_and_conditional_rule() {
     );
     let a = validate(&stab(vec![k("NUME_ORDRE", i(1000), 4)]), FILE).expect("valid");
     let flt = a.fact("FILTRE").expect("FILTRE");
-    assert_eq!(flt.ints("NUME_ORDRE"), Some(vec![1000]));
+    // A scalar given to a list keyword becomes a one-element list.
+    assert_eq!(flt.value("NUME_ORDRE"), Some(&seq(vec![i(1000)])));
     assert_eq!(flt.real("PRECISION"), Some(1e-3));
     assert_eq!(
         a.fact("SCHEMA_TEMPS").and_then(|s| s.int("NB_INST")),

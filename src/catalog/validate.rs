@@ -245,7 +245,13 @@ pub(crate) fn validate_level(
                     .map(|f| f.when.as_ref()),
             )
             .collect();
-        if !whens.is_empty() && !whens.iter().any(|w| when_active(*w, level, &given)) {
+        // When a controlling keyword has a wrong value, that error is enough: the keywords
+        // depending on it are not reported too.
+        let cascade = whens
+            .iter()
+            .flatten()
+            .any(|w| controller_invalid(w, level, &given));
+        if !whens.is_empty() && !cascade && !whens.iter().any(|w| when_active(*w, level, &given)) {
             let conds: Vec<String> = whens.iter().flatten().map(|w| when_text(w)).collect();
             errors.push(
                 Error::validation(format!(
@@ -365,6 +371,15 @@ pub(crate) fn validate_level(
         check_rule(rule, level, &present, span, file, errors);
     }
     args
+}
+
+/// Whether the keyword a `when` depends on was given with a value no definition accepts.
+fn controller_invalid(w: &When, level: &Level, given: &[&Keyword]) -> bool {
+    let Some(k) = given.iter().find(|k| k.name == w.keyword) else {
+        return false;
+    };
+    let mut defs = level.simp.iter().filter(|s| s.name == w.keyword).peekable();
+    defs.peek().is_some() && defs.all(|d| check_simple(d, &k.value).is_err())
 }
 
 fn missing(level: &Level, name: &str, when: Option<&When>, span: Span, file: &str) -> Error {
