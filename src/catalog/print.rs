@@ -33,6 +33,14 @@ pub(crate) fn range_label(s: &SimpDef) -> Option<String> {
     }
 }
 
+/// "or a plain value" note of a factor keyword that also accepts one.
+pub(crate) fn or_value_label(alt: &SimpDef) -> String {
+    match into_label(alt) {
+        Some(i) => format!("or a plain value {} ({i})", alt.types.join(" | ")),
+        None => format!("or a plain value {}", alt.types.join(" | ")),
+    }
+}
+
 pub(crate) fn rule_label(r: &Rule) -> String {
     let cond = r
         .when
@@ -108,6 +116,9 @@ fn fact_text(out: &mut String, f: &FactDef, indent: &str) {
     let sub = format!("{indent}    ");
     if let Some(w) = &f.when {
         let _ = writeln!(out, "{sub}only {}", when_text(w));
+    }
+    if let Some(alt) = f.or_value_def() {
+        let _ = writeln!(out, "{sub}{}", or_value_label(&alt));
     }
     if !f.doc.is_empty() {
         let _ = writeln!(out, "{sub}{}", f.doc);

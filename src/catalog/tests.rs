@@ -1162,6 +1162,19 @@ fn real_file_keywords_accepted() {
         a.texts("IGNORE_ALARM"),
         Some(vec!["SUPERVIS_1".to_string(), "MODELISA4_9".to_string()])
     );
+    // Recent Code_Aster writes CODE='OUI' where older files have CODE=_F(...).
+    let a = validate(&call("DEBUT", vec![k("CODE", s("OUI"), 2)]), FILE).expect("valid");
+    assert_eq!(a.text("CODE"), Some("OUI"));
+    assert!(a.has("CODE"));
+    let e = single_error(
+        &call("DEBUT", vec![k("CODE", s("NON"), 2)]),
+        "DEBUT/CODE",
+        2,
+    );
+    assert_eq!(
+        e.message,
+        "expected a factor keyword _F(...) or a text: expected one of 'OUI', got 'NON'"
+    );
     let c = call(
         "FIN",
         vec![k("FORMAT_HDF", s("OUI"), 2), k("RETASSAGE", s("OUI"), 3)],

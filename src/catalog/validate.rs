@@ -316,6 +316,20 @@ pub(crate) fn validate_level(
                         })
                         .collect(),
                     other => {
+                        if let Some(alt) = def.or_value_def() {
+                            match check_simple(&alt, other) {
+                                Ok(v) => args.simple.push((def.name.clone(), v, k.span)),
+                                Err(msgs) => errors.extend(msgs.into_iter().map(|(m, _)| {
+                                    Error::validation(format!(
+                                        "expected a factor keyword _F(...) or {}: {m}",
+                                        types_text(&alt.types)
+                                    ))
+                                    .at(file, k.span)
+                                    .keyword(level.key(&def.name))
+                                })),
+                            }
+                            continue;
+                        }
                         errors.push(
                             Error::validation(format!(
                                 "expected a factor keyword _F(...) or a tuple of them, got {} {}",
