@@ -777,6 +777,56 @@ fn rule_ensemble_and_conditional_rule() {
     let flt = a.fact("FILTRE").expect("FILTRE");
     assert_eq!(flt.text("CRIT_COMP"), Some("EQ"));
     assert_eq!(flt.text("CRITERE"), Some("RELATIF"));
+    // Pictures (FORMAT='PNG'/'SVG'): NOM_PARA is optional, a MODE_NON_LINE table without it
+    // gives its frequency-energy plot (the operator picks the curve from the table).
+    let plot = |format: &str, kws: Vec<Keyword>| {
+        let mut v = vec![
+            k("TABLE", co("MNL", "table_container"), 2),
+            k("FORMAT", s(format), 3),
+            k("UNITE", i(30), 4),
+        ];
+        v.extend(kws);
+        call("IMPR_TABLE", v)
+    };
+    let a = validate(&plot("PNG", vec![]), FILE).expect("picture without NOM_PARA");
+    assert_eq!(a.texts("NOM_PARA"), None);
+    let a = validate(
+        &plot(
+            "SVG",
+            vec![
+                k("NOM_PARA", seq(vec![s("ENERGIE"), s("FREQUENCE")]), 5),
+                k("COURBE", s("COLONNES"), 6),
+            ],
+        ),
+        FILE,
+    )
+    .expect("valid plot");
+    assert_eq!(
+        a.texts("NOM_PARA"),
+        Some(vec!["ENERGIE".to_string(), "FREQUENCE".to_string()])
+    );
+    assert_eq!(a.text("COURBE"), Some("COLONNES"));
+    // The picture keywords belong to a picture format.
+    let e = single_error(
+        &plot("TABLEAU", vec![k("COURBE", s("FREQ_ENER"), 5)]),
+        "IMPR_TABLE/COURBE",
+        5,
+    );
+    assert_eq!(
+        e.message,
+        "keyword COURBE is only allowed when FORMAT is 'PNG' or 'SVG'"
+    );
+    // A misspelt FORMAT is the one error: the picture keywords depending on it are not
+    // reported as "only allowed when ..." too.
+    let e = single_error(
+        &plot(
+            "PNJ",
+            vec![k("COURBE", s("FREQ_ENER"), 5), k("ECHELLE_X", s("LOG"), 6)],
+        ),
+        "IMPR_TABLE/FORMAT",
+        3,
+    );
+    assert!(e.message.contains("'PNJ'"), "{}", e.message);
     // A complex value Code_Aster style is one value.
     assert!(validate(
         &impr(vec![
@@ -1245,6 +1295,34 @@ fn real_file_keywords_accepted() {
         )],
     );
     assert!(validate(&c, FILE).is_ok());
+    // A field value is read at one node: NOEUD or GROUP_NO.
+    let field = |node: Vec<Keyword>| {
+        let mut v = vec![
+            k("RESULTAT", co("MODES", "mode_meca"), 3),
+            k("NUME_ORDRE", i(1), 4),
+            k("NOM_CHAM", s("DEPL"), 5),
+            k("NOM_CMP", s("DX"), 6),
+            k("VALE_CALC", r(1.0), 7),
+        ];
+        v.extend(node);
+        call("TEST_RESU", vec![k("RESU", f(v), 2)])
+    };
+    let e = single_error(&field(vec![]), "TEST_RESU/RESU/NOEUD", 2);
+    assert_eq!(
+        e.message,
+        "expected exactly one of NOEUD, GROUP_NO, none given (rule UN_PARMI(NOEUD, GROUP_NO) when NOM_CHAM is given)"
+    );
+    assert!(validate(&field(vec![k("NOEUD", s("N2"), 8)]), FILE).is_ok());
+    assert!(validate(&field(vec![k("GROUP_NO", s("TIP"), 8)]), FILE).is_ok());
+    let e = single_error(
+        &field(vec![k("NOEUD", s("N2"), 8), k("GROUP_NO", s("TIP"), 9)]),
+        "TEST_RESU/RESU/GROUP_NO",
+        9,
+    );
+    assert_eq!(
+        e.message,
+        "expected exactly one of NOEUD, GROUP_NO, got NOEUD and GROUP_NO (rule UN_PARMI(NOEUD, GROUP_NO) when NOM_CHAM is given)"
+    );
     let c = call(
         "CREA_TABLE",
         vec![k(
