@@ -1377,6 +1377,18 @@ fn describe_and_summary() {
         "{d}"
     );
     assert!(describe("NOPE").is_none());
+    assert!(
+        describe("MODE_NON_LINE")
+            .unwrap_or_default()
+            .lines()
+            .all(|l| l.len() <= 100),
+        "docs are wrapped"
+    );
+    // The one-line doc stops at the first sentence, not at an abbreviation.
+    assert_eq!(
+        print::first_line("Extracts a cell (e.g. a name). Then more."),
+        "Extracts a cell (e.g. a name)."
+    );
     let s = summary();
     assert_eq!(s.lines().count(), operator_names().len());
     assert!(s
