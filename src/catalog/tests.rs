@@ -509,10 +509,27 @@ fn scalar_and_list_handling() {
         e.message,
         "expected a single value (a text), got a list of 3 values"
     );
+    // The hint says which definition of NOM_CMP applied, and why.
+    assert_eq!(
+        e.hint.as_deref(),
+        Some("NOM_CMP takes this form when OBSTACLE is 'PLAN' or 'BI_PLAN'")
+    );
     // A CERCLE shock takes two components (the definition of NOM_CMP follows OBSTACLE).
     let mut c = mnl_with("CHOC", "OBSTACLE", Some(s("CERCLE")), 53);
     let e = single_error(&c, "MODE_NON_LINE/CHOC/NOM_CMP", 11);
     assert_eq!(e.message, "expected 2 value(s) (a text), got 1");
+    assert_eq!(
+        e.hint.as_deref(),
+        Some("NOM_CMP takes this form when OBSTACLE is 'CERCLE'")
+    );
+    // A misspelt OBSTACLE is the one error: NOM_CMP, whose form depends on it, is not
+    // reported too (neither "only allowed when ..." nor a count).
+    let e = single_error(
+        &mnl_with("CHOC", "OBSTACLE", Some(s("CERCL")), 53),
+        "MODE_NON_LINE/CHOC/OBSTACLE",
+        53,
+    );
+    assert!(e.message.contains("'CERCL'"), "{}", e.message);
     for kw in c.args.iter_mut().filter(|kw| kw.name == "CHOC") {
         if let Value::Fact(items) = &mut kw.value {
             for it in items.iter_mut().filter(|it| it.name == "NOM_CMP") {

@@ -272,15 +272,22 @@ pub(crate) fn validate_level(
         match given.iter().find(|k| k.name == def.name) {
             Some(k) => match check_simple(def, &k.value) {
                 Ok(v) => args.simple.push((def.name.clone(), v, k.span)),
-                Err(msgs) => errors.extend(msgs.into_iter().map(|(m, h)| {
-                    let e = Error::validation(m)
-                        .at(file, k.span)
-                        .keyword(level.key(&def.name));
-                    match h {
-                        Some(h) => e.hint(h),
-                        None => e,
-                    }
-                })),
+                Err(msgs) => {
+                    let form = form_hint(level, def);
+                    errors.extend(msgs.into_iter().map(|(m, h)| {
+                        let e = Error::validation(m)
+                            .at(file, k.span)
+                            .keyword(level.key(&def.name));
+                        let h = match (h, &form) {
+                            (Some(h), Some(f)) => Some(format!("{h}; {f}")),
+                            (h, f) => h.or_else(|| f.clone()),
+                        };
+                        match h {
+                            Some(h) => e.hint(h),
+                            None => e,
+                        }
+                    }))
+                }
             },
             None => match def.statut {
                 Statut::Mandatory => {
@@ -385,6 +392,17 @@ pub(crate) fn validate_level(
         check_rule(rule, level, &present, span, file, errors);
     }
     args
+}
+
+/// For a keyword defined several times at one level (its form follows another keyword,
+/// e.g. `CHOC/NOM_CMP` by OBSTACLE), says which form was applied: "expected 2 value(s)"
+/// alone would not tell the user why.
+fn form_hint(level: &Level, def: &SimpDef) -> Option<String> {
+    let w = def.when.as_ref()?;
+    if level.simp.iter().filter(|s| s.name == def.name).count() < 2 {
+        return None;
+    }
+    Some(format!("{} takes this form {}", def.name, when_text(w)))
 }
 
 /// Whether the keyword a `when` depends on was given with a value no definition accepts.
