@@ -533,7 +533,11 @@ fn symmetric_pair_pitchfork_is_flagged_where_stability_switches() {
     let flagged: Vec<usize> = (0..pts.len()).filter(|&i| pts[i].bifurcation).collect();
     assert_eq!(flagged.len(), 1, "one flagged row: {flagged:?}");
     let f = flagged[0];
-    assert!(f > 2 && f + 5 < pts.len(), "flag at row {f} of {}", pts.len());
+    assert!(
+        f > 2 && f + 5 < pts.len(),
+        "flag at row {f} of {}",
+        pts.len()
+    );
     let moduli: Vec<f64> = pts
         .iter()
         .map(|q| {
