@@ -291,3 +291,49 @@ fn calc_stabilite_warns_when_the_monodromy_is_too_coarse_to_judge() {
     assert!(out.contains("<A> <CALC_STABILITE_1>"), "{out}");
     assert!(out.contains("NB_INST"), "{out}");
 }
+
+/// A CERCLE shock with one component: the catalog (NOM_CMP's form follows OBSTACLE) stops
+/// the call with one message naming the keyword, the line and the rule; the operator's own
+/// count check never adds a second one.
+#[test]
+fn cercle_shock_with_one_component_is_one_clear_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let hard = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("testcases")
+        .join("hard");
+    let src = std::fs::read_to_string(hard.join("cercle_centre.comm")).unwrap();
+    assert!(src.contains("NOM_CMP=('DX', 'DY')"));
+    let comm = dir.path().join("cercle_one.comm");
+    std::fs::write(&comm, src.replace("NOM_CMP=('DX', 'DY')", "NOM_CMP='DX'")).unwrap();
+    std::fs::copy(
+        hard.join("cercle_centre.mail"),
+        dir.path().join("cercle_one.mail"),
+    )
+    .unwrap();
+    let o = bin()
+        .arg("run")
+        .arg(&comm)
+        .arg("--db")
+        .arg(dir.path().join("case.db"))
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    // One error, reported once: the keyword path starts its message.
+    assert_eq!(
+        out.matches("MODE_NON_LINE/CHOC/NOM_CMP:").count(),
+        1,
+        "{out}"
+    );
+    assert!(
+        out.contains("MODE_NON_LINE/CHOC/NOM_CMP: expected 2 value(s) (a text), got 1"),
+        "{out}"
+    );
+    assert!(out.contains("cercle_one.comm:33:"), "{out}");
+    assert!(
+        out.contains("NOM_CMP takes this form when OBSTACLE is 'CERCLE'"),
+        "{out}"
+    );
+    // Not the operator's message on top of it.
+    assert!(!out.contains("component(s) in NOM_CMP"), "{out}");
+}

@@ -188,6 +188,11 @@ fn check_level(level: &Level, out: &mut Vec<String>) {
         if let Some(w) = &f.when {
             check_when(level, &f.name, w, out);
         }
+        if let Some(alt) = f.or_value_def() {
+            for t in &alt.types {
+                check_type(&format!("{p}/{}", f.name), t, out);
+            }
+        }
         if f.max.is_some_and(|m| m < f.min) {
             out.push(format!("{p}/{}: max below min", f.name));
         }

@@ -148,6 +148,40 @@ pub struct FactDef {
     pub fact: Vec<FactDef>,
     #[serde(default)]
     pub when: Option<When>,
+    /// A plain value also accepted instead of `_F(...)` (Code_Aster changed some keywords
+    /// from factor to simple, e.g. `DEBUT(CODE='OUI')` next to `CODE=_F(NIV_PUB_WEB=...)`).
+    /// It lands in `Args::simple` under the keyword's name.
+    #[serde(default)]
+    pub or_value: Option<OrValue>,
+}
+
+/// Type and allowed values of [`FactDef::or_value`].
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OrValue {
+    #[serde(rename = "type", deserialize_with = "de_one_or_many")]
+    pub types: Vec<String>,
+    #[serde(default, deserialize_with = "de_opt_values")]
+    pub into: Option<Vec<Value>>,
+}
+
+impl FactDef {
+    /// The plain-value alternative as a simple keyword definition.
+    pub fn or_value_def(&self) -> Option<SimpDef> {
+        self.or_value.as_ref().map(|o| SimpDef {
+            name: self.name.clone(),
+            types: o.types.clone(),
+            statut: Statut::Optional,
+            default: None,
+            min: 1,
+            max: Some(1),
+            into: o.into.clone(),
+            val_min: None,
+            val_max: None,
+            doc: String::new(),
+            when: None,
+        })
+    }
 }
 
 /// Maps the value of a text keyword to the produced concept type, e.g.

@@ -1,7 +1,9 @@
 //! The command reference `docs/commands.md`, generated from the catalogs.
 
 use super::def::{FactDef, OperatorDef, SimpDef};
-use super::print::{first_line, into_label, range_label, result_label, rule_label, type_label};
+use super::print::{
+    first_line, into_label, or_value_label, range_label, result_label, rule_label, type_label,
+};
 use super::validate::{bounds_text, when_text};
 use std::fmt::Write;
 
@@ -43,6 +45,9 @@ fn fact_rows(out: &mut String, path: &str, f: &FactDef) {
     let mut notes = vec![format!("occurrences: {}", bounds_text(f.min, f.max))];
     if let Some(w) = &f.when {
         notes.push(format!("only {}", when_text(w)));
+    }
+    if let Some(alt) = f.or_value_def() {
+        notes.push(or_value_label(&alt));
     }
     for r in &f.rules {
         notes.push(format!("rule {}", rule_label(r)));

@@ -33,6 +33,14 @@ pub(crate) fn range_label(s: &SimpDef) -> Option<String> {
     }
 }
 
+/// "or a plain value" note of a factor keyword that also accepts one.
+pub(crate) fn or_value_label(alt: &SimpDef) -> String {
+    match into_label(alt) {
+        Some(i) => format!("or a plain value {} ({i})", alt.types.join(" | ")),
+        None => format!("or a plain value {}", alt.types.join(" | ")),
+    }
+}
+
 pub(crate) fn rule_label(r: &Rule) -> String {
     let cond = r
         .when
@@ -87,9 +95,7 @@ fn simp_text(out: &mut String, s: &SimpDef, indent: &str) {
     if let Some(w) = &s.when {
         let _ = writeln!(out, "{sub}only {}", when_text(w));
     }
-    if !s.doc.is_empty() {
-        let _ = writeln!(out, "{sub}{}", s.doc);
-    }
+    wrapped(out, &s.doc, &sub);
 }
 
 fn fact_text(out: &mut String, f: &FactDef, indent: &str) {
@@ -109,9 +115,10 @@ fn fact_text(out: &mut String, f: &FactDef, indent: &str) {
     if let Some(w) = &f.when {
         let _ = writeln!(out, "{sub}only {}", when_text(w));
     }
-    if !f.doc.is_empty() {
-        let _ = writeln!(out, "{sub}{}", f.doc);
+    if let Some(alt) = f.or_value_def() {
+        let _ = writeln!(out, "{sub}{}", or_value_label(&alt));
     }
+    wrapped(out, &f.doc, &sub);
     for r in &f.rules {
         let _ = writeln!(out, "{sub}rule {}", rule_label(r));
     }
@@ -128,9 +135,7 @@ pub fn describe(op: &str) -> Option<String> {
     let def = super::get(op)?;
     let mut out = String::new();
     let _ = writeln!(out, "{} -> {}", def.name, result_label(def));
-    if !def.doc.is_empty() {
-        let _ = writeln!(out, "    {}", def.doc);
-    }
+    wrapped(&mut out, &def.doc, "    ");
     for r in &def.rules {
         let _ = writeln!(out, "    rule {}", rule_label(r));
     }
@@ -147,9 +152,33 @@ pub fn describe(op: &str) -> Option<String> {
 /// First sentence of a doc string, for one-line listings.
 pub(crate) fn first_line(doc: &str) -> &str {
     let line = doc.lines().next().unwrap_or("");
-    match line.find(". ") {
+    // The first ". " that is not the end of an abbreviation.
+    let end = line
+        .match_indices(". ")
+        .map(|(i, _)| i)
+        .find(|&i| !(line[..i].ends_with("e.g") || line[..i].ends_with("i.e")));
+    match end {
         Some(i) => &line[..=i],
         None => line,
+    }
+}
+
+/// Writes `text` word-wrapped to about `WIDTH` columns, each line starting with `indent`.
+fn wrapped(out: &mut String, text: &str, indent: &str) {
+    const WIDTH: usize = 96;
+    let mut line = String::new();
+    for word in text.split_whitespace() {
+        if !line.is_empty() && indent.len() + line.len() + 1 + word.len() > WIDTH {
+            let _ = writeln!(out, "{indent}{line}");
+            line.clear();
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    if !line.is_empty() {
+        let _ = writeln!(out, "{indent}{line}");
     }
 }
 

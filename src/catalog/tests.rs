@@ -272,8 +272,8 @@ fn validates_a_real_mode_non_line_call_with_defaults() {
     let c = &chocs[0];
     assert_eq!(c.path, "MODE_NON_LINE/CHOC");
     assert_eq!(c.real("PARA_REGUL"), Some(5e-5));
-    // A scalar given to a list keyword becomes a one-element list.
-    assert_eq!(c.value("NOM_CMP"), Some(&seq(vec![s("DX")])));
+    // NOM_CMP is a single component for a PLAN shock.
+    assert_eq!(c.value("NOM_CMP"), Some(&s("DX")));
     // List default.
     assert_eq!(c.reals("ORIG_OBST"), Some(vec![0.0, 0.0, 0.0]));
     // An integer given to a real keyword is accepted.
@@ -505,7 +505,43 @@ fn scalar_and_list_handling() {
         "MODE_NON_LINE/CHOC/NOM_CMP",
         51,
     );
-    assert_eq!(e.message, "expected 1 to 2 value(s) (a text), got 3");
+    assert_eq!(
+        e.message,
+        "expected a single value (a text), got a list of 3 values"
+    );
+    // The hint says which definition of NOM_CMP applied, and why.
+    assert_eq!(
+        e.hint.as_deref(),
+        Some("NOM_CMP takes this form when OBSTACLE is 'PLAN' or 'BI_PLAN'")
+    );
+    // A CERCLE shock takes two components (the definition of NOM_CMP follows OBSTACLE).
+    let mut c = mnl_with("CHOC", "OBSTACLE", Some(s("CERCLE")), 53);
+    let e = single_error(&c, "MODE_NON_LINE/CHOC/NOM_CMP", 11);
+    assert_eq!(e.message, "expected 2 value(s) (a text), got 1");
+    assert_eq!(
+        e.hint.as_deref(),
+        Some("NOM_CMP takes this form when OBSTACLE is 'CERCLE'")
+    );
+    // A misspelt OBSTACLE is the one error: NOM_CMP, whose form depends on it, is not
+    // reported too (neither "only allowed when ..." nor a count).
+    let e = single_error(
+        &mnl_with("CHOC", "OBSTACLE", Some(s("CERCL")), 53),
+        "MODE_NON_LINE/CHOC/OBSTACLE",
+        53,
+    );
+    assert!(e.message.contains("'CERCL'"), "{}", e.message);
+    for kw in c.args.iter_mut().filter(|kw| kw.name == "CHOC") {
+        if let Value::Fact(items) = &mut kw.value {
+            for it in items.iter_mut().filter(|it| it.name == "NOM_CMP") {
+                it.value = seq(vec![s("DY"), s("DZ")]);
+            }
+        }
+    }
+    let a = validate(&c, FILE).expect("CERCLE with two components");
+    assert_eq!(
+        a.fact("CHOC").and_then(|o| o.texts("NOM_CMP")),
+        Some(vec!["DY".to_string(), "DZ".to_string()])
+    );
     // Each wrong item of a list is reported.
     let c = mnl_with(
         "CHOC",
@@ -709,7 +745,8 @@ fn rule_ensemble_and_conditional_rule() {
     );
     let a = validate(&stab(vec![k("NUME_ORDRE", i(1000), 4)]), FILE).expect("valid");
     let flt = a.fact("FILTRE").expect("FILTRE");
-    assert_eq!(flt.ints("NUME_ORDRE"), Some(vec![1000]));
+    // A scalar given to a list keyword becomes a one-element list.
+    assert_eq!(flt.value("NUME_ORDRE"), Some(&seq(vec![i(1000)])));
     assert_eq!(flt.real("PRECISION"), Some(1e-3));
     assert_eq!(
         a.fact("SCHEMA_TEMPS").and_then(|s| s.int("NB_INST")),
@@ -757,6 +794,56 @@ fn rule_ensemble_and_conditional_rule() {
     let flt = a.fact("FILTRE").expect("FILTRE");
     assert_eq!(flt.text("CRIT_COMP"), Some("EQ"));
     assert_eq!(flt.text("CRITERE"), Some("RELATIF"));
+    // Pictures (FORMAT='PNG'/'SVG'): NOM_PARA is optional, a MODE_NON_LINE table without it
+    // gives its frequency-energy plot (the operator picks the curve from the table).
+    let plot = |format: &str, kws: Vec<Keyword>| {
+        let mut v = vec![
+            k("TABLE", co("MNL", "table_container"), 2),
+            k("FORMAT", s(format), 3),
+            k("UNITE", i(30), 4),
+        ];
+        v.extend(kws);
+        call("IMPR_TABLE", v)
+    };
+    let a = validate(&plot("PNG", vec![]), FILE).expect("picture without NOM_PARA");
+    assert_eq!(a.texts("NOM_PARA"), None);
+    let a = validate(
+        &plot(
+            "SVG",
+            vec![
+                k("NOM_PARA", seq(vec![s("ENERGIE"), s("FREQUENCE")]), 5),
+                k("COURBE", s("COLONNES"), 6),
+            ],
+        ),
+        FILE,
+    )
+    .expect("valid plot");
+    assert_eq!(
+        a.texts("NOM_PARA"),
+        Some(vec!["ENERGIE".to_string(), "FREQUENCE".to_string()])
+    );
+    assert_eq!(a.text("COURBE"), Some("COLONNES"));
+    // The picture keywords belong to a picture format.
+    let e = single_error(
+        &plot("TABLEAU", vec![k("COURBE", s("FREQ_ENER"), 5)]),
+        "IMPR_TABLE/COURBE",
+        5,
+    );
+    assert_eq!(
+        e.message,
+        "keyword COURBE is only allowed when FORMAT is 'PNG' or 'SVG'"
+    );
+    // A misspelt FORMAT is the one error: the picture keywords depending on it are not
+    // reported as "only allowed when ..." too.
+    let e = single_error(
+        &plot(
+            "PNJ",
+            vec![k("COURBE", s("FREQ_ENER"), 5), k("ECHELLE_X", s("LOG"), 6)],
+        ),
+        "IMPR_TABLE/FORMAT",
+        3,
+    );
+    assert!(e.message.contains("'PNJ'"), "{}", e.message);
     // A complex value Code_Aster style is one value.
     assert!(validate(
         &impr(vec![
@@ -1142,6 +1229,19 @@ fn real_file_keywords_accepted() {
         a.texts("IGNORE_ALARM"),
         Some(vec!["SUPERVIS_1".to_string(), "MODELISA4_9".to_string()])
     );
+    // Recent Code_Aster writes CODE='OUI' where older files have CODE=_F(...).
+    let a = validate(&call("DEBUT", vec![k("CODE", s("OUI"), 2)]), FILE).expect("valid");
+    assert_eq!(a.text("CODE"), Some("OUI"));
+    assert!(a.has("CODE"));
+    let e = single_error(
+        &call("DEBUT", vec![k("CODE", s("NON"), 2)]),
+        "DEBUT/CODE",
+        2,
+    );
+    assert_eq!(
+        e.message,
+        "expected a factor keyword _F(...) or a text: expected one of 'OUI', got 'NON'"
+    );
     let c = call(
         "FIN",
         vec![k("FORMAT_HDF", s("OUI"), 2), k("RETASSAGE", s("OUI"), 3)],
@@ -1212,6 +1312,34 @@ fn real_file_keywords_accepted() {
         )],
     );
     assert!(validate(&c, FILE).is_ok());
+    // A field value is read at one node: NOEUD or GROUP_NO.
+    let field = |node: Vec<Keyword>| {
+        let mut v = vec![
+            k("RESULTAT", co("MODES", "mode_meca"), 3),
+            k("NUME_ORDRE", i(1), 4),
+            k("NOM_CHAM", s("DEPL"), 5),
+            k("NOM_CMP", s("DX"), 6),
+            k("VALE_CALC", r(1.0), 7),
+        ];
+        v.extend(node);
+        call("TEST_RESU", vec![k("RESU", f(v), 2)])
+    };
+    let e = single_error(&field(vec![]), "TEST_RESU/RESU/NOEUD", 2);
+    assert_eq!(
+        e.message,
+        "expected exactly one of NOEUD, GROUP_NO, none given (rule UN_PARMI(NOEUD, GROUP_NO) when NOM_CHAM is given)"
+    );
+    assert!(validate(&field(vec![k("NOEUD", s("N2"), 8)]), FILE).is_ok());
+    assert!(validate(&field(vec![k("GROUP_NO", s("TIP"), 8)]), FILE).is_ok());
+    let e = single_error(
+        &field(vec![k("NOEUD", s("N2"), 8), k("GROUP_NO", s("TIP"), 9)]),
+        "TEST_RESU/RESU/GROUP_NO",
+        9,
+    );
+    assert_eq!(
+        e.message,
+        "expected exactly one of NOEUD, GROUP_NO, got NOEUD and GROUP_NO (rule UN_PARMI(NOEUD, GROUP_NO) when NOM_CHAM is given)"
+    );
     let c = call(
         "CREA_TABLE",
         vec![k(
@@ -1266,6 +1394,18 @@ fn describe_and_summary() {
         "{d}"
     );
     assert!(describe("NOPE").is_none());
+    assert!(
+        describe("MODE_NON_LINE")
+            .unwrap_or_default()
+            .lines()
+            .all(|l| l.len() <= 100),
+        "docs are wrapped"
+    );
+    // The one-line doc stops at the first sentence, not at an abbreviation.
+    assert_eq!(
+        print::first_line("Extracts a cell (e.g. a name). Then more."),
+        "Extracts a cell (e.g. a name)."
+    );
     let s = summary();
     assert_eq!(s.lines().count(), operator_names().len());
     assert!(s

@@ -245,7 +245,13 @@ pub(crate) fn validate_level(
                     .map(|f| f.when.as_ref()),
             )
             .collect();
-        if !whens.is_empty() && !whens.iter().any(|w| when_active(*w, level, &given)) {
+        // When a controlling keyword has a wrong value, that error is enough: the keywords
+        // depending on it are not reported too.
+        let cascade = whens
+            .iter()
+            .flatten()
+            .any(|w| controller_invalid(w, level, &given));
+        if !whens.is_empty() && !cascade && !whens.iter().any(|w| when_active(*w, level, &given)) {
             let conds: Vec<String> = whens.iter().flatten().map(|w| when_text(w)).collect();
             errors.push(
                 Error::validation(format!(
@@ -266,15 +272,22 @@ pub(crate) fn validate_level(
         match given.iter().find(|k| k.name == def.name) {
             Some(k) => match check_simple(def, &k.value) {
                 Ok(v) => args.simple.push((def.name.clone(), v, k.span)),
-                Err(msgs) => errors.extend(msgs.into_iter().map(|(m, h)| {
-                    let e = Error::validation(m)
-                        .at(file, k.span)
-                        .keyword(level.key(&def.name));
-                    match h {
-                        Some(h) => e.hint(h),
-                        None => e,
-                    }
-                })),
+                Err(msgs) => {
+                    let form = form_hint(level, def);
+                    errors.extend(msgs.into_iter().map(|(m, h)| {
+                        let e = Error::validation(m)
+                            .at(file, k.span)
+                            .keyword(level.key(&def.name));
+                        let h = match (h, &form) {
+                            (Some(h), Some(f)) => Some(format!("{h}; {f}")),
+                            (h, f) => h.or_else(|| f.clone()),
+                        };
+                        match h {
+                            Some(h) => e.hint(h),
+                            None => e,
+                        }
+                    }))
+                }
             },
             None => match def.statut {
                 Statut::Mandatory => {
@@ -310,6 +323,20 @@ pub(crate) fn validate_level(
                         })
                         .collect(),
                     other => {
+                        if let Some(alt) = def.or_value_def() {
+                            match check_simple(&alt, other) {
+                                Ok(v) => args.simple.push((def.name.clone(), v, k.span)),
+                                Err(msgs) => errors.extend(msgs.into_iter().map(|(m, _)| {
+                                    Error::validation(format!(
+                                        "expected a factor keyword _F(...) or {}: {m}",
+                                        types_text(&alt.types)
+                                    ))
+                                    .at(file, k.span)
+                                    .keyword(level.key(&def.name))
+                                })),
+                            }
+                            continue;
+                        }
                         errors.push(
                             Error::validation(format!(
                                 "expected a factor keyword _F(...) or a tuple of them, got {} {}",
@@ -365,6 +392,26 @@ pub(crate) fn validate_level(
         check_rule(rule, level, &present, span, file, errors);
     }
     args
+}
+
+/// For a keyword defined several times at one level (its form follows another keyword,
+/// e.g. `CHOC/NOM_CMP` by OBSTACLE), says which form was applied: "expected 2 value(s)"
+/// alone would not tell the user why.
+fn form_hint(level: &Level, def: &SimpDef) -> Option<String> {
+    let w = def.when.as_ref()?;
+    if level.simp.iter().filter(|s| s.name == def.name).count() < 2 {
+        return None;
+    }
+    Some(format!("{} takes this form {}", def.name, when_text(w)))
+}
+
+/// Whether the keyword a `when` depends on was given with a value no definition accepts.
+fn controller_invalid(w: &When, level: &Level, given: &[&Keyword]) -> bool {
+    let Some(k) = given.iter().find(|k| k.name == w.keyword) else {
+        return false;
+    };
+    let mut defs = level.simp.iter().filter(|s| s.name == w.keyword).peekable();
+    defs.peek().is_some() && defs.all(|d| check_simple(d, &k.value).is_err())
 }
 
 fn missing(level: &Level, name: &str, when: Option<&When>, span: Span, file: &str) -> Error {
