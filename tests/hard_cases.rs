@@ -184,20 +184,44 @@ fn hard_two_laws_on_one_model() {
 }
 
 #[test]
-fn hard_branch_carries_on_past_flagged_bifurcations() {
-    // See the .comm: the flags are real output of the series test, the branch itself is a
-    // non-physical root of the BI_PLAN recast (docs/hard_cases.md).
-    let (_d, c) = run_ok("bifurcation.comm", 4);
+fn hard_branch_carries_on_past_a_verified_bifurcation() {
+    // Stiff symmetric pair (see the .comm): exactly one flagged row, at least eight
+    // converged rows after it, STABLE before it and INSTABLE from it on, and the Floquet
+    // analysis trusted on every row (no CALC_STABILITE_1).
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("case.db");
+    let o = run("bifurcation.comm", &db);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert!(out.contains("tests: 5 OK, 0 NOOK"), "{out}");
+    assert!(!out.contains("CALC_STABILITE_1"), "{out}");
+    let c = Connection::open(&db).unwrap();
     let v = rows(&c, "MNL");
-    let flags: Vec<i64> = c
-        .prepare("SELECT NUME_ORDRE FROM MNL WHERE BIFURCATION = 'OUI' ORDER BY NUME_ORDRE")
-        .unwrap()
-        .query_map([], |r| r.get(0))
+    let mut st = c
+        .prepare("SELECT BIFURCATION, STABILITE FROM MNL ORDER BY NUME_ORDRE")
+        .unwrap();
+    let marks: Vec<(String, String)> = st
+        .query_map([], |r| Ok((r.get(0)?, r.get(1)?)))
         .unwrap()
         .collect::<Result<_, _>>()
         .unwrap();
-    assert!(!flags.is_empty());
-    assert!(flags[0] + 5 <= v.len() as i64, "{flags:?}");
+    let flagged: Vec<usize> = (0..marks.len()).filter(|&i| marks[i].0 == "OUI").collect();
+    assert_eq!(flagged.len(), 1, "{marks:?}");
+    let f = flagged[0];
+    assert!(f >= 1 && f + 8 < v.len(), "flag at {f} of {}", v.len());
+    for (i, (_, stab)) in marks.iter().enumerate() {
+        let want = if i < f { "STABLE" } else { "INSTABLE" };
+        assert_eq!(stab, want, "row {}", i + 1);
+    }
+    assert!(v.iter().all(|r| r.residual <= 1e-9 && r.gamma.abs() <= 1e-9));
+}
+
+#[test]
+fn hard_spurious_root_is_exposed_by_the_contact_law_check() {
+    // See the .comm: a converged branch of the BI_PLAN recast that violates the law itself.
+    let (_d, c) = run_ok("spurious_root.comm", 4);
+    let v = rows(&c, "MNL");
+    assert_eq!(v.len(), 40);
     // The time-domain check of the contact law exposes the non-physical root: O(1) defect
     // on the late rows, against < 0.1 on the first rows (still near the linear mode).
     let defect = |order: i64| -> f64 {
