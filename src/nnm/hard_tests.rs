@@ -307,14 +307,16 @@ fn hard_two_mass_branches_near_bifurcations() {
     // Weakly coupled masses (kc = 0.5) with one stop on mass 1, anti-phase mode, 40
     // branches.
     // PLAN (COEF_AMPL 0.5): the motion localises on the stopped mass through a fold in
-    // energy (E decreases over branches 5–13 while f rises), with no flagged bifurcation:
-    // every point converged, localised at the end (|u_1| > 10 |u_2|, measured 21).
-    // BI_PLAN (COEF_AMPL 1): the series' bifurcation test flags rows (measured 23, 37, 39)
-    // and the run carries on past them with every point converged. That branch is not
-    // physical (mass 1 held inside its gap by a contact force equal to the coupling force;
-    // frequencies down to 0.26 Hz past the fold): a non-physical root of the BI_PLAN
-    // recast, undetected by the residual/γ/energy indicators — docs/hard_cases.md. The
-    // flags are not verified as true bifurcations.
+    // energy (E decreases over branches 5–13 while f rises), with no flagged bifurcation
+    // (a fold is a regular point: neither the series nor the determinant test may flag
+    // it): every point converged, localised at the end (|u_1| > 10 |u_2|, measured 21).
+    // BI_PLAN (COEF_AMPL 1): rows are flagged and the run carries on past them with every
+    // point converged. That branch is not physical (mass 1 held inside its gap by a contact
+    // force equal to the coupling force; frequencies down to 0.26 Hz past the fold): a
+    // non-physical root of the BI_PLAN recast, which the residual/γ/energy indicators miss
+    // and ECART_LOI_CHOC exposes — docs/hard_cases.md. A verified physical bifurcation,
+    // passed and confirmed by the Floquet multipliers, is
+    // stability::tests::symmetric_pair_pitchfork_is_flagged_where_stability_switches.
     let nl = 11;
     let mut s = settings(5, 60, 40, 1);
     s.prec_man = 1e-8;
