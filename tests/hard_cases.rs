@@ -213,7 +213,9 @@ fn hard_branch_carries_on_past_a_verified_bifurcation() {
         let want = if i < f { "STABLE" } else { "INSTABLE" };
         assert_eq!(stab, want, "row {}", i + 1);
     }
-    assert!(v.iter().all(|r| r.residual <= 1e-9 && r.gamma.abs() <= 1e-9));
+    assert!(v
+        .iter()
+        .all(|r| r.residual <= 1e-9 && r.gamma.abs() <= 1e-9));
 }
 
 #[test]

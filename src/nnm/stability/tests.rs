@@ -445,11 +445,12 @@ fn anti_phase_mode_is_unstable_between_its_energy_extrema_and_in_phase_mode_is_s
     // through +1 exactly where the energy along the family has an extremum (a fold of the
     // energy–frequency curve). The anti-phase NNM stiffens, its energy peaks, falls and rises
     // again: it must be unstable between the maximum and the minimum and stable elsewhere.
-    // The engine's Point::bifurcation flag is not raised on this branch, so the energy
-    // extrema are the reference. Boundaries are checked to one branch point.
+    // A fold is a regular point of the continuation: neither bifurcation test flags it, so
+    // the energy extrema are the reference. Boundaries are checked to one branch point.
     let p = pair(1.0, vec![shock(ShockLaw::Plan, vec![1])]);
     let s = settings(10, 100, 25);
     let pts = branch(&p, &s, &[1.0, -1.0], 0.5, 12f64.sqrt());
+    assert!(pts.iter().all(|q| !q.bifurcation));
     let e: Vec<f64> = pts.iter().map(|q| q.energy).collect();
     let imax = (1..e.len() - 1)
         .find(|&i| e[i] > e[i - 1] && e[i] >= e[i + 1])
