@@ -124,7 +124,7 @@ pub fn frequency_energy_spec(rows: &[FePoint], title: &str) -> XyPlot {
     }
     XyPlot {
         title: title.to_string(),
-        x_label: "ENERGIE".into(),
+        x_label: "ENERGIE (J)".into(),
         y_label: "FREQUENCE (Hz)".into(),
         x_scale: Scale::Log,
         y_scale: Scale::Lin,

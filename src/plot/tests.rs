@@ -254,7 +254,7 @@ fn frequency_energy_styles_and_legend() {
         &svg_texts(&path),
         &[
             "sdnd122",
-            "ENERGIE",
+            "ENERGIE (J)",
             "FREQUENCE (Hz)",
             "stable",
             "unstable",
