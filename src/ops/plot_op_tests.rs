@@ -91,7 +91,7 @@ fn impr_table_draws_the_frequency_energy_plot_of_a_mode_non_line_table() {
         &svg_texts(&path),
         &[
             "sdnd122",
-            "ENERGIE",
+            "ENERGIE (J)",
             "FREQUENCE (Hz)",
             "stable",
             "unstable",
