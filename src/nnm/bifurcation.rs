@@ -27,7 +27,7 @@ use crate::error::{Error, Result};
 use faer::Mat;
 
 /// Right-hand sides solved at once: bounds the memory to n·COLUMNS_PER_SOLVE values.
-const COLUMNS_PER_SOLVE: usize = 64;
+const COLUMNS_PER_SOLVE: usize = 256;
 
 /// The rows R of J (velocity equations, phase condition, border) whose columns of J⁻¹ are
 /// computed, and the unknowns C (displacements, ω, γ) read from them.
