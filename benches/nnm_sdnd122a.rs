@@ -1,8 +1,11 @@
 //! Speed of the EHMAN engine on the sdnd122a settings (one DOF against a wall: H_l = 5,
-//! H_nl = 200, NB_ORDRE_MAN = 20, PREC_MAN = 1e-14, 105 branches) and on a 20-DOF chain.
-//! Run: `cargo bench --bench nnm_sdnd122a`.
+//! H_nl = 200, NB_ORDRE_MAN = 20, PREC_MAN = 1e-14, 105 branches) and on a 20-DOF chain,
+//! and of MODE_NON_LINE's post-processing of the rows (Fourier coefficients and the
+//! contact-law check, `PostProcessor`). Run: `cargo bench --bench nnm_sdnd122a`.
 
-use aster_nl::nnm::{continue_branches, start_from_mode, Problem, Settings, Shock, ShockLaw};
+use aster_nl::nnm::{
+    continue_branches, start_from_mode, PostProcessor, Problem, Settings, Shock, ShockLaw,
+};
 use criterion::{criterion_group, criterion_main, Criterion};
 use faer::sparse::{SparseColMat, Triplet};
 
@@ -42,6 +45,15 @@ fn sdnd122a(c: &mut Criterion) {
         }],
     };
     let s = settings(200, 105);
+    // The rows of the first 20 branches, post-processed as MODE_NON_LINE does: one
+    // PostProcessor, then every row (displacement and force coefficients, law defect).
+    let rows = {
+        let s20 = settings(200, 20);
+        let st = start_from_mode(&p, &s20, &[1.0], 1.0, 10f64.sqrt()).expect("start");
+        let out = continue_branches(&p, &s20, st, &mut |_, _| {});
+        assert!(out.error.is_none());
+        out.points
+    };
     let mut g = c.benchmark_group("ehman");
     g.sample_size(10);
     g.bench_function("sdnd122a_105_branches_hnl200", |b| {
@@ -50,6 +62,14 @@ fn sdnd122a(c: &mut Criterion) {
             let out = continue_branches(&p, &s, st, &mut |_, _| {});
             assert!(out.error.is_none());
             out.points.len()
+        })
+    });
+    g.bench_function("sdnd122a_post_20_rows_hnl200", |b| {
+        b.iter(|| {
+            let post = PostProcessor::new(&p, &s).expect("post-processor");
+            rows.iter()
+                .map(|r| post.row(&r.x).expect("row").law_defect)
+                .fold(0.0, f64::max)
         })
     });
     g.finish();

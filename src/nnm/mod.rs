@@ -26,6 +26,7 @@ mod law_check;
 mod laws;
 mod linear_solver;
 mod newton;
+mod post;
 mod resolution;
 mod series;
 pub mod stability;
@@ -40,6 +41,7 @@ mod tests;
 
 pub use law_check::{contact_law_defect, LAW_DEFECT_ALARM};
 pub use linear_solver::{BorderedSolver, SparseLu};
+pub use post::{PostProcessor, RowOutputs};
 pub use resolution::{resolution_warnings, tail_ratio};
 
 use crate::error::{Error, Result};
@@ -399,22 +401,7 @@ pub fn start_from_mode(
 
 /// Number of unknowns of `x` for this problem and these settings.
 pub fn unknown_count(problem: &Problem, settings: &Settings) -> usize {
-    let n = problem.k.nrows();
-    let hn = if problem.shocks.is_empty() {
-        settings.h_lin
-    } else {
-        settings.h_nonl
-    };
-    let own: usize = problem
-        .shocks
-        .iter()
-        .map(|s| match s.law {
-            ShockLaw::Plan => 1,
-            ShockLaw::BiPlan => 2,
-            ShockLaw::Cercle { .. } => 4,
-        })
-        .sum();
-    2 * n * series::len(settings.h_lin) + own * series::len(hn) + 2
+    system::Layout::of(problem, settings).0.n_unk
 }
 
 /// Scaling and reference DOF for a stored physical point.
@@ -728,16 +715,13 @@ pub fn time_history(
 }
 
 /// Fourier coefficients (0, C1..CH_l, S1..SH_l) of the displacement of each DOF (physical).
+/// For many points of one problem, build a [`PostProcessor`] once instead.
 pub fn displacement_coefficients(
     problem: &Problem,
     settings: &Settings,
     x: &[f64],
 ) -> Result<Vec<Vec<f64>>> {
-    let sys = system_for_point(problem, settings, x)?;
-    let l = sys.lay;
-    Ok((0..l.n)
-        .map(|i| x[l.u(i)..l.u(i) + l.nl].to_vec())
-        .collect())
+    post::Unknowns::new(problem, settings)?.displacement(x)
 }
 
 /// Fourier coefficients of the velocity of each DOF (physical).
@@ -746,11 +730,7 @@ pub fn velocity_coefficients(
     settings: &Settings,
     x: &[f64],
 ) -> Result<Vec<Vec<f64>>> {
-    let sys = system_for_point(problem, settings, x)?;
-    let l = sys.lay;
-    Ok((0..l.n)
-        .map(|i| x[l.v(i)..l.v(i) + l.nl].to_vec())
-        .collect())
+    post::Unknowns::new(problem, settings)?.velocity(x)
 }
 
 /// Fourier coefficients (0, C1..CH_nl, S1..SH_nl) of each contact unknown of each shock
@@ -760,15 +740,5 @@ pub fn contact_coefficients(
     settings: &Settings,
     x: &[f64],
 ) -> Result<Vec<Vec<Vec<f64>>>> {
-    let sys = system_for_point(problem, settings, x)?;
-    let l = sys.lay;
-    Ok(sys
-        .shocks
-        .iter()
-        .map(|sh| {
-            (0..sh.eqs.n_own)
-                .map(|v| x[sh.offset + v * l.nn..sh.offset + (v + 1) * l.nn].to_vec())
-                .collect()
-        })
-        .collect())
+    post::Unknowns::new(problem, settings)?.contact(x)
 }

@@ -4,7 +4,8 @@
 //! and when NB_HARM_NONL is too small the highest retained harmonics still carry a visible
 //! part of the pulse. Code_Aster warns in that case and asks for more harmonics; so do we.
 
-use super::{contact_coefficients, Point, Problem, Settings};
+use super::post::Unknowns;
+use super::{Point, Problem, Settings};
 
 /// Amplitude of the highest tenth of the harmonics relative to the largest harmonic
 /// amplitude, above which the force series counts as poorly resolved.
@@ -39,13 +40,16 @@ pub fn resolution_warnings(
     if points.is_empty() || problem.shocks.is_empty() {
         return Vec::new();
     }
+    let Ok(stored) = Unknowns::new(problem, settings) else {
+        return Vec::new();
+    };
     let stride = points.len().div_ceil(SAMPLED_POINTS).max(1);
     let picked = points
         .iter()
         .enumerate()
         .filter(|(i, _)| i % stride == 0 || *i + 1 == points.len());
     for (_, p) in picked {
-        let Ok(per_shock) = contact_coefficients(problem, settings, &p.x) else {
+        let Ok(per_shock) = stored.contact(&p.x) else {
             continue;
         };
         for (s, unknowns) in per_shock.iter().enumerate() {

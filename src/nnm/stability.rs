@@ -34,7 +34,8 @@ mod laws;
 #[cfg(test)]
 mod tests;
 
-use super::{displacement_coefficients, series, Problem, Settings};
+use super::post::Unknowns;
+use super::{series, Problem, Settings};
 use crate::error::{Error, Result};
 use faer::{Mat, Side};
 pub(crate) use laws::eta_phys;
@@ -125,21 +126,18 @@ impl Orbit {
     }
 }
 
-/// The linearised system along an orbit: dense M, K, the laws and where they act.
-pub(crate) struct Linearised {
-    pub n: usize,
-    pub m: Mat<f64>,
-    pub k: Mat<f64>,
+/// What the linearisation along any orbit of one problem shares: dense M and K, and the
+/// physical laws with the DOFs they act on (η needs factorisations of K and M).
+#[derive(Clone)]
+struct Structure {
+    n: usize,
+    m: Mat<f64>,
+    k: Mat<f64>,
     shocks: Vec<(PointLaw, Vec<usize>)>,
-    pub orbit: Orbit,
 }
 
-impl Linearised {
-    pub fn new(problem: &Problem, orbit: Orbit) -> Result<Linearised> {
-        let n = problem.k.nrows();
-        if orbit.coefs.len() != n {
-            return Err(Error::internal("orbit and problem sizes differ"));
-        }
+impl Structure {
+    fn new(problem: &Problem) -> Result<Structure> {
         let etas = eta_phys(problem)?;
         let shocks = problem
             .shocks
@@ -155,11 +153,42 @@ impl Linearised {
                 (law, s.dofs.clone())
             })
             .collect();
-        Ok(Linearised {
-            n,
+        Ok(Structure {
+            n: problem.k.nrows(),
             m: problem.m.to_dense(),
             k: problem.k.to_dense(),
             shocks,
+        })
+    }
+}
+
+/// The linearised system along an orbit: dense M, K, the laws and where they act.
+pub(crate) struct Linearised {
+    pub n: usize,
+    pub m: Mat<f64>,
+    pub k: Mat<f64>,
+    shocks: Vec<(PointLaw, Vec<usize>)>,
+    pub orbit: Orbit,
+}
+
+impl Linearised {
+    #[cfg(test)]
+    pub fn new(problem: &Problem, orbit: Orbit) -> Result<Linearised> {
+        Linearised::along(&Structure::new(problem)?, orbit)
+    }
+
+    /// The copy of the shared structure is O(n²), nothing next to the O(n³) integration
+    /// steps; the factorisations behind η are not repeated.
+    fn along(s: &Structure, orbit: Orbit) -> Result<Linearised> {
+        if orbit.coefs.len() != s.n {
+            return Err(Error::internal("orbit and problem sizes differ"));
+        }
+        let s = s.clone();
+        Ok(Linearised {
+            n: s.n,
+            m: s.m,
+            k: s.k,
+            shocks: s.shocks,
             orbit,
         })
     }
@@ -193,9 +222,59 @@ impl Linearised {
     }
 }
 
-/// Floquet multipliers of the stored point `x` (a `Point::x` of this problem and settings),
-/// integrated with `n_steps` steps per period (NB_INST), and the verdict for TOLERANCE
-/// `tolerance`.
+/// The Floquet analysis of the points of one problem (CALC_STABILITE's rows): the layout of
+/// stored points and the linearisation's structure are built once.
+pub struct FloquetAnalyser {
+    unknowns: Unknowns,
+    h_lin: usize,
+    structure: Structure,
+}
+
+impl FloquetAnalyser {
+    pub fn new(problem: &Problem, settings: &Settings) -> Result<FloquetAnalyser> {
+        Ok(FloquetAnalyser {
+            unknowns: Unknowns::new(problem, settings)?,
+            h_lin: settings.h_lin,
+            structure: Structure::new(problem)?,
+        })
+    }
+
+    /// Floquet multipliers of the stored point `x` (a `Point::x` of this problem and
+    /// settings), integrated with `n_steps` steps per period (NB_INST), and the verdict for
+    /// TOLERANCE `tolerance`.
+    pub fn floquet(
+        &self,
+        x: &[f64],
+        n_steps: usize,
+        integrator: Integrator,
+        tolerance: f64,
+    ) -> Result<Floquet> {
+        if n_steps == 0 {
+            return Err(Error::input("NB_INST must be at least 1").keyword("SCHEMA_TEMPS/NB_INST"));
+        }
+        if !(tolerance.is_finite() && tolerance >= 0.0) {
+            return Err(Error::input(format!(
+                "TOLERANCE must be a non-negative number, got {tolerance}"
+            ))
+            .keyword("TOLERANCE"));
+        }
+        let coefs = self.unknowns.displacement(x)?;
+        // ω is the last-but-one unknown of a stored point (rad/s, module doc of nnm).
+        let omega = x
+            .len()
+            .checked_sub(2)
+            .and_then(|i| x.get(i))
+            .copied()
+            .ok_or_else(|| Error::internal("stored point without ω"))?;
+        let orbit = Orbit::new(coefs, self.h_lin, omega)?;
+        let lin = Linearised::along(&self.structure, orbit)?;
+        let phi = monodromy(&lin, n_steps, integrator)?;
+        analyse(&lin, &phi, tolerance)
+    }
+}
+
+/// Floquet multipliers of one stored point: [`FloquetAnalyser::floquet`] for a single point.
+/// For many points of one problem, build the analyser once instead.
 pub fn floquet(
     problem: &Problem,
     settings: &Settings,
@@ -204,27 +283,7 @@ pub fn floquet(
     integrator: Integrator,
     tolerance: f64,
 ) -> Result<Floquet> {
-    if n_steps == 0 {
-        return Err(Error::input("NB_INST must be at least 1").keyword("SCHEMA_TEMPS/NB_INST"));
-    }
-    if !(tolerance.is_finite() && tolerance >= 0.0) {
-        return Err(Error::input(format!(
-            "TOLERANCE must be a non-negative number, got {tolerance}"
-        ))
-        .keyword("TOLERANCE"));
-    }
-    let coefs = displacement_coefficients(problem, settings, x)?;
-    // ω is the last-but-one unknown of a stored point (rad/s, module doc of nnm).
-    let omega = x
-        .len()
-        .checked_sub(2)
-        .and_then(|i| x.get(i))
-        .copied()
-        .ok_or_else(|| Error::internal("stored point without ω"))?;
-    let orbit = Orbit::new(coefs, settings.h_lin, omega)?;
-    let lin = Linearised::new(problem, orbit)?;
-    let phi = monodromy(&lin, n_steps, integrator)?;
-    analyse(&lin, &phi, tolerance)
+    FloquetAnalyser::new(problem, settings)?.floquet(x, n_steps, integrator, tolerance)
 }
 
 /// Φ(T) of the linearised system with the chosen integrator.

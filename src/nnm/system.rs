@@ -149,6 +149,45 @@ impl Layout {
     pub fn n_eq(&self) -> usize {
         self.n_unk - 1
     }
+
+    /// The layout of X for `problem` and `settings` and the offset in X of each shock's
+    /// contact unknowns, as `System::new` places them, without building a system (no
+    /// scaling, matrices or FFT plan): what reading stored points needs.
+    pub fn of(problem: &Problem, settings: &Settings) -> (Layout, Vec<usize>) {
+        let n = problem.k.nrows();
+        let hl = settings.h_lin;
+        let hn = if problem.shocks.is_empty() {
+            hl
+        } else {
+            settings.h_nonl
+        };
+        let (nl, nn) = (series::len(hl), series::len(hn));
+        let mut offset = 2 * n * nl;
+        let mut offsets = Vec::with_capacity(problem.shocks.len());
+        for s in &problem.shocks {
+            offsets.push(offset);
+            offset += own_count(s.law) * nn;
+        }
+        let lay = Layout {
+            n,
+            hl,
+            hn,
+            nl,
+            nn,
+            n_unk: offset + 2,
+        };
+        (lay, offsets)
+    }
+}
+
+/// Number of contact unknowns (series) of a law: PLAN f; BI_PLAN f, z; CERCLE f, r, fx, fy
+/// (`laws::equations` gives the same `n_own`; a test checks it).
+pub fn own_count(law: ShockLaw) -> usize {
+    match law {
+        ShockLaw::Plan => 1,
+        ShockLaw::BiPlan => 2,
+        ShockLaw::Cercle { .. } => 4,
+    }
 }
 
 pub struct System {

@@ -5,7 +5,7 @@
 
 use crate::args::Args;
 use crate::error::{Error, Result};
-use crate::nnm::stability::{floquet, Integrator};
+use crate::nnm::stability::{FloquetAnalyser, Integrator};
 use crate::ops::mnl_common::{engine_problem, row_of};
 use crate::ops::{progress::Progress, OpContext};
 use crate::store::{matrix, mnl as mnl_store, table as table_store};
@@ -46,6 +46,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     }
     let stab_col = table.req_col("STABILITE")?;
     let order_col = table.req_col("NUME_ORDRE")?;
+    // Built once: what every row's analysis shares (layout, dense K and M, laws).
+    let analyser = FloquetAnalyser::new(&problem, &settings)?;
     let progress = Progress::new(ctx.progress, rows.len() as u64, "CALC_STABILITE");
     let (mut stable, mut unstable) = (0usize, 0usize);
     // Rows whose monodromy does not map the orbit's own tangent onto itself within
@@ -58,7 +60,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         };
         let x = mnl_store::load_point(ctx.store, &src, order)?
             .ok_or_else(|| Error::store(format!("{src}: row {order} has no stored point")))?;
-        let f = floquet(&problem, &settings, &x, n_inst, integrator, tolerance)
+        let f = analyser
+            .floquet(&x, n_inst, integrator, tolerance)
             .map_err(|e| e.keyword(format!("CALC_STABILITE (row NUME_ORDRE={order})")))?;
         mnl_store::save_multipliers(ctx.store, &name, order, &f.multipliers)?;
         let verdict = if f.stable { "STABLE" } else { "INSTABLE" };

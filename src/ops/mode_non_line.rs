@@ -209,17 +209,19 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let ncoef = 2 * settings.h_lin as i64 + 1;
     let mut suspect: Vec<i64> = Vec::new();
     let mut worst_defect = 0.0f64;
+    // Built once: what every row's outputs share (layout, physical laws, FFT plan).
+    let post = nnm::PostProcessor::new(&problem, &settings)?;
     for (j, p) in outcome.points.iter().enumerate() {
         let order = first_order + j as i64;
-        let defect = nnm::contact_law_defect(&problem, &settings, &p.x)?;
+        let out = post.row(&p.x)?;
+        let defect = out.law_defect;
         if defect > nnm::LAW_DEFECT_ALARM {
             suspect.push(order);
         }
         worst_defect = worst_defect.max(defect);
         table.push_row(row(&name, &cara_choc, order, ncoef, reprise, p, defect))?;
         mnl_store::save_point(ctx.store, &name, order, p.omega, &p.x)?;
-        let coefs = nnm::displacement_coefficients(&problem, &settings, &p.x)?;
-        mnl_store::save_fourier(ctx.store, &name, order, &dof_names, &coefs)?;
+        mnl_store::save_fourier(ctx.store, &name, order, &dof_names, &out.displacement)?;
     }
     table_store::save_table(ctx.store, &name, &table)?;
     ctx.say(&format!(

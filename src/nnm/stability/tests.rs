@@ -2,8 +2,8 @@
 //! against the engine's, Newmark against RK4 on sdnd122, and an orbit that loses stability.
 
 use super::super::{
-    contact_coefficients, continue_branches, start_from_mode, Point, Problem, Settings, Shock,
-    ShockLaw,
+    contact_coefficients, continue_branches, displacement_coefficients, start_from_mode, Point,
+    Problem, Settings, Shock, ShockLaw,
 };
 use super::*;
 use faer::sparse::{SparseColMat, Triplet};
