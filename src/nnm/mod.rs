@@ -26,6 +26,7 @@ mod law_check;
 mod laws;
 mod linear_solver;
 mod newton;
+mod quadrature;
 mod resolution;
 mod series;
 pub mod stability;
@@ -40,6 +41,7 @@ mod tests;
 
 pub use law_check::{contact_law_defect, LAW_DEFECT_ALARM};
 pub use linear_solver::{BorderedSolver, SparseLu};
+pub use quadrature::{check_degenerate_pair, start_from_mode_pair, QUAD_FREQ_TOL};
 pub use resolution::{resolution_warnings, tail_ratio};
 
 use crate::error::{Error, Result};
