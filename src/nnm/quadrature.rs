@@ -211,7 +211,10 @@ mod tests {
         let last = out.points.last().unwrap();
         let r_end = last.x[1].hypot(last.x[1 + hl]);
         println!("pair whirl: worst rel ω error {worst:.2e}, end radius {r_end:.4e}");
-        assert!(r_end > 1.1 * g, "the branch did not reach contact: r = {r_end}");
+        assert!(
+            r_end > 1.1 * g,
+            "the branch did not reach contact: r = {r_end}"
+        );
         assert!(worst < 1e-7);
         assert!(out.points.windows(2).all(|w| w[1].energy > w[0].energy));
     }
@@ -223,7 +226,11 @@ mod tests {
         let w = 10f64.sqrt();
         // Frequencies 10 and 25 rad²/s²: error naming the keyword and both frequencies.
         let e = start_from_mode_pair(&p, &s, &[1.0, 0.0], &[0.0, 1.0], 0.9, w, 5.0).unwrap_err();
-        assert_eq!(e.keyword.as_deref(), Some("ETAT_INIT/NUME_ORDRE_QUAD"), "{e}");
+        assert_eq!(
+            e.keyword.as_deref(),
+            Some("ETAT_INIT/NUME_ORDRE_QUAD"),
+            "{e}"
+        );
         assert!(e.message.contains("7.957747155e-1 Hz"), "{e}");
         assert!(e.message.contains("5.032921210e-1 Hz"), "{e}");
         assert!(e.hint.is_some());
@@ -232,7 +239,11 @@ mod tests {
         assert!(check_degenerate_pair(w, w * (1.0 + 0.5 * QUAD_FREQ_TOL)).is_ok());
         // The same shape twice is a planar orbit, refused.
         let e = start_from_mode_pair(&p, &s, &[1.0, 0.5], &[-2.0, -1.0], 0.9, w, w).unwrap_err();
-        assert_eq!(e.keyword.as_deref(), Some("ETAT_INIT/NUME_ORDRE_QUAD"), "{e}");
+        assert_eq!(
+            e.keyword.as_deref(),
+            Some("ETAT_INIT/NUME_ORDRE_QUAD"),
+            "{e}"
+        );
         assert!(e.message.contains("collinear"), "{e}");
     }
 }

@@ -46,7 +46,10 @@ pub fn from_linear_modes(
     let (quad, omega_quad) =
         pick(&modes, modes_name, quad_order, &free).map_err(|e| e.keyword(quad_kw.clone()))?;
     nnm::check_degenerate_pair(omega, omega_quad).map_err(|e| Error {
-        message: format!("NUME_ORDRE_QUAD={quad_order} and NUME_ORDRE={nume_ordre}: {}", e.message),
+        message: format!(
+            "NUME_ORDRE_QUAD={quad_order} and NUME_ORDRE={nume_ordre}: {}",
+            e.message
+        ),
         keyword: Some(quad_kw.clone()),
         ..e
     })?;
@@ -68,7 +71,10 @@ fn pick(modes: &ModeMeca, name: &str, order: i64, free: &[usize]) -> Result<(Vec
         .iter()
         .map(|&i| mode.shape.get(i).copied())
         .collect::<Option<Vec<f64>>>()
-        .ok_or_else(|| Error::store(format!("mode {order} of {name} is shorter than its numbering")))?;
+        .ok_or_else(|| {
+            Error::store(format!(
+                "mode {order} of {name} is shorter than its numbering"
+            ))
+        })?;
     Ok((shape, mode.omega2.max(0.0).sqrt()))
 }
-
