@@ -27,7 +27,13 @@ fn m_dot(m: &SparseColMat<usize, f64>, x: &[f64], y: &[f64]) -> f64 {
 /// The check of the pair's frequencies (Hz in the message), on its own for the glue and
 /// its tests.
 pub fn check_degenerate_pair(omega: f64, omega_quad: f64) -> Result<()> {
-    let rel = (omega_quad - omega).abs() / omega.abs().max(omega_quad.abs());
+    // Two zero pulsations pass here: the start then refuses the zero pulsation itself.
+    let scale = omega.abs().max(omega_quad.abs());
+    let rel = if scale > 0.0 {
+        (omega_quad - omega).abs() / scale
+    } else {
+        0.0
+    };
     if rel.is_finite() && rel <= QUAD_FREQ_TOL {
         return Ok(());
     }
