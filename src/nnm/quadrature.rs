@@ -226,6 +226,48 @@ mod tests {
     }
 
     #[test]
+    fn a_whirl_restarts_where_it_stopped() {
+        // The start puts the time origin where a restart from a stored point puts it (same
+        // reference DOF, zero velocity there): restarting from point 2 of a 4-branch run
+        // must retrace points 3 and 4 (the series does not depend on the border; measured
+        // 1.0e-14 relative in ω and energy, asserted 1e-10).
+        let (k, g) = (10.0, 0.01);
+        let p = isotropic(k, g, 50.0, 1e-4);
+        let mut s = settings(3, 20, 4, 1);
+        s.prec_man = 1e-8;
+        let b = 30f64.to_radians();
+        let mode = [b.cos(), b.sin()];
+        let quad = [-b.sin(), b.cos()];
+        let st = start_from_mode_pair(&p, &s, &mode, &quad, 1.05, k.sqrt(), k.sqrt()).unwrap();
+        let whole = continue_branches(&p, &s, st, &mut |_, _| {});
+        assert!(whole.error.is_none(), "{:?}", whole.error);
+        let st = super::super::start_from_point(&p, &s, &whole.points[1].x).unwrap();
+        let mut s2 = s.clone();
+        s2.n_branches = 2;
+        let rest = continue_branches(&p, &s2, st, &mut |_, _| {});
+        assert!(rest.error.is_none(), "{:?}", rest.error);
+        assert_eq!(rest.points.len(), 2);
+        let mut worst = 0.0f64;
+        for (a, b) in whole.points[2..].iter().zip(&rest.points) {
+            worst = worst.max((a.omega / b.omega - 1.0).abs());
+            worst = worst.max((a.energy / b.energy - 1.0).abs());
+            assert!(
+                (a.omega / b.omega - 1.0).abs() < 1e-10,
+                "{} {}",
+                a.omega,
+                b.omega
+            );
+            assert!(
+                (a.energy / b.energy - 1.0).abs() < 1e-10,
+                "{} {}",
+                a.energy,
+                b.energy
+            );
+        }
+        println!("whirl restart: worst relative difference {worst:.2e}");
+    }
+
+    #[test]
     fn the_pair_must_be_degenerate_and_distinct() {
         let p = isotropic(10.0, 0.01, 50.0, 1e-4);
         let s = settings(3, 20, 1, 1);
