@@ -278,6 +278,121 @@ fn hard_cercle_through_its_centre_is_a_clear_error() {
 }
 
 #[test]
+fn hard_cercle_whirl_from_a_degenerate_pair() {
+    // The .comm checks residuals, |γ|, the degenerate pair and, on rows 17–30, FREQUENCE
+    // against the penalty closed form at the row's ENERGIE: 2 + 2 + 14 tests.
+    let (_d, c) = run_ok("cercle_whirl.comm", 18);
+    let v = rows(&c, "MNL");
+    assert_eq!(v.len(), 30);
+    assert_hardening("MNL", &v);
+    // Every row from the stored Fourier coefficients of N1: the orbit is a circle (equal
+    // amplitudes, x and y in quadrature, no higher harmonics, to 1e-9 relative: measured
+    // exactly 0 for the higher harmonics), and ω² = (k + f(r)/r)/m with f the regularised
+    // ring force, root of f² − αf(r − g) − αη = 0 (η = PARA_REGUL·k·g²): exact for a
+    // circular orbit, so only the Newton correction (PREC_NEWTON = 1e-9) separates them
+    // (measured ≤ 5e-10, asserted 2e-9).
+    let (k, g, alpha) = (10.0, 0.01, 1000.0);
+    let eta = 1e-5 * k * g * g;
+    let coef = |n: i64, cmp: &str, h: i64| -> (f64, f64) {
+        c.query_row(
+            "SELECT COEF_C, COEF_S FROM mnl_fourier WHERE concept = 'MNL' AND NUME_ORDRE = ?1 \
+             AND NOEUD = 'N1' AND NOM_CMP = ?2 AND HARM = ?3",
+            rusqlite::params![n, cmp, h],
+            |r| Ok((r.get(0)?, r.get(1)?)),
+        )
+        .unwrap()
+    };
+    let mut radii = Vec::new();
+    for (i, row) in v.iter().enumerate() {
+        let n = i as i64 + 1;
+        let (xc, xs) = coef(n, "DX", 1);
+        let (yc, ys) = coef(n, "DY", 1);
+        let r = xc.hypot(xs);
+        assert!(
+            (yc.hypot(ys) / r - 1.0).abs() < 1e-9,
+            "row {n}: {xc} {xs} {yc} {ys}"
+        );
+        assert!(
+            (xc * yc + xs * ys).abs() < 1e-9 * r * r,
+            "row {n}: not in quadrature"
+        );
+        for h in [0, 2, 3] {
+            for cmp in ["DX", "DY"] {
+                let (a, b) = coef(n, cmp, h);
+                assert!(
+                    a.hypot(b) < 1e-9 * r,
+                    "row {n}: {cmp} harmonic {h}: {a} {b}"
+                );
+            }
+        }
+        let f = (alpha * (r - g) + ((alpha * (r - g)).powi(2) + 4.0 * alpha * eta).sqrt()) / 2.0;
+        let closed = (k + f / r).sqrt() / (2.0 * std::f64::consts::PI);
+        assert!(
+            (row.freq / closed - 1.0).abs() < 2e-9,
+            "row {n}: {} {closed}",
+            row.freq
+        );
+        radii.push(r);
+    }
+    // Started inside the ring (COEF_AMPL 0.9), it whirls into contact and far beyond.
+    assert!(radii[0] < g && radii[29] > 10.0 * g, "{radii:?}");
+}
+
+#[test]
+fn hard_cercle_whirl_needs_a_degenerate_pair() {
+    // NUME_ORDRE_QUAD on the anisotropic node of cercle_offset (10 and 25 in x and y):
+    // refused, naming the keyword, both modes and both frequencies, with a hint. The
+    // same mode twice and a mode that does not exist are refused too.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("cercle_offset.mail"), dir.path().join("pair.mail")).unwrap();
+    let base = std::fs::read_to_string(case("cercle_offset.comm")).unwrap();
+    let one = "ETAT_INIT=_F(MODE_LINE=MODES, NUME_ORDRE=1, DIR_EVOLUTION=1, COEF_AMPL=1.)";
+    assert!(base.contains(one));
+    let attempt = |quad: i64| -> String {
+        let comm = dir.path().join("pair.comm");
+        let src = base.replacen(
+            one,
+            &format!("ETAT_INIT=_F(MODE_LINE=MODES, NUME_ORDRE=1, NUME_ORDRE_QUAD={quad}, DIR_EVOLUTION=1, COEF_AMPL=1.)"),
+            1,
+        );
+        std::fs::write(&comm, src).unwrap();
+        let o = Command::new(env!("CARGO_BIN_EXE_aster-nl"))
+            .arg("run")
+            .arg(&comm)
+            .arg("--db")
+            .arg(dir.path().join(format!("pair{quad}.db")))
+            .output()
+            .unwrap();
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{out}");
+        out
+    };
+    let out = attempt(2);
+    for want in [
+        "MODE_NON_LINE/ETAT_INIT/NUME_ORDRE_QUAD",
+        "NUME_ORDRE_QUAD=2 and NUME_ORDRE=1",
+        "7.957747155e-1 Hz",
+        "5.032921210e-1 Hz",
+        "a whirl needs a degenerate pair",
+        "give in NUME_ORDRE_QUAD the other mode of the same frequency",
+    ] {
+        assert!(out.contains(want), "{want} missing:\n{out}");
+    }
+    let out = attempt(1);
+    assert!(
+        out.contains("MODE_NON_LINE/ETAT_INIT/NUME_ORDRE_QUAD")
+            && out.contains("must differ from NUME_ORDRE"),
+        "{out}"
+    );
+    let out = attempt(3);
+    assert!(
+        out.contains("MODE_NON_LINE/ETAT_INIT/NUME_ORDRE_QUAD")
+            && out.contains("no mode NUME_ORDRE=3 (available: 1, 2)"),
+        "{out}"
+    );
+}
+
+#[test]
 fn hard_restart_in_two_runs_equals_one_run() {
     let (_d1, whole) = run_ok("restart_whole.comm", 2);
     let dir = tempfile::tempdir().unwrap();

@@ -410,8 +410,8 @@ fn hard_failed_correction_keeps_the_points_before_it() {
 #[test]
 fn hard_cercle_whirl_around_the_ring() {
     // Isotropic node (k = 10 in x and y) in a centred ring: a circular whirl of radius r,
-    // started from a constructed point (x = A cos ωt, y ≈ A sin ωt: the .comm interface
-    // starts only from a real linear mode, whose orbit is planar). Exact: constant radial
+    // started from a constructed point (x = A cos ωt, y ≈ A sin ωt; from linear modes, see
+    // quadrature.rs and testcases/hard/cercle_whirl.comm). Exact: constant radial
     // force f, root of f² − αf(r − g) − αη = 0 (η = PARA_REGUL·k·g²), and ω² = (k + f/r)/m.
     // The whirl has a second conserved quantity (angular momentum), yet the correction and
     // the continuation converge: every point within 1e-7 of the closed form (measured

@@ -27,6 +27,7 @@ mod laws;
 mod linear_solver;
 mod newton;
 mod post;
+mod quadrature;
 mod resolution;
 mod series;
 pub mod stability;
@@ -42,6 +43,7 @@ mod tests;
 pub use law_check::{contact_law_defect, LAW_DEFECT_ALARM};
 pub use linear_solver::{BorderedSolver, SparseLu};
 pub use post::{PostProcessor, RowOutputs};
+pub use quadrature::{check_degenerate_pair, start_from_mode_pair, QUAD_FREQ_TOL};
 pub use resolution::{resolution_warnings, tail_ratio};
 
 use crate::error::{Error, Result};

@@ -71,7 +71,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             unstable += 1;
         }
         table.rows[r][stab_col] = Cell::K(verdict.to_string());
-        if !(f.orbit_defect <= tolerance) {
+        // A NaN defect counts as unreliable too.
+        if f.orbit_defect.is_nan() || f.orbit_defect > tolerance {
             unreliable.push((order, f.orbit_defect));
         }
         if ctx.info >= 2 {

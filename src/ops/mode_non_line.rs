@@ -9,9 +9,10 @@ use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::nnm::{self, Point, Problem, Settings, StartState};
 use crate::ops::mnl_common::{engine_shock, row_of, shocks_from_cara_choc};
+use crate::ops::mnl_start;
 use crate::ops::{progress::Progress, OpContext};
 use crate::store::mnl::{self as mnl_store, MnlSetup, StoredShock};
-use crate::store::{matrix, mesh as mesh_store, modes as mode_store, table as table_store};
+use crate::store::{matrix, mesh as mesh_store, table as table_store};
 use crate::table::{Cell, ColKind, Table};
 
 /// Columns of the result table: Code_Aster's, then ours (accuracy indicators).
@@ -106,35 +107,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             })?;
             nnm::start_from_point(&problem, &settings, &x)?
         }
-        None => {
-            let modes_name = &etat.req_concept("MODE_LINE")?.name;
-            let modes = mode_store::load_modes(ctx.store, modes_name)?;
-            let mode = usize::try_from(nume_ordre)
-                .ok()
-                .and_then(|n| modes.mode(n))
-                .ok_or_else(|| {
-                    Error::input(format!(
-                        "{modes_name} has no mode NUME_ORDRE={nume_ordre} (available: {})",
-                        modes.available()
-                    ))
-                    .keyword("MODE_NON_LINE/ETAT_INIT/NUME_ORDRE")
-                })?;
-            if modes.numbering.dofs != k.numbering.dofs {
-                return Err(Error::input(format!(
-                    "{modes_name} is not expressed on the numbering of {k_name}"
-                ))
-                .keyword("MODE_NON_LINE/ETAT_INIT/MODE_LINE"));
-            }
-            let shape: Vec<f64> = free.iter().map(|&i| mode.shape[i]).collect();
-            let coef = etat.real("COEF_AMPL").unwrap_or(1.0);
-            nnm::start_from_mode(
-                &problem,
-                &settings,
-                &shape,
-                coef,
-                mode.omega2.max(0.0).sqrt(),
-            )?
-        }
+        None => mnl_start::from_linear_modes(ctx, etat, &problem, &settings, &k, &k_name)?,
     };
 
     // Continue, reporting each branch.

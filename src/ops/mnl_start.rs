@@ -1,0 +1,80 @@
+//! MODE_NON_LINE's first-run start from linear modes: ETAT_INIT=_F(MODE_LINE=..., NUME_ORDRE=n)
+//! as in Code_Aster, or, beyond Code_Aster, with NUME_ORDRE_QUAD=m a second mode of the same
+//! frequency a quarter period behind the first: a whirl (docs/mode_non_line.md).
+
+use crate::args::Args;
+use crate::error::{Error, Result};
+use crate::model::assembly::AssembledMatrix;
+use crate::model::modes::ModeMeca;
+use crate::nnm::{self, Problem, Settings, StartState};
+use crate::ops::OpContext;
+use crate::store::modes as mode_store;
+
+/// The corrected start point from the linear mode(s) named in ETAT_INIT.
+pub fn from_linear_modes(
+    ctx: &OpContext<'_>,
+    etat: &Args,
+    problem: &Problem,
+    settings: &Settings,
+    k: &AssembledMatrix,
+    k_name: &str,
+) -> Result<StartState> {
+    let free = k.free_dofs();
+    let modes_name = &etat.req_concept("MODE_LINE")?.name;
+    let modes = mode_store::load_modes(ctx.store, modes_name)?;
+    if modes.numbering.dofs != k.numbering.dofs {
+        return Err(Error::input(format!(
+            "{modes_name} is not expressed on the numbering of {k_name}"
+        ))
+        .keyword(etat.key_path("MODE_LINE")));
+    }
+    let nume_ordre = etat.req_int("NUME_ORDRE")?;
+    let (shape, omega) = pick(&modes, modes_name, nume_ordre, &free)
+        .map_err(|e| e.keyword(etat.key_path("NUME_ORDRE")))?;
+    let coef = etat.real("COEF_AMPL").unwrap_or(1.0);
+    let Some(quad_order) = etat.int("NUME_ORDRE_QUAD") else {
+        return nnm::start_from_mode(problem, settings, &shape, coef, omega);
+    };
+    let quad_kw = etat.key_path("NUME_ORDRE_QUAD");
+    if quad_order == nume_ordre {
+        return Err(Error::validation(format!(
+            "NUME_ORDRE_QUAD ({quad_order}) must differ from NUME_ORDRE ({nume_ordre})"
+        ))
+        .keyword(quad_kw)
+        .hint("give the other mode of the degenerate pair, e.g. NUME_ORDRE=1, NUME_ORDRE_QUAD=2"));
+    }
+    let (quad, omega_quad) =
+        pick(&modes, modes_name, quad_order, &free).map_err(|e| e.keyword(quad_kw.clone()))?;
+    nnm::check_degenerate_pair(omega, omega_quad).map_err(|e| Error {
+        message: format!(
+            "NUME_ORDRE_QUAD={quad_order} and NUME_ORDRE={nume_ordre}: {}",
+            e.message
+        ),
+        keyword: Some(quad_kw.clone()),
+        ..e
+    })?;
+    nnm::start_from_mode_pair(problem, settings, &shape, &quad, coef, omega, omega_quad)
+}
+
+/// Shape on the free DOFs and pulsation of mode `order` of `modes`.
+fn pick(modes: &ModeMeca, name: &str, order: i64, free: &[usize]) -> Result<(Vec<f64>, f64)> {
+    let mode = usize::try_from(order)
+        .ok()
+        .and_then(|n| modes.mode(n))
+        .ok_or_else(|| {
+            Error::input(format!(
+                "{name} has no mode NUME_ORDRE={order} (available: {})",
+                modes.available()
+            ))
+        })?;
+    let shape = free
+        .iter()
+        .map(|&i| mode.shape.get(i).copied())
+        .collect::<Option<Vec<f64>>>()
+        .ok_or_else(|| {
+            Error::store(format!(
+                "mode {order} of {name} is shorter than its numbering"
+            ))
+        })?;
+    Ok((shape, mode.omega2.max(0.0).sqrt()))
+}
