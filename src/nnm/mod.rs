@@ -344,27 +344,26 @@ fn phase_dof(amplitudes: &[f64]) -> usize {
     }
 }
 
-/// Start from a linear mode (largest component 1) scaled by `coef_ampl` as Code_Aster does:
-/// with shocks the scaled displacement is coef_ampl·mode, so COEF_AMPL = 1 gives an
-/// amplitude equal to the largest JEU; without shocks the physical amplitude is
-/// coef_ampl·mode. The contact unknowns follow from their laws; the point is then
-/// Newton-corrected at fixed amplitude.
-pub fn start_from_mode(
+/// The checks shared by every start from linear modes: problem and settings agree, each
+/// mode (with the keyword that chose it) has one finite value per DOF, COEF_AMPL and the
+/// linear pulsation are positive. Returns the number of DOFs.
+pub(crate) fn check_start(
     problem: &Problem,
     settings: &Settings,
-    mode: &[f64],
+    modes: &[(&[f64], &str)],
     coef_ampl: f64,
     omega_lin: f64,
-) -> Result<StartState> {
+) -> Result<usize> {
     system::validate(problem, settings)?;
     let n = problem.k.nrows();
-    if mode.len() != n || !finite(mode) {
-        return Err(Error::input(format!(
-            "the linear mode has {} finite components, {} expected",
-            mode.len(),
-            n
-        ))
-        .keyword("ETAT_INIT/NUME_ORDRE"));
+    for (v, key) in modes {
+        if v.len() != n || !finite(v) {
+            return Err(Error::input(format!(
+                "the linear mode has {} finite components, {n} expected",
+                v.len()
+            ))
+            .keyword(format!("ETAT_INIT/{key}")));
+        }
     }
     if !(coef_ampl.is_finite() && coef_ampl > 0.0) {
         return Err(
@@ -378,6 +377,28 @@ pub fn start_from_mode(
         ))
         .keyword("ETAT_INIT/NUME_ORDRE"));
     }
+    Ok(n)
+}
+
+/// Start from a linear mode (largest component 1) scaled by `coef_ampl` as Code_Aster does:
+/// with shocks the scaled displacement is coef_ampl·mode, so COEF_AMPL = 1 gives an
+/// amplitude equal to the largest JEU; without shocks the physical amplitude is
+/// coef_ampl·mode. The contact unknowns follow from their laws; the point is then
+/// Newton-corrected at fixed amplitude.
+pub fn start_from_mode(
+    problem: &Problem,
+    settings: &Settings,
+    mode: &[f64],
+    coef_ampl: f64,
+    omega_lin: f64,
+) -> Result<StartState> {
+    let n = check_start(
+        problem,
+        settings,
+        &[(mode, "NUME_ORDRE")],
+        coef_ampl,
+        omega_lin,
+    )?;
     let p = (0..n)
         .max_by(|&a, &b| mode[a].abs().total_cmp(&mode[b].abs()))
         .unwrap_or(0);

@@ -5,7 +5,7 @@
 //! the orbit that rolls around a CERCLE ring instead of crossing its centre.
 
 use super::system::{Scaling, System};
-use super::{finite, init_contact, phase_dof, series, start, Problem, Settings, StartState};
+use super::{init_contact, phase_dof, series, start, Problem, Settings, StartState};
 use crate::error::{Error, Result};
 use faer::sparse::SparseColMat;
 
@@ -67,29 +67,13 @@ pub fn start_from_mode_pair(
     omega_lin: f64,
     omega_quad: f64,
 ) -> Result<StartState> {
-    super::system::validate(problem, settings)?;
-    let n = problem.k.nrows();
-    for (v, key) in [(mode, "NUME_ORDRE"), (quad, "NUME_ORDRE_QUAD")] {
-        if v.len() != n || !finite(v) {
-            return Err(Error::input(format!(
-                "the linear mode has {} finite components, {n} expected",
-                v.len()
-            ))
-            .keyword(format!("ETAT_INIT/{key}")));
-        }
-    }
-    if !(coef_ampl.is_finite() && coef_ampl > 0.0) {
-        return Err(
-            Error::input(format!("COEF_AMPL must be positive, got {coef_ampl}"))
-                .keyword("ETAT_INIT/COEF_AMPL"),
-        );
-    }
-    if !(omega_lin.is_finite() && omega_lin > 0.0) {
-        return Err(Error::input(format!(
-            "the linear pulsation must be positive, got {omega_lin}"
-        ))
-        .keyword("ETAT_INIT/NUME_ORDRE"));
-    }
+    let n = super::check_start(
+        problem,
+        settings,
+        &[(mode, "NUME_ORDRE"), (quad, "NUME_ORDRE_QUAD")],
+        coef_ampl,
+        omega_lin,
+    )?;
     check_degenerate_pair(omega_lin, omega_quad)?;
 
     // Gram–Schmidt in the mass metric: both vectors stay in the (degenerate) eigenspace.
