@@ -615,11 +615,18 @@ fn run(
         }
         // The next branch starts from the corrected end point with this branch's end tangent
         // as border: factor that tangent now, and compare the sign of its determinant with
-        // the one at the start of this branch.
-        solver
-            .factor(sys.lay.n_unk, &sys.tangent(&x0, &tangent))
-            .map_err(|e| in_branch(e, b + 1))?;
-        let end_sign = det_sign_at(&solver);
+        // the one at the start of this branch. A failure belongs to the next branch: this
+        // one is reported first.
+        let last = b == settings.n_branches;
+        let end_factor = if last && !settings.det_test {
+            Ok(())
+        } else {
+            solver.factor(sys.lay.n_unk, &sys.tangent(&x0, &tangent))
+        };
+        let end_sign = match end_factor {
+            Ok(()) => det_sign_at(&solver),
+            Err(_) => None,
+        };
         if let (Some(s0), Some(s1)) = (det_sign, end_sign) {
             if s0 != s1 {
                 let row = first_row_past_sign_change(&sys, &mut probe, &ser, &x_start, np, s1);
@@ -647,9 +654,10 @@ fn run(
         };
         let go_on = on_branch(&report, &branch_points);
         out.extend(branch_points);
-        if !go_on {
+        if !go_on || last {
             break;
         }
+        end_factor.map_err(|e| in_branch(e, b + 1))?;
         prev_tangent = Some(tangent);
     }
     Ok(())
