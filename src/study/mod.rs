@@ -54,7 +54,7 @@ pub struct DetCost {
 
 /// Runs per setting and per value of the test, alternated so that a change in the load of
 /// the machine hits both.
-pub const DET_REPEATS: usize = 2;
+pub const DET_REPEATS: usize = 3;
 
 /// Runs the whole grid of one case; `progress` is told about each measurement as it ends.
 pub fn run_case(

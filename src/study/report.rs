@@ -72,7 +72,7 @@ pub fn markdown(r: &CaseResult) -> String {
     for (m, &p) in ms.iter().zip(&front) {
         let _ = writeln!(
             s,
-            "| {} | {} | {:.2} | {:.2} | {} | {} | {} |",
+            "| {} | {} | {:.3} | {:.3} | {} | {} | {} |",
             settings_cells(m),
             error_cell(m),
             m.cpu_seconds,
@@ -102,7 +102,7 @@ pub fn markdown(r: &CaseResult) -> String {
                 let c = &m.config;
                 let _ = writeln!(
                     s,
-                    "| {:.0e} | NB_HARM_LINE={}, NB_HARM_NONL={}, PARA_REGUL={:e}, PREC_MAN={:e} | {:.2e} | {:.2} |",
+                    "| {:.0e} | NB_HARM_LINE={}, NB_HARM_NONL={}, PARA_REGUL={:e}, PREC_MAN={:e} | {:.2e} | {:.3} |",
                     rec.target, c.h_lin, c.h_nonl, c.regul, c.prec_man, m.max_rel_error, m.cost()
                 );
             }
@@ -147,7 +147,7 @@ fn det_cost_table(r: &CaseResult) -> String {
         let extra = d.on.cost() / d.off.cost() - 1.0;
         let _ = writeln!(
             s,
-            "| {} | {} | {:e} | {:e} | {} | {} / {} | {} / {} | {:.2} | {:.2} | {:+.0} % |",
+            "| {} | {} | {:e} | {:e} | {} | {} / {} | {} / {} | {:.3} | {:.3} | {:+.1} % |",
             c.h_lin,
             c.h_nonl,
             c.regul,
