@@ -123,9 +123,9 @@ fn sparse(n: usize, e: &[(usize, usize, f64)]) -> SparseColMat<usize, f64> {
 }
 
 /// The base of the sweeps. NB_HARM_LINE = 15, not sdnd122's 5: measured, the truncation of
-/// the displacements (H_l) alone costs 1.3e-3 at H_l = 5 and 7.6e-5 at H_l = 15 over the
-/// range (the orbits just past grazing need the most harmonics), so at H_l = 5 the effects
-/// of NB_HARM_NONL and PARA_REGUL would be invisible.
+/// the displacements (H_l) alone costs 1.3e-3 at H_l = 5 and 6.6e-5 at H_l = 15 over the
+/// range (H_nl = 100, η = 1e-5; docs/accuracy.md), so at H_l = 5 the effects of
+/// NB_HARM_NONL and PARA_REGUL would be invisible.
 pub const BASE: Config = Config {
     sweep: "base",
     h_lin: 15,
