@@ -123,9 +123,9 @@ fn sparse(n: usize, e: &[(usize, usize, f64)]) -> SparseColMat<usize, f64> {
 }
 
 /// The base of the sweeps. NB_HARM_LINE = 15, not sdnd122's 5: measured, the truncation of
-/// the displacements (H_l) alone costs 1.3e-3 at H_l = 5 and 7.6e-5 at H_l = 15 over the
-/// range (the orbits just past grazing need the most harmonics), so at H_l = 5 the effects
-/// of NB_HARM_NONL and PARA_REGUL would be invisible.
+/// the displacements (H_l) alone costs 1.3e-3 at H_l = 5 and 6.6e-5 at H_l = 15 over the
+/// range (H_nl = 100, η = 1e-5; docs/accuracy.md), so at H_l = 5 the effects of
+/// NB_HARM_NONL and PARA_REGUL would be invisible.
 pub const BASE: Config = Config {
     sweep: "base",
     h_lin: 15,
@@ -155,11 +155,13 @@ fn with(sweep: &'static str, h_lin: usize, h_nonl: usize, regul: f64, prec_man: 
 
 /// The settings measured for a case. Full: one-at-a-time sweeps around `BASE` plus a
 /// diagonal in (NB_HARM_NONL, PARA_REGUL), refined together since the regularisation and
-/// the truncation errors interact (a sharper law needs more harmonics): η ∝ H_nl⁻², the
-/// width of the smoothed kink in time scaling like √η. The wall's η sweep sits at
-/// H_nl = 200 (where the small η show where Newton gives up). BI_PLAN (chain2) carries two
-/// contact unknowns, so its H_nl stay lower for the same time budget. Small: a cheap grid
-/// for the tests and a quick look (H_l = 10, PREC_MAN = 1e-6).
+/// the truncation errors interact (a sharper law needs more harmonics). On the wall the
+/// diagonal runs from (40, 1e-3) to (1000, 1e-7), η falling a decade while H_nl grows about
+/// 2.5 times (its first point at H_nl = H_l, the smallest the engine accepts), at H_l = 40 and PREC_MAN = 1e-9 so that neither the displacements' truncation
+/// nor the series hides what H_nl and η do (small η with a loose PREC_MAN is measured once
+/// in the PREC_MAN sweep). The wall's η sweep sits at H_nl = 200. BI_PLAN (chain2) carries
+/// two contact unknowns, so its H_nl stay lower for the same time budget. Small: a cheap
+/// grid for the tests and a quick look (H_l = 10, PREC_MAN = 1e-6).
 pub fn grid(kind: CaseKind, size: GridSize) -> Vec<Config> {
     let mut v = Vec::new();
     let b = BASE;
@@ -178,7 +180,7 @@ pub fn grid(kind: CaseKind, size: GridSize) -> Vec<Config> {
             for hl in [5, 10, 20, 30, 40] {
                 v.push(with("H_l", hl, b.h_nonl, b.regul, b.prec_man));
             }
-            for hn in [30, 60, 200, 400] {
+            for hn in [25, 50, 200, 400] {
                 v.push(with("H_nl", b.h_lin, hn, b.regul, b.prec_man));
             }
             for eta in [1e-3, 1e-4, 1e-5, 1e-6, 1e-7] {
@@ -187,22 +189,31 @@ pub fn grid(kind: CaseKind, size: GridSize) -> Vec<Config> {
             for pm in [1e-6, 1e-14] {
                 v.push(with("PREC_MAN", b.h_lin, b.h_nonl, b.regul, pm));
             }
+            // Small η with a loose PREC_MAN (the diagonal has the same at 1e-9).
+            v.push(with("PREC_MAN", 40, 400, 1e-6, 1e-6));
             for (hn, eta) in [
-                (30, 1e-3),
-                (60, 2.5e-4),
-                (120, 6e-5),
-                (240, 1.5e-5),
-                (400, 4e-6),
+                (40, 1e-3),
+                (60, 1e-4),
+                (150, 1e-5),
+                (400, 1e-6),
+                (1000, 1e-7),
             ] {
-                v.push(with("diagonal", 20, hn, eta, 1e-6));
+                v.push(with("diagonal", 40, hn, eta, 1e-9));
             }
             // Coarse everything, for the cheapest 1e-3.
             for (hl, hn) in [(7, 30), (10, 30), (10, 60)] {
                 v.push(with("coarse", hl, hn, 1e-4, 1e-6));
             }
-            // Everything refined at once, toward 1e-5.
-            v.push(with("fine", 30, 200, 1e-6, 1e-9));
-            v.push(with("fine", 40, 400, 1e-7, 1e-9));
+            // Everything refined at once, toward 1e-5; the last tells whether H_l = 40
+            // limits the finest diagonal points.
+            for (hl, hn, eta) in [
+                (30, 200, 1e-6),
+                (40, 200, 1e-6),
+                (40, 400, 1e-7),
+                (60, 400, 1e-7),
+            ] {
+                v.push(with("fine", hl, hn, eta, 1e-9));
+            }
         }
         (GridSize::Full, CaseKind::Chain2) => {
             // Two impacts per period on the end mass of a chain: NB_HARM_LINE limits the
@@ -231,10 +242,31 @@ pub fn grid(kind: CaseKind, size: GridSize) -> Vec<Config> {
             for (hl, hn) in [(10, 30), (15, 30)] {
                 v.push(with("coarse", hl, hn, 1e-4, 1e-6));
             }
-            v.push(with("fine", 30, 120, 1e-6, 1e-9));
+            for hl in [30, 40] {
+                v.push(with("fine", hl, 120, 1e-6, 1e-9));
+            }
         }
     }
     v
+}
+
+/// Settings at which the cost of TEST_BIFURCATION = 'SERIE_DETERMINANT' is measured (run
+/// with and without it): the base, then a large NB_HARM_LINE (the test's extra solves grow
+/// with n_dof·(2·H_l + 1)), then a large NB_HARM_NONL (where factorising dominates). None on
+/// the small grid.
+pub fn det_test_grid(kind: CaseKind, size: GridSize) -> Vec<Config> {
+    match (size, kind) {
+        (GridSize::Small, _) => vec![],
+        (GridSize::Full, CaseKind::Wall) => vec![
+            with("det", 15, 100, 1e-5, 1e-9),
+            with("det", 40, 100, 1e-5, 1e-9),
+            with("det", 40, 400, 1e-6, 1e-9),
+        ],
+        (GridSize::Full, CaseKind::Chain2) => vec![
+            with("det", 20, 60, 1e-5, 1e-9),
+            with("det", 40, 120, 1e-6, 1e-9),
+        ],
+    }
 }
 
 /// The reference of chain2: finer than every measured setting in each parameter (state
@@ -242,6 +274,6 @@ pub fn grid(kind: CaseKind, size: GridSize) -> Vec<Config> {
 pub fn chain2_reference_config(size: GridSize) -> Config {
     match size {
         GridSize::Small => with("reference", 15, 100, 1e-6, 1e-9),
-        GridSize::Full => with("reference", 40, 240, 2e-6, 1e-10),
+        GridSize::Full => with("reference", 50, 240, 5e-7, 1e-10),
     }
 }

@@ -31,8 +31,9 @@ pub const PREC_NEWTON: f64 = 1e-9;
 /// A run that has not reached the top of the range after this many branches is a failure.
 pub const MAX_BRANCHES: usize = 3000;
 
-/// Engine settings of a measurement.
-pub fn settings(cfg: &Config, points_per_branch: usize) -> Settings {
+/// Engine settings of a measurement; `det_test` is TEST_BIFURCATION = 'SERIE_DETERMINANT'
+/// (Code_Aster's default, what the study measures) against 'SERIE' (false).
+pub fn settings(cfg: &Config, points_per_branch: usize, det_test: bool) -> Settings {
     Settings {
         h_lin: cfg.h_lin,
         h_nonl: cfg.h_nonl,
@@ -44,7 +45,7 @@ pub fn settings(cfg: &Config, points_per_branch: usize) -> Settings {
         iter_newton_max: 15,
         bif_terms: 3,
         bif_tol: 1e-4,
-        det_test: true,
+        det_test,
         direction: 1,
     }
 }
@@ -82,8 +83,20 @@ impl Measurement {
 }
 
 /// CPU time (user + system) of the calling thread from /proc (Linux); None elsewhere.
-/// The kernel reports it in clock ticks, 100 per second on Linux (USER_HZ).
+/// `schedstat` gives it in nanoseconds; where the kernel does not keep it, `stat` gives it
+/// in clock ticks, 100 per second on Linux (USER_HZ), too coarse for the cheapest runs.
 pub fn thread_cpu_seconds() -> Option<f64> {
+    schedstat_cpu_seconds().or_else(stat_cpu_seconds)
+}
+
+fn schedstat_cpu_seconds() -> Option<f64> {
+    // First field: time spent on the CPU, ns.
+    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: f64 = s.split_whitespace().next()?.parse().ok()?;
+    Some(ns * 1e-9)
+}
+
+fn stat_cpu_seconds() -> Option<f64> {
     let stat = std::fs::read_to_string("/proc/thread-self/stat").ok()?;
     // Fields after the command name (which may hold spaces) closed by the last ')':
     // state is the first, utime the 12th, stime the 13th.
@@ -157,9 +170,9 @@ struct Run {
 
 /// Runs a branch until its energy passes the top of the range; returns the points, the
 /// number of branches and the times, or the failure with what was computed.
-fn timed_run(case: &StudyCase, cfg: &Config, points_per_branch: usize) -> Run {
+fn timed_run(case: &StudyCase, cfg: &Config, points_per_branch: usize, det_test: bool) -> Run {
     let problem = case.problem_with(cfg.regul);
-    let s = settings(cfg, points_per_branch);
+    let s = settings(cfg, points_per_branch, det_test);
     let (_, hi) = case.range();
     let c0 = thread_cpu_seconds();
     let t0 = Instant::now();
@@ -203,15 +216,26 @@ fn timed_run(case: &StudyCase, cfg: &Config, points_per_branch: usize) -> Run {
     }
 }
 
-/// Measures one setting against `reference`.
+/// Measures one setting against `reference`, with the default bifurcation test.
 pub fn measure(case: &StudyCase, cfg: &Config, reference: &Reference) -> Measurement {
+    measure_with(case, cfg, reference, true)
+}
+
+/// Measures one setting against `reference`, with (`det_test`) or without the
+/// determinant-sign bifurcation test.
+pub fn measure_with(
+    case: &StudyCase,
+    cfg: &Config,
+    reference: &Reference,
+    det_test: bool,
+) -> Measurement {
     let Run {
         points,
         branches,
         seconds,
         cpu_seconds,
         mut failure,
-    } = timed_run(case, cfg, POINTS_PER_BRANCH);
+    } = timed_run(case, cfg, POINTS_PER_BRANCH, det_test);
     let (lo, hi) = case.range();
     let mut err: f64 = 0.0;
     let mut in_range = 0;
@@ -253,7 +277,7 @@ pub fn reference_curve(case: &StudyCase, cfg: &Config) -> Result<(Reference, Mea
         seconds,
         cpu_seconds,
         failure,
-    } = timed_run(case, cfg, REFERENCE_POINTS_PER_BRANCH);
+    } = timed_run(case, cfg, REFERENCE_POINTS_PER_BRANCH, true);
     if let Some(f) = &failure {
         return Err(Error::numerical(format!(
             "the reference run of {} failed: {f}",

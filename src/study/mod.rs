@@ -25,8 +25,8 @@ pub mod report;
 #[cfg(test)]
 mod tests;
 
-pub use cases::{grid, CaseKind, GridSize, StudyCase};
-pub use measure::{measure, Config, Measurement, Reference};
+pub use cases::{det_test_grid, grid, CaseKind, GridSize, StudyCase};
+pub use measure::{measure, measure_with, Config, Measurement, Reference};
 pub use pareto::{pareto_front, recommend, Recommendation};
 
 use crate::error::Result;
@@ -37,7 +37,24 @@ pub struct CaseResult {
     pub measurements: Vec<Measurement>,
     /// The reference run (chain2 only): its settings and cost.
     pub reference: Option<Measurement>,
+    /// The cost of the determinant-sign bifurcation test at a few settings.
+    pub det_cost: Vec<DetCost>,
 }
+
+/// One setting run without and with TEST_BIFURCATION = 'SERIE_DETERMINANT'; of the
+/// `DET_REPEATS` runs of each, the one with the least CPU time (the others only add the
+/// load of the shared machine).
+pub struct DetCost {
+    pub config: Config,
+    /// TEST_BIFURCATION = 'SERIE'.
+    pub off: Measurement,
+    /// TEST_BIFURCATION = 'SERIE_DETERMINANT'.
+    pub on: Measurement,
+}
+
+/// Runs per setting and per value of the test, alternated so that a change in the load of
+/// the machine hits both.
+pub const DET_REPEATS: usize = 3;
 
 /// Runs the whole grid of one case; `progress` is told about each measurement as it ends.
 pub fn run_case(
@@ -63,9 +80,34 @@ pub fn run_case(
         progress(&m);
         measurements.push(m);
     }
+    let mut det_cost = Vec::new();
+    for cfg in det_test_grid(kind, size) {
+        let mut best: [Option<Measurement>; 2] = [None, None];
+        for _ in 0..DET_REPEATS {
+            for (slot, det) in best.iter_mut().zip([false, true]) {
+                let c = Config {
+                    sweep: if det { "SERIE_DET" } else { "SERIE" },
+                    ..cfg
+                };
+                let m = measure_with(&case, &c, &reference, det);
+                progress(&m);
+                if slot.as_ref().is_none_or(|b| m.cost() < b.cost()) {
+                    *slot = Some(m);
+                }
+            }
+        }
+        if let [Some(off), Some(on)] = best {
+            det_cost.push(DetCost {
+                config: cfg,
+                off,
+                on,
+            });
+        }
+    }
     Ok(CaseResult {
         case,
         measurements,
         reference: ref_run,
+        det_cost,
     })
 }

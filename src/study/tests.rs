@@ -117,3 +117,21 @@ fn chain2_mode_is_an_eigenvector() {
     }
     assert_eq!(c.mode[1], 1.0);
 }
+
+#[test]
+fn det_test_changes_the_cost_not_the_branch() {
+    // TEST_BIFURCATION = 'SERIE_DETERMINANT' only adds solves with the factorised tangent at
+    // each branch end to read a sign; on the wall (no bifurcation on this branch) the points,
+    // hence the error and the number of branches, must be identical with and without it.
+    // The small grid has no cost comparison (it stays fast); the full one has some.
+    let case = StudyCase::new(CaseKind::Wall);
+    let reference = Reference::exact_plan(cases::WALL);
+    let c = grid(CaseKind::Wall, GridSize::Small)[1];
+    let off = measure_with(&case, &c, &reference, false);
+    let on = measure_with(&case, &c, &reference, true);
+    assert!(off.ok() && on.ok(), "{:?} {:?}", off.failure, on.failure);
+    assert_eq!(off.max_rel_error, on.max_rel_error);
+    assert_eq!((off.branches, off.points), (on.branches, on.points));
+    assert!(det_test_grid(CaseKind::Wall, GridSize::Small).is_empty());
+    assert!(!det_test_grid(CaseKind::Chain2, GridSize::Full).is_empty());
+}
