@@ -370,11 +370,6 @@ impl System {
         }
     }
 
-    /// Whether products of the law variables go through time samples (large H_nl).
-    pub fn uses_samples(&self) -> bool {
-        series::prefer_fft(self.lay.hn, self.lay.hn, self.lay.hn)
-    }
-
     /// Time samples of every law variable of `x` (for the sampled products).
     pub fn samples(&self, x: &[f64]) -> Samples {
         let ns = self.sampler.n();
@@ -427,20 +422,9 @@ impl System {
             }
         }
         self.m.mul_blocks(&w, nl, &mut out[l.v(0)..l.v(0) + n * nl]);
-        if !self.uses_samples() {
-            for sh in &self.shocks {
-                for (a, b) in pairs {
-                    for t in &sh.eqs.quad {
-                        let (va, ha) = self.var(a, sh, t.a);
-                        let (vb, hb) = self.var(b, sh, t.b);
-                        let o = sh.offset + t.eq * l.nn;
-                        series::mul_conv_acc(va, ha, vb, hb, l.hn, t.coef, &mut out[o..o + l.nn]);
-                    }
-                }
-            }
-            return;
-        }
-        // Large H_nl: accumulate every product in the time domain, one FFT back per equation.
+        // Every product accumulated in the time domain, one FFT back per equation: cheaper
+        // than convolutions at every H_nl measured (5 to 1000; at H_nl = 50, 0.06 s against
+        // 0.41 s for 40 branches of sdnd122a, release).
         let owned: Vec<(Samples, Samples)>;
         let cache: Vec<(&Samples, &Samples)> = match cache {
             Some(c) => c.to_vec(),
