@@ -397,9 +397,8 @@ impl Host for Checker {
                             ty,
                         }))
                     }
-                    (_, Some(ty)) if ty == "R" => Ok(Value::Real(0.0)),
-                    (_, Some(ty)) if ty == "I" => Ok(Value::Int(0)),
-                    (_, Some(ty)) if ty == "TXM" => Ok(Value::Str(String::new())),
+                    // A plain value (EXTR_TABLE...) is only known when the file runs.
+                    (_, Some(ty)) if matches!(ty.as_str(), "R" | "I" | "TXM") => Ok(Value::Unknown),
                     _ => Ok(Value::None),
                 }
             }

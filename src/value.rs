@@ -49,6 +49,10 @@ pub enum Value {
     Concept(ConceptRef),
     /// `CO('NAME')`: a concept a macro command creates as an extra output.
     Co(String),
+    /// A value only a run can compute (`aster-nl check` runs no operator: what EXTR_TABLE
+    /// and the like return there). Arithmetic on it gives `Unknown`; the catalog accepts
+    /// it wherever a simple value is expected.
+    Unknown,
 }
 
 impl Value {
@@ -64,6 +68,7 @@ impl Value {
             Value::Fact(_) => "a factor keyword _F(...)",
             Value::Concept(_) => "a concept",
             Value::Co(_) => "CO(...)",
+            Value::Unknown => "a value known only when the file runs",
         }
     }
 
@@ -109,6 +114,7 @@ impl fmt::Display for Value {
             }
             Value::Concept(c) => write!(f, "{}", c.name),
             Value::Co(n) => write!(f, "CO('{n}')"),
+            Value::Unknown => write!(f, "<known when run>"),
         }
     }
 }

@@ -42,6 +42,7 @@ fn overflow(op: BinOp) -> String {
 
 pub fn unary(op: UnOp, v: &Value) -> OpResult {
     match (op, v) {
+        (_, Value::Unknown) => Ok(Value::Unknown),
         (UnOp::Plus, Value::Real(r)) => Ok(Value::Real(*r)),
         (UnOp::Neg, Value::Real(r)) => Ok(Value::Real(-r)),
         (_, v) => match int_of(v) {
@@ -60,6 +61,9 @@ pub fn unary(op: UnOp, v: &Value) -> OpResult {
 }
 
 pub fn binary(op: BinOp, a: &Value, b: &Value) -> OpResult {
+    if matches!(a, Value::Unknown) || matches!(b, Value::Unknown) {
+        return Ok(Value::Unknown);
+    }
     if let (Some(x), Some(y)) = (int_of(a), int_of(b)) {
         return int_op(op, x, y);
     }

@@ -98,6 +98,9 @@ fn to_int(f: &str, x: f64) -> R {
 
 /// Calls `math.<f>`.
 pub fn call_math(f: &str, args: &[Value]) -> R {
+    if args.iter().any(|a| matches!(a, Value::Unknown)) {
+        return Ok(Value::Unknown);
+    }
     let one = |args: &[Value]| -> Result<f64, String> {
         arity(f, args, 1, 1)?;
         num(f, nth(f, args, 0)?)
@@ -166,6 +169,9 @@ pub fn call_math(f: &str, args: &[Value]) -> R {
 
 /// Calls a builtin; `print` is handled by the evaluator (it needs the host).
 pub fn call_builtin(f: &str, args: &[Value]) -> R {
+    if args.iter().any(|a| matches!(a, Value::Unknown)) {
+        return Ok(Value::Unknown);
+    }
     match f {
         "abs" => {
             arity(f, args, 1, 1)?;

@@ -119,6 +119,8 @@ impl Evaluator<'_> {
                 let items = match self.eval(iter)? {
                     Value::Seq(items) => items,
                     Value::Str(t) => t.chars().map(|c| Value::Str(c.to_string())).collect(),
+                    // Known only when the file runs (`check`): check the body once.
+                    Value::Unknown => vec![Value::Unknown],
                     v => {
                         return Err(self.input(
                             format!(
@@ -152,6 +154,7 @@ impl Evaluator<'_> {
             Target::Tuple(names, tspan) => {
                 let items = match value {
                     Value::Seq(items) if items.len() == names.len() => items,
+                    Value::Unknown => vec![Value::Unknown; names.len()],
                     Value::Seq(items) => {
                         return Err(self.input(
                             format!(
@@ -508,6 +511,9 @@ fn co_names(kws: &[Keyword]) -> Vec<String> {
 
 /// `seq[i]` with Python's negative indices.
 fn index(base: &Value, i: &Value) -> std::result::Result<Value, String> {
+    if matches!(base, Value::Unknown) || matches!(i, Value::Unknown) {
+        return Ok(Value::Unknown);
+    }
     let i = match i {
         Value::Int(i) => *i,
         Value::Bool(b) => i64::from(*b),
