@@ -429,17 +429,7 @@ pub fn unknown_count(problem: &Problem, settings: &Settings) -> usize {
 
 /// Scaling and reference DOF for a stored physical point.
 fn system_for_point(problem: &Problem, settings: &Settings, x: &[f64]) -> Result<System> {
-    system::validate(problem, settings)?;
-    let want = unknown_count(problem, settings);
-    if x.len() != want || !finite(x) {
-        return Err(Error::input(format!(
-            "the stored point has {} values ({} finite expected for these NB_HARM_LINE/NB_HARM_NONL and shocks)",
-            x.len(),
-            want
-        ))
-        .keyword("ETAT_INIT")
-        .hint("restart with the harmonics and shocks of the run that produced the point"));
-    }
+    post::Unknowns::new(problem, settings)?.check(x)?;
     let n = problem.k.nrows();
     let nl = series::len(settings.h_lin);
     let amp = |i: usize| x[i * nl + series::ic(1)].hypot(x[i * nl + series::is(settings.h_lin, 1)]);
