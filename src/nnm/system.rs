@@ -295,17 +295,9 @@ impl System {
         ref_dof: usize,
     ) -> Result<System> {
         validate(problem, settings)?;
-        let n = problem.k.nrows();
-        let hl = settings.h_lin;
-        let hn = if problem.shocks.is_empty() {
-            hl
-        } else {
-            settings.h_nonl
-        };
-        let (nl, nn) = (series::len(hl), series::len(hn));
-        let mut offset = 2 * n * nl;
+        let (lay, offsets) = Layout::of(problem, settings);
         let mut shocks = Vec::new();
-        for s in &problem.shocks {
+        for (s, &offset) in problem.shocks.iter().zip(&offsets) {
             let law = match s.law {
                 ShockLaw::Plan => ScaledLaw::Plan,
                 ShockLaw::BiPlan => ScaledLaw::BiPlan,
@@ -316,7 +308,6 @@ impl System {
             };
             let (gs, alpha) = (s.gap / sc.g, s.stiffness / sc.k);
             let eqs = laws::equations(law, gs, alpha, s.regul);
-            let n_own = eqs.n_own;
             let mut vars: Vec<Var> = Vec::new();
             for v in eqs.quad.iter().flat_map(|t| [t.a, t.b]) {
                 if !vars.contains(&v) {
@@ -333,16 +324,8 @@ impl System {
                 offset,
                 vars,
             });
-            offset += n_own * nn;
         }
-        let lay = Layout {
-            n,
-            hl,
-            hn,
-            nl,
-            nn,
-            n_unk: offset + 2,
-        };
+        let hn = lay.hn;
         Ok(System {
             lay,
             k: Csc::from_faer(&problem.k, 1.0 / sc.k),
