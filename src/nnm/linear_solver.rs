@@ -106,20 +106,7 @@ impl BorderedSolver for SparseLu {
     }
 
     fn solve(&self, rhs: &mut [f64]) -> Result<()> {
-        let (n, lu) = self
-            .lu
-            .as_ref()
-            .ok_or_else(|| Error::internal("solve called before factor"))?;
-        if rhs.len() != *n {
-            return Err(Error::internal("right-hand side of the wrong length"));
-        }
-        lu.solve_in_place(MatMut::from_column_major_slice_mut(rhs, *n, 1));
-        if rhs.iter().any(|v| !v.is_finite()) {
-            return Err(Error::numerical(
-                "the bordered tangent is numerically singular (solution not finite)",
-            ));
-        }
-        Ok(())
+        self.solve_block(rhs, 1)
     }
 
     fn solve_block(&self, rhs: &mut [f64], ncols: usize) -> Result<()> {

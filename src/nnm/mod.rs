@@ -568,7 +568,8 @@ fn run(
         let series_bif = ser
             .bifurcation
             .map(|ab| (((ab / ser.a_max) * np as f64).round() as usize).clamp(1, np));
-        let x_start = x0.clone();
+        // The corrected end point; x0 stays the series origin until every point is out.
+        let mut x_end = Vec::new();
         for i in 1..=np {
             let a = ser.a_max * i as f64 / np as f64;
             let mut x = ser.eval(&x0, a);
@@ -592,7 +593,7 @@ fn run(
                 newton_iterations = it;
                 res = r;
                 check_rings(&sys, &x).map_err(|e| in_branch(e, b))?;
-                x0 = x.clone();
+                x_end = x.clone();
             }
             let p = make_point(&sys, &x, res, b, series_bif == Some(i));
             if !(p.energy.is_finite() && p.omega.is_finite() && p.energy_spread.is_finite()) {
@@ -603,6 +604,8 @@ fn run(
             }
             branch_points.push(p);
         }
+        // NB_PAS_MAN ≥ 1 (system::validate): the last point is the corrected end.
+        let x_start = std::mem::replace(&mut x0, x_end);
         // The next branch starts from the corrected end point with this branch's end tangent
         // as border: factor that tangent now, and compare the sign of its determinant with
         // the one at the start of this branch. A failure belongs to the next branch: this
