@@ -72,12 +72,21 @@ fn diag(a: &SparseColMat<usize, f64>, p: usize) -> f64 {
 
 impl Scaling {
     /// Code_Aster's scaling: displacements by the largest JEU, k_ref = 1/(K⁻¹)pp and
-    /// m_ref = 1/(M⁻¹)pp at the DOF of that shock. Without shocks: lengths by `amplitude`
-    /// and the diagonal of K and M at DOF `p`. A singular K (free structure) falls back to
-    /// the diagonal too.
+    /// m_ref = 1/(M⁻¹)pp at the DOF p Code_Aster takes: the LAST component of the FIRST
+    /// shock (in CHOC order) that has the largest JEU (for CERCLE with NOM_CMP=('DX','DY'),
+    /// DY). PARA_REGUL is scaled by k_ref, so another choice would make the same PARA_REGUL
+    /// a different law. Without shocks: lengths by `amplitude` and the diagonal of K and M
+    /// at DOF `p`. A singular K (free structure) falls back to the diagonal too.
     pub fn new(problem: &Problem, amplitude: f64, p_noshock: usize) -> Result<Scaling> {
-        let (g, p) = match problem.shocks.iter().max_by(|a, b| a.gap.total_cmp(&b.gap)) {
-            Some(s) => (s.gap, s.dofs.first().copied().unwrap_or(0)),
+        let largest = problem
+            .shocks
+            .iter()
+            .map(|s| s.gap)
+            .fold(f64::NAN, f64::max);
+        let (g, p) = match problem.shocks.iter().find(|s| s.gap == largest) {
+            Some(s) => (s.gap, s.dofs.last().copied().unwrap_or(0)),
+            // Shocks whose JEU are all NaN: refused below.
+            None if !problem.shocks.is_empty() => (f64::NAN, 0),
             None => (amplitude, p_noshock),
         };
         let k = match problem.shocks.is_empty() {

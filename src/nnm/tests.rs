@@ -618,3 +618,43 @@ fn sdnd122b_and_c_match_code_aster() {
     }
     assert!(checked > 20);
 }
+
+/// Code_Aster's reference DOF: the LAST component of the FIRST shock (in CHOC order) with
+/// the largest JEU. Here the CERCLE (DOFs 0, 1) comes first among the shocks with JEU 0.02,
+/// so p = 1: k_ref = 1/(K⁻¹)₁₁ = det K / (4·5) = 171/20 and m_ref = M₁₁ = 2 exactly. The
+/// other candidates would give 1/(K⁻¹)₀₀ = 171/44 (its first component) or 171/35 (DOF 2,
+/// the later BI_PLAN with the same JEU).
+#[test]
+fn reference_stiffness_is_taken_where_code_aster_takes_it() {
+    let shock = |law, dofs: Vec<usize>, gap| Shock {
+        law,
+        dofs,
+        gap,
+        stiffness: 50.0,
+        regul: 1e-3,
+    };
+    let p = Problem {
+        k: sparse(
+            3,
+            &[
+                (0, 0, 4.0),
+                (0, 1, 1.0),
+                (1, 0, 1.0),
+                (1, 1, 9.0),
+                (1, 2, 1.0),
+                (2, 1, 1.0),
+                (2, 2, 5.0),
+            ],
+        ),
+        m: sparse(3, &[(0, 0, 1.0), (1, 1, 2.0), (2, 2, 3.0)]),
+        shocks: vec![
+            shock(ShockLaw::Plan, vec![2], 0.01),
+            shock(ShockLaw::Cercle { origin: [0.0, 0.0] }, vec![0, 1], 0.02),
+            shock(ShockLaw::BiPlan, vec![2], 0.02),
+        ],
+    };
+    let sc = Scaling::new(&p, 1.0, 0).unwrap();
+    assert_eq!(sc.g, 0.02);
+    assert!((sc.k / (171.0 / 20.0) - 1.0).abs() < 1e-14, "{}", sc.k);
+    assert!((sc.m / 2.0 - 1.0).abs() < 1e-14, "{}", sc.m);
+}

@@ -87,6 +87,11 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         }
         None => shocks_from_args(ctx, args)?,
     };
+    if ctx.info >= 1 {
+        for line in orig_obst_notes(&stored_shocks) {
+            ctx.say(&line)?;
+        }
+    }
     let shocks = stored_shocks
         .iter()
         .enumerate()
@@ -270,6 +275,39 @@ fn restart_direction(
             Ok(st)
         }
     }
+}
+
+/// One INFO line per CERCLE shock with a non-zero ORIG_OBST: aster-nl takes it in metres
+/// (what the keyword means, and what Code_Aster's own energy routine assumes), while
+/// Code_Aster's MODE_NON_LINE equations take it unscaled in units of the largest JEU, i.e.
+/// put the ring centre at ORIG_OBST·JEU_max (docs/mode_non_line.md, "ORIG_OBST").
+fn orig_obst_notes(shocks: &[StoredShock]) -> Vec<String> {
+    let g = shocks.iter().map(|s| s.gap).fold(0.0f64, f64::max);
+    // 12 significant digits: 3e-3 × 1e-2 prints as 3e-5, not 3.0000000000000004e-5.
+    let num = |c: f64| match format!("{c:.11e}").parse::<f64>() {
+        Ok(0.0) => "0".to_string(),
+        Ok(r) => format!("{r:e}"),
+        Err(_) => format!("{c:e}"),
+    };
+    let fmt = |v: [f64; 3]| format!("({}, {}, {})", num(v[0]), num(v[1]), num(v[2]));
+    shocks
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.obstacle == "CERCLE" && s.origin.iter().any(|&c| c != 0.0))
+        .map(|(i, s)| {
+            let ca = s.origin.map(|c| c * g);
+            format!(
+                "  CHOC {}: ORIG_OBST={} is the ring centre in metres; Code_Aster would have put \
+                 it at ORIG_OBST x JEU = {} m (it takes ORIG_OBST in units of the largest JEU, {:e} m); \
+                 to reproduce a Code_Aster result give ORIG_OBST={}",
+                i + 1,
+                fmt(s.origin),
+                fmt(ca),
+                g,
+                fmt(ca)
+            )
+        })
+        .collect()
 }
 
 fn settings(args: &Args) -> Result<Settings> {
@@ -508,4 +546,40 @@ fn cara_choc_table(shocks: &[StoredShock]) -> Result<Table> {
         ])?;
     }
     Ok(t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn shock(obstacle: &str, gap: f64, origin: [f64; 3]) -> StoredShock {
+        StoredShock {
+            obstacle: obstacle.into(),
+            node: "N1".into(),
+            cmps: vec!["DX".into(), "DY".into()],
+            gap,
+            stiffness: 50.0,
+            regul: 1e-4,
+            origin,
+        }
+    }
+
+    /// A non-zero ORIG_OBST of a CERCLE is reported with the centre Code_Aster would have
+    /// used: ORIG_OBST times the largest JEU (here 0.02, of the second shock).
+    #[test]
+    fn orig_obst_note_names_code_aster_centre() {
+        let notes = orig_obst_notes(&[
+            shock("CERCLE", 0.01, [0.0, 3e-3, 0.0]),
+            shock("BI_PLAN", 0.02, [0.0; 3]),
+            shock("CERCLE", 0.01, [0.0; 3]),
+        ]);
+        assert_eq!(notes.len(), 1, "{notes:?}");
+        assert!(
+            notes[0].starts_with("  CHOC 1: ORIG_OBST=(0, 3e-3, 0) is the ring centre in metres")
+                && notes[0].contains("ORIG_OBST x JEU = (0, 6e-5, 0) m")
+                && notes[0].contains("largest JEU, 2e-2 m"),
+            "{}",
+            notes[0]
+        );
+    }
 }
