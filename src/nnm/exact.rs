@@ -92,3 +92,29 @@ mod tests {
         assert!((z.period_biplan(1.0) - 2.0 * PI / 60f64.sqrt()).abs() < 1e-12);
     }
 }
+
+/// Radial force of the regularised CERCLE law at radial distance r ≥ 0 (ring radius g,
+/// stiffness α, regularisation ε = PARA_REGUL·k_ref): the root φ of
+/// φ (1 − ((φ − α r)/(α g))²) = ε r in (max(0, α(r − g)), α r), where the left side minus
+/// the right goes from negative to positive (BI_PLAN's law at the radial distance). On a
+/// circular orbit of radius r the force is constant, so ω² = (k + φ(r)/r)/m is the exact
+/// pulsation of the regularised system. By bisection to round-off.
+pub fn regularised_ring_force(r: f64, g: f64, alpha: f64, eps: f64) -> f64 {
+    if r <= 0.0 {
+        return 0.0;
+    }
+    let psi = |f: f64| f * (1.0 - ((f - alpha * r) / (alpha * g)).powi(2)) - eps * r;
+    let (mut lo, mut hi) = ((alpha * (r - g)).max(0.0), alpha * r);
+    for _ in 0..2000 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break; // adjacent doubles
+        }
+        if psi(mid) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}

@@ -55,7 +55,7 @@ impl LawCheck {
                 },
                 dofs: s.dofs.clone(),
                 forces: match s.law {
-                    ShockLaw::Cercle { .. } => 2..4,
+                    ShockLaw::Cercle { .. } => 0..2,
                     _ => 0..1,
                 },
                 scale: s.stiffness * s.gap,

@@ -9,8 +9,33 @@
 //!   f(f − α(u−g)) = α η_phys with η_phys = PARA_REGUL·k_ref·JEU²).
 //! - BI_PLAN (f, z):       f − η u − f z = 0,   z − (f/α − u)²/s² = 0
 //!   (Code_Aster's F − η u/JEU − F Z = 0, Z = (F/α − u/JEU)²; the sign of eq. (9) of R5.07.01).
-//! - CERCLE (f, r, fx, fy): f²/α − f (r − s) − η s² = 0,  r² − (ux−ex)² − (uy−ey)² = 0,
-//!   fx r − f (ux−ex) = 0,  fy r − f (uy−ey) = 0.
+//! - CERCLE (fx, fy, λ, z), with d = (ux − ex, uy − ey) the displacement relative to the
+//!   ring centre and F = (fx, fy):  F − λ d = 0 (two equations),  λ − η − λ z = 0,
+//!   z − |F/α − d|²/s² = 0. λ is the secant stiffness of the ring, F/d. With r = |d| and
+//!   φ = λ r the force magnitude, these are BI_PLAN's equations at the radial distance:
+//!   φ(1 − (φ/α − r)²/s²) = η r, so the force is α(r − s) along d in contact and a weak
+//!   spring η d/(1 − r²/s²) toward the centre inside the ring. Nothing divides by r: at the
+//!   centre λ = η, z = 0, F = 0, and an orbit through the centre is as regular as any other.
+//!   With a centred ring and motion along one component (dx ≡ 0) the first equation gives
+//!   fx ≡ 0 and, pointwise, the rest is BI_PLAN's law (f = λ u); in harmonic balance the
+//!   force series is λ·u truncated instead of f, another truncation of the same regularised
+//!   system (the BI_PLAN branch is recovered to the truncation error, tests.rs).
+//!   Departure from Code_Aster, whose CERCLE is PLAN's law in an unknown r with r² = |d|²
+//!   and F = f d/r: there the force inside the ring, f ≈ η s²/(s − r), points away from the
+//!   centre with a direction undefined at r = 0, and the equations F r = f d degenerate
+//!   where r(t) → 0. The two regularisations agree in contact and both vanish as η → 0.
+//!
+//! Pointwise Jacobian of each law with respect to its own unknowns on its physical root
+//! (what the determinant test of bifurcation.rs and a pointwise preconditioner rely on):
+//! PLAN √((u−s)² + 4ηs²/α) > 0; BI_PLAN ψ_f = 1 − z − 2f(f/α − u)/(α s²) > 0; CERCLE
+//! (eliminating F = λ d, whose block is the identity) 1 − z − 2λ(λ/α − 1) r²/(α s²), which
+//! is BI_PLAN's ψ_f at the radial distance (f = φ = λ r): > 0, and 1 at the centre.
+//! ψ_f > 0 on the physical root for every u: f(1 − (f/α − u)²/s²) is a cubic in f that
+//! increases on the interval (max(0, α(u − s)), α u) holding that root (its critical points
+//! lie at α(2u ± √(u² + 3s²))/3, outside it). A three-unknown vector form F(1 − z) = η d
+//! has determinant (1 − z)·ψ_f instead; its factor 1 − z = η r/φ is tiny in contact, where
+//! the truncated series of z overshoots 1 and the harmonic-balance block changes sign
+//! (tests.rs, cercle_law_block_keeps_its_determinant_sign_along_branches); λ avoids it.
 
 use crate::error::{Error, Result};
 
@@ -95,29 +120,40 @@ pub fn equations(law: ScaledLaw, s: f64, alpha: f64, eta: f64) -> LawEqs {
                 forces: vec![(0, 0)],
             }
         }
-        ScaledLaw::Cercle { ex, ey } => LawEqs {
-            n_own: 4,
-            quad: vec![
-                t(0, 1.0 / alpha, Own(0), Own(0)),
-                t(0, -1.0, Own(0), Own(1)),
-                t(1, 1.0, Own(1), Own(1)),
-                t(1, -1.0, U(0), U(0)),
-                t(1, -1.0, U(1), U(1)),
-                t(2, 1.0, Own(2), Own(1)),
-                t(2, -1.0, Own(0), U(0)),
-                t(3, 1.0, Own(3), Own(1)),
-                t(3, -1.0, Own(0), U(1)),
-            ],
-            lin: vec![
-                l(0, s, Own(0)),
-                l(1, 2.0 * ex, U(0)),
-                l(1, 2.0 * ey, U(1)),
-                l(2, ex, Own(0)),
-                l(3, ey, Own(0)),
-            ],
-            cst: vec![(0, -eta * s * s), (1, -(ex * ex + ey * ey))],
-            forces: vec![(0, 2), (1, 3)],
-        },
+        ScaledLaw::Cercle { ex, ey } => {
+            // Own(0) = Fx, Own(1) = Fy, Own(2) = λ, Own(3) = z; components c = 0 (x), 1 (y),
+            // centre e_c, d_c = u_c − e_c.
+            let c = 1.0 / (s * s);
+            let mut quad = Vec::with_capacity(9);
+            let mut lin = Vec::with_capacity(9);
+            let mut cst = vec![(2, -eta), (3, 0.0)];
+            for (comp, e) in [(0usize, ex), (1, ey)] {
+                // F_c − λ d_c = 0.
+                lin.push(l(comp, 1.0, Own(comp)));
+                quad.push(t(comp, -1.0, Own(2), U(comp)));
+                lin.push(l(comp, e, Own(2)));
+                // −(F_c/α − u_c + e_c)²/s², expanded, in the equation of z.
+                quad.push(t(3, -c / (alpha * alpha), Own(comp), Own(comp)));
+                quad.push(t(3, 2.0 * c / alpha, Own(comp), U(comp)));
+                quad.push(t(3, -c, U(comp), U(comp)));
+                lin.push(l(3, -2.0 * c * e / alpha, Own(comp)));
+                lin.push(l(3, 2.0 * c * e, U(comp)));
+                cst[1].1 -= c * e * e;
+            }
+            // λ − η − λ z = 0.
+            lin.push(l(2, 1.0, Own(2)));
+            quad.push(t(2, -1.0, Own(2), Own(3)));
+            lin.push(l(3, 1.0, Own(3)));
+            cst.retain(|&(_, v)| v != 0.0);
+            lin.retain(|v| v.coef != 0.0);
+            LawEqs {
+                n_own: 4,
+                quad,
+                lin,
+                cst,
+                forces: vec![(0, 0), (1, 1)],
+            }
+        }
     }
 }
 
@@ -190,38 +226,23 @@ pub fn own_from_u(
         }
         ScaledLaw::Cercle { ex, ey } => {
             let (ux, uy) = (comp(0)?, comp(1)?);
-            let r: Vec<f64> = ux
-                .iter()
-                .zip(uy)
-                .map(|(x, y)| ((x - ex).powi(2) + (y - ey).powi(2)).sqrt())
-                .collect();
-            check_ring_radius(&r, s)?;
-            let f: Vec<f64> = r.iter().map(|&r| plan_force(r - s, alpha, c)).collect();
-            let fx = (0..r.len()).map(|i| f[i] * (ux[i] - ex) / r[i]).collect();
-            let fy = (0..r.len()).map(|i| f[i] * (uy[i] - ey) / r[i]).collect();
-            Ok(vec![f, r, fx, fy])
+            let n = ux.len().min(uy.len());
+            let mut own = vec![vec![0.0; n]; 4];
+            for i in 0..n {
+                let (dx, dy) = (ux[i] - ex, uy[i] - ey);
+                let r = dx.hypot(dy);
+                // BI_PLAN's magnitude at the radial distance; λ = φ/r → φ'(0) = η at the
+                // centre.
+                let phi = biplan_force(r, s, alpha, eta);
+                let lambda = if r > 0.0 { phi / r } else { eta };
+                own[0][i] = lambda * dx;
+                own[1][i] = lambda * dy;
+                own[2][i] = lambda;
+                own[3][i] = (phi / alpha - r).powi(2) / (s * s);
+            }
+            Ok(own)
         }
     }
-}
-
-/// Closest approach to the ring centre allowed, relative to the ring radius: closer, r(t)
-/// has a kink too sharp for the retained harmonics and the operator "multiply by r" (E3,
-/// E4) becomes singular where r → 0.
-pub const RING_CENTRE_TOL: f64 = 1e-3;
-
-/// r(t) must stay on its positive root, away from the ring centre.
-pub fn check_ring_radius(r: &[f64], s: f64) -> Result<()> {
-    let rmin = r.iter().copied().fold(f64::INFINITY, f64::min);
-    if !rmin.is_finite() || rmin <= RING_CENTRE_TOL * s {
-        return Err(Error::numerical(format!(
-            "CERCLE: the orbit passes through the ring centre (smallest radial distance {:.3e} × JEU); \
-             the radial distance r(t) is not smooth there and its equations become singular",
-            rmin / s
-        ))
-        .keyword("CHOC/ORIG_OBST")
-        .hint("a motion through the ring centre along one axis is a BI_PLAN problem; use OBSTACLE='BI_PLAN' or offset ORIG_OBST"));
-    }
-    Ok(())
 }
 
 #[cfg(test)]
@@ -248,6 +269,88 @@ mod tests {
             let f = plan_force(d, a, c);
             assert!(f > 0.0);
             assert!((f * f / a - f * d - c).abs() < 1e-12 * (1.0 + f * f));
+        }
+    }
+
+    /// Residual and Jacobian (row-major, n_own²) with respect to the law's own unknowns of
+    /// the equations listed in `eqs`, evaluated at one instant (a pointwise evaluation of
+    /// the term list, independent of the harmonic-balance assembly).
+    fn pointwise(eqs: &LawEqs, own: &[f64], u: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let n = eqs.n_own;
+        let val = |v: Var| match v {
+            Var::Own(i) => own[i],
+            Var::U(i) => u[i],
+        };
+        let (mut r, mut j) = (vec![0.0; n], vec![0.0; n * n]);
+        for &(e, c) in &eqs.cst {
+            r[e] += c;
+        }
+        for t in &eqs.lin {
+            r[t.eq] += t.coef * val(t.var);
+            if let Var::Own(i) = t.var {
+                j[t.eq * n + i] += t.coef;
+            }
+        }
+        for t in &eqs.quad {
+            r[t.eq] += t.coef * val(t.a) * val(t.b);
+            if let Var::Own(i) = t.a {
+                j[t.eq * n + i] += t.coef * val(t.b);
+            }
+            if let Var::Own(i) = t.b {
+                j[t.eq * n + i] += t.coef * val(t.a);
+            }
+        }
+        (r, j)
+    }
+
+    fn det4(m: &[f64]) -> f64 {
+        // Laplace expansion along the first row of 3×3 minors.
+        let minor = |c: usize| {
+            let cols: Vec<usize> = (0..4).filter(|&k| k != c).collect();
+            let e = |r: usize, k: usize| m[r * 4 + cols[k]];
+            e(1, 0) * (e(2, 1) * e(3, 2) - e(2, 2) * e(3, 1))
+                - e(1, 1) * (e(2, 0) * e(3, 2) - e(2, 2) * e(3, 0))
+                + e(1, 2) * (e(2, 0) * e(3, 1) - e(2, 1) * e(3, 0))
+        };
+        (0..4)
+            .map(|c| [1.0, -1.0, 1.0, -1.0][c] * m[c] * minor(c))
+            .sum()
+    }
+
+    #[test]
+    fn cercle_root_solves_its_equations_with_a_positive_jacobian_through_the_centre() {
+        // Scaled ring: s = 1, α = 50, η = 1e-3, centre (0.2, −0.1). Radial distances from the
+        // centre itself to deep contact; at each the own unknowns from own_from_u must solve
+        // the listed equations (to round-off), and the determinant of their Jacobian must be
+        // BI_PLAN's ψ_f = 1 − z − 2φ(φ/α − r)/(α s²) at r, positive; 1 at the centre.
+        let (s, a, eta, ex, ey) = (1.0, 50.0, 1e-3, 0.2, -0.1);
+        let law = ScaledLaw::Cercle { ex, ey };
+        let eqs = equations(law, s, a, eta);
+        assert_eq!(eqs.n_own, 4);
+        for &r in &[0.0, 1e-9, 0.3, 0.999, 1.0, 1.001, 1.5, 3.0] {
+            for theta in [0.0f64, 2.0, 4.5] {
+                let u = [ex + r * theta.cos(), ey + r * theta.sin()];
+                let own = own_from_u(law, s, a, eta, &[vec![u[0]], vec![u[1]]]).unwrap();
+                let own: Vec<f64> = own.iter().map(|v| v[0]).collect();
+                let (res, jac) = pointwise(&eqs, &own, &u);
+                let scale = 1.0 + own.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                assert!(
+                    res.iter().all(|v| v.abs() < 1e-12 * scale),
+                    "r {r}: {res:?}"
+                );
+                let phi = own[2] * r;
+                let z = own[3];
+                let psi = 1.0 - z - 2.0 * phi * (phi / a - r) / (a * s * s);
+                let det = det4(&jac);
+                assert!(
+                    psi > 0.0 && (det / psi - 1.0).abs() < 1e-9,
+                    "r {r}: {det} {psi}"
+                );
+                if r == 0.0 {
+                    assert_eq!(own, vec![0.0, 0.0, eta, 0.0]);
+                    assert!((det - 1.0).abs() < 1e-15);
+                }
+            }
         }
     }
 }

@@ -6,8 +6,8 @@
 //! - Fourier coefficients are ordered like Code_Aster's output: 0, C1..CH, S1..SH.
 //! - `Point::x` is the full unknown vector in physical units, laid out as: U (n DOFs ×
 //!   (2H_l+1), DOF after DOF), V (velocities, same layout, m/s), the contact unknowns of each
-//!   shock in order (PLAN: f; BI_PLAN: f, z (dimensionless); CERCLE: f, r, fx, fy; each
-//!   2H_nl+1 coefficients; forces in N, r in m), then ω (rad/s) and γ (1/s, the unfolding
+//!   shock in order (PLAN: f; BI_PLAN: f, z; CERCLE: fx, fy, λ, z; z dimensionless, λ in N/m; each
+//!   2H_nl+1 coefficients; forces in N), then ω (rad/s) and γ (1/s, the unfolding
 //!   parameter, zero on an exact solution). Without any shock H_nl is taken equal to H_l.
 //! - ENERGIE is Code_Aster's (see `energy.rs`); `energy_spread` is our a-posteriori check.
 //! - `Settings::direction` (DIR_EVOLUTION): −1 goes forward, +1 backward. From a linear
@@ -212,7 +212,7 @@ fn unit_factors(sys: &System) -> Vec<f64> {
         let per: &[f64] = match sh.law {
             ScaledLaw::Plan => &[force],
             ScaledLaw::BiPlan => &[force, 1.0],
-            ScaledLaw::Cercle { .. } => &[force, sc.g, force, force],
+            ScaledLaw::Cercle { .. } => &[force, force, sc.k, 1.0],
         };
         for &u in per {
             f.extend(std::iter::repeat_n(u, l.nn));
@@ -231,21 +231,12 @@ fn in_branch(mut e: Error, b: usize) -> Error {
     e
 }
 
-/// A ring error naming its shock (CHOC occurrence, 1-based): a model may carry several.
-fn ring_error(i: usize, e: Error) -> Error {
-    Error {
-        message: format!("CHOC {}: {}", i + 1, e.message),
-        keyword: Some(format!("CHOC[{}]/ORIG_OBST", i + 1)),
-        ..e
-    }
-}
-
 /// Samples of the contact unknowns consistent with the displacements of `x` (scaled).
 fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
     let l = sys.lay;
     let smp = sys.sampler();
     let ns = smp.n();
-    for (i, sh) in sys.shocks.iter().enumerate() {
+    for sh in &sys.shocks {
         let u: Vec<Vec<f64>> = sh
             .dofs
             .iter()
@@ -255,40 +246,10 @@ fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
                 s
             })
             .collect();
-        let own = laws::own_from_u(sh.law, sh.s, sh.alpha, sh.eta, &u).map_err(|e| {
-            if matches!(sh.law, ScaledLaw::Cercle { .. }) {
-                ring_error(i, e)
-            } else {
-                e
-            }
-        })?;
+        let own = laws::own_from_u(sh.law, sh.s, sh.alpha, sh.eta, &u)?;
         for (v, mut s) in own.into_iter().enumerate() {
             let o = sh.offset + v * l.nn;
             smp.analyse(&mut s, l.hn, &mut x[o..o + l.nn]);
-        }
-    }
-    Ok(())
-}
-
-/// CERCLE: r(t) must stay positive and away from the ring centre.
-fn check_rings(sys: &System, x: &[f64]) -> Result<()> {
-    let l = sys.lay;
-    let smp = sys.sampler();
-    for (i, sh) in sys.shocks.iter().enumerate() {
-        if let ScaledLaw::Cercle { ex, ey } = sh.law {
-            let name = |e: Error| ring_error(i, e);
-            let mut s = vec![vec![0.0; smp.n()]; 3];
-            smp.synth(&x[sh.offset + l.nn..sh.offset + 2 * l.nn], l.hn, &mut s[0]);
-            for c in 0..2 {
-                let d = sh.dofs[c];
-                smp.synth(&x[l.u(d)..l.u(d) + l.nl], l.hl, &mut s[c + 1]);
-            }
-            // Both the unknown r and the true distance must stay clear of zero.
-            laws::check_ring_radius(&s[0], sh.s).map_err(name)?;
-            let dist: Vec<f64> = (0..smp.n())
-                .map(|j| (s[1][j] - ex).hypot(s[2][j] - ey))
-                .collect();
-            laws::check_ring_radius(&dist, sh.s).map_err(name)?;
         }
     }
     Ok(())
@@ -334,7 +295,6 @@ fn start(sys: System, settings: &Settings, mut x: Vec<f64>) -> Result<StartState
     if !finite(&x) {
         return Err(Error::numerical("the start point is not finite"));
     }
-    check_rings(&sys, &x)?;
     let border = motion_border(&sys, &x);
     if !finite(&border) {
         return Err(
@@ -355,7 +315,6 @@ fn start(sys: System, settings: &Settings, mut x: Vec<f64>) -> Result<StartState
         message: format!("start point: {}", e.message),
         ..e
     })?;
-    check_rings(&sys, &x)?;
     let point = make_point(&sys, &x, res, 0, false);
     Ok(StartState {
         travel: None,
@@ -632,7 +591,6 @@ fn run(
                 .map_err(|e| in_branch(e, b))?;
                 newton_iterations = it;
                 res = r;
-                check_rings(&sys, &x).map_err(|e| in_branch(e, b))?;
                 x_end = x.clone();
             }
             let p = make_point(&sys, &x, res, b, series_bif == Some(i));
@@ -798,7 +756,7 @@ pub fn velocity_coefficients(
 }
 
 /// Fourier coefficients (0, C1..CH_nl, S1..SH_nl) of each contact unknown of each shock
-/// (PLAN: f; BI_PLAN: f, z; CERCLE: f, r, fx, fy), physical.
+/// (PLAN: f; BI_PLAN: f, z; CERCLE: fx, fy, λ, z), physical.
 pub fn contact_coefficients(
     problem: &Problem,
     settings: &Settings,

@@ -153,10 +153,7 @@ mod tests {
         }
     }
 
-    /// The regularised ring force at radius r: the root of f² − αf(r − g) − αη = 0.
-    fn ring_force(r: f64, g: f64, alpha: f64, eta: f64) -> f64 {
-        (alpha * (r - g) + ((alpha * (r - g)).powi(2) + 4.0 * alpha * eta).sqrt()) / 2.0
-    }
+    use super::super::exact::regularised_ring_force as ring_force;
 
     #[test]
     fn whirl_from_a_rotated_degenerate_pair_into_contact() {
@@ -184,7 +181,8 @@ mod tests {
         assert!((r0 / (0.9 * g) - 1.0).abs() < 1e-3, "{r0}");
         let out = continue_branches(&p, &s, st, &mut |_, _| {});
         assert!(out.error.is_none(), "{:?}", out.error);
-        let eta = regul * k * g * g;
+        // ε = PARA_REGUL·k_ref, k_ref = k (diagonal stiffness).
+        let eps = regul * k;
         let mut worst = 0.0f64;
         for q in &out.points {
             assert!(q.residual <= s.prec_newton, "{}", q.residual);
@@ -195,7 +193,7 @@ mod tests {
                 .map(|h| q.x[h].hypot(q.x[hl + h]) + q.x[nl + h].hypot(q.x[nl + hl + h]))
                 .sum();
             assert!(higher < 1e-9 * ax, "{higher}");
-            let closed = (k + ring_force(ax, g, alpha, eta) / ax).sqrt();
+            let closed = (k + ring_force(ax, g, alpha, eps) / ax).sqrt();
             worst = worst.max((q.omega / closed - 1.0).abs());
         }
         let last = out.points.last().unwrap();

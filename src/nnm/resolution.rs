@@ -5,7 +5,7 @@
 //! part of the pulse. Code_Aster warns in that case and asks for more harmonics; so do we.
 
 use super::post::Unknowns;
-use super::{Point, Problem, Settings};
+use super::{Point, Problem, Settings, ShockLaw};
 
 /// Amplitude of the highest tenth of the harmonics relative to the largest harmonic
 /// amplitude, above which the force series counts as poorly resolved.
@@ -52,12 +52,18 @@ pub fn resolution_warnings(
         let Ok(per_shock) = stored.contact(&p.x) else {
             continue;
         };
-        for (s, unknowns) in per_shock.iter().enumerate() {
-            // The first unknown of every law is its force (PLAN, BI_PLAN: f; CERCLE: f).
-            if let (Some(f), Some(w)) = (unknowns.first(), worst.get_mut(s)) {
-                let r = tail_ratio(f);
-                if r > w.0 {
-                    *w = (r, p.energy);
+        for ((s, unknowns), shock) in per_shock.iter().enumerate().zip(&problem.shocks) {
+            // The force unknowns come first: PLAN, BI_PLAN f; CERCLE fx, fy.
+            let n_force = match shock.law {
+                ShockLaw::Cercle { .. } => 2,
+                _ => 1,
+            };
+            for f in unknowns.iter().take(n_force) {
+                if let Some(w) = worst.get_mut(s) {
+                    let r = tail_ratio(f);
+                    if r > w.0 {
+                        *w = (r, p.energy);
+                    }
                 }
             }
         }

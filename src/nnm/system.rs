@@ -189,7 +189,7 @@ impl Layout {
     }
 }
 
-/// Number of contact unknowns (series) of a law: PLAN f; BI_PLAN f, z; CERCLE f, r, fx, fy
+/// Number of contact unknowns (series) of a law: PLAN f; BI_PLAN f, z; CERCLE fx, fy, λ, z
 /// (`laws::equations` gives the same `n_own`; a test checks it).
 pub fn own_count(law: ShockLaw) -> usize {
     match law {

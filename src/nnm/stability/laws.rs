@@ -7,8 +7,9 @@
 //! - PLAN:    f² − α f (u − g) − α η = 0, positive root; df/du = α f / √(α²(u−g)² + 4αη).
 //! - BI_PLAN: f ((f − α u)² − α² g²) + α² η u = 0 on the root through f(0) = 0 (the engine's
 //!   branch); df/du by implicit differentiation.
-//! - CERCLE:  r = |u − e|, f = PLAN law in r, force f (u − e)/r,
-//!   ∂F/∂u = f'(r) n nᵀ + (f/r)(I − n nᵀ), n = (u − e)/r.
+//! - CERCLE:  r = |u − e|, φ = BI_PLAN's law at r, force φ(r) n with n = (u − e)/r,
+//!   ∂F/∂u = φ'(r) n nᵀ + (φ/r)(I − n nᵀ). φ is odd, so φ(r)/r and the force are smooth
+//!   through the centre, where F = 0 and ∂F/∂u = φ'(0) I.
 //!
 //! Sign: the force enters M Ü + K U + Pᵀ F = 0 with a plus sign (as in the engine's
 //! residual), so a compressed stop (u > g for PLAN) has f > 0 and J adds to K.
@@ -17,11 +18,9 @@ use super::super::system::Scaling;
 use super::super::{Problem, ShockLaw};
 use crate::error::{Error, Result};
 
-/// Closest approach to the ring centre accepted, relative to JEU (as the engine's check).
-const RING_CENTRE_TOL: f64 = super::super::laws::RING_CENTRE_TOL;
-
 /// Physical regularisation η of each shock: PARA_REGUL·k_ref·JEU², with k_ref the engine's
-/// reference stiffness (1/(K⁻¹)pp at the DOF of the shock with the largest JEU).
+/// reference stiffness (1/(K⁻¹)pp at the last component of the first shock with the
+/// largest JEU, `Scaling::new`).
 pub(crate) fn eta_phys(problem: &Problem) -> Result<Vec<f64>> {
     if problem.shocks.is_empty() {
         return Ok(Vec::new());
@@ -126,16 +125,11 @@ impl PointLaw {
             ShockLaw::Cercle { origin } => {
                 let (dx, dy) = (comp(0)? - origin[0], comp(1)? - origin[1]);
                 let r = dx.hypot(dy);
-                // Also catches a NaN distance.
-                if r.is_nan() || r <= RING_CENTRE_TOL * self.gap {
-                    return Err(Error::numerical(format!(
-                        "CERCLE: the orbit passes through the ring centre (radial distance {:.3e} × JEU); \
-                         the contact force is not differentiable there",
-                        r / self.gap
-                    ))
-                    .keyword("CHOC/ORIG_OBST"));
+                let (f, df) = biplan(r, self.alpha, self.gap, self.eta)?;
+                if r == 0.0 {
+                    // The centre: no force, and φ/r → φ'(0) in every direction.
+                    return Ok((vec![0.0, 0.0], vec![df, 0.0, 0.0, df]));
                 }
-                let (f, df) = plan(r - self.gap, self.alpha, self.eta);
                 let (nx, ny) = (dx / r, dy / r);
                 let t = f / r;
                 let j = vec![
