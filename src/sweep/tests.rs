@@ -1,0 +1,1 @@
+//! Tests of the sweep: study files, templates, the merge, the plot.
