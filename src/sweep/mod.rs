@@ -278,6 +278,26 @@ fn wait_slurm(
     log: &mut dyn std::io::Write,
 ) -> Result<()> {
     let jobs: Vec<String> = arrays.iter().map(|a| a.job.clone()).collect();
+    let all: Vec<usize> = arrays.iter().flat_map(|a| a.points.iter().copied()).collect();
+    // Per point: 0 not seen, 1 seen running, 2 seen finished (reported once each).
+    let mut seen = vec![0u8; all.len()];
+    let mut report = |progress: &mut Progress, log: &mut dyn std::io::Write| {
+        for (k, &i) in all.iter().enumerate() {
+            let id = &manifest.points[i].id;
+            if seen[k] < 2 {
+                if let Some(s) = layout.status(id) {
+                    if seen[k] == 0 {
+                        progress.event(log, &local::Event::Started(i));
+                    }
+                    progress.event(log, &local::Event::Finished(i, s));
+                    seen[k] = 2;
+                } else if seen[k] == 0 && layout.running(id).is_some() {
+                    progress.event(log, &local::Event::Started(i));
+                    seen[k] = 1;
+                }
+            }
+        }
+    };
     let mut failures = 0;
     loop {
         std::thread::sleep(poll);
@@ -296,8 +316,11 @@ fn wait_slurm(
             }
             Err(e) => return Err(e),
         };
+        report(progress, log);
         progress.poll(log, &q);
         if q.is_empty() {
+            // Statuses written just before the tasks left the queue.
+            report(progress, log);
             break;
         }
     }
