@@ -19,7 +19,7 @@ WAIT=${ASTER_NL_SLURM_WAIT:-60}        # seconds to wait for each daemon
 CTLD_PORT=${ASTER_NL_SLURM_CTLD_PORT:-16817}
 SLURMD_PORT=${ASTER_NL_SLURM_SLURMD_PORT:-16818}
 CONF=$DIR/slurm.conf
-MUNGE_SOCKET=$DIR/munge/munge.socket.2
+MUNGE_SOCKET=$DIR/munge-socket/munge.socket.2
 NODE=localhost
 
 log() { echo "slurm-setup: $*" >&2; }
@@ -38,8 +38,14 @@ die() {
   exit 1
 }
 
-alive() { # pidfile
-  [ -f "$1" ] && kill -0 "$(cat "$1")" 2>/dev/null
+alive() { # pidfile: the process exists and is not a zombie (a container's init may not
+          # reap the daemons it inherits, and kill -0 succeeds on a zombie)
+  local pid state
+  [ -f "$1" ] || return 1
+  pid=$(cat "$1")
+  [ -r "/proc/$pid/stat" ] || return 1
+  state=$(sed 's/.*) //' "/proc/$pid/stat" | cut -d' ' -f1)
+  [ "$state" != "Z" ]
 }
 
 stop() {
@@ -69,8 +75,9 @@ if ! command -v slurmctld >/dev/null || ! command -v slurmd >/dev/null \
     slurmctld slurmd slurm-client munge >/dev/null || die "apt-get install failed"
 fi
 
-mkdir -p "$DIR"/{munge,state,spool,log,run}
-chmod 700 "$DIR/munge"
+mkdir -p "$DIR"/{munge,munge-socket,state,spool,log,run}
+chmod 700 "$DIR/munge"        # the key
+chmod 755 "$DIR/munge-socket" # the socket: clients need to reach it
 
 # 2. munge: a key and a daemon of our own.
 if ! alive "$DIR/run/munged.pid"; then
@@ -136,7 +143,7 @@ EOF
 if alive "$DIR/run/slurmctld.pid" && [ -f "$CONF" ] && [ "$(cat "$CONF")" != "$NEW_CONF" ]; then
   log "the configuration changed: restarting the daemons"
   stop
-  exec "$0" "$@"
+  exec bash "$0" "$@"
 fi
 printf '%s\n' "$NEW_CONF" > "$CONF"
 export SLURM_CONF=$CONF

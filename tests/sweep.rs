@@ -103,8 +103,14 @@ fn rows(c: &Connection, sql: &str, arg: Option<&str>) -> Vec<Vec<Value>> {
     let n = st.column_count();
     let map = |r: &rusqlite::Row| (0..n).map(|i| r.get::<_, Value>(i)).collect();
     match arg {
-        Some(a) => st.query_map([a], map).unwrap().collect::<rusqlite::Result<_>>(),
-        None => st.query_map([], map).unwrap().collect::<rusqlite::Result<_>>(),
+        Some(a) => st
+            .query_map([a], map)
+            .unwrap()
+            .collect::<rusqlite::Result<_>>(),
+        None => st
+            .query_map([], map)
+            .unwrap()
+            .collect::<rusqlite::Result<_>>(),
     }
     .unwrap()
 }
@@ -134,7 +140,9 @@ fn check_merged(out: &Path) -> Vec<Vec<Value>> {
         let (jeu, status) = (real(&p[1]), &p[3]);
         if jeu == IMPOSSIBLE_GAP {
             assert_eq!(*status, Value::Text("failed".into()), "{p:?}");
-            let Value::Text(err) = &p[4] else { panic!("{p:?}") };
+            let Value::Text(err) = &p[4] else {
+                panic!("{p:?}")
+            };
             assert!(err.contains("JEU") && err.contains(">= 0"), "{err}");
         } else {
             assert_eq!(*status, Value::Text("ok".into()), "{p:?}");
@@ -170,8 +178,16 @@ fn check_merged(out: &Path) -> Vec<Vec<Value>> {
             assert_eq!(mine, theirs, "table {t} of point {id}");
             // The parameter columns (SWEEP_ prefixed where the table has its own JEU).
             let mcols = columns(&merged, &t);
-            let jcol = if cols.iter().any(|c| c == "JEU") { "SWEEP_JEU" } else { "JEU" };
-            let rcol = if cols.iter().any(|c| c == "RIGI_NOR") { "SWEEP_RIGI_NOR" } else { "RIGI_NOR" };
+            let jcol = if cols.iter().any(|c| c == "JEU") {
+                "SWEEP_JEU"
+            } else {
+                "JEU"
+            };
+            let rcol = if cols.iter().any(|c| c == "RIGI_NOR") {
+                "SWEEP_RIGI_NOR"
+            } else {
+                "RIGI_NOR"
+            };
             assert!(mcols.contains(&jcol.to_string()), "{t}: {mcols:?}");
             let bad = rows(
                 &merged,
@@ -206,7 +222,10 @@ fn check_merged(out: &Path) -> Vec<Vec<Value>> {
     assert_eq!(by_gap.len(), 6);
     for g in &by_gap {
         // Above the linear frequency sqrt(10)/2pi: the wall stiffens the mode.
-        assert!(real(&g[2]) > 10f64.sqrt() / (2.0 * std::f64::consts::PI), "{g:?}");
+        assert!(
+            real(&g[2]) > 10f64.sqrt() / (2.0 * std::f64::consts::PI),
+            "{g:?}"
+        );
     }
 
     // The family picture.
@@ -235,7 +254,11 @@ fn local_sweep_merges_every_run_and_lists_the_failed_points() {
     assert_eq!(o.status.code(), Some(3), "{}", text(&o));
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("6 ok, 0 nook, 2 failed"), "{}", text(&o));
-    assert!(stdout.contains("failed JEU=-0.01, RIGI_NOR=50.0"), "{}", text(&o));
+    assert!(
+        stdout.contains("failed JEU=-0.01, RIGI_NOR=50.0"),
+        "{}",
+        text(&o)
+    );
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(stderr.contains("8 to run"), "{}", text(&o));
     assert!(stderr.contains("[8/8]"), "{}", text(&o));
@@ -280,9 +303,18 @@ fn local_sweep_merges_every_run_and_lists_the_failed_points() {
     );
 
     // `--status` reads without writing.
-    let o = bin().arg("sweep").arg(&study).arg("--status").output().unwrap();
+    let o = bin()
+        .arg("sweep")
+        .arg(&study)
+        .arg("--status")
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    assert!(String::from_utf8_lossy(&o.stdout).contains("6 point(s): 6 ok"), "{}", text(&o));
+    assert!(
+        String::from_utf8_lossy(&o.stdout).contains("6 point(s): 6 ok"),
+        "{}",
+        text(&o)
+    );
 }
 
 #[test]
@@ -312,17 +344,32 @@ fn merge_command_merges_run_databases_and_keeps_foreign_files() {
     }
     drop(m);
     // A merged database is replaced by a new merge...
-    let o = bin().arg("merge").arg(&merged).arg(&dbs[0]).output().unwrap();
+    let o = bin()
+        .arg("merge")
+        .arg(&merged)
+        .arg(&dbs[0])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     // ...a file that is not one is left alone.
     let foreign = dir.path().join("notes.db");
     std::fs::write(&foreign, "my notes").unwrap();
-    let o = bin().arg("merge").arg(&foreign).arg(&dbs[0]).output().unwrap();
+    let o = bin()
+        .arg("merge")
+        .arg(&foreign)
+        .arg(&dbs[0])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(String::from_utf8_lossy(&o.stderr).contains("not a merged database"));
     assert_eq!(std::fs::read_to_string(&foreign).unwrap(), "my notes");
     // A run database is not a merged one either.
-    let o = bin().arg("merge").arg(&dbs[1]).arg(&dbs[0]).output().unwrap();
+    let o = bin()
+        .arg("merge")
+        .arg(&dbs[1])
+        .arg(&dbs[0])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
 }
 
@@ -412,7 +459,11 @@ fn slurm_sweep_gives_the_local_sweeps_database() {
     let local_out = dir.path().join("local.sweep");
     let slurm_out = dir.path().join("slurm.sweep");
     let mut cmd = bin();
-    cmd.arg("sweep").arg(&study).arg("--out").arg(&slurm_out).arg("--slurm");
+    cmd.arg("sweep")
+        .arg(&study)
+        .arg("--out")
+        .arg(&slurm_out)
+        .arg("--slurm");
     let o = output_within(cmd, Duration::from_secs(240));
     assert_eq!(o.status.code(), Some(3), "{}", text(&o));
     assert!(
@@ -432,7 +483,11 @@ fn slurm_sweep_gives_the_local_sweeps_database() {
     }
     // Same binary, same files: the very numbers of the local pool.
     let mut cmd = bin();
-    cmd.arg("sweep").arg(&study).arg("--out").arg(&local_out).arg("--local");
+    cmd.arg("sweep")
+        .arg(&study)
+        .arg("--out")
+        .arg(&local_out)
+        .arg("--local");
     let o = output_within(cmd, Duration::from_secs(240));
     assert_eq!(o.status.code(), Some(3), "{}", text(&o));
     assert_eq!(check_merged(&local_out), from_slurm);

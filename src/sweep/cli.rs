@@ -79,7 +79,11 @@ fn fail_located(e: &Error) -> ExitCode {
     let src = e
         .location
         .as_ref()
-        .and_then(|loc| std::fs::read_to_string(&loc.file).ok().map(|t| (loc.file.clone(), t)))
+        .and_then(|loc| {
+            std::fs::read_to_string(&loc.file)
+                .ok()
+                .map(|t| (loc.file.clone(), t))
+        })
         .map(|(name, text)| lang::Source { name, text });
     eprintln!("{}", lang::render(e, src.as_ref()));
     ExitCode::from(EXIT_ERROR)

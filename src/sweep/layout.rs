@@ -356,14 +356,18 @@ pub fn io_err(msg: String) -> Error {
 pub fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| io_err(format!("cannot read {}: {e}", path.display())))?;
-    serde_json::from_str(&text)
-        .map_err(|e| io_err(format!("{}: not a file this aster-nl wrote: {e}", path.display())))
+    serde_json::from_str(&text).map_err(|e| {
+        io_err(format!(
+            "{}: not a file this aster-nl wrote: {e}",
+            path.display()
+        ))
+    })
 }
 
 /// Write through a temporary file and a rename, so a reader never sees half a file.
 pub fn write_json_atomic<T: Serialize>(path: &Path, value: &T) -> Result<()> {
-    let text = serde_json::to_string_pretty(value)
-        .map_err(|e| Error::internal(format!("json: {e}")))?;
+    let text =
+        serde_json::to_string_pretty(value).map_err(|e| Error::internal(format!("json: {e}")))?;
     write_atomic(path, text.as_bytes())
 }
 

@@ -161,7 +161,10 @@ fn build(path: &Path, params: &[String], runs: &[RunInput]) -> Result<MergeRepor
     let mut report = MergeReport::default();
     for run in runs {
         let mut row: Vec<rusqlite::types::Value> = vec![run.point.clone().into()];
-        row.extend(run.values.iter().map(|v| v.as_ref().map_or(rusqlite::types::Value::Null, ParamValue::sql)));
+        row.extend(run.values.iter().map(|v| {
+            v.as_ref()
+                .map_or(rusqlite::types::Value::Null, ParamValue::sql)
+        }));
         row.push(
             run.outcome
                 .map_or("missing", Outcome::name)
@@ -170,13 +173,9 @@ fn build(path: &Path, params: &[String], runs: &[RunInput]) -> Result<MergeRepor
         );
         row.push(run.error.clone().into());
         row.push(run.seconds.map_or(rusqlite::types::Value::Null, Into::into));
-        row.push(
-            run.db
-                .as_ref()
-                .map_or(rusqlite::types::Value::Null, |d| {
-                    d.display().to_string().into()
-                }),
-        );
+        row.push(run.db.as_ref().map_or(rusqlite::types::Value::Null, |d| {
+            d.display().to_string().into()
+        }));
         let marks = vec!["?"; row.len()].join(", ");
         conn.execute(
             &format!("INSERT INTO {} VALUES ({marks})", q(POINTS_TABLE)),
@@ -249,7 +248,11 @@ fn copy_attached(
     let r = (|| -> Result<u64> {
         let mut rows = 0u64;
         for (table, create_sql) in &tables {
-            if create_sql.trim_start().to_ascii_uppercase().starts_with("CREATE VIRTUAL") {
+            if create_sql
+                .trim_start()
+                .to_ascii_uppercase()
+                .starts_with("CREATE VIRTUAL")
+            {
                 continue;
             }
             let columns = table_columns(conn, db, table)?;
@@ -304,7 +307,8 @@ fn table_columns(conn: &Connection, db: &Path, table: &str) -> Result<Vec<(Strin
     let rows = st
         .query_map([], |r| Ok((r.get::<_, String>(1)?, r.get::<_, String>(2)?)))
         .map_err(|e| sql(db, e))?;
-    rows.collect::<rusqlite::Result<_>>().map_err(|e| sql(db, e))
+    rows.collect::<rusqlite::Result<_>>()
+        .map_err(|e| sql(db, e))
 }
 
 /// The merged table for `table`: created at its first run, widened by columns later runs
@@ -351,13 +355,20 @@ fn ensure_target<'a>(
                 .map(|(c, t)| format!("{} {t}", q(c))),
         );
         defs.extend(columns.iter().map(|(c, t)| format!("{} {t}", q(c))));
-        conn.execute_batch(&format!("CREATE TABLE main.{} ({})", q(table), defs.join(", ")))
-            .map_err(|e| sql(db, e))?;
+        conn.execute_batch(&format!(
+            "CREATE TABLE main.{} ({})",
+            q(table),
+            defs.join(", ")
+        ))
+        .map_err(|e| sql(db, e))?;
         targets.insert(
             key.clone(),
             Target {
                 name: table.to_string(),
-                columns: columns.iter().map(|(c, _)| c.to_ascii_lowercase()).collect(),
+                columns: columns
+                    .iter()
+                    .map(|(c, _)| c.to_ascii_lowercase())
+                    .collect(),
                 param_columns,
             },
         );
@@ -394,7 +405,9 @@ fn ensure_target<'a>(
 fn param_types(n: usize, runs: &[RunInput]) -> Vec<&'static str> {
     (0..n)
         .map(|i| {
-            let vals = runs.iter().filter_map(|r| r.values.get(i).and_then(Option::as_ref));
+            let vals = runs
+                .iter()
+                .filter_map(|r| r.values.get(i).and_then(Option::as_ref));
             let mut ty = "INTEGER";
             for v in vals {
                 ty = match (ty, v) {

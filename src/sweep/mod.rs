@@ -141,9 +141,8 @@ pub fn run_sweep(opts: &SweepOptions, log: &mut dyn std::io::Write) -> Result<Sw
         if up_to_date || opts.merge_only {
             continue;
         }
-        std::fs::create_dir_all(&files.dir).map_err(|e| {
-            layout::io_err(format!("cannot create {}: {e}", files.dir.display()))
-        })?;
+        std::fs::create_dir_all(&files.dir)
+            .map_err(|e| layout::io_err(format!("cannot create {}: {e}", files.dir.display())))?;
         if std::fs::read_to_string(&files.comm).ok().as_deref() != Some(text.as_str()) {
             layout::write_atomic(&files.comm, text.as_bytes())?;
         }
@@ -171,9 +170,13 @@ pub fn run_sweep(opts: &SweepOptions, log: &mut dyn std::io::Write) -> Result<Sw
                 let exe = study.slurm.exe.clone().unwrap_or_else(|| opts.exe.clone());
                 let name = format!(
                     "aster-nl-{}",
-                    study.path.file_stem().map_or("sweep".into(), |s| s.to_string_lossy())
+                    study
+                        .path
+                        .file_stem()
+                        .map_or("sweep".into(), |s| s.to_string_lossy())
                 );
-                let arrays = slurm::submit(&layout, &manifest, &pending, &study.slurm, &exe, &name)?;
+                let arrays =
+                    slurm::submit(&layout, &manifest, &pending, &study.slurm, &exe, &name)?;
                 manifest.slurm_jobs = arrays.iter().map(|a| a.job.clone()).collect();
                 layout.write_manifest(&manifest)?;
                 progress.submitted(log, &arrays);
@@ -278,7 +281,10 @@ fn wait_slurm(
     log: &mut dyn std::io::Write,
 ) -> Result<()> {
     let jobs: Vec<String> = arrays.iter().map(|a| a.job.clone()).collect();
-    let all: Vec<usize> = arrays.iter().flat_map(|a| a.points.iter().copied()).collect();
+    let all: Vec<usize> = arrays
+        .iter()
+        .flat_map(|a| a.points.iter().copied())
+        .collect();
     // Per point: 0 not seen, 1 seen running, 2 seen finished (reported once each).
     let mut seen = vec![0u8; all.len()];
     let mut report = |progress: &mut Progress, log: &mut dyn std::io::Write| {
@@ -331,22 +337,25 @@ fn wait_slurm(
                 continue;
             }
             let task_log = slurm::task_log(layout, &a.job, task);
-            let tail = std::fs::read_to_string(&task_log)
-                .ok()
-                .and_then(|t| t.lines().rev().find(|l| !l.trim().is_empty()).map(str::to_string));
+            let tail = std::fs::read_to_string(&task_log).ok().and_then(|t| {
+                t.lines()
+                    .rev()
+                    .find(|l| !l.trim().is_empty())
+                    .map(str::to_string)
+            });
             let msg = format!(
                 "Slurm task {}_{task} ended without a result{} (log: {})",
                 a.job,
                 tail.map(|t| format!(": {}", t.trim())).unwrap_or_default(),
                 task_log.display()
             );
-            let s = point::record_lost(layout, manifest, i, msg, &format!("slurm {}_{task}", a.job))?;
+            let s =
+                point::record_lost(layout, manifest, i, msg, &format!("slurm {}_{task}", a.job))?;
             progress.event(log, &local::Event::Finished(i, s));
         }
     }
     Ok(())
 }
-
 
 /// Every point of the manifest as an input of the merge.
 fn run_inputs(layout: &Layout, manifest: &Manifest) -> Vec<merge::RunInput> {
@@ -390,10 +399,19 @@ pub fn run_task(out: &Path, list: &Path, task: usize, exe: &Path) -> Result<Poin
         .iter()
         .position(|p| p.id == id)
         .ok_or_else(|| {
-            layout::io_err(format!("point {id} is not in {}", layout.manifest_path().display()))
+            layout::io_err(format!(
+                "point {id} is not in {}",
+                layout.manifest_path().display()
+            ))
         })?;
     let job = std::env::var("SLURM_ARRAY_JOB_ID").unwrap_or_else(|_| "?".into());
-    point::run_point(&layout, &manifest, index, exe, &format!("slurm {job}_{task}"))
+    point::run_point(
+        &layout,
+        &manifest,
+        index,
+        exe,
+        &format!("slurm {job}_{task}"),
+    )
 }
 
 /// Where a sweep stands, without changing anything (`--status`).

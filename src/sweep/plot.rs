@@ -63,7 +63,10 @@ pub fn draw_family(
             None => return Ok(None),
         },
     };
-    let Some(colour) = colour.map(str::to_string).or_else(|| params.first().cloned()) else {
+    let Some(colour) = colour
+        .map(str::to_string)
+        .or_else(|| params.first().cloned())
+    else {
         return Ok(None);
     };
     let ci = params.iter().position(|p| *p == colour).ok_or_else(|| {
@@ -81,7 +84,10 @@ pub fn draw_family(
     if curves.is_empty() {
         return Ok(None);
     }
-    let spec = family_spec(&curves, &format!("{table}: one curve per point, colour {colour}"));
+    let spec = family_spec(
+        &curves,
+        &format!("{table}: one curve per point, colour {colour}"),
+    );
     let mut files = Vec::new();
     for format in [ImageFormat::Png, ImageFormat::Svg] {
         let path = stem.with_extension(format.extension());
@@ -203,7 +209,9 @@ pub fn family_spec(curves: &[Curve], title: &str) -> XyPlot {
     let numeric = nums.len() == curves.len();
     let (lo, hi) = nums
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
     let log = numeric && lo > 0.0 && hi / lo > 10.0;
     let mut texts: Vec<&str> = Vec::new();
     for c in curves {
@@ -246,7 +254,8 @@ pub fn family_spec(curves: &[Curve], title: &str) -> XyPlot {
         };
         // The scale's last tenths are too light on white for a thin line.
         let rgb = colour_scale(0.85 * t);
-        let marker = MARKERS[others.iter().position(|o| *o == c.others).unwrap_or(0) % MARKERS.len()];
+        let marker =
+            MARKERS[others.iter().position(|o| *o == c.others).unwrap_or(0) % MARKERS.len()];
         // Runs of one stability, each starting at the last point of the previous run.
         let mut start = 0;
         let mut first = true;
@@ -299,7 +308,11 @@ pub fn colour_scale(t: f64) -> (u8, u8, u8) {
         (94.0, 201.0, 98.0),
         (253.0, 231.0, 37.0),
     ];
-    let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.5 };
+    let t = if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        0.5
+    };
     let x = t * (STOPS.len() - 1) as f64;
     let i = (x.floor() as usize).min(STOPS.len() - 2);
     let f = x - i as f64;

@@ -3,8 +3,8 @@
 //! both come here, so a point's files are the same wherever it ran.
 
 use super::layout::{
-    self, hostname, now, text_hash, Layout, Manifest, Outcome, PointStatus, Running,
-    POINT_LOG, POINT_RUNNING, POINT_STATUS,
+    self, hostname, now, text_hash, Layout, Manifest, Outcome, PointStatus, Running, POINT_LOG,
+    POINT_RUNNING, POINT_STATUS,
 };
 use crate::error::Result;
 use std::path::{Path, PathBuf};
@@ -259,10 +259,14 @@ fn remove_if_exists(p: &Path) -> Result<()> {
     match std::fs::remove_file(p) {
         Ok(()) => Ok(()),
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
-        Err(e) => Err(layout::io_err(format!("cannot remove {}: {e}", p.display()))),
+        Err(e) => Err(layout::io_err(format!(
+            "cannot remove {}: {e}",
+            p.display()
+        ))),
     }
 }
 
 fn create(p: &Path) -> Result<std::fs::File> {
-    std::fs::File::create(p).map_err(|e| layout::io_err(format!("cannot create {}: {e}", p.display())))
+    std::fs::File::create(p)
+        .map_err(|e| layout::io_err(format!("cannot create {}: {e}", p.display())))
 }

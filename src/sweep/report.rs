@@ -247,7 +247,10 @@ impl StatusReport {
                 }
                 (None, Some(run)) => {
                     r.running += 1;
-                    ("running".to_string(), format!("{} on {}", run.ran_on, run.host))
+                    (
+                        "running".to_string(),
+                        format!("{} on {}", run.ran_on, run.host),
+                    )
                 }
                 (None, None) => {
                     r.not_run += 1;

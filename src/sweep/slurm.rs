@@ -79,10 +79,7 @@ pub fn submit(
             let msg = String::from_utf8_lossy(&output.stderr).trim().to_string();
             return Err(Error::new(
                 ErrorKind::Io,
-                format!(
-                    "sbatch refused the job array {}: {msg}",
-                    script.display()
-                ),
+                format!("sbatch refused the job array {}: {msg}", script.display()),
             )
             .hint("check [slurm] of the study (partition, time, sbatch_args)"));
         }
@@ -166,8 +163,7 @@ fn sh_quote(p: &Path) -> String {
 }
 
 fn absolute(p: &Path) -> Result<PathBuf> {
-    std::path::absolute(p)
-        .map_err(|e| Error::new(ErrorKind::Io, format!("{}: {e}", p.display())))
+    std::path::absolute(p).map_err(|e| Error::new(ErrorKind::Io, format!("{}: {e}", p.display())))
 }
 
 #[cfg(test)]

@@ -161,11 +161,7 @@ impl Study {
             }
         };
         let raw: RawStudy = toml::from_str(&source.text).map_err(|e| {
-            at(
-                format!("study file: {}", e.message().trim_end()),
-                e.span(),
-            )
-            .hint(STUDY_HINT)
+            at(format!("study file: {}", e.message().trim_end()), e.span()).hint(STUDY_HINT)
         })?;
         let base = path.parent().unwrap_or(Path::new(""));
         let resolve = |p: &str| -> PathBuf {
@@ -199,11 +195,8 @@ impl Study {
         let mut units = Vec::new();
         for (k, v) in &raw.units {
             let n: i64 = k.parse().map_err(|_| {
-                at(
-                    format!("units: '{k}' is not a unit number"),
-                    Some(v.span()),
-                )
-                .hint("write e.g. `20 = \"mesh.mail\"` under [units]")
+                at(format!("units: '{k}' is not a unit number"), Some(v.span()))
+                    .hint("write e.g. `20 = \"mesh.mail\"` under [units]")
             })?;
             let p = resolve(v.get_ref());
             if !p.is_file() {
@@ -233,13 +226,12 @@ impl Study {
             }
         };
         let table_span = table.span();
-        let mut entries: Vec<(String, Spanned<toml::Value>)> = table.into_inner().into_iter().collect();
+        let mut entries: Vec<(String, Spanned<toml::Value>)> =
+            table.into_inner().into_iter().collect();
         if entries.is_empty() {
-            return Err(at(
-                "the parameter table is empty".into(),
-                Some(table_span),
-            )
-            .hint(STUDY_HINT));
+            return Err(
+                at("the parameter table is empty".into(), Some(table_span)).hint(STUDY_HINT)
+            );
         }
         // TOML tables come back sorted by name; the study's own order (the order of the
         // lines) is the natural one for the grid's loops and the database's columns.
@@ -247,6 +239,8 @@ impl Study {
         let mut params = Vec::new();
         let mut param_spans = Vec::new();
         let mut columns: Vec<Vec<ParamValue>> = Vec::new();
+        // A value that is not an array fixes the parameter for every point.
+        let mut fixed: Vec<bool> = Vec::new();
         for (name, value) in &entries {
             if !is_identifier(name) {
                 return Err(at(
@@ -272,18 +266,20 @@ impl Study {
             }
             params.push(name.clone());
             param_spans.push(value.span());
+            fixed.push(!matches!(value.get_ref(), toml::Value::Array(_)));
             columns.push(vals);
         }
 
         let points = if zipped {
-            let n = columns[0].len();
-            if let Some(i) = columns.iter().position(|c| c.len() != n) {
+            let first = fixed.iter().position(|f| !f).unwrap_or(0);
+            let n = columns[first].len();
+            if let Some(i) = (0..columns.len()).find(|&i| !fixed[i] && columns[i].len() != n) {
                 return Err(at(
                     format!(
                         "[list]: {} has {} value(s) but {} has {n}: the i-th point takes the i-th value of every parameter",
                         params[i],
                         columns[i].len(),
-                        params[0]
+                        params[first]
                     ),
                     Some(param_spans[i].clone()),
                 )
@@ -291,7 +287,11 @@ impl Study {
             }
             (0..n)
                 .map(|i| Point {
-                    values: columns.iter().map(|c| c[i].clone()).collect(),
+                    values: columns
+                        .iter()
+                        .zip(&fixed)
+                        .map(|(c, &f)| c[if f { 0 } else { i }].clone())
+                        .collect(),
                 })
                 .collect()
         } else {
@@ -349,7 +349,10 @@ impl Study {
             Some(t) if *t.get_ref() > 0.0 && t.get_ref().is_finite() => Some(*t.get_ref()),
             Some(t) => {
                 return Err(at(
-                    format!("run.timeout: {}, expected a positive number of seconds", t.get_ref()),
+                    format!(
+                        "run.timeout: {}, expected a positive number of seconds",
+                        t.get_ref()
+                    ),
                     Some(t.span()),
                 ))
             }

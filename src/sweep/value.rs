@@ -118,10 +118,7 @@ mod tests {
             ParamValue::Tuple(vec![ParamValue::Real(0.01), ParamValue::Int(10)]).python(),
             "(0.01, 10)"
         );
-        assert_eq!(
-            ParamValue::Tuple(vec![ParamValue::Int(1)]).python(),
-            "(1,)"
-        );
+        assert_eq!(ParamValue::Tuple(vec![ParamValue::Int(1)]).python(), "(1,)");
         // Shortest round trip: the literal parses back to the same double.
         for x in [0.1 + 0.2, 1.0 / 3.0, 6.02214076e23, 5e-324] {
             let back: f64 = ParamValue::Real(x).python().parse().unwrap();
