@@ -13,12 +13,12 @@ use std::path::{Path, PathBuf};
 /// One point's curve.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Curve {
-    pub label: String,
     /// The colouring parameter's value (numeric), if it is a number.
     pub key: Option<f64>,
     /// The colouring parameter's value as text (for a parameter that is not a number).
     pub key_text: String,
-    /// The other parameters' values, as text: curves that share them share a marker.
+    /// The other parameters that vary across the points, as `NAME=value, ...`: curves
+    /// that share them share a marker.
     pub others: String,
     pub energy: Vec<f64>,
     pub freq: Vec<f64>,
@@ -86,7 +86,8 @@ pub fn draw_family(
     }
     let spec = family_spec(
         &curves,
-        &format!("{table}: one curve per point, colour {colour}"),
+        &colour,
+        &format!("{table}: {} point(s), colour {colour}", curves.len()),
     );
     let mut files = Vec::new();
     for format in [ImageFormat::Png, ImageFormat::Svg] {
@@ -159,29 +160,28 @@ fn read_curves(
     let mut rows = conn.prepare(&format!(
         "SELECT ENERGIE, FREQUENCE, {stab} FROM {qt} WHERE \"{POINT_COLUMN}\" = ?1 ORDER BY rowid"
     ))?;
+    // Parameters with one value over the whole sweep say nothing about a curve.
+    let varies: Vec<bool> = (0..params.len())
+        .map(|i| points.iter().any(|(_, v)| v[i] != points[0].1[i]))
+        .collect();
     let mut curves = Vec::new();
-    for (point, vals) in points {
+    for (point, vals) in points.iter() {
         let mut c = Curve {
-            label: params
-                .iter()
-                .zip(&vals)
-                .map(|(p, v)| format!("{p}={}", text(v)))
-                .collect::<Vec<_>>()
-                .join(", "),
             key: number(&vals[colour]),
             key_text: text(&vals[colour]),
-            others: vals
+            others: params
                 .iter()
+                .zip(vals)
                 .enumerate()
-                .filter(|(i, _)| *i != colour)
-                .map(|(_, v)| text(v))
+                .filter(|(i, _)| *i != colour && varies[*i])
+                .map(|(_, (p, v))| format!("{p}={}", text(v)))
                 .collect::<Vec<_>>()
-                .join(","),
+                .join(", "),
             energy: Vec::new(),
             freq: Vec::new(),
             stability: Vec::new(),
         };
-        let mut q = rows.query([&point])?;
+        let mut q = rows.query([point])?;
         while let Some(r) = q.next()? {
             let (Some(e), Some(f)) = (r.get::<_, Option<f64>>(0)?, r.get::<_, Option<f64>>(1)?)
             else {
@@ -201,10 +201,15 @@ fn read_curves(
     Ok(curves)
 }
 
-/// The plot of a family: one colour per value of the colouring parameter along a
-/// perceptually ordered scale (log-spaced when its values span more than a decade), one
-/// marker per combination of the other parameters.
-pub fn family_spec(curves: &[Curve], title: &str) -> XyPlot {
+/// Legend entries for colours (and for markers) at most: beyond, evenly spaced values
+/// stand for the scale, which is ordered.
+const LEGEND_MAX: usize = 10;
+
+/// The plot of a family: one colour per value of the colouring parameter along a scale
+/// ordered in lightness (log-spaced when its values span more than a decade), one marker
+/// (then marker and dotted line) per combination of the other parameters. The legend lists
+/// the colours, then the markers, not every curve: a sweep has too many.
+pub fn family_spec(curves: &[Curve], colour: &str, title: &str) -> XyPlot {
     let nums: Vec<f64> = curves.iter().filter_map(|c| c.key).collect();
     let numeric = nums.len() == curves.len();
     let (lo, hi) = nums
@@ -213,28 +218,29 @@ pub fn family_spec(curves: &[Curve], title: &str) -> XyPlot {
             (a.min(x), b.max(x))
         });
     let log = numeric && lo > 0.0 && hi / lo > 10.0;
-    let mut texts: Vec<&str> = Vec::new();
-    for c in curves {
-        if !texts.contains(&c.key_text.as_str()) {
-            texts.push(&c.key_text);
+    // Distinct colour values in their order (numeric order for numbers).
+    let mut keys: Vec<usize> = Vec::new();
+    for (i, c) in curves.iter().enumerate() {
+        if !keys.iter().any(|&k| curves[k].key_text == c.key_text) {
+            keys.push(i);
         }
     }
-    let mut others: Vec<&str> = Vec::new();
-    for c in curves {
-        if !others.contains(&c.others.as_str()) {
-            others.push(&c.others);
+    if numeric {
+        keys.sort_by(|&a, &b| {
+            curves[a]
+                .key
+                .partial_cmp(&curves[b].key)
+                .unwrap_or(std::cmp::Ordering::Equal)
+        });
+    }
+    let mut others: Vec<usize> = Vec::new();
+    for (i, c) in curves.iter().enumerate() {
+        if !others.iter().any(|&k| curves[k].others == c.others) {
+            others.push(i);
         }
     }
-    const MARKERS: [Marker; 5] = [
-        Marker::None,
-        Marker::Circle,
-        Marker::Square,
-        Marker::Triangle,
-        Marker::Cross,
-    ];
-    let mut series = Vec::new();
-    for c in curves {
-        let t = match (numeric, c.key) {
+    let position = |c: &Curve| -> f64 {
+        match (numeric, c.key) {
             (true, Some(x)) if hi > lo => {
                 if log {
                     (x.ln() - lo.ln()) / (hi.ln() - lo.ln())
@@ -244,21 +250,74 @@ pub fn family_spec(curves: &[Curve], title: &str) -> XyPlot {
             }
             (true, _) => 0.5,
             _ => {
-                let i = texts.iter().position(|t| *t == c.key_text).unwrap_or(0);
-                if texts.len() > 1 {
-                    i as f64 / (texts.len() - 1) as f64
+                let i = keys
+                    .iter()
+                    .position(|&k| curves[k].key_text == c.key_text)
+                    .unwrap_or(0);
+                if keys.len() > 1 {
+                    i as f64 / (keys.len() - 1) as f64
                 } else {
                     0.5
                 }
             }
+        }
+    };
+    // The scale's last tenths are too light on white for a thin line.
+    let rgb = |c: &Curve| colour_scale(0.85 * position(c));
+    const MARKERS: [Marker; 5] = [
+        Marker::None,
+        Marker::Circle,
+        Marker::Square,
+        Marker::Triangle,
+        Marker::Cross,
+    ];
+    let style = |c: &Curve| -> (Marker, LineStyle) {
+        let i = others
+            .iter()
+            .position(|&k| curves[k].others == c.others)
+            .unwrap_or(0);
+        let line = if (i / MARKERS.len()) % 2 == 1 {
+            LineStyle::Dotted
+        } else {
+            LineStyle::Solid
         };
-        // The scale's last tenths are too light on white for a thin line.
-        let rgb = colour_scale(0.85 * t);
-        let marker =
-            MARKERS[others.iter().position(|o| *o == c.others).unwrap_or(0) % MARKERS.len()];
+        (MARKERS[i % MARKERS.len()], line)
+    };
+
+    // Legend-only series first (drawn under the curves): one point of a curve, repeated
+    // so that nothing is counted twice; a line of one point draws nothing.
+    let mut series = Vec::new();
+    let legend_entry = |label: String, c: &Curve, rgb: (u8, u8, u8), marker: Marker, line| {
+        let mut s = Series::new(&label, vec![c.energy[0]], vec![c.freq[0]])
+            .line(line)
+            .marker(marker)
+            .color(rgb)
+            .width(2);
+        s.repeats = 1;
+        s
+    };
+    for k in spread(keys.len(), LEGEND_MAX) {
+        let c = &curves[keys[k]];
+        series.push(legend_entry(
+            format!("{colour}={}", c.key_text),
+            c,
+            rgb(c),
+            Marker::None,
+            LineStyle::Solid,
+        ));
+    }
+    if others.len() > 1 {
+        for &k in others.iter().take(LEGEND_MAX) {
+            let c = &curves[k];
+            let (marker, line) = style(c);
+            series.push(legend_entry(c.others.clone(), c, GREY, marker, line));
+        }
+    }
+    for c in curves {
+        let rgb = rgb(c);
+        let (marker, base) = style(c);
         // Runs of one stability, each starting at the last point of the previous run.
         let mut start = 0;
-        let mut first = true;
         while start < c.energy.len() {
             let kind = c.stability[start];
             let end = c.stability[start..]
@@ -266,23 +325,17 @@ pub fn family_spec(curves: &[Curve], title: &str) -> XyPlot {
                 .position(|s| *s != kind)
                 .map_or(c.energy.len(), |n| start + n);
             let from = start.saturating_sub(1);
-            let label = if first { c.label.as_str() } else { "" };
-            let mut s = Series::new(
-                label,
-                c.energy[from..end].to_vec(),
-                c.freq[from..end].to_vec(),
-            )
-            .line(if kind == Stability::Unstable {
-                LineStyle::Dashed
-            } else {
-                LineStyle::Solid
-            })
-            .marker(marker)
-            .color(rgb)
-            .width(2);
+            let mut s = Series::new("", c.energy[from..end].to_vec(), c.freq[from..end].to_vec())
+                .line(if kind == Stability::Unstable {
+                    LineStyle::Dashed
+                } else {
+                    base
+                })
+                .marker(marker)
+                .color(rgb)
+                .width(2);
             s.repeats = start - from;
             series.push(s);
-            first = false;
             start = end;
         }
     }
@@ -297,6 +350,20 @@ pub fn family_spec(curves: &[Curve], title: &str) -> XyPlot {
         ..XyPlot::default()
     }
 }
+
+/// At most `max` of the indices `0..n`, evenly spread, first and last included.
+fn spread(n: usize, max: usize) -> Vec<usize> {
+    if n <= max || max < 2 {
+        return (0..n.min(max.max(1))).collect();
+    }
+    let mut v: Vec<usize> = (0..max)
+        .map(|i| ((i * (n - 1)) as f64 / (max - 1) as f64).round() as usize)
+        .collect();
+    v.dedup();
+    v
+}
+
+const GREY: (u8, u8, u8) = (110, 110, 110);
 
 /// A dark-blue → teal → yellow scale (viridis' end points and mid-tones), `t` in [0, 1]:
 /// ordered in lightness, so the order of the values reads without a legend and in grey.

@@ -57,20 +57,23 @@ impl Progress {
             Scheduler::Local => "local processes",
             Scheduler::Slurm => "a Slurm job array",
         };
+        let what = if opts.merge_only {
+            "--merge-only: nothing runs".to_string()
+        } else {
+            format!(
+                "{} to run on {how}, {} up to date",
+                self.to_run, self.skipped
+            )
+        };
         let _ = writeln!(
             log,
-            "sweep {}: {} point(s) of {} ({}), {} to run on {how}, {} up to date; output {}",
+            "sweep {}: {} point(s) of {} ({}), {what}; output {}",
             study.path.display(),
             self.total,
             study.template.display(),
             study.params.join(" x "),
-            self.to_run,
-            self.skipped,
             study.out.display()
         );
-        if opts.merge_only {
-            let _ = writeln!(log, "--merge-only: nothing runs");
-        }
     }
 
     pub fn event(&mut self, log: &mut dyn Write, ev: &Event) {
@@ -140,8 +143,18 @@ pub fn summary_text(s: &SweepSummary) -> String {
     let failed = s.count(Some(Outcome::Failed));
     let missing = s.count(None);
     let ran = s.points.iter().filter(|p| p.ran_now).count();
+    if !s.submitted.is_empty() {
+        t.push_str(&format!(
+            "\nsweep: {} point(s): {ran} submitted to Slurm as job(s) {}; \
+             `aster-nl sweep STUDY --status` shows the progress; running the sweep again \
+             once they end merges the results (and reruns what failed)\n",
+            s.points.len(),
+            s.submitted.join(", ")
+        ));
+        return t;
+    }
     t.push_str(&format!(
-        "\nsweep: {} point(s): {ok} ok, {nook} nook, {failed} failed, {missing} not run ({ran} run now, {} up to date)\n",
+        "\nsweep: {} point(s): {ok} ok, {nook} nook, {failed} failed, {missing} not run ({ran} run now, {} from earlier runs)\n",
         s.points.len(),
         s.points
             .iter()
@@ -153,7 +166,7 @@ pub fn summary_text(s: &SweepSummary) -> String {
         .iter()
         .filter(|p| p.status.as_ref().is_none_or(|st| st.outcome != Outcome::Ok))
         .collect();
-    if !bad.is_empty() && s.submitted.is_empty() {
+    if !bad.is_empty() {
         t.push_str("points not ok:\n");
         for p in bad {
             match &p.status {
@@ -167,13 +180,6 @@ pub fn summary_text(s: &SweepSummary) -> String {
                 None => t.push_str(&format!("  {:<6} {}\n", "-", p.label)),
             }
         }
-    }
-    if !s.submitted.is_empty() {
-        t.push_str(&format!(
-            "Slurm job(s) {} submitted; `aster-nl sweep STUDY --status` shows the progress; \
-             running the sweep again once they end merges the results (and reruns what failed)\n",
-            s.submitted.join(", ")
-        ));
     }
     if let Some((db, r)) = &s.merged {
         t.push_str(&format!(

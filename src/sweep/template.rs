@@ -50,18 +50,20 @@ impl Template {
                 .collect();
             match found.as_slice() {
                 [(_, r)] => slots.push(r.clone()),
-                [] => return Err(study
-                    .param_error(
-                        i,
-                        format!(
-                            "{name} is not assigned at the top level of the template {}",
-                            study.template.display()
-                        ),
-                    )
-                    .hint(format!(
+                [] => {
+                    return Err(study
+                        .param_error(
+                            i,
+                            format!(
+                                "{name} is not assigned at the top level of the template {}",
+                                study.template.display()
+                            ),
+                        )
+                        .hint(format!(
                         "a parameter is a variable of the template: write a line `{name} = ...` \
                              near its top and use {name} where the value goes"
-                    ))),
+                    )))
+                }
                 many => {
                     let lines: Vec<String> = many.iter().map(|(l, _)| l.to_string()).collect();
                     return Err(study
