@@ -414,6 +414,40 @@ fn a_parameter_the_template_does_not_assign_is_named_with_its_line() {
     assert!(!dir.path().join("study.sweep").exists());
 }
 
+#[test]
+fn points_past_their_timeout_are_stopped_and_listed() {
+    // 2000 branches take seconds even in a release build: both points (two stiffnesses)
+    // are stopped at half a second, and the sweep ends and lists them.
+    let (dir, study) = setup(&[0.01], "timeout = 0.5\n");
+    let s = std::fs::read_to_string(&study)
+        .unwrap()
+        .replace("[run]", "NB_BRANCHE = [2000]\n[run]");
+    std::fs::write(&study, s).unwrap();
+    let started = Instant::now();
+    let o = bin().arg("sweep").arg(&study).output().unwrap();
+    assert_eq!(o.status.code(), Some(3), "{}", text(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("0 ok, 0 nook, 2 failed"), "{}", text(&o));
+    assert!(
+        stdout.contains("stopped after 0.5 s (run.timeout of the study)"),
+        "{}",
+        text(&o)
+    );
+    // Two points of 0.5 s each on two processes, plus start-up: far below a full run.
+    assert!(
+        started.elapsed() < Duration::from_secs(30),
+        "{:?}",
+        started.elapsed()
+    );
+    let merged = open_ro(&dir.path().join("study.sweep/sweep.db"));
+    let failed = rows(
+        &merged,
+        "SELECT COUNT(*) FROM SWEEP_POINTS WHERE STATUS = 'failed'",
+        None,
+    );
+    assert_eq!(failed[0][0], Value::Integer(2));
+}
+
 /// A process with a deadline: the test fails instead of hanging on a stuck scheduler.
 fn output_within(mut cmd: Command, limit: Duration) -> Output {
     let mut child = cmd

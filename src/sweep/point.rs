@@ -98,7 +98,7 @@ pub fn run_point(
                     (
                         None,
                         format!(
-                            "stopped after {:.0} s (run.timeout of the study)",
+                            "stopped after {} s (run.timeout of the study)",
                             limit.map_or(0.0, |l| l.as_secs_f64())
                         ),
                     )

@@ -170,13 +170,18 @@ pub fn summary_text(s: &SweepSummary) -> String {
         t.push_str("points not ok:\n");
         for p in bad {
             match &p.status {
-                Some(st) => t.push_str(&format!(
-                    "  {:<6} {}: {}\n         {}\n",
-                    st.outcome.name(),
-                    p.label,
-                    st.error,
-                    p.dir.join(super::point::POINT_ERR).display()
-                )),
+                Some(st) => {
+                    t.push_str(&format!(
+                        "  {:<6} {}: {}\n",
+                        st.outcome.name(),
+                        p.label,
+                        st.error
+                    ));
+                    let report = p.dir.join(super::point::POINT_ERR);
+                    if report.is_file() {
+                        t.push_str(&format!("         {}\n", report.display()));
+                    }
+                }
                 None => t.push_str(&format!("  {:<6} {}\n", "-", p.label)),
             }
         }
