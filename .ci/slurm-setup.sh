@@ -52,9 +52,12 @@ stop() {
   for d in slurmd slurmctld munged; do
     local pf=$DIR/run/$d.pid
     if alive "$pf"; then
-      log "stopping $d (pid $(cat "$pf"))"
-      kill "$(cat "$pf")" || true
-      for _ in $(seq 1 50); do alive "$pf" || break; sleep 0.1; done
+      # Read once: a daemon removes its own pid file as it exits.
+      local pid
+      pid=$(cat "$pf" 2>/dev/null) || continue
+      log "stopping $d (pid $pid)"
+      kill "$pid" 2>/dev/null || true
+      for _ in $(seq 1 50); do [ -d "/proc/$pid" ] || break; sleep 0.1; done
     fi
     rm -f "$pf"
   done
