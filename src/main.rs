@@ -56,6 +56,14 @@ enum Command {
         #[arg(long, value_enum, default_value = "both")]
         case: CaseArg,
     },
+    /// Run a parametric sweep of a .comm template: one run per point, locally or on Slurm,
+    /// merged into one SQLite database (docs/sweeps.md).
+    Sweep(aster_nl::sweep::cli::SweepArgs),
+    /// Merge run databases into one, the sweep's parameters as columns.
+    Merge(aster_nl::sweep::cli::MergeArgs),
+    /// One task of a sweep's Slurm job array (what the job script runs).
+    #[command(hide = true)]
+    SweepTask(aster_nl::sweep::cli::TaskArgs),
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -79,6 +87,9 @@ fn main() -> ExitCode {
         Command::Catalog { operator } => print_catalog(operator.as_deref()),
         Command::Tables { db } => tables(&db),
         Command::Study { grid, out, case } => study(grid, &out, case),
+        Command::Sweep(args) => aster_nl::sweep::cli::sweep(&args),
+        Command::Merge(args) => aster_nl::sweep::cli::merge(&args),
+        Command::SweepTask(args) => aster_nl::sweep::cli::task(&args),
     }
 }
 
