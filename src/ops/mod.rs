@@ -29,6 +29,7 @@ pub mod impr_fonction;
 pub mod impr_table;
 pub mod lire_maillage;
 pub mod mnl_common;
+pub mod mnl_restart;
 pub mod mnl_start;
 pub mod mode_non_line;
 pub mod nume_ddl;

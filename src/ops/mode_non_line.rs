@@ -9,6 +9,7 @@ use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::nnm::{self, Point, Problem, Settings, StartState};
 use crate::ops::mnl_common::{engine_shock, row_of, shocks_from_cara_choc};
+use crate::ops::mnl_restart;
 use crate::ops::mnl_start;
 use crate::ops::{progress::Progress, OpContext};
 use crate::store::mnl::{self as mnl_store, MnlSetup, StoredShock};
@@ -105,7 +106,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 Error::input(format!("{src} has no row NUME_ORDRE={nume_ordre}"))
                     .keyword("MODE_NON_LINE/ETAT_INIT/NUME_ORDRE")
             })?;
-            nnm::start_from_point(&problem, &settings, &x)?
+            let st = nnm::start_from_point(&problem, &settings, &x)?;
+            restart_direction(ctx, src, nume_ordre, settings.direction, st)?
         }
         None => mnl_start::from_linear_modes(ctx, etat, &problem, &settings, &k, &k_name)?,
     };
@@ -227,6 +229,47 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         ctx.deferred_error = Some(e.keyword("MODE_NON_LINE").hint(hint));
     }
     Ok(())
+}
+
+/// A restart goes on (DIR_EVOLUTION = −1) or back (+1) relative to the direction the
+/// stored branch was travelling at the start row (mnl_restart.rs); said at INFO ≥ 1.
+fn restart_direction(
+    ctx: &mut OpContext<'_>,
+    src: &str,
+    order: i64,
+    direction: i32,
+    st: StartState,
+) -> Result<StartState> {
+    let t = table_store::load_table(ctx.store, src)?;
+    let way = if direction < 0 {
+        "on in"
+    } else {
+        "back against"
+    };
+    match mnl_restart::travel_at_row(ctx.store, &t, src, order)? {
+        Some(tr) => {
+            if ctx.info >= 1 {
+                ctx.say(&format!(
+                    "  restart from {src} row {order}: DIR_EVOLUTION={direction} goes {way} the direction \
+                     the stored branch travelled there (rows {} -> {})",
+                    tr.from, tr.to
+                ))?;
+            }
+            st.travelling(tr.direction)
+        }
+        None => {
+            ctx.alarm(
+                "MODE_NON_LINE_4",
+                &format!(
+                    "row {order} of {src} is the only stored row of its run: the direction the branch \
+                     travelled there is unknown, so DIR_EVOLUTION={direction} goes toward {} \
+                     amplitude, as from a linear mode",
+                    if direction < 0 { "increasing" } else { "decreasing" }
+                ),
+            )?;
+            Ok(st)
+        }
+    }
 }
 
 fn settings(args: &Args) -> Result<Settings> {
