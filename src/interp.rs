@@ -95,10 +95,11 @@ impl Runner<'_> {
                 call.op
             )));
         }
+        let purpose = format!("{} (started {})", self.file, started_at());
         let store = if call.op == "DEBUT" {
-            Store::create(&self.default_db)?
+            Store::create_for(&self.default_db, &purpose)?
         } else {
-            Store::open(&self.default_db)?
+            Store::open_for(&self.default_db, &purpose)?
         };
         if call.op == "POURSUITE" {
             let n = store.concepts()?.len();
@@ -300,6 +301,15 @@ impl Host for Runner<'_> {
             e.at(&self.file, call.op_span)
         })
     }
+}
+
+/// Now, as seconds since the Unix epoch (what the lock file records; no time zone needed).
+fn started_at() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0);
+    format!("at Unix time {secs}")
 }
 
 /// Run a command file. Errors that stop the run are in `RunSummary::error`; the

@@ -214,7 +214,7 @@ fn print_catalog(op: Option<&str>) -> ExitCode {
 }
 
 fn tables(db: &Path) -> ExitCode {
-    let s = match store::Store::open(db) {
+    let s = match store::Store::open_read_only(db) {
         Ok(s) => s,
         Err(e) => return fail(&e, None),
     };

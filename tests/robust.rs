@@ -1,0 +1,213 @@
+//! Issue 11: nothing a user types can destroy data, crash the program or hang it.
+//! Each test drives the `aster-nl` binary as a user would and fails on the builds before
+//! the fix (the item of the issue is named in each test's comment).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_aster-nl"))
+}
+
+fn case(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("testcases")
+        .join(name)
+}
+
+fn text(o: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+/// `aster-nl run <comm> --db <db> [extra...]`.
+fn run_with_db(comm: &Path, db: &Path, extra: &[&str]) -> Output {
+    bin()
+        .arg("run")
+        .arg(comm)
+        .arg("--db")
+        .arg(db)
+        .args(extra)
+        .output()
+        .unwrap()
+}
+
+/// A directory holding a copy of a test case (command file and its mesh, if any).
+fn copy_case(stem: &str) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    for ext in ["comm", "mail"] {
+        let from = case(&format!("{stem}.{ext}"));
+        if from.exists() {
+            std::fs::copy(&from, dir.path().join(format!("{stem}.{ext}"))).unwrap();
+        }
+    }
+    let comm = dir.path().join(format!("{stem}.comm"));
+    (dir, comm)
+}
+
+fn db_concepts(db: &Path) -> Vec<String> {
+    let c = rusqlite::Connection::open(db).unwrap();
+    let mut st = c.prepare("SELECT name FROM concepts ORDER BY rowid").unwrap();
+    let names = st
+        .query_map([], |r| r.get::<_, String>(0))
+        .unwrap()
+        .collect::<Result<Vec<_>, _>>()
+        .unwrap();
+    names
+}
+
+// ---- item 1: DEBUT only replaces an aster-nl database ----
+
+#[test]
+fn debut_refuses_to_replace_the_command_file() {
+    let (_dir, comm) = copy_case("chain_fixed_fixed");
+    let before = std::fs::read(&comm).unwrap();
+    let o = run_with_db(&comm, &comm, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("is not an aster-nl database"), "{out}");
+    assert!(out.contains("--db"), "the message says how to proceed: {out}");
+    assert_eq!(std::fs::read(&comm).unwrap(), before, "the command file was touched");
+    assert!(!out.contains("every concept created before"), "{out}");
+}
+
+#[test]
+fn debut_refuses_to_replace_the_mesh() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let mesh = dir.path().join("chain_fixed_fixed.mail");
+    let before = std::fs::read(&mesh).unwrap();
+    let o = run_with_db(&comm, &mesh, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("chain_fixed_fixed.mail"), "{out}");
+    assert_eq!(std::fs::read(&mesh).unwrap(), before, "the mesh was touched");
+}
+
+#[test]
+fn debut_never_touches_a_directory_or_a_device() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let o = run_with_db(&comm, dir.path(), &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("is a directory"), "{out}");
+    let o = run_with_db(&comm, Path::new("/dev/null"), &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("not a regular file"), "{out}");
+    use std::os::unix::fs::FileTypeExt;
+    let ft = std::fs::symlink_metadata("/dev/null").unwrap().file_type();
+    assert!(ft.is_char_device(), "/dev/null was replaced");
+}
+
+#[test]
+fn debut_refuses_an_sqlite_file_that_is_not_a_study() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let other = dir.path().join("other.db");
+    rusqlite::Connection::open(&other)
+        .unwrap()
+        .execute_batch("CREATE TABLE precious(x); INSERT INTO precious VALUES (42);")
+        .unwrap();
+    let o = run_with_db(&comm, &other, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("not an aster-nl study"), "{out}");
+    let n: i64 = rusqlite::Connection::open(&other)
+        .unwrap()
+        .query_row("SELECT x FROM precious", [], |r| r.get(0))
+        .unwrap();
+    assert_eq!(n, 42);
+}
+
+#[test]
+fn debut_replaces_an_aster_database() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let db = dir.path().join("s.db");
+    for _ in 0..2 {
+        let o = run_with_db(&comm, &db, &[]);
+        assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    }
+    assert!(!db_concepts(&db).is_empty());
+    assert!(
+        !aster_nl::store::study_file::lock_path(&db).exists(),
+        "the lock file is removed at the end of the run"
+    );
+}
+
+// ---- item 2: one run at a time on a study ----
+
+#[test]
+fn a_second_run_on_a_locked_study_is_refused_at_once() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let db = dir.path().join("s.db");
+    let o = run_with_db(&comm, &db, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let before = db_concepts(&db);
+    // Another run holds the study (this test process takes the lock a run takes).
+    let lock =
+        aster_nl::store::study_file::StudyLock::acquire(&db, "first.comm (the first run)")
+            .unwrap();
+    for comm in [comm.clone(), case("poursuite_suite.comm")] {
+        let o = run_with_db(&comm, &db, &[]);
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{out}");
+        assert!(out.contains("is in use by"), "{out}");
+        assert!(
+            out.contains(&format!("process {}", std::process::id())),
+            "names the other process: {out}"
+        );
+        assert!(!out.contains("every concept created before"), "{out}");
+    }
+    assert_eq!(db_concepts(&db), before, "the locked study was changed");
+    drop(lock);
+    let o = run_with_db(&case("poursuite_suite.comm"), &db, &[]);
+    // poursuite_suite continues poursuite_debut, not this study: it fails, but it ran.
+    assert!(!text(&o).contains("is in use by"), "{}", text(&o));
+}
+
+#[test]
+fn tables_reads_a_study_while_a_run_holds_it() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let db = dir.path().join("s.db");
+    let o = run_with_db(&comm, &db, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let _lock = aster_nl::store::study_file::StudyLock::acquire(&db, "x").unwrap();
+    let o = bin().arg("tables").arg(&db).output().unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(text(&o).contains("concepts:"));
+}
+
+// ---- item 7: a study that cannot be written is refused before any operator runs ----
+
+#[test]
+fn poursuite_on_a_read_only_study_is_refused_before_running() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("study.db");
+    let o = run_with_db(&case("poursuite_debut.comm"), &db, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    std::fs::set_permissions(&db, std::fs::Permissions::from_mode(0o444)).unwrap();
+    let o = run_with_db(&case("poursuite_suite.comm"), &db, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("read-only"), "{out}");
+    assert!(!out.contains("TEST_RESU"), "an operator ran: {out}");
+    assert!(!out.contains(" OK "), "an operator ran: {out}");
+}
+
+#[test]
+fn debut_in_a_read_only_directory_is_refused_before_running() {
+    use std::os::unix::fs::PermissionsExt;
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let studies = dir.path().join("studies");
+    std::fs::create_dir(&studies).unwrap();
+    std::fs::set_permissions(&studies, std::fs::Permissions::from_mode(0o555)).unwrap();
+    let o = run_with_db(&comm, &studies.join("s.db"), &[]);
+    std::fs::set_permissions(&studies, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("read-only"), "{out}");
+    assert!(!out.contains(" OK "), "an operator ran: {out}");
+}
