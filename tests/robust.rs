@@ -211,3 +211,27 @@ fn debut_in_a_read_only_directory_is_refused_before_running() {
     assert!(out.contains("read-only"), "{out}");
     assert!(!out.contains(" OK "), "an operator ran: {out}");
 }
+
+// ---- item 5: errors far along a long line, and long lines in linear time ----
+
+#[test]
+fn an_error_past_column_65535_is_reported_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let comm = dir.path().join("long.comm");
+    let vale: Vec<String> = (0..7000).map(|i| format!("{i}.0, {}", i as f64 * 0.5)).collect();
+    let line = format!(
+        "F = DEFI_FONCTION(NOM_PARA='INST', VALE=({}, BADKW))",
+        vale.join(", ")
+    );
+    let col = line.find("BADKW").unwrap() + 1;
+    assert!(col > 65_535);
+    std::fs::write(&comm, format!("DEBUT()\n{line}\nFIN()\n")).unwrap();
+    for sub in ["check", "run"] {
+        let o = bin().arg(sub).arg(&comm).output().unwrap();
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{sub}: {out}");
+        assert!(!out.contains("panicked"), "{sub}: {out}");
+        assert!(out.contains("BADKW"), "{sub}: {out}");
+        assert!(out.contains(&format!("long.comm:2:{col}")), "{sub}: {out}");
+    }
+}
