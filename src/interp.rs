@@ -328,6 +328,9 @@ pub fn run_file(path: &Path, opts: RunOptions, out: &mut dyn Write) -> Result<Ru
     let default_db = opts.db.clone().unwrap_or_else(|| path.with_extension("db"));
     let mut units = opts.units;
     units.comm_file.get_or_insert_with(|| path.to_path_buf());
+    units
+        .protected
+        .push((path.to_path_buf(), "the command file of the run".into()));
     run_source(&src, default_db, units, opts.progress, out)
 }
 
@@ -348,6 +351,19 @@ pub fn run_source(
             })
         }
     };
+    let mut units = units;
+    units
+        .protected
+        .push((db.clone(), "the database of the study".into()));
+    units.protected.push((
+        crate::store::study_file::lock_path(&db),
+        "the lock file of the study".into(),
+    ));
+    for j in crate::store::study_file::journal_paths(&db) {
+        units
+            .protected
+            .push((j, "a journal of the study's database".into()));
+    }
     let mut runner = Runner {
         file: src.name.clone(),
         default_db: db,

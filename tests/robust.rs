@@ -235,3 +235,88 @@ fn an_error_past_column_65535_is_reported_not_a_panic() {
         assert!(out.contains(&format!("long.comm:2:{col}")), "{sub}: {out}");
     }
 }
+
+// ---- item 6: prints never write over the study or the files of the run ----
+
+const PRINTS: &str = "DEBUT()
+T = CREA_TABLE(LISTE=(_F(PARA='NUME_ORDRE', LISTE_I=(1, 2)), _F(PARA='FREQ', LISTE_R=(1., 2.))))
+F = DEFI_FONCTION(NOM_PARA='INST', VALE=(0., 0., 1., 1.))
+IMPR_TABLE(TABLE=T, UNITE=30)
+FIN()
+";
+
+#[test]
+fn impr_table_refuses_to_write_over_the_database_or_the_command_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let comm = dir.path().join("p.comm");
+    std::fs::write(&comm, PRINTS).unwrap();
+    let db = dir.path().join("p.db");
+    let o = run_with_db(&comm, &db, &["--unit", &format!("30={}", db.display())]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("the database of the study"), "{out}");
+    // The database is whole: the concepts before the print are there.
+    assert_eq!(db_concepts(&db), vec!["T".to_string(), "F".to_string()]);
+    let c = rusqlite::Connection::open(&db).unwrap();
+    let ok: String = c
+        .query_row("PRAGMA integrity_check", [], |r| r.get(0))
+        .unwrap();
+    assert_eq!(ok, "ok");
+    let o = run_with_db(&comm, &db, &["--unit", &format!("30={}", comm.display())]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("the command file of the run"), "{out}");
+    assert_eq!(std::fs::read_to_string(&comm).unwrap(), PRINTS);
+}
+
+#[test]
+fn impr_fonction_refuses_to_write_over_the_mesh_it_read_or_another_database() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let mesh = dir.path().join("chain_fixed_fixed.mail");
+    let before = std::fs::read(&mesh).unwrap();
+    let mut text_comm = std::fs::read_to_string(&comm).unwrap();
+    let fin = text_comm.rfind("FIN(").unwrap();
+    text_comm.insert_str(
+        fin,
+        "FX = DEFI_FONCTION(NOM_PARA='INST', VALE=(0., 0., 1., 1.))\nIMPR_FONCTION(UNITE=20, COURBE=_F(FONCTION=FX))\n",
+    );
+    std::fs::write(&comm, &text_comm).unwrap();
+    let db = dir.path().join("s.db");
+    let o = run_with_db(&comm, &db, &["--unit", &format!("20={}", mesh.display())]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("input file this run read"), "{out}");
+    assert_eq!(std::fs::read(&mesh).unwrap(), before);
+    // Another study's database is not a print target either.
+    let other = dir.path().join("other.db");
+    let o = run_with_db(&case("tables_functions.comm"), &other, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let before = std::fs::read(&other).unwrap();
+    std::fs::write(&comm, PRINTS).unwrap();
+    let o = run_with_db(&comm, &db, &["--unit", &format!("30={}", other.display())]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("is an SQLite database"), "{out}");
+    assert_eq!(std::fs::read(&other).unwrap(), before);
+}
+
+#[test]
+fn a_picture_may_not_replace_the_database() {
+    let dir = tempfile::tempdir().unwrap();
+    let comm = dir.path().join("p.comm");
+    std::fs::write(
+        &comm,
+        PRINTS.replace(
+            "IMPR_TABLE(TABLE=T, UNITE=30)",
+            "IMPR_FONCTION(FORMAT='PNG', FICHIER='p.db', COURBE=_F(FONCTION=F))",
+        ),
+    )
+    .unwrap();
+    let db = dir.path().join("p.db");
+    let o = run_with_db(&comm, &db, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("the database of the study"), "{out}");
+    assert!(out.contains("FICHIER"), "{out}");
+    assert_eq!(db_concepts(&db), vec!["T".to_string(), "F".to_string()]);
+}
