@@ -320,3 +320,42 @@ fn a_picture_may_not_replace_the_database() {
     assert!(out.contains("FICHIER"), "{out}");
     assert_eq!(db_concepts(&db), vec!["T".to_string(), "F".to_string()]);
 }
+
+// ---- item 3: the catalog's bounds are what the operators enforce ----
+
+/// `check` and `run` agree on each bound: both refuse the value, naming the keyword (before
+/// the fix, `check` accepted every one of these values and `run` refused them).
+#[test]
+fn check_refuses_what_run_refuses() {
+    let base = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let cases: &[(&str, &str, &str)] = &[
+        ("NB_BRANCHE=105", "NB_BRANCHE=0", "NB_BRANCHE"),
+        ("NB_ORDRE_MAN=20", "NB_ORDRE_MAN=1", "NB_ORDRE_MAN"),
+        ("ITER_NEWTON_MAXI=15", "ITER_NEWTON_MAXI=0", "ITER_NEWTON_MAXI"),
+        ("PREC_MAN=1.e-14", "PREC_MAN=0.", "PREC_MAN"),
+        ("PREC_NEWTON=1.e-9", "PREC_NEWTON=0.", "PREC_NEWTON"),
+        ("NB_PAS_MAN=1", "NB_PAS_MAN=0", "NB_PAS_MAN"),
+        ("NB_HARM_LINE=5", "NB_HARM_LINE=0", "NB_HARM_LINE"),
+        ("PREC_MAN=1.e-14", "PREC_MAN=1.e400", "PREC_MAN"),
+        ("JEU=0.01", "JEU=0.", "JEU"),
+        ("RIGI_NOR=50.", "RIGI_NOR=0.", "RIGI_NOR"),
+        ("PARA_REGUL=5.e-5", "PARA_REGUL=0.", "PARA_REGUL"),
+        ("COEF_AMPL=1.", "COEF_AMPL=0.", "COEF_AMPL"),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("b.mail")).unwrap();
+    let comm = dir.path().join("b.comm");
+    for (from, to, kw) in cases {
+        assert!(base.contains(from), "{from}");
+        std::fs::write(&comm, base.replace(from, to)).unwrap();
+        let o = bin().arg("check").arg(&comm).output().unwrap();
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "check {to}: {out}");
+        assert!(out.contains(kw), "check {to}: {out}");
+        let o = run_with_db(&comm, &dir.path().join("b.db"), &[]);
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "run {to}: {out}");
+        assert!(out.contains(kw), "run {to}: {out}");
+        assert!(!out.contains("MODE_NON_LINE: branch"), "run {to} computed: {out}");
+    }
+}

@@ -116,15 +116,13 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
 fn mode_request(args: &Args) -> Result<ModeRequest> {
     let option = args.text("OPTION").unwrap_or("PLUS_PETITE");
     let cf = args.fact("CALC_FREQ");
-    let nmax = cf.and_then(|c| c.int("NMAX_FREQ")).unwrap_or(10);
     let freqs = cf.and_then(|c| c.reals("FREQ")).unwrap_or_default();
-    let n = usize::try_from(nmax)
-        .ok()
-        .filter(|&n| n > 0)
-        .ok_or_else(|| {
-            Error::validation(format!("NMAX_FREQ must be a positive integer, got {nmax}"))
-                .keyword("CALC_MODES/CALC_FREQ/NMAX_FREQ")
-        })?;
+    // At least 1: the catalog's bound.
+    let n = match cf {
+        Some(c) => c.count("NMAX_FREQ")?,
+        None => None,
+    }
+    .unwrap_or(10);
     match option {
         "PLUS_PETITE" => Ok(ModeRequest::Smallest { n }),
         "BANDE" => match freqs.as_slice() {

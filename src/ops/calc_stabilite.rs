@@ -29,11 +29,11 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         "RUNGE_KUTTA_4" => Integrator::Rk4,
         _ => Integrator::Newmark,
     };
-    let n_inst = schema.and_then(|s| s.int("NB_INST")).unwrap_or(1000);
-    let n_inst = usize::try_from(n_inst).map_err(|_| {
-        Error::validation(format!("NB_INST must be positive, got {n_inst}"))
-            .keyword("CALC_STABILITE/SCHEMA_TEMPS/NB_INST")
-    })?;
+    let n_inst = match schema {
+        Some(s) => s.count("NB_INST")?,
+        None => None,
+    }
+    .unwrap_or(1000);
     let rows = selected_rows(&table, args.req_fact("FILTRE")?)?;
     if rows.is_empty() {
         return Err(Error::validation("FILTRE selects no row of the table")

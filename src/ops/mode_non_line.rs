@@ -231,13 +231,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
 
 fn settings(args: &Args) -> Result<Settings> {
     let r = args.req_fact("RESOLUTION")?;
-    let usize_of = |key: &str| -> Result<usize> {
-        let v = r.req_int(key)?;
-        usize::try_from(v).ok().filter(|&v| v > 0).ok_or_else(|| {
-            Error::validation(format!("{key} must be a positive integer, got {v}"))
-                .keyword(format!("MODE_NON_LINE/RESOLUTION/{key}"))
-        })
-    };
+    // The bounds (at least 1, NB_ORDRE_MAN at least 2) are the catalog's.
+    let usize_of = |key: &str| r.req_count(key);
     let h_lin = usize_of("NB_HARM_LINE")?;
     let h_nonl = usize_of("NB_HARM_NONL")?;
     if h_nonl < h_lin {
@@ -310,14 +305,8 @@ fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<StoredShock>
             }));
         }
         let node = choc_node(ctx, args, c, &kw)?;
-        let positive = |key: &str| -> Result<f64> {
-            let v = c.req_real(key)?;
-            if v > 0.0 && v.is_finite() {
-                Ok(v)
-            } else {
-                Err(Error::validation(format!("{key} must be positive, got {v}")).keyword(kw(key)))
-            }
-        };
+        // Finite and > 0: the catalog's bounds (val_min = 0, excluded).
+        let positive = |key: &str| c.req_real(key);
         let gap = positive("JEU")?;
         let stiffness = positive("RIGI_NOR")?;
         let regul = positive("PARA_REGUL")?;
