@@ -359,3 +359,34 @@ fn check_refuses_what_run_refuses() {
         assert!(!out.contains("MODE_NON_LINE: branch"), "run {to} computed: {out}");
     }
 }
+
+/// Size keywords that asked for terabytes (and aborted the process) or overflowed a
+/// capacity (a panic) are refused at once, naming the keyword, the estimate and the memory.
+#[test]
+fn size_keywords_that_cannot_fit_are_refused_before_allocating() {
+    let base = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("b.mail")).unwrap();
+    let comm = dir.path().join("b.comm");
+    let huge = i64::MAX.to_string();
+    let cases: Vec<(String, &str)> = vec![
+        (base.replace("NB_HARM_NONL=200", "NB_HARM_NONL=100000"), "NB_HARM_NONL"),
+        (
+            base.replace("NB_HARM_NONL=200", &format!("NB_HARM_NONL={huge}"))
+                .replace("NB_HARM_LINE=5", &format!("NB_HARM_LINE={huge}")),
+            "NB_HARM_NONL",
+        ),
+        (base.replace("NB_PAS_MAN=1", "NB_PAS_MAN=1000000"), "NB_PAS_MAN"),
+        (base.replace("NB_INST=256", "NB_INST=1000000000000"), "REST_MODE_NONL/NB_INST"),
+    ];
+    for (text_comm, kw) in cases {
+        std::fs::write(&comm, &text_comm).unwrap();
+        let o = run_with_db(&comm, &dir.path().join("b.db"), &[]);
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{kw}: {out}");
+        assert!(out.contains(kw), "{kw}: {out}");
+        assert!(out.contains("of memory"), "{kw}: {out}");
+        assert!(out.contains("available") || out.contains("unknown"), "{kw}: {out}");
+        assert!(!out.contains("panicked"), "{kw}: {out}");
+    }
+}

@@ -47,6 +47,18 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let stab_col = table.req_col("STABILITE")?;
     let order_col = table.req_col("NUME_ORDRE")?;
     // Built once: what every row's analysis shares (layout, dense K and M, laws).
+    let n = problem.k.nrows();
+    crate::ops::resources::check_memory(
+        "CALC_STABILITE/SCHEMA_TEMPS/NB_INST",
+        &format!("the monodromy matrix of {n} DOF(s)"),
+        crate::nnm::budget::floquet_bytes(n),
+    )?;
+    crate::ops::resources::warn_long_work(
+        ctx,
+        "CALC_STABILITE/SCHEMA_TEMPS/NB_INST",
+        &format!("{n_inst} steps per period for each of {} row(s)", rows.len()),
+        crate::nnm::budget::floquet_flops(n, n_inst) * rows.len() as f64,
+    )?;
     let analyser = FloquetAnalyser::new(&problem, &settings)?;
     let progress = Progress::new(ctx.progress, rows.len() as u64, "CALC_STABILITE");
     let (mut stable, mut unstable) = (0usize, 0usize);

@@ -40,6 +40,7 @@ pub mod plot_args;
 mod plot_op_tests;
 pub mod progress;
 pub mod recu_fonction;
+pub mod resources;
 pub mod rest_mode_nonl;
 pub mod table_args;
 pub mod test_fonction;

@@ -97,6 +97,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         shocks,
     };
 
+    check_budget(ctx, &problem, &settings, &stored_shocks)?;
+
     // Start point.
     let nume_ordre = etat.req_int("NUME_ORDRE")?;
     let start: StartState = match &restart_from {
@@ -227,6 +229,46 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         ctx.deferred_error = Some(e.keyword("MODE_NON_LINE").hint(hint));
     }
     Ok(())
+}
+
+/// Refuse a call that cannot fit in memory, warn about one that will take very long: from
+/// the sizes alone, before the engine allocates anything.
+fn check_budget(
+    ctx: &mut OpContext<'_>,
+    problem: &Problem,
+    s: &Settings,
+    shocks: &[StoredShock],
+) -> Result<()> {
+    use crate::nnm::budget;
+    use crate::ops::resources;
+    let shock_unknowns = shocks
+        .iter()
+        .map(|c| match c.obstacle.as_str() {
+            "CERCLE" => 4,
+            "BI_PLAN" => 2,
+            _ => 1,
+        })
+        .sum();
+    let sizes = budget::MnlSizes {
+        n_dofs: problem.k.nrows(),
+        nnz: problem.k.compute_nnz() + problem.m.compute_nnz(),
+        h_lin: s.h_lin,
+        h_nonl: if shocks.is_empty() { s.h_lin } else { s.h_nonl },
+        shock_unknowns,
+        order: s.order,
+        stored_points: s.n_branches as f64 * s.n_points_per_branch as f64,
+    };
+    resources::check_memory(
+        "MODE_NON_LINE/RESOLUTION (NB_HARM_LINE, NB_HARM_NONL, NB_ORDRE_MAN, NB_BRANCHE, NB_PAS_MAN)",
+        "the harmonic-balance continuation",
+        budget::memory_estimate(&sizes),
+    )?;
+    resources::warn_long_work(
+        ctx,
+        "MODE_NON_LINE/RESOLUTION",
+        "the continuation",
+        budget::mnl_branch_flops(&sizes) * s.n_branches as f64,
+    )
 }
 
 fn settings(args: &Args) -> Result<Settings> {

@@ -63,6 +63,12 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         _ => {
             // At least 2 (the catalog's bound).
             let n_inst = args.count("NB_INST")?.unwrap_or(512);
+            let n = problem.k.nrows();
+            crate::ops::resources::check_memory(
+                "REST_MODE_NONL/NB_INST",
+                &format!("the time history of {n} DOF(s) at {n_inst} instants"),
+                nnm::budget::time_history_bytes(n, n_inst),
+            )?;
             let th = nnm::time_history(&problem, &settings, &x, n_inst)?;
             let mut t = Table::new(format!("REST_MODE_NONL {src} NUME_ORDRE={order}"));
             for (c, kind) in [
