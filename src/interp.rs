@@ -181,6 +181,10 @@ impl Runner<'_> {
         })?;
         let info = args.int("INFO").unwrap_or(1);
         let mut tests = Vec::new();
+        // Every concept given to the operator must still be what it was computed from.
+        for used in concept_arguments(args) {
+            store.check_dependencies(&used)?;
+        }
         store.begin_op()?;
         let started = Instant::now();
         let mut ctx = OpContext::new(store, &call.op, &mut *self.out, &self.units, &mut tests);
@@ -212,6 +216,10 @@ impl Runner<'_> {
             self.summary
                 .created
                 .push((name.clone(), ty.clone(), call.op.clone()));
+        }
+        if let Some(reused) = &ctx_reuse_name(call) {
+            // Changed in place: what was computed from it no longer matches.
+            store.new_generation(reused)?;
         }
         if let Some(e) = deferred {
             // The operator's results are committed; the run still stops here.
@@ -464,6 +472,34 @@ pub fn check_source(src: &Source) -> Vec<Error> {
         checker.errors.push(e);
     }
     checker.errors
+}
+
+/// Names of the concepts given to a call (every keyword, at every level).
+fn concept_arguments(args: &Args) -> Vec<String> {
+    fn walk(v: &Value, out: &mut Vec<String>) {
+        match v {
+            Value::Concept(c) => out.push(c.name.clone()),
+            Value::Seq(items) => items.iter().for_each(|i| walk(i, out)),
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    for (_, v, _) in &args.simple {
+        walk(v, &mut out);
+    }
+    for (_, occurrences, _) in &args.factor {
+        for occ in occurrences {
+            out.extend(concept_arguments(occ));
+        }
+    }
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// The concept a call changes in place (`reuse=`), if any.
+fn ctx_reuse_name(call: &CommandCall) -> Option<String> {
+    call.reuse.as_ref().map(|c| c.name.clone())
 }
 
 /// Concepts a macro command creates through `CO('NAME')` keywords, with their types (for

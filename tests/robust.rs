@@ -390,3 +390,49 @@ fn size_keywords_that_cannot_fit_are_refused_before_allocating() {
         assert!(!out.contains("panicked"), "{kw}: {out}");
     }
 }
+
+// ---- item 9: a concept computed from another is refused once that one is redefined ----
+
+#[test]
+fn a_mode_non_line_table_is_refused_after_its_stiffness_is_reassigned() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("first.mail")).unwrap();
+    let base = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let mnl = base.find("MNL = MODE_NON_LINE(").expect("sdnd122a computes MNL");
+    let cut = mnl + base[mnl..].find("\n\n").expect("a blank line after the call");
+    let first = format!("{}\nFIN()\n", &base[..cut])
+        .replace("NB_BRANCHE=105", "NB_BRANCHE=5");
+    std::fs::write(dir.path().join("first.comm"), &first).unwrap();
+    let db = dir.path().join("s.db");
+    let o = run_with_db(&dir.path().join("first.comm"), &db, &[]);
+    assert!(matches!(o.status.code(), Some(0) | Some(1)), "{}", text(&o));
+    // POURSUITE: the same model with another spring, same size, assembled as RIGIDITE again.
+    let second = "POURSUITE()
+CARA2 = AFFE_CARA_ELEM(MODELE=MODELE,
+                       DISCRET=(_F(CARA='M_T_D_N', GROUP_MA='P2', VALE=1.0),
+                                _F(CARA='K_T_D_N', GROUP_MA='P2', VALE=(0., 0., 0.)),
+                                _F(CARA='K_T_D_L', GROUP_MA='M1', VALE=(40., 0., 0.),
+                                   REPERE='GLOBAL'),))
+ASSEMBLAGE(MODELE=MODELE, CARA_ELEM=CARA2, CHAR_CINE=CL, NUME_DDL=CO('NUMEDDL'),
+           MATR_ASSE=(_F(MATRICE=CO('RIGIDITE'), OPTION='RIGI_MECA'),))
+HIST = REST_MODE_NONL(MODE_NON_LINE=MNL, NUME_ORDRE=2, TYPE_RESU='DYNA_TRANS', NB_INST=64)
+FIN()
+";
+    std::fs::write(dir.path().join("second.comm"), second).unwrap();
+    let o = run_with_db(&dir.path().join("second.comm"), &db, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("MNL was computed from RIGIDITE"), "{out}");
+    assert!(out.contains("redefined"), "{out}");
+    assert!(!db_concepts(&db).contains(&"HIST".to_string()), "{out}");
+    // CALC_STABILITE is refused the same way.
+    let third = "POURSUITE()
+MNL2 = CALC_STABILITE(MODE_NON_LINE=MNL, FILTRE=_F(NUME_ORDRE=2))
+FIN()
+";
+    std::fs::write(dir.path().join("third.comm"), third).unwrap();
+    let o = run_with_db(&dir.path().join("third.comm"), &db, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("MNL was computed from RIGIDITE"), "{out}");
+}

@@ -43,6 +43,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     if ctx.reuse.is_none() && name != src {
         ctx.create(&name, "table_container")?;
         mnl_store::copy_data(ctx.store, &src, &name)?;
+        ctx.store.copy_dependencies(&src, &name)?;
     }
     let stab_col = table.req_col("STABILITE")?;
     let order_col = table.req_col("NUME_ORDRE")?;

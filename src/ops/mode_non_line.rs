@@ -159,6 +159,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let cara_choc = format!("{name}_CHOC");
     if ctx.reuse.is_none() {
         ctx.create(&name, "table_container")?;
+        // The table names K and M and rebuilds the problem from them when it is used
+        // again: it belongs to these K and M (checked at every use, store::deps).
+        ctx.store.record_dependency(&name, &k_name)?;
+        ctx.store.record_dependency(&name, &m_name)?;
         ctx.create(&cara_choc, "table_sdaster")?;
         table_store::save_table(ctx.store, &cara_choc, &cara_choc_table(&stored_shocks)?)?;
         mnl_store::save_setup(

@@ -12,6 +12,7 @@
 //! Each operator runs inside one transaction ([`Store::begin_op`] / [`Store::commit_op`] /
 //! [`Store::rollback_op`]): an operator that fails leaves the file exactly as before.
 
+pub mod deps;
 pub mod function;
 pub mod matrix;
 pub mod mesh;
@@ -125,6 +126,8 @@ impl Store {
             _lock: Some(lock),
         };
         store.check_schema()?;
+        // A study written before dependencies were recorded gets the tables now.
+        store.conn.execute_batch(deps::SCHEMA)?;
         Ok(store)
     }
 
@@ -166,6 +169,7 @@ impl Store {
     fn init_schema(&self) -> Result<()> {
         self.conn.execute_batch("PRAGMA foreign_keys = ON;")?;
         self.conn.execute_batch(CORE_SCHEMA)?;
+        self.conn.execute_batch(deps::SCHEMA)?;
         self.conn.execute(
             "INSERT OR REPLACE INTO meta(key, value) VALUES ('schema_version', ?1)",
             params![SCHEMA_VERSION.to_string()],
@@ -254,6 +258,7 @@ impl Store {
             "INSERT INTO concepts(name, type, operator, file, line) VALUES (?1, ?2, ?3, ?4, ?5)",
             params![name, ty, operator, file, line as i64],
         )?;
+        self.new_generation(name)?;
         Ok(())
     }
 
@@ -289,6 +294,7 @@ impl Store {
     /// cleanup in [`Store::drop_typed_data`].
     pub fn delete_concept(&self, name: &str) -> Result<()> {
         self.drop_typed_data(name)?;
+        self.drop_dependency_data(name)?;
         self.conn
             .execute("DELETE FROM concept_data WHERE concept = ?1", params![name])?;
         self.conn
