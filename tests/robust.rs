@@ -436,3 +436,43 @@ FIN()
     assert_eq!(o.status.code(), Some(2), "{out}");
     assert!(out.contains("MNL was computed from RIGIDITE"), "{out}");
 }
+
+// ---- item 8: silent acceptance ----
+
+#[test]
+fn the_same_choc_twice_and_one_co_name_twice_are_refused() {
+    let base = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let choc = "_F(OBSTACLE='PLAN', GROUP_NO='N2', NOM_CMP='DX',
+                            JEU=0.01, RIGI_NOR=50., PARA_REGUL=5.e-5)";
+    assert!(base.contains(choc));
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("b.mail")).unwrap();
+    let comm = dir.path().join("b.comm");
+    std::fs::write(&comm, base.replace(choc, &format!("({choc}, {choc})"))).unwrap();
+    let o = run_with_db(&comm, &dir.path().join("b.db"), &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("CHOC[2] acts on the same node"), "{out}");
+    std::fs::write(&comm, base.replace("MATRICE=CO('MASSE')", "MATRICE=CO('RIGIDITE')")).unwrap();
+    let o = run_with_db(&comm, &dir.path().join("b.db"), &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("CO('RIGIDITE') is given twice"), "{out}");
+}
+
+#[test]
+fn an_export_with_two_command_files_or_a_device_unit_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("chain_fixed_fixed.comm"), dir.path().join("a.comm")).unwrap();
+    let export = dir.path().join("a.export");
+    std::fs::write(&export, "F comm a.comm D 1\nF comm a.comm D 1\n").unwrap();
+    let o = bin().arg("run").arg(&export).output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("a second F comm"), "{out}");
+    std::fs::write(&export, "F comm a.comm D 1\nF mail /dev/null D 20\n").unwrap();
+    let o = bin().arg("run").arg(&export).output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("not a regular file"), "{out}");
+}

@@ -363,6 +363,19 @@ fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<StoredShock>
                     .keyword(kw("ORIG_OBST")),
             );
         }
+        // The same shock twice doubles its stiffness without a word: refuse it.
+        if let Some(j) = out
+            .iter()
+            .position(|s: &StoredShock| s.node == node && s.cmps == cmps)
+        {
+            return Err(Error::validation(format!(
+                "CHOC[{}] acts on the same node and components as CHOC[{}]",
+                i + 1,
+                j + 1
+            ))
+            .keyword(format!("MODE_NON_LINE/CHOC[{}]", i + 1))
+            .hint("give each shock once; two obstacles on one DOF are one BI_PLAN"));
+        }
         out.push(StoredShock {
             obstacle,
             node,
