@@ -97,12 +97,18 @@ mod tests {
 
     #[test]
     fn a_second_comm_a_directory_and_a_path_with_a_space_are_refused() {
-        let e = parse_export("F comm a.comm D 1\nF comm b.comm D 1\n", Path::new("x.export"))
-            .unwrap_err();
-        assert_eq!(e.location.unwrap().span.line, 2);
+        let e = parse_export(
+            "F comm a.comm D 1\nF comm b.comm D 1\n",
+            Path::new("x.export"),
+        )
+        .unwrap_err();
+        assert_eq!(e.location.as_ref().unwrap().span.line, 2);
         assert!(e.message.contains("a second F comm"), "{e}");
-        let e = parse_export("F comm a.comm D 1\nF mail /tmp D 20\n", Path::new("x.export"))
-            .unwrap_err();
+        let e = parse_export(
+            "F comm a.comm D 1\nF mail /tmp D 20\n",
+            Path::new("x.export"),
+        )
+        .unwrap_err();
         assert!(e.message.contains("not a regular file"), "{e}");
         let e = parse_export("F comm my case.comm D 1\n", Path::new("x.export")).unwrap_err();
         assert!(e.message.contains("a path with a space"), "{e}");

@@ -126,9 +126,10 @@ fn run(file: &Path, db: Option<PathBuf>, unit_specs: &[String]) -> ExitCode {
                     .protected
                     .push((file.to_path_buf(), "the export file of the run".into()));
                 for (n, p) in exp.units {
-                    units
-                        .protected
-                        .push((p.clone(), format!("the input file of unit {n} in the export")));
+                    units.protected.push((
+                        p.clone(),
+                        format!("the input file of unit {n} in the export"),
+                    ));
                     units.map.entry(n).or_insert(p);
                 }
                 exp.comm

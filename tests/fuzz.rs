@@ -53,14 +53,73 @@ impl Rng {
 
 /// Tokens a hostile but fair user might type.
 const TOKENS: &[&str] = &[
-    "0", "-1", "1e400", "-1e400", "nan", "1e-320", "9223372036854775807",
-    "18446744073709551616", "100000", "1e9", "0.", "(", ")", "[", "]", "_F(", ",", "=", "'",
-    "\"", "\\", "#", "\n", "\t", " ", "\u{feff}", "é", "CO('K2')", "reuse=", "DEBUT()",
-    "POURSUITE()", "FIN()", "None", "for i in range(3):", "    ", "from math import *",
-    "**", "/0", "1/0.", "2**1000", "NB_HARM_NONL=", "NB_INST=", "NB_PAS_MAN=", "NB_BRANCHE=",
-    "JEU=", "RIGI_NOR=", "UNITE=", "FICHIER='x.db'", "CHOC=_F(", "MATR_RIGI=", "TABLE=",
-    "NUME_ORDRE=", "DETRUIRE(CONCEPT=_F(NOM=K))", "$Nodes", "$EndNodes", "$Elements",
-    "COOR_3D", "FINSF", "FIN", "SEG2", "POI1", "GROUP_MA", "N1", "M1", "-0", "+", "-",
+    "0",
+    "-1",
+    "1e400",
+    "-1e400",
+    "nan",
+    "1e-320",
+    "9223372036854775807",
+    "18446744073709551616",
+    "100000",
+    "1e9",
+    "0.",
+    "(",
+    ")",
+    "[",
+    "]",
+    "_F(",
+    ",",
+    "=",
+    "'",
+    "\"",
+    "\\",
+    "#",
+    "\n",
+    "\t",
+    " ",
+    "\u{feff}",
+    "é",
+    "CO('K2')",
+    "reuse=",
+    "DEBUT()",
+    "POURSUITE()",
+    "FIN()",
+    "None",
+    "for i in range(3):",
+    "    ",
+    "from math import *",
+    "**",
+    "/0",
+    "1/0.",
+    "2**1000",
+    "NB_HARM_NONL=",
+    "NB_INST=",
+    "NB_PAS_MAN=",
+    "NB_BRANCHE=",
+    "JEU=",
+    "RIGI_NOR=",
+    "UNITE=",
+    "FICHIER='x.db'",
+    "CHOC=_F(",
+    "MATR_RIGI=",
+    "TABLE=",
+    "NUME_ORDRE=",
+    "DETRUIRE(CONCEPT=_F(NOM=K))",
+    "$Nodes",
+    "$EndNodes",
+    "$Elements",
+    "COOR_3D",
+    "FINSF",
+    "FIN",
+    "SEG2",
+    "POI1",
+    "GROUP_MA",
+    "N1",
+    "M1",
+    "-0",
+    "+",
+    "-",
 ];
 
 /// One mutation of `text`.
@@ -99,8 +158,18 @@ fn mutate(rng: &mut Rng, text: &str) -> String {
                         b += 1;
                     }
                     let tok = rng.pick(&[
-                        "0", "-1", "1e400", "nan", "100000", "1000000000", "9223372036854775807",
-                        "1e-300", "2", "3.5", "-0.", "1e6",
+                        "0",
+                        "-1",
+                        "1e400",
+                        "nan",
+                        "100000",
+                        "1000000000",
+                        "9223372036854775807",
+                        "1e-300",
+                        "2",
+                        "3.5",
+                        "-0.",
+                        "1e6",
                     ]);
                     out.splice(a..b, tok.bytes());
                 }
@@ -227,8 +296,11 @@ impl Campaign {
             let base = self.findings_dir.join(format!("{n:04}-{input_name}"));
             let _ = std::fs::write(&base, input);
             let _ = std::fs::write(base.with_extension("why"), format!("{what}\n{why}"));
-            self.findings
-                .push(format!("{what} on {}: {}", base.display(), why.lines().next().unwrap_or("")));
+            self.findings.push(format!(
+                "{what} on {}: {}",
+                base.display(),
+                why.lines().next().unwrap_or("")
+            ));
         }
     }
 }
@@ -276,9 +348,16 @@ fn mutated_inputs_never_crash_or_hang() {
             let n = p.file_name().unwrap().to_string_lossy();
             std::env::var_os("FUZZ_ALL_RUNS").is_some()
                 || [
-                    "chain_fixed_fixed", "chain_free_free", "beam_cantilever",
-                    "tables_functions", "poursuite_debut", "sdnd122a", "syntax", "catalog",
-                    "runtime", "nook",
+                    "chain_fixed_fixed",
+                    "chain_free_free",
+                    "beam_cantilever",
+                    "tables_functions",
+                    "poursuite_debut",
+                    "sdnd122a",
+                    "syntax",
+                    "catalog",
+                    "runtime",
+                    "nook",
                 ]
                 .iter()
                 .any(|q| n.starts_with(q))

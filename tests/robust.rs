@@ -50,7 +50,9 @@ fn copy_case(stem: &str) -> (tempfile::TempDir, PathBuf) {
 
 fn db_concepts(db: &Path) -> Vec<String> {
     let c = rusqlite::Connection::open(db).unwrap();
-    let mut st = c.prepare("SELECT name FROM concepts ORDER BY rowid").unwrap();
+    let mut st = c
+        .prepare("SELECT name FROM concepts ORDER BY rowid")
+        .unwrap();
     let names = st
         .query_map([], |r| r.get::<_, String>(0))
         .unwrap()
@@ -69,8 +71,15 @@ fn debut_refuses_to_replace_the_command_file() {
     let out = text(&o);
     assert_eq!(o.status.code(), Some(2), "{out}");
     assert!(out.contains("is not an aster-nl database"), "{out}");
-    assert!(out.contains("--db"), "the message says how to proceed: {out}");
-    assert_eq!(std::fs::read(&comm).unwrap(), before, "the command file was touched");
+    assert!(
+        out.contains("--db"),
+        "the message says how to proceed: {out}"
+    );
+    assert_eq!(
+        std::fs::read(&comm).unwrap(),
+        before,
+        "the command file was touched"
+    );
     assert!(!out.contains("every concept created before"), "{out}");
 }
 
@@ -83,7 +92,11 @@ fn debut_refuses_to_replace_the_mesh() {
     let out = text(&o);
     assert_eq!(o.status.code(), Some(2), "{out}");
     assert!(out.contains("chain_fixed_fixed.mail"), "{out}");
-    assert_eq!(std::fs::read(&mesh).unwrap(), before, "the mesh was touched");
+    assert_eq!(
+        std::fs::read(&mesh).unwrap(),
+        before,
+        "the mesh was touched"
+    );
 }
 
 #[test]
@@ -147,8 +160,7 @@ fn a_second_run_on_a_locked_study_is_refused_at_once() {
     let before = db_concepts(&db);
     // Another run holds the study (this test process takes the lock a run takes).
     let lock =
-        aster_nl::store::study_file::StudyLock::acquire(&db, "first.comm (the first run)")
-            .unwrap();
+        aster_nl::store::study_file::StudyLock::acquire(&db, "first.comm (the first run)").unwrap();
     for comm in [comm.clone(), case("poursuite_suite.comm")] {
         let o = run_with_db(&comm, &db, &[]);
         let out = text(&o);
@@ -218,7 +230,9 @@ fn debut_in_a_read_only_directory_is_refused_before_running() {
 fn an_error_past_column_65535_is_reported_not_a_panic() {
     let dir = tempfile::tempdir().unwrap();
     let comm = dir.path().join("long.comm");
-    let vale: Vec<String> = (0..7000).map(|i| format!("{i}.0, {}", i as f64 * 0.5)).collect();
+    let vale: Vec<String> = (0..7000)
+        .map(|i| format!("{i}.0, {}", i as f64 * 0.5))
+        .collect();
     let line = format!(
         "F = DEFI_FONCTION(NOM_PARA='INST', VALE=({}, BADKW))",
         vale.join(", ")
@@ -331,7 +345,11 @@ fn check_refuses_what_run_refuses() {
     let cases: &[(&str, &str, &str)] = &[
         ("NB_BRANCHE=105", "NB_BRANCHE=0", "NB_BRANCHE"),
         ("NB_ORDRE_MAN=20", "NB_ORDRE_MAN=1", "NB_ORDRE_MAN"),
-        ("ITER_NEWTON_MAXI=15", "ITER_NEWTON_MAXI=0", "ITER_NEWTON_MAXI"),
+        (
+            "ITER_NEWTON_MAXI=15",
+            "ITER_NEWTON_MAXI=0",
+            "ITER_NEWTON_MAXI",
+        ),
         ("PREC_MAN=1.e-14", "PREC_MAN=0.", "PREC_MAN"),
         ("PREC_NEWTON=1.e-9", "PREC_NEWTON=0.", "PREC_NEWTON"),
         ("NB_PAS_MAN=1", "NB_PAS_MAN=0", "NB_PAS_MAN"),
@@ -356,7 +374,10 @@ fn check_refuses_what_run_refuses() {
         let out = text(&o);
         assert_eq!(o.status.code(), Some(2), "run {to}: {out}");
         assert!(out.contains(kw), "run {to}: {out}");
-        assert!(!out.contains("MODE_NON_LINE: branch"), "run {to} computed: {out}");
+        assert!(
+            !out.contains("MODE_NON_LINE: branch"),
+            "run {to} computed: {out}"
+        );
     }
 }
 
@@ -370,14 +391,23 @@ fn size_keywords_that_cannot_fit_are_refused_before_allocating() {
     let comm = dir.path().join("b.comm");
     let huge = i64::MAX.to_string();
     let cases: Vec<(String, &str)> = vec![
-        (base.replace("NB_HARM_NONL=200", "NB_HARM_NONL=100000"), "NB_HARM_NONL"),
+        (
+            base.replace("NB_HARM_NONL=200", "NB_HARM_NONL=100000"),
+            "NB_HARM_NONL",
+        ),
         (
             base.replace("NB_HARM_NONL=200", &format!("NB_HARM_NONL={huge}"))
                 .replace("NB_HARM_LINE=5", &format!("NB_HARM_LINE={huge}")),
             "NB_HARM_NONL",
         ),
-        (base.replace("NB_PAS_MAN=1", "NB_PAS_MAN=1000000"), "NB_PAS_MAN"),
-        (base.replace("NB_INST=256", "NB_INST=1000000000000"), "REST_MODE_NONL/NB_INST"),
+        (
+            base.replace("NB_PAS_MAN=1", "NB_PAS_MAN=1000000"),
+            "NB_PAS_MAN",
+        ),
+        (
+            base.replace("NB_INST=256", "NB_INST=1000000000000"),
+            "REST_MODE_NONL/NB_INST",
+        ),
     ];
     for (text_comm, kw) in cases {
         std::fs::write(&comm, &text_comm).unwrap();
@@ -386,7 +416,10 @@ fn size_keywords_that_cannot_fit_are_refused_before_allocating() {
         assert_eq!(o.status.code(), Some(2), "{kw}: {out}");
         assert!(out.contains(kw), "{kw}: {out}");
         assert!(out.contains("of memory"), "{kw}: {out}");
-        assert!(out.contains("available") || out.contains("unknown"), "{kw}: {out}");
+        assert!(
+            out.contains("available") || out.contains("unknown"),
+            "{kw}: {out}"
+        );
         assert!(!out.contains("panicked"), "{kw}: {out}");
     }
 }
@@ -398,10 +431,14 @@ fn a_mode_non_line_table_is_refused_after_its_stiffness_is_reassigned() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::copy(case("sdnd122a.mail"), dir.path().join("first.mail")).unwrap();
     let base = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
-    let mnl = base.find("MNL = MODE_NON_LINE(").expect("sdnd122a computes MNL");
-    let cut = mnl + base[mnl..].find("\n\n").expect("a blank line after the call");
-    let first = format!("{}\nFIN()\n", &base[..cut])
-        .replace("NB_BRANCHE=105", "NB_BRANCHE=5");
+    let mnl = base
+        .find("MNL = MODE_NON_LINE(")
+        .expect("sdnd122a computes MNL");
+    let cut = mnl
+        + base[mnl..]
+            .find("\n\n")
+            .expect("a blank line after the call");
+    let first = format!("{}\nFIN()\n", &base[..cut]).replace("NB_BRANCHE=105", "NB_BRANCHE=5");
     std::fs::write(dir.path().join("first.comm"), &first).unwrap();
     let db = dir.path().join("s.db");
     let o = run_with_db(&dir.path().join("first.comm"), &db, &[]);
@@ -453,7 +490,11 @@ fn the_same_choc_twice_and_one_co_name_twice_are_refused() {
     let out = text(&o);
     assert_eq!(o.status.code(), Some(2), "{out}");
     assert!(out.contains("CHOC[2] acts on the same node"), "{out}");
-    std::fs::write(&comm, base.replace("MATRICE=CO('MASSE')", "MATRICE=CO('RIGIDITE')")).unwrap();
+    std::fs::write(
+        &comm,
+        base.replace("MATRICE=CO('MASSE')", "MATRICE=CO('RIGIDITE')"),
+    )
+    .unwrap();
     let o = run_with_db(&comm, &dir.path().join("b.db"), &[]);
     let out = text(&o);
     assert_eq!(o.status.code(), Some(2), "{out}");

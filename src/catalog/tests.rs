@@ -644,7 +644,11 @@ fn values_outside_into_and_bounds() {
         "MODE_NON_LINE/CHOC/JEU",
         62,
     );
-    assert!(e.message.starts_with("expected a finite number"), "{}", e.message);
+    assert!(
+        e.message.starts_with("expected a finite number"),
+        "{}",
+        e.message
+    );
     let c = call(
         "DEBUT",
         vec![k("RESERVE_CPU", f(vec![k("POURCENTAGE", r(1.5), 3)]), 2)],

@@ -188,7 +188,10 @@ impl Excerpt {
         // The error's line: keep EXCERPT_BEFORE characters before the span.
         let before = &text[line_start..start];
         let skip = before.chars().count().saturating_sub(EXCERPT_BEFORE);
-        let kept_from = before.char_indices().nth(skip).map_or(start, |(i, _)| line_start + i);
+        let kept_from = before
+            .char_indices()
+            .nth(skip)
+            .map_or(start, |(i, _)| line_start + i);
         if skip > 0 {
             out.push_str("...");
         }
@@ -350,11 +353,16 @@ mod tests {
         assert!(r.contains(&format!("[f.comm:2:{}]", span.col)), "{r}");
         assert!(r.contains("..."), "the line is cut: {r}");
         assert!(r.lines().all(|l| l.chars().count() < 300), "{r}");
-        let caret_line = r.lines().find(|l| l.contains('─') && l.contains('·')).unwrap();
+        let caret_line = r
+            .lines()
+            .find(|l| l.contains('─') && l.contains('·'))
+            .unwrap();
         let code_line = r.lines().find(|l| l.contains("BAD)")).unwrap();
         assert_eq!(
             caret_line.chars().position(|c| c == '─'),
-            code_line.find("BAD").map(|b| code_line[..b].chars().count()),
+            code_line
+                .find("BAD")
+                .map(|b| code_line[..b].chars().count()),
             "{r}"
         );
     }

@@ -174,7 +174,10 @@ fn whole(l: &Lines<'_>, v: f64, n: usize, what: &str) -> Result<i64> {
     if v.fract() == 0.0 && v.abs() < 9.0e15 {
         Ok(v as i64)
     } else {
-        Err(l.err(format!("$Entities: {what} must be an integer, found {v}"), n))
+        Err(l.err(
+            format!("$Entities: {what} must be an integer, found {v}"),
+            n,
+        ))
     }
 }
 
@@ -182,7 +185,10 @@ fn whole(l: &Lines<'_>, v: f64, n: usize, what: &str) -> Result<i64> {
 fn entity_dim(l: &Lines<'_>, v: i64, n: usize) -> Result<usize> {
     match usize::try_from(v) {
         Ok(d) if d <= 3 => Ok(d),
-        _ => Err(l.err(format!("entity dimension {v}: Gmsh entities have dimension 0 to 3"), n)),
+        _ => Err(l.err(
+            format!("entity dimension {v}: Gmsh entities have dimension 0 to 3"),
+            n,
+        )),
     }
 }
 
@@ -413,15 +419,17 @@ fn read_nodes_22(l: &mut Lines<'_>, p: &mut Parsed) -> Result<()> {
     for _ in 0..count[0] {
         let (n, line) = l.next(S)?;
         if line.starts_with('$') {
-            return Err(l.err(format!("${S} ends early: expected tag x y z, found {line}"), n));
+            return Err(l.err(
+                format!("${S} ends early: expected tag x y z, found {line}"),
+                n,
+            ));
         }
         let mut words = line.split_whitespace();
         let tag = l.tag(words.next().unwrap_or(""), "node", n)?;
         let xyz = words
             .map(|w| {
-                w.parse::<f64>().map_err(|_| {
-                    l.err(format!("${S}: '{w}' is not a valid number (x y z)"), n)
-                })
+                w.parse::<f64>()
+                    .map_err(|_| l.err(format!("${S}: '{w}' is not a valid number (x y z)"), n))
             })
             .collect::<Result<Vec<f64>>>()?;
         need(l, &xyz, 3, n, S, "x y z after the tag")?;
@@ -461,7 +469,10 @@ fn read_nodes_41(l: &mut Lines<'_>, p: &mut Parsed) -> Result<()> {
         for _ in 0..count {
             let (n, t) = l.next(S)?;
             if t.starts_with('$') {
-                return Err(l.err(format!("${S} ends early: expected a node tag, found {t}"), n));
+                return Err(l.err(
+                    format!("${S} ends early: expected a node tag, found {t}"),
+                    n,
+                ));
             }
             let mut words = t.split_whitespace();
             tags.push((l.tag(words.next().unwrap_or(""), "node", n)?, n));
@@ -768,17 +779,26 @@ mod tests {
         // (The tags run into the coordinate lines, whose "0 0 0" is no tag.)
         let (line, msg) = fails(&V41.replace("0 1 0 2\n", "0 1 0 4000000000000000000\n"));
         assert_eq!(line, 9, "{msg}");
-        let cut = V41.replace("0 1 0 2\n1\n2\n0 0 0\n1 0 0\n$EndNodes\n", "0 1 0 4000000000000000000\n1\n");
+        let cut = V41.replace(
+            "0 1 0 2\n1\n2\n0 0 0\n1 0 0\n$EndNodes\n",
+            "0 1 0 4000000000000000000\n1\n",
+        );
         let (_, msg) = fails(&cut);
         assert!(msg.contains("ends"), "{msg}");
     }
 
     #[test]
     fn duplicate_element_tags_are_refused() {
-        let t = V22.replace("$Elements\n1\n1 1 2 0 1 1 2", "$Elements\n2\n1 1 2 0 1 1 2\n1 1 2 0 1 2 1");
+        let t = V22.replace(
+            "$Elements\n1\n1 1 2 0 1 1 2",
+            "$Elements\n2\n1 1 2 0 1 1 2\n1 1 2 0 1 2 1",
+        );
         let (line, msg) = fails(&t);
         assert_eq!(line, 12);
-        assert!(msg.contains("element 1 is defined twice (first at line 11)"), "{msg}");
+        assert!(
+            msg.contains("element 1 is defined twice (first at line 11)"),
+            "{msg}"
+        );
     }
 
     #[test]
@@ -852,7 +872,10 @@ mod tests {
         let ent = "$Entities\n0 1 0 0\n1 0 0 0 1 0 0 1e300 1 2 0\n$EndEntities\n";
         let t = V41.replace("$Nodes\n", &format!("{ent}$Nodes\n"));
         let (_, msg) = fails(&t);
-        assert!(msg.contains("fewer physical tags") || msg.contains("integer"), "{msg}");
+        assert!(
+            msg.contains("fewer physical tags") || msg.contains("integer"),
+            "{msg}"
+        );
         let ent = "$Entities\n0 1e300 0 0\n$EndEntities\n";
         let (_, msg) = fails(&V41.replace("$Nodes\n", &format!("{ent}$Nodes\n")));
         assert!(msg.contains("$Entities"), "{msg}");

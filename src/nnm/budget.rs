@@ -54,7 +54,8 @@ pub fn memory_estimate(s: &MnlSizes) -> f64 {
     let nn = 2.0 * s.h_nonl as f64 + 1.0;
     let unknowns = mnl_unknowns(s);
     let contact = s.shock_unknowns as f64 * nn;
-    let tangent = 2.0 * nl * (s.nnz as f64 + n) + contact * contact + 2.0 * contact * nl + 4.0 * unknowns;
+    let tangent =
+        2.0 * nl * (s.nnz as f64 + n) + contact * contact + 2.0 * contact * nl + 4.0 * unknowns;
     let vectors = (s.order as f64 + 6.0) * unknowns;
     let samples = 4.0 * nn * (s.shock_unknowns as f64 + 1.0) * 4.0;
     let points = s.stored_points * unknowns;

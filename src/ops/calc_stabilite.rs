@@ -57,7 +57,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     crate::ops::resources::warn_long_work(
         ctx,
         "CALC_STABILITE/SCHEMA_TEMPS/NB_INST",
-        &format!("{n_inst} steps per period for each of {} row(s)", rows.len()),
+        &format!(
+            "{n_inst} steps per period for each of {} row(s)",
+            rows.len()
+        ),
         crate::nnm::budget::floquet_flops(n, n_inst) * rows.len() as f64,
     )?;
     let analyser = FloquetAnalyser::new(&problem, &settings)?;

@@ -69,7 +69,12 @@ pub fn check_memory(keyword: &str, what: &str, bytes: f64) -> Result<()> {
 }
 
 /// Warn (an alarm the user may silence) about a call whose estimated work is very long.
-pub fn warn_long_work(ctx: &mut OpContext<'_>, keyword: &str, what: &str, flops: f64) -> Result<()> {
+pub fn warn_long_work(
+    ctx: &mut OpContext<'_>,
+    keyword: &str,
+    what: &str,
+    flops: f64,
+) -> Result<()> {
     if flops > LONG_WORK_FLOPS {
         ctx.alarm(
             "RESSOURCES_1",

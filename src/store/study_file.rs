@@ -41,7 +41,10 @@ pub fn file_kind(path: &Path) -> Result<FileKind> {
         Ok(m) => m,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(FileKind::Absent),
         Err(e) => {
-            return Err(Error::store(format!("cannot inspect {}: {e}", path.display())));
+            return Err(Error::store(format!(
+                "cannot inspect {}: {e}",
+                path.display()
+            )));
         }
     };
     let ft = meta.file_type();
@@ -158,7 +161,10 @@ pub fn check_writable(path: &Path) -> Result<()> {
         ))
     })?;
     if !dir_meta.is_dir() {
-        return Err(Error::store(format!("{} is not a directory", dir.display())));
+        return Err(Error::store(format!(
+            "{} is not a directory",
+            dir.display()
+        )));
     }
     if dir_meta.permissions().mode() & 0o222 == 0 {
         return Err(Error::store(format!(
@@ -169,11 +175,11 @@ pub fn check_writable(path: &Path) -> Result<()> {
     }
     if let Ok(meta) = std::fs::metadata(path) {
         if meta.permissions().mode() & 0o222 == 0 {
-            return Err(Error::store(format!(
-                "the database {} is read-only",
-                path.display()
-            ))
-            .hint("make it writable (chmod u+w), or copy it and continue the copy with --db"));
+            return Err(
+                Error::store(format!("the database {} is read-only", path.display())).hint(
+                    "make it writable (chmod u+w), or copy it and continue the copy with --db",
+                ),
+            );
         }
     }
     // The permission bits are not the whole story (read-only mounts, ACLs, another owner):
@@ -199,8 +205,11 @@ pub fn check_writable(path: &Path) -> Result<()> {
     }
     if path.exists() {
         OpenOptions::new().write(true).open(path).map_err(|e| {
-            Error::store(format!("the database {} cannot be written: {e}", path.display()))
-                .hint("make it writable, or copy it and continue the copy with --db")
+            Error::store(format!(
+                "the database {} cannot be written: {e}",
+                path.display()
+            ))
+            .hint("make it writable, or copy it and continue the copy with --db")
         })?;
     }
     Ok(())
