@@ -289,6 +289,20 @@ struct Campaign {
 }
 
 impl Campaign {
+    /// A progress line every 1000 mutants (a long campaign can be read while it runs).
+    fn progress(&self) {
+        let total: usize = self.counts.iter().sum();
+        if total % 1000 == 0 {
+            println!(
+                "fuzz progress: {} check, {} run, {} mesh mutants; {} finding(s)",
+                self.counts[0],
+                self.counts[1],
+                self.counts[2],
+                self.findings.len()
+            );
+        }
+    }
+
     fn record(&mut self, what: &str, input_name: &str, input: &str, ending: Ending) {
         if let Ending::Finding(why) = ending {
             let n = self.findings.len();
@@ -338,6 +352,7 @@ fn mutated_inputs_never_crash_or_hang() {
         let name = path.file_name().unwrap().to_string_lossy().into_owned();
         c.record("check", &name, &mutant, e);
         c.counts[0] += 1;
+        c.progress();
     }
 
     // `run` on mutants, beside the case's mesh, with a database of its own. The cases that
@@ -381,6 +396,7 @@ fn mutated_inputs_never_crash_or_hang() {
         let e = run_child(&case_dir, &["run", &comm], Duration::from_secs(60));
         c.record("run", &comm, &mutant, e);
         c.counts[1] += 1;
+        c.progress();
     }
 
     // Mutated meshes through LIRE_MAILLAGE.
@@ -414,6 +430,7 @@ fn mutated_inputs_never_crash_or_hang() {
         let name = path.file_name().unwrap().to_string_lossy().into_owned();
         c.record("run (mesh)", &name, &mutant, e);
         c.counts[2] += 1;
+        c.progress();
     }
 
     println!(

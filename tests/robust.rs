@@ -517,3 +517,30 @@ fn an_export_with_two_command_files_or_a_device_unit_is_refused() {
     assert_eq!(o.status.code(), Some(2), "{out}");
     assert!(out.contains("not a regular file"), "{out}");
 }
+
+#[test]
+fn a_database_with_removed_matrix_or_shape_rows_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("study.db");
+    let o = run_with_db(&case("poursuite_debut.comm"), &db, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let backup = std::fs::read(&db).unwrap();
+    for (sql, what) in [
+        (
+            "DELETE FROM matrix_entries WHERE rowid IN (SELECT rowid FROM matrix_entries LIMIT 1)",
+            "matrix_entries",
+        ),
+        (
+            "DELETE FROM mode_shapes WHERE rowid IN (SELECT rowid FROM mode_shapes LIMIT 1)",
+            "mode_shapes",
+        ),
+    ] {
+        std::fs::write(&db, &backup).unwrap();
+        rusqlite::Connection::open(&db).unwrap().execute_batch(sql).unwrap();
+        let o = run_with_db(&case("poursuite_suite.comm"), &db, &[]);
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{what}: {out}");
+        assert!(out.contains(what), "{what}: {out}");
+        assert!(out.contains("changed outside aster-nl"), "{what}: {out}");
+    }
+}
