@@ -536,11 +536,42 @@ fn a_database_with_removed_matrix_or_shape_rows_is_refused() {
         ),
     ] {
         std::fs::write(&db, &backup).unwrap();
-        rusqlite::Connection::open(&db).unwrap().execute_batch(sql).unwrap();
+        rusqlite::Connection::open(&db)
+            .unwrap()
+            .execute_batch(sql)
+            .unwrap();
         let o = run_with_db(&case("poursuite_suite.comm"), &db, &[]);
         let out = text(&o);
         assert_eq!(o.status.code(), Some(2), "{what}: {out}");
         assert!(out.contains(what), "{what}: {out}");
         assert!(out.contains("changed outside aster-nl"), "{what}: {out}");
+    }
+}
+
+#[test]
+fn a_negative_or_zero_mass_is_named_not_an_empty_band() {
+    let base = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("b.mail")).unwrap();
+    let comm = dir.path().join("b.comm");
+    for (from, to, want) in [
+        ("VALE=1.0", "VALE=-1.0", "negative diagonal term"),
+        ("VALE=1.0", "VALE=0.0", "no mass"),
+        (
+            "VALE=(10., 0., 0.)",
+            "VALE=(-10., 0., 0.)",
+            "negative diagonal term",
+        ),
+    ] {
+        assert!(base.contains(from));
+        std::fs::write(&comm, base.replacen(from, to, 1)).unwrap();
+        let o = run_with_db(&comm, &dir.path().join("b.db"), &[]);
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{to}: {out}");
+        assert!(out.contains(want), "{to}: {out}");
+        assert!(
+            !out.contains("no mode in the requested band"),
+            "{to}: {out}"
+        );
     }
 }
