@@ -292,7 +292,7 @@ impl Campaign {
     /// A progress line every 1000 mutants (a long campaign can be read while it runs).
     fn progress(&self) {
         let total: usize = self.counts.iter().sum();
-        if total % 1000 == 0 {
+        if total.is_multiple_of(1000) {
             println!(
                 "fuzz progress: {} check, {} run, {} mesh mutants; {} finding(s)",
                 self.counts[0],
