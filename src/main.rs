@@ -133,7 +133,14 @@ fn run(file: &Path, db: Option<PathBuf>, unit_specs: &[String]) -> ExitCode {
     let comm = if file.extension().is_some_and(|e| e == "export") {
         match export::read_export(file) {
             Ok(exp) => {
+                units
+                    .protected
+                    .push((file.to_path_buf(), "the export file of the run".into()));
                 for (n, p) in exp.units {
+                    units.protected.push((
+                        p.clone(),
+                        format!("the input file of unit {n} in the export"),
+                    ));
                     units.map.entry(n).or_insert(p);
                 }
                 exp.comm
@@ -225,7 +232,7 @@ fn print_catalog(op: Option<&str>) -> ExitCode {
 }
 
 fn tables(db: &Path) -> ExitCode {
-    let s = match store::Store::open(db) {
+    let s = match store::Store::open_read_only(db) {
         Ok(s) => s,
         Err(e) => return fail(&e, None),
     };
