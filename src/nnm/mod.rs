@@ -24,6 +24,7 @@
 
 mod anm;
 mod bifurcation;
+pub mod budget;
 mod energy;
 pub mod exact;
 mod law_check;

@@ -103,6 +103,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         shocks,
     };
 
+    check_budget(ctx, &problem, &settings, &stored_shocks)?;
+
     // Start point.
     let nume_ordre = etat.req_int("NUME_ORDRE")?;
     let start: StartState = match &restart_from {
@@ -164,6 +166,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let cara_choc = format!("{name}_CHOC");
     if ctx.reuse.is_none() {
         ctx.create(&name, "table_container")?;
+        // The table names K and M and rebuilds the problem from them when it is used
+        // again: it belongs to these K and M (checked at every use, store::deps).
+        ctx.store.record_dependency(&name, &k_name)?;
+        ctx.store.record_dependency(&name, &m_name)?;
         ctx.create(&cara_choc, "table_sdaster")?;
         table_store::save_table(ctx.store, &cara_choc, &cara_choc_table(&stored_shocks)?)?;
         mnl_store::save_setup(
@@ -310,15 +316,50 @@ fn orig_obst_notes(shocks: &[StoredShock]) -> Vec<String> {
         .collect()
 }
 
+/// Refuse a call that cannot fit in memory, warn about one that will take very long: from
+/// the sizes alone, before the engine allocates anything.
+fn check_budget(
+    ctx: &mut OpContext<'_>,
+    problem: &Problem,
+    s: &Settings,
+    shocks: &[StoredShock],
+) -> Result<()> {
+    use crate::nnm::budget;
+    use crate::ops::resources;
+    let shock_unknowns = shocks
+        .iter()
+        .map(|c| match c.obstacle.as_str() {
+            "CERCLE" => 4,
+            "BI_PLAN" => 2,
+            _ => 1,
+        })
+        .sum();
+    let sizes = budget::MnlSizes {
+        n_dofs: problem.k.nrows(),
+        nnz: problem.k.compute_nnz() + problem.m.compute_nnz(),
+        h_lin: s.h_lin,
+        h_nonl: if shocks.is_empty() { s.h_lin } else { s.h_nonl },
+        shock_unknowns,
+        order: s.order,
+        stored_points: s.n_branches as f64 * s.n_points_per_branch as f64,
+    };
+    resources::check_memory(
+        "MODE_NON_LINE/RESOLUTION (NB_HARM_LINE, NB_HARM_NONL, NB_ORDRE_MAN, NB_BRANCHE, NB_PAS_MAN)",
+        "the harmonic-balance continuation",
+        budget::memory_estimate(&sizes),
+    )?;
+    resources::warn_long_work(
+        ctx,
+        "MODE_NON_LINE/RESOLUTION",
+        "the continuation",
+        budget::mnl_branch_flops(&sizes) * s.n_branches as f64,
+    )
+}
+
 fn settings(args: &Args) -> Result<Settings> {
     let r = args.req_fact("RESOLUTION")?;
-    let usize_of = |key: &str| -> Result<usize> {
-        let v = r.req_int(key)?;
-        usize::try_from(v).ok().filter(|&v| v > 0).ok_or_else(|| {
-            Error::validation(format!("{key} must be a positive integer, got {v}"))
-                .keyword(format!("MODE_NON_LINE/RESOLUTION/{key}"))
-        })
-    };
+    // The bounds (at least 1, NB_ORDRE_MAN at least 2) are the catalog's.
+    let usize_of = |key: &str| r.req_count(key);
     let h_lin = usize_of("NB_HARM_LINE")?;
     let h_nonl = usize_of("NB_HARM_NONL")?;
     if h_nonl < h_lin {
@@ -391,14 +432,8 @@ fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<StoredShock>
             }));
         }
         let node = choc_node(ctx, args, c, &kw)?;
-        let positive = |key: &str| -> Result<f64> {
-            let v = c.req_real(key)?;
-            if v > 0.0 && v.is_finite() {
-                Ok(v)
-            } else {
-                Err(Error::validation(format!("{key} must be positive, got {v}")).keyword(kw(key)))
-            }
-        };
+        // Finite and > 0: the catalog's bounds (val_min = 0, excluded).
+        let positive = |key: &str| c.req_real(key);
         let gap = positive("JEU")?;
         let stiffness = positive("RIGI_NOR")?;
         let regul = positive("PARA_REGUL")?;
@@ -408,6 +443,19 @@ fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<StoredShock>
                 Error::validation(format!("ORIG_OBST needs 3 reals, got {}", o.len()))
                     .keyword(kw("ORIG_OBST")),
             );
+        }
+        // The same shock twice doubles its stiffness without a word: refuse it.
+        if let Some(j) = out
+            .iter()
+            .position(|s: &StoredShock| s.node == node && s.cmps == cmps)
+        {
+            return Err(Error::validation(format!(
+                "CHOC[{}] acts on the same node and components as CHOC[{}]",
+                i + 1,
+                j + 1
+            ))
+            .keyword(format!("MODE_NON_LINE/CHOC[{}]", i + 1))
+            .hint("give each shock once; two obstacles on one DOF are one BI_PLAN"));
         }
         out.push(StoredShock {
             obstacle,
