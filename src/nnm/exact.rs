@@ -68,31 +68,6 @@ impl Oscillator {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn limits_are_right() {
-        let o = Oscillator {
-            m: 1.0,
-            k: 10.0,
-            g: 0.01,
-            alpha: 50.0,
-        };
-        let t0 = 2.0 * PI / 10f64.sqrt();
-        // At grazing energy both periods are the linear one.
-        let e0 = 0.5 * 10.0 * 0.01 * 0.01;
-        assert!((o.period_plan(e0 * (1.0 + 1e-12)) - t0).abs() < 1e-5);
-        assert!((o.period_biplan(e0 * (1.0 + 1e-12)) - t0).abs() < 1e-5);
-        // Zero gap: half periods of both springs.
-        let z = Oscillator { g: 0.0, ..o };
-        let t = PI / 10f64.sqrt() + PI / 60f64.sqrt();
-        assert!((z.period_plan(1.0) - t).abs() < 1e-12);
-        assert!((z.period_biplan(1.0) - 2.0 * PI / 60f64.sqrt()).abs() < 1e-12);
-    }
-}
-
 /// Radial force of the regularised CERCLE law at radial distance r ≥ 0 (ring radius g,
 /// stiffness α, regularisation ε = PARA_REGUL·k_ref): the root φ of
 /// φ (1 − ((φ − α r)/(α g))²) = ε r in (max(0, α(r − g)), α r), where the left side minus
@@ -117,4 +92,29 @@ pub fn regularised_ring_force(r: f64, g: f64, alpha: f64, eps: f64) -> f64 {
         }
     }
     0.5 * (lo + hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn limits_are_right() {
+        let o = Oscillator {
+            m: 1.0,
+            k: 10.0,
+            g: 0.01,
+            alpha: 50.0,
+        };
+        let t0 = 2.0 * PI / 10f64.sqrt();
+        // At grazing energy both periods are the linear one.
+        let e0 = 0.5 * 10.0 * 0.01 * 0.01;
+        assert!((o.period_plan(e0 * (1.0 + 1e-12)) - t0).abs() < 1e-5);
+        assert!((o.period_biplan(e0 * (1.0 + 1e-12)) - t0).abs() < 1e-5);
+        // Zero gap: half periods of both springs.
+        let z = Oscillator { g: 0.0, ..o };
+        let t = PI / 10f64.sqrt() + PI / 60f64.sqrt();
+        assert!((z.period_plan(1.0) - t).abs() < 1e-12);
+        assert!((z.period_biplan(1.0) - 2.0 * PI / 60f64.sqrt()).abs() < 1e-12);
+    }
 }
