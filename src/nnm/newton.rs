@@ -2,7 +2,7 @@
 //! position along the branch (correction orthogonal to t).
 
 use super::anm::norm;
-use super::linear_solver::BorderedSolver;
+use super::linear_solver::TangentSolver;
 use super::system::System;
 use crate::error::{Error, Result};
 
@@ -16,13 +16,12 @@ pub fn relative(r: &[f64], x: &[f64]) -> f64 {
 /// Corrects `x` in place until ‖R‖ ≤ `tol`. Returns (iterations, final relative residual).
 pub fn correct(
     sys: &System,
-    solver: &mut dyn BorderedSolver,
+    solver: &mut dyn TangentSolver,
     x: &mut [f64],
     border: &[f64],
     tol: f64,
     max_iter: usize,
 ) -> Result<(usize, f64)> {
-    let n = sys.lay.n_unk;
     let mut it = 0;
     loop {
         let r = sys.residual(x);
@@ -42,10 +41,10 @@ pub fn correct(
             .keyword("RESOLUTION/ITER_NEWTON_MAXI")
             .hint("lower PREC_MAN (shorter branches), raise ITER_NEWTON_MAXI, or raise NB_HARM_NONL / PARA_REGUL"));
         }
-        solver.factor(n, &sys.tangent(x, border))?;
+        solver.factor(sys, x, border)?;
         let mut d: Vec<f64> = r.iter().map(|v| -v).collect();
         d.push(0.0);
-        solver.solve(&mut d)?;
+        solver.solve(sys, &mut d)?;
         // A correction at the 12th digit of X: what residual remains is round-off in the
         // quadratic terms (it grows like ε‖X‖² far up a branch), not a lack of convergence.
         if norm(&d) <= 1e-12 * norm(x).max(1.0) {
