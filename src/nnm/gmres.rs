@@ -5,7 +5,7 @@
 //! residual recomputed from x (the Arnoldi estimate drifts from it near round-off), and a
 //! solve is accepted when that residual is at the level a backward-stable direct solve
 //! leaves: ‖b − A x‖ ≤ rtol·‖b‖ + BACKWARD·ε·‖A‖·‖x‖, ‖A‖ an upper bound the operator
-//! supplies. The workspace is allocated once for a dimension and a cycle length.
+//! supplies (and never above FLOOR_CAP·‖b‖). The workspace is allocated once for a dimension and a cycle length.
 
 /// An operator and its preconditioner, applied to vectors of the workspace's dimension.
 pub trait Preconditioned {
@@ -20,6 +20,9 @@ pub trait Preconditioned {
 /// Multiple of ε·‖A‖·‖x‖ accepted as converged (what an FFT-applied operator's own
 /// round-off leaves: a few ε·log₂N).
 const BACKWARD: f64 = 64.0;
+
+/// Largest relative residual the backward-error floor may excuse.
+const FLOOR_CAP: f64 = 1e-10;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Stats {
@@ -140,8 +143,10 @@ impl Gmres {
             if !nr.is_finite() {
                 return Err(Failure::NotFinite);
             }
+            // The backward-error floor covers the last digits only: a residual above
+            // FLOOR_CAP·‖b‖ is no solution whatever ‖x‖ (a singular A makes x explode).
             let floor = target + BACKWARD * f64::EPSILON * a_norm * norm(x);
-            if nr <= floor {
+            if nr <= target || (nr <= floor && nr <= FLOOR_CAP * nb) {
                 return Ok(Stats {
                     iterations,
                     relative_residual: nr / nb,

@@ -42,6 +42,8 @@ mod hard_tests;
 #[cfg(test)]
 mod reference;
 #[cfg(test)]
+mod solver_tests;
+#[cfg(test)]
 mod tests;
 
 pub use law_check::{contact_law_defect, LAW_DEFECT_ALARM};
