@@ -451,7 +451,7 @@ impl ContactBlock {
             self.counters.dense_fallbacks += 1;
             self.active = Method::Dense;
         }
-        self.dense_w(sh)
+        self.dense_w()
     }
 
     fn krylov_w(&mut self) -> Result<()> {
@@ -480,16 +480,11 @@ impl ContactBlock {
         }
     }
 
-    /// Assemble A_ff and A_fu densely from the Fourier series of J and J_u, factor, solve.
-    fn dense_w(&mut self, sh: &ShockSys) -> Result<()> {
-        let (d, nn, m) = (self.d, self.nn, self.m);
-        let (no, nc) = (sh.eqs.n_own, sh.dofs.len());
-        let (hn, hl) = (self.pw.hn, self.pw.hl);
+    /// Assemble A_ff densely from the Fourier series of J and factorise it.
+    fn dense_factor(&mut self) -> Result<()> {
+        let (d, nn, no, hn) = (self.d, self.nn, self.pw.n_own, self.pw.hn);
         let mut series = std::mem::take(&mut self.series);
-        {
-            let a = self.dense.storage(d)?;
-            a.fill(0.0);
-        }
+        self.dense.storage(d)?.fill(0.0);
         for e in 0..no {
             for k in 0..no {
                 self.pw.entry_series(false, e * no + k, &mut series);
@@ -500,6 +495,19 @@ impl ContactBlock {
                 series::fill_mul_operator(&series, hn, hn, hn, 1.0, &mut a[k * nn * d + e * nn..], d);
             }
         }
+        self.series = series;
+        self.dense
+            .factor()
+            .map_err(|e| self.err(format!("the contact block is singular ({})", e.message)))
+    }
+
+    /// The dense route: A_ff factorised, A_fu assembled (from the series of J_u), W solved.
+    fn dense_w(&mut self) -> Result<()> {
+        self.dense_factor()?;
+        let (d, nn, m) = (self.d, self.nn, self.m);
+        let (no, nc, hn, hl) = (self.pw.n_own, self.pw.n_comp, self.pw.hn, self.pw.hl);
+        let nl = series::len(hl);
+        let mut series = std::mem::take(&mut self.series);
         self.w.fill(0.0);
         for e in 0..no {
             for c in 0..nc {
@@ -507,14 +515,10 @@ impl ContactBlock {
                 if series.iter().all(|&v| v == 0.0) {
                     continue;
                 }
-                let nl = series::len(hl);
                 series::fill_mul_operator(&series, hn, hl, hn, 1.0, &mut self.w[c * nl * d + e * nn..], d);
             }
         }
         self.series = series;
-        self.dense
-            .factor()
-            .map_err(|e| self.err(format!("the contact block is singular ({})", e.message)))?;
         self.dense.solve(&mut self.w, m)
     }
 
@@ -525,13 +529,23 @@ impl ContactBlock {
             Method::Dense => self.dense.solve(r, 1),
             Method::Krylov => {
                 self.b.copy_from_slice(r);
-                let st = self
-                    .gmres
-                    .solve(&mut self.pw, &self.b, &mut self.x, KRYLOV_RTOL)
-                    .map_err(|f| self.krylov_error(f))?;
-                self.counters.krylov_iterations += st.iterations;
-                r.copy_from_slice(&self.x);
-                Ok(())
+                match self.gmres.solve(&mut self.pw, &self.b, &mut self.x, KRYLOV_RTOL) {
+                    Ok(st) => {
+                        self.counters.krylov_iterations += st.iterations;
+                        r.copy_from_slice(&self.x);
+                        Ok(())
+                    }
+                    // The rest of this factorisation's solves on the dense route (W, from
+                    // converged Krylov solves, stays: it agrees with the dense one to
+                    // round-off and the reduced matrix was built with it).
+                    Err(f) if self.d > DENSE_MAX_DIM => Err(self.krylov_error(f)),
+                    Err(_) => {
+                        self.counters.dense_fallbacks += 1;
+                        self.active = Method::Dense;
+                        self.dense_factor()?;
+                        self.dense.solve(r, 1)
+                    }
+                }
             }
         }
     }
