@@ -289,10 +289,12 @@ fn hard_cercle_whirl_from_a_degenerate_pair() {
     // amplitudes, x and y in quadrature, no higher harmonics, to 1e-9 relative), and
     // ω² = (k + f(r)/r)/m with f the regularised ring force, root of
     // f² − αf(r − g) − αη = 0 (η = PARA_REGUL·k·g²): exact for a circular orbit, so only
-    // the convergence of each row (RESIDU ≤ PREC_NEWTON = 1e-9) separates them (asserted
-    // 2e-9). Measured: rows whose series end was accepted without a Newton iteration, at
-    // RESIDU 7e-10 to 8e-10, carry the largest departures (higher harmonics 9.3e-10 r on
-    // row 18, ω 1.7e-9 on row 16); the other rows ≤ 2e-13 r and ≤ 3.3e-10.
+    // the convergence of each row (RESIDU ≤ PREC_NEWTON = 1e-9) separates them. Rows whose
+    // series end was accepted without a Newton iteration, at RESIDU 7e-10 to 8e-10, carry
+    // the largest departures, and those depend on the round-off history: over one-ulp
+    // changes of RIGI_NOR the same binary gives higher harmonics 9e-10 … 1.6e-9 r (row 18)
+    // and ω 1.6e-9 … 2.0e-9 (row 16) (measured, engine before and after issue 9), so both
+    // are asserted at 5e-9; the other rows are ≤ 2e-13 r and ≤ 3.3e-10.
     let (k, g, alpha) = (10.0, 0.01, 1000.0);
     let eta = 1e-5 * k * g * g;
     let coef = |n: i64, cmp: &str, h: i64| -> (f64, f64) {
@@ -322,7 +324,7 @@ fn hard_cercle_whirl_from_a_degenerate_pair() {
             for cmp in ["DX", "DY"] {
                 let (a, b) = coef(n, cmp, h);
                 assert!(
-                    a.hypot(b) < 1e-9 * r,
+                    a.hypot(b) < 5e-9 * r,
                     "row {n}: {cmp} harmonic {h}: {a} {b}"
                 );
             }
@@ -330,7 +332,7 @@ fn hard_cercle_whirl_from_a_degenerate_pair() {
         let f = (alpha * (r - g) + ((alpha * (r - g)).powi(2) + 4.0 * alpha * eta).sqrt()) / 2.0;
         let closed = (k + f / r).sqrt() / (2.0 * std::f64::consts::PI);
         assert!(
-            (row.freq / closed - 1.0).abs() < 2e-9,
+            (row.freq / closed - 1.0).abs() < 5e-9,
             "row {n}: {} {closed}",
             row.freq
         );
