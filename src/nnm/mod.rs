@@ -33,6 +33,7 @@ mod post;
 mod quadrature;
 mod reduced;
 mod resolution;
+mod route_timing;
 mod series;
 pub mod stability;
 mod system;
@@ -53,6 +54,7 @@ use linear_solver::{ReferenceSolver, StructuredSolver, TangentSolver};
 pub use post::{PostProcessor, RowOutputs};
 pub use quadrature::{check_degenerate_pair, start_from_mode_pair, QUAD_FREQ_TOL};
 pub use resolution::{resolution_warnings, tail_ratio};
+pub use route_timing::{contact_route_timings, RouteRow};
 
 use crate::error::{Error, Result};
 use faer::sparse::SparseColMat;

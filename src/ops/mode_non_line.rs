@@ -182,8 +182,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let ncoef = 2 * settings.h_lin as i64 + 1;
     let mut suspect: Vec<i64> = Vec::new();
     let mut worst_defect = 0.0f64;
-    // Built once: what every row's outputs share (layout, physical laws, FFT plan).
+    // Built once: what every row's outputs share (layout, physical laws, FFT plan), and
+    // the writer of the points (statements prepared once, Fourier rows batched).
     let post = nnm::PostProcessor::new(&problem, &settings)?;
+    let mut writer = mnl_store::PointWriter::new(ctx.store, &name)?;
     for (j, p) in outcome.points.iter().enumerate() {
         let order = first_order + j as i64;
         let out = post.row(&p.x)?;
@@ -193,9 +195,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         }
         worst_defect = worst_defect.max(defect);
         table.push_row(row(&name, &cara_choc, order, ncoef, reprise, p, defect))?;
-        mnl_store::save_point(ctx.store, &name, order, p.omega, &p.x)?;
-        mnl_store::save_fourier(ctx.store, &name, order, &dof_names, &out.displacement)?;
+        writer.point(order, p.omega, &p.x)?;
+        writer.fourier(order, &dof_names, &out.displacement)?;
     }
+    writer.finish()?;
     table_store::save_table(ctx.store, &name, &table)?;
     ctx.say(&format!(
         "  frequency against energy: SELECT NUME_ORDRE, ENERGIE, FREQUENCE FROM {name} ORDER BY NUME_ORDRE"
