@@ -187,16 +187,19 @@ pub fn utube(h_nonl: usize, branches: usize, points: usize, offset: f64) -> Case
     }
 }
 
-/// A straight tube along X of `elements` POU_D_E elements (1 m), clamped at both ends,
-/// bending in both planes (DX and DRX blocked: 4 free DOFs per inner node), with CERCLE
-/// rings (JEU 1 mm, centre offset 0.3 JEU along DY) at the nodes nearest L/3 and 2L/3
-/// acting on (DY, DZ).
+/// A straight steel bar along X of `elements` POU_D_E elements (1 m, rectangular section
+/// 13.7 × 10 mm: its first mode bends in XZ, the first in XY is 1.37 times higher, clear of
+/// the harmonics 2–5 of the first), clamped at both ends, bending in both planes
+/// (DX and DRX blocked: 4 free DOFs per inner node), with CERCLE rings (JEU 1 mm, centre
+/// offset 0.3 JEU along DY, across the motion) at two nodes placed symmetrically near L/3
+/// and 2L/3 acting on (DY, DZ).
 pub fn beam(elements: usize, h_lin: usize, h_nonl: usize, branches: usize) -> Case {
     let elements = elements.max(3);
     let nodes: Vec<(String, [f64; 3])> = (0..=elements)
         .map(|i| (format!("N{i}"), [i as f64 / elements as f64, 0.0, 0.0]))
         .collect();
-    let (a, b) = (elements / 3, 2 * elements / 3);
+    let a = (elements + 1) / 3;
+    let b = elements - a;
     let all: Vec<String> = nodes.iter().map(|n| n.0.clone()).collect();
     let mail = mail_of(
         "straight tube",
@@ -207,7 +210,11 @@ pub fn beam(elements: usize, h_lin: usize, h_nonl: usize, branches: usize) -> Ca
         ],
     );
     let prefix = format!(
-        "{BEAM_PREFIX}{}",
+        "{}{}",
+        BEAM_PREFIX.replace(
+            "SECTION='CERCLE', CARA=('R', 'EP'), VALE=(0.01, 0.001)",
+            "SECTION='RECTANGLE', CARA=('HY', 'HZ'), VALE=(0.0137, 0.01)"
+        ),
         assemble_and_modes(
             "_F(GROUP_NO='ENDS', DX=0., DY=0., DZ=0., DRX=0., DRY=0., DRZ=0.), _F(GROUP_NO='ALL', DX=0., DRX=0.),"
         )
@@ -215,7 +222,7 @@ pub fn beam(elements: usize, h_lin: usize, h_nonl: usize, branches: usize) -> Ca
     let gap = 1e-3;
     let o = [0.0, 0.3 * gap, 0.0];
     Case {
-        name: format!("beam {} DOFs", 4 * (elements - 1)),
+        name: format!("bar {} DOFs", 4 * (elements - 1)),
         mail,
         prefix,
         shocks: vec![
@@ -393,12 +400,15 @@ pub fn prepare(case: &Case, dir: &Path) -> Result<Prepared> {
     let coef_ampl = match mm.coef_ampl {
         Some(c) => c,
         None => {
-            // With shocks the start displacement is COEF_AMPL × mode × (largest JEU): put
-            // the first shock's node at 0.9 JEU.
-            let s0 = &problem.shocks[0];
-            let at = s0.dofs.iter().map(|&d| mode[d].abs()).fold(0.0, f64::max);
+            // With shocks the start displacement is COEF_AMPL × mode × (largest JEU): the
+            // shock node nearest its obstacle starts at 0.8 of its JEU (inside every gap).
             let g = problem.shocks.iter().fold(0.0f64, |a, s| a.max(s.gap));
-            0.9 * s0.gap / (g * at.max(1e-300))
+            let worst = problem
+                .shocks
+                .iter()
+                .map(|s| s.dofs.iter().map(|&d| mode[d].abs()).fold(0.0, f64::max) / s.gap)
+                .fold(0.0, f64::max);
+            0.8 / (g * worst.max(1e-300))
         }
     };
     let nnz = {

@@ -599,7 +599,7 @@ fn run(
         let credible = 1e3 * settings.prec_man.max(settings.prec_newton);
         for _ in 0..40 {
             let xe = ser.eval(&x0, ser.a_max);
-            let r = newton::relative(&sys.residual(&xe), &xe);
+            let r = newton::relative(&sys, &sys.residual(&xe), &xe);
             if r.is_finite() && r <= credible {
                 break;
             }
@@ -629,7 +629,7 @@ fn run(
                     b,
                 ));
             }
-            let mut res = newton::relative(&sys.residual(&x), &x);
+            let mut res = newton::relative(&sys, &sys.residual(&x), &x);
             if i == np {
                 let (it, r) = newton::correct(
                     &sys,
