@@ -95,10 +95,11 @@ impl Runner<'_> {
                 call.op
             )));
         }
+        let purpose = format!("{} (started {})", self.file, started_at());
         let store = if call.op == "DEBUT" {
-            Store::create(&self.default_db)?
+            Store::create_for(&self.default_db, &purpose)?
         } else {
-            Store::open(&self.default_db)?
+            Store::open_for(&self.default_db, &purpose)?
         };
         if call.op == "POURSUITE" {
             let n = store.concepts()?.len();
@@ -180,6 +181,10 @@ impl Runner<'_> {
         })?;
         let info = args.int("INFO").unwrap_or(1);
         let mut tests = Vec::new();
+        // Every concept given to the operator must still be what it was computed from.
+        for used in concept_arguments(args) {
+            store.check_dependencies(&used)?;
+        }
         store.begin_op()?;
         let started = Instant::now();
         let mut ctx = OpContext::new(store, &call.op, &mut *self.out, &self.units, &mut tests);
@@ -211,6 +216,10 @@ impl Runner<'_> {
             self.summary
                 .created
                 .push((name.clone(), ty.clone(), call.op.clone()));
+        }
+        if let Some(reused) = &ctx_reuse_name(call) {
+            // Changed in place: what was computed from it no longer matches.
+            store.new_generation(reused)?;
         }
         if let Some(e) = deferred {
             // The operator's results are committed; the run still stops here.
@@ -302,6 +311,15 @@ impl Host for Runner<'_> {
     }
 }
 
+/// Now, as seconds since the Unix epoch (what the lock file records; no time zone needed).
+fn started_at() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0);
+    format!("at Unix time {secs}")
+}
+
 /// Run a command file. Errors that stop the run are in `RunSummary::error`; the
 /// `Err` case is reserved for failures before anything ran (unreadable file).
 pub fn run_file(path: &Path, opts: RunOptions, out: &mut dyn Write) -> Result<RunSummary> {
@@ -318,6 +336,9 @@ pub fn run_file(path: &Path, opts: RunOptions, out: &mut dyn Write) -> Result<Ru
     let default_db = opts.db.clone().unwrap_or_else(|| path.with_extension("db"));
     let mut units = opts.units;
     units.comm_file.get_or_insert_with(|| path.to_path_buf());
+    units
+        .protected
+        .push((path.to_path_buf(), "the command file of the run".into()));
     run_source(&src, default_db, units, opts.progress, out)
 }
 
@@ -338,6 +359,19 @@ pub fn run_source(
             })
         }
     };
+    let mut units = units;
+    units
+        .protected
+        .push((db.clone(), "the database of the study".into()));
+    units.protected.push((
+        crate::store::study_file::lock_path(&db),
+        "the lock file of the study".into(),
+    ));
+    for j in crate::store::study_file::journal_paths(&db) {
+        units
+            .protected
+            .push((j, "a journal of the study's database".into()));
+    }
     let mut runner = Runner {
         file: src.name.clone(),
         default_db: db,
@@ -438,6 +472,34 @@ pub fn check_source(src: &Source) -> Vec<Error> {
         checker.errors.push(e);
     }
     checker.errors
+}
+
+/// Names of the concepts given to a call (every keyword, at every level).
+fn concept_arguments(args: &Args) -> Vec<String> {
+    fn walk(v: &Value, out: &mut Vec<String>) {
+        match v {
+            Value::Concept(c) => out.push(c.name.clone()),
+            Value::Seq(items) => items.iter().for_each(|i| walk(i, out)),
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    for (_, v, _) in &args.simple {
+        walk(v, &mut out);
+    }
+    for (_, occurrences, _) in &args.factor {
+        for occ in occurrences {
+            out.extend(concept_arguments(occ));
+        }
+    }
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// The concept a call changes in place (`reuse=`), if any.
+fn ctx_reuse_name(call: &CommandCall) -> Option<String> {
+    call.reuse.as_ref().map(|c| c.name.clone())
 }
 
 /// Concepts a macro command creates through `CO('NAME')` keywords, with their types (for

@@ -128,7 +128,10 @@ mod tests {
 
     #[test]
     fn exponent_of_a_power_law_and_median() {
-        let pts: Vec<(f64, f64)> = [10.0, 100.0, 1000.0].iter().map(|&x: &f64| (x, 3.0 * x.powf(1.5))).collect();
+        let pts: Vec<(f64, f64)> = [10.0, 100.0, 1000.0]
+            .iter()
+            .map(|&x: &f64| (x, 3.0 * x.powf(1.5)))
+            .collect();
         assert!((exponent(&pts) - 1.5).abs() < 1e-12);
         assert_eq!(median(&mut [3.0, 1.0, 2.0]), 2.0);
         assert_eq!(median(&mut [4.0, 1.0, 2.0, 3.0]), 2.5);

@@ -53,7 +53,9 @@ pub fn parse_model(spec: &str) -> Result<Case> {
         Some("utube") => Ok(models::utube(int(1)?, int(2)?, int(3)?, num(4)?)),
         Some("beam") => Ok(models::beam(int(1)?, int(2)?, int(3)?, int(4)?)),
         Some("chain") => Ok(models::chain(int(1)?, int(2)?, int(3)?, int(4)?)),
-        _ => Err(io(format!("unknown model '{spec}' (wall:…, utube:…, beam:…)"))),
+        _ => Err(io(format!(
+            "unknown model '{spec}' (wall:…, utube:…, beam:…)"
+        ))),
     }
 }
 
@@ -63,12 +65,20 @@ pub fn parse_solver(s: &str) -> Result<SolverKind> {
         "dense" => Ok(SolverKind::StructuredWith(ContactMethod::Dense)),
         "krylov" => Ok(SolverKind::StructuredWith(ContactMethod::Krylov)),
         "reference" => Ok(SolverKind::Reference),
-        _ => Err(io(format!("unknown solver '{s}' (auto, dense, krylov, reference)"))),
+        _ => Err(io(format!(
+            "unknown solver '{s}' (auto, dense, krylov, reference)"
+        ))),
     }
 }
 
 /// The child side: prepare the model, time the engine, print one `BENCH` line.
-pub fn run_case(model: &str, solver: &str, det: bool, dir: &Path, out: &mut dyn Write) -> Result<()> {
+pub fn run_case(
+    model: &str,
+    solver: &str,
+    det: bool,
+    dir: &Path,
+    out: &mut dyn Write,
+) -> Result<()> {
     let mut case = parse_model(model)?;
     case.mnl.det_test = det;
     let kind = parse_solver(solver)?;
@@ -78,7 +88,14 @@ pub fn run_case(model: &str, solver: &str, det: bool, dir: &Path, out: &mut dyn 
     let t0 = measure::self_cpu();
     let mut error = String::from("-");
     let mut points = 0;
-    match nnm::start_from_mode_using(&prep.problem, &prep.settings, &prep.mode, prep.coef_ampl, prep.omega, kind) {
+    match nnm::start_from_mode_using(
+        &prep.problem,
+        &prep.settings,
+        &prep.mode,
+        prep.coef_ampl,
+        prep.omega,
+        kind,
+    ) {
         Ok(st) => {
             let o = nnm::continue_branches(&prep.problem, &prep.settings, st, &mut |_, _| {});
             points = o.points.len();
@@ -162,7 +179,13 @@ impl Bench<'_> {
     }
 
     /// Median engine run of `model` (`repeats` child processes).
-    fn engine(&mut self, model: &str, solver: &str, det: bool, repeats: usize) -> Result<EngineRun> {
+    fn engine(
+        &mut self,
+        model: &str,
+        solver: &str,
+        det: bool,
+        repeats: usize,
+    ) -> Result<EngineRun> {
         let dir = self.opts.dir.join(model.replace(':', "_"));
         std::fs::create_dir_all(&dir).map_err(io)?;
         let mut runs = Vec::new();
@@ -178,7 +201,10 @@ impl Bench<'_> {
             ];
             let c = run_child(&self.exe, &args, &dir)?;
             let r = parse_bench_line(&c.stdout).ok_or_else(|| {
-                io(format!("bench-case {model} {solver}: no result (exit {})", c.code))
+                io(format!(
+                    "bench-case {model} {solver}: no result (exit {})",
+                    c.code
+                ))
             })?;
             runs.push(r);
         }
@@ -190,7 +216,13 @@ impl Bench<'_> {
     }
 
     /// Whole runs of a command file by `binary`, medians of `repeats`.
-    fn whole(&mut self, binary: &Path, dir: &Path, comm: &str, repeats: usize) -> Result<(f64, u64, i32)> {
+    fn whole(
+        &mut self,
+        binary: &Path,
+        dir: &Path,
+        comm: &str,
+        repeats: usize,
+    ) -> Result<(f64, u64, i32)> {
         let mut cpus = Vec::new();
         let mut peak = 0;
         let mut code = 0;
@@ -199,7 +231,14 @@ impl Bench<'_> {
             let _ = std::fs::remove_file(&db);
             let c: ChildRun = run_child(
                 binary,
-                &["run", comm, "--db", db.to_str().unwrap_or("run.db"), "--unit", "20=case.mail"],
+                &[
+                    "run",
+                    comm,
+                    "--db",
+                    db.to_str().unwrap_or("run.db"),
+                    "--unit",
+                    "20=case.mail",
+                ],
                 dir,
             )?;
             cpus.push(c.cpu);
@@ -253,7 +292,11 @@ impl Bench<'_> {
                 case.name,
                 fmt_s(co),
                 fmt_s(cn),
-                if co.is_finite() { format!("{:.1}×", co / cn) } else { "—".into() },
+                if co.is_finite() {
+                    format!("{:.1}×", co / cn)
+                } else {
+                    "—".into()
+                },
                 po.map_or("—".into(), fmt_mb),
                 fmt_mb(pn)
             ))?;
@@ -265,7 +308,11 @@ impl Bench<'_> {
         self.say("\n## Cost against NB_HARM_NONL (sdnd122a, 105 branches, engine only)\n")?;
         self.say("| H_nl | reference (old linear algebra) | new | speed-up | new peak |")?;
         self.say("|---|---|---|---|---|")?;
-        let hs: &[usize] = if self.opts.quick { &[20, 50] } else { &[50, 100, 200, 400, 1000] };
+        let hs: &[usize] = if self.opts.quick {
+            &[20, 50]
+        } else {
+            &[50, 100, 200, 400, 1000]
+        };
         let branches = if self.opts.quick { 10 } else { 105 };
         let (mut new_pts, mut ref_pts) = (Vec::new(), Vec::new());
         for &h in hs {
@@ -285,7 +332,8 @@ impl Bench<'_> {
                 "| {h} | {} | {} | {} | {} |",
                 r.as_ref().map_or("—".into(), |r| fmt_s(r.cpu)),
                 fmt_s(n.cpu),
-                r.as_ref().map_or("—".into(), |r| format!("{:.1}×", r.cpu / n.cpu)),
+                r.as_ref()
+                    .map_or("—".into(), |r| format!("{:.1}×", r.cpu / n.cpu)),
                 fmt_mb(n.peak_kb)
             ))?;
         }
@@ -304,7 +352,14 @@ impl Bench<'_> {
         let sizes: &[(usize, usize)] = if self.opts.quick {
             &[(4, 2), (26, 2)]
         } else {
-            &[(4, 10), (26, 10), (251, 10), (2501, 10), (2501, 50), (25001, 5)]
+            &[
+                (4, 10),
+                (26, 10),
+                (251, 10),
+                (2501, 10),
+                (2501, 50),
+                (25001, 5),
+            ]
         };
         let mut pts = Vec::new();
         for &(el, br) in sizes {
@@ -313,19 +368,27 @@ impl Bench<'_> {
             if br == 10 {
                 pts.push((r.n as f64, r.cpu / br as f64));
             }
-            let per_nnz = (r.peak_kb.saturating_sub(r.base_kb) as f64 * 1024.0) / r.nnz.max(1) as f64;
+            let per_nnz =
+                (r.peak_kb.saturating_sub(r.base_kb) as f64 * 1024.0) / r.nnz.max(1) as f64;
             self.say(&format!(
                 "| {} | {br} | {}{} | {} | {} | {} | {:.0} B |",
                 r.n,
                 r.points,
-                if r.error != "-" { format!(" ({})", r.error) } else { String::new() },
+                if r.error != "-" {
+                    format!(" ({})", r.error)
+                } else {
+                    String::new()
+                },
                 fmt_s(r.cpu),
                 fmt_s(r.cpu / br as f64),
                 fmt_mb(r.peak_kb),
                 per_nnz
             ))?;
         }
-        self.say(&format!("\nfitted exponent of CPU per branch against DOFs (10 branches): {:.2}", exponent(&pts)))
+        self.say(&format!(
+            "\nfitted exponent of CPU per branch against DOFs (10 branches): {:.2}",
+            exponent(&pts)
+        ))
     }
 
     fn det_section(&mut self) -> Result<()> {
@@ -335,7 +398,12 @@ impl Bench<'_> {
         let models: &[&str] = if self.opts.quick {
             &["wall:50:10"]
         } else {
-            &["wall:200:105", "utube:201:10:10:0.3", "beam:251:5:200:10", "beam:2501:5:200:10"]
+            &[
+                "wall:200:105",
+                "utube:201:10:10:0.3",
+                "beam:251:5:200:10",
+                "beam:2501:5:200:10",
+            ]
         };
         for m in models {
             let w = self.engine(m, "auto", true, self.opts.repeats)?;
@@ -352,9 +420,15 @@ impl Bench<'_> {
 
     fn routes_section(&mut self) -> Result<()> {
         self.say("\n## Contact-block routes: one factorisation (W) + 24 solves, per shock\n")?;
-        self.say("| law | H_nl | dense | Krylov | Krylov iterations per solve | model picks | faster |")?;
+        self.say(
+            "| law | H_nl | dense | Krylov | Krylov iterations per solve | model picks | faster |",
+        )?;
         self.say("|---|---|---|---|---|---|---|")?;
-        let hs: &[usize] = if self.opts.quick { &[10, 40] } else { &[10, 20, 40, 80, 160, 320, 640] };
+        let hs: &[usize] = if self.opts.quick {
+            &[10, 40]
+        } else {
+            &[10, 20, 40, 80, 160, 320, 640]
+        };
         for row in nnm::contact_route_timings(hs, 24)? {
             self.say(&format!(
                 "| {} | {} | {} | {} | {:.1} | {:?} | {:?} |",
@@ -364,7 +438,11 @@ impl Bench<'_> {
                 fmt_s(row.krylov_s),
                 row.krylov_iterations,
                 row.model_choice,
-                if row.dense_s <= row.krylov_s { ContactMethod::Dense } else { ContactMethod::Krylov }
+                if row.dense_s <= row.krylov_s {
+                    ContactMethod::Dense
+                } else {
+                    ContactMethod::Krylov
+                }
             ))?;
         }
         Ok(())
@@ -374,9 +452,15 @@ impl Bench<'_> {
         let Some(old) = self.opts.old.clone() else {
             return self.say("\n(table comparison skipped: no --old binary)");
         };
-        self.say("\n## Old and new tables of the sdnd122 cases (max relative difference per column)\n")?;
+        self.say(
+            "\n## Old and new tables of the sdnd122 cases (max relative difference per column)\n",
+        )?;
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("testcases");
-        for (name, tables) in [("sdnd122a", &["MNL"][..]), ("sdnd122b", &["MNL"][..]), ("sdnd122c", &["MNL", "MNL2"][..])] {
+        for (name, tables) in [
+            ("sdnd122a", &["MNL"][..]),
+            ("sdnd122b", &["MNL"][..]),
+            ("sdnd122c", &["MNL", "MNL2"][..]),
+        ] {
             let dir = self.opts.dir.join(format!("compare_{name}"));
             std::fs::create_dir_all(&dir).map_err(io)?;
             for ext in ["comm", "mail"] {
@@ -390,7 +474,11 @@ impl Bench<'_> {
                 let db = dir.join(format!("{tag}.db"));
                 let _ = std::fs::remove_file(&db);
                 let comm = format!("{name}.comm");
-                run_child(&bin, &["run", &comm, "--db", db.to_str().unwrap_or("x.db")], &dir)?;
+                run_child(
+                    &bin,
+                    &["run", &comm, "--db", db.to_str().unwrap_or("x.db")],
+                    &dir,
+                )?;
                 dbs.push(db);
             }
             for t in tables {
@@ -409,17 +497,24 @@ impl Bench<'_> {
 pub fn compare_tables(a: &Path, b: &Path, t: &str) -> Result<Vec<String>> {
     let ca = rusqlite::Connection::open(a).map_err(io)?;
     let cb = rusqlite::Connection::open(b).map_err(io)?;
-    let read = |c: &rusqlite::Connection| -> Result<(Vec<String>, Vec<Vec<rusqlite::types::Value>>)> {
-        let mut st = c.prepare(&format!("SELECT * FROM \"{t}\" ORDER BY NUME_ORDRE")).map_err(io)?;
-        let cols: Vec<String> = st.column_names().map(|s| s.to_string()).collect();
-        let n = cols.len();
-        let rows = st
-            .query_map([], |r| (0..n).map(|i| r.get::<_, rusqlite::types::Value>(i)).collect::<std::result::Result<Vec<_>, _>>())
-            .map_err(io)?
-            .collect::<std::result::Result<Vec<_>, _>>()
-            .map_err(io)?;
-        Ok((cols, rows))
-    };
+    let read =
+        |c: &rusqlite::Connection| -> Result<(Vec<String>, Vec<Vec<rusqlite::types::Value>>)> {
+            let mut st = c
+                .prepare(&format!("SELECT * FROM \"{t}\" ORDER BY NUME_ORDRE"))
+                .map_err(io)?;
+            let cols: Vec<String> = st.column_names().map(|s| s.to_string()).collect();
+            let n = cols.len();
+            let rows = st
+                .query_map([], |r| {
+                    (0..n)
+                        .map(|i| r.get::<_, rusqlite::types::Value>(i))
+                        .collect::<std::result::Result<Vec<_>, _>>()
+                })
+                .map_err(io)?
+                .collect::<std::result::Result<Vec<_>, _>>()
+                .map_err(io)?;
+            Ok((cols, rows))
+        };
     let (cols, ra) = read(&ca)?;
     let (_, rb) = read(&cb)?;
     let mut out = vec![format!("{} rows old, {} rows new", ra.len(), rb.len())];
@@ -436,7 +531,11 @@ pub fn compare_tables(a: &Path, b: &Path, t: &str) -> Result<Vec<String>> {
                 (Real(u), Real(v)) => {
                     numeric = true;
                     let d = (u - v).abs();
-                    w = w.max(if abs { d } else { d / u.abs().max(v.abs()).max(1e-300) });
+                    w = w.max(if abs {
+                        d
+                    } else {
+                        d / u.abs().max(v.abs()).max(1e-300)
+                    });
                 }
                 (u, v) if u != v => text_diff = true,
                 _ => {}
@@ -467,14 +566,21 @@ pub fn compare_tables(a: &Path, b: &Path, t: &str) -> Result<Vec<String>> {
             .map_err(io)?;
         Ok(rows
             .iter()
-            .map(|b| b.chunks_exact(8).map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]])).collect())
+            .map(|b| {
+                b.chunks_exact(8)
+                    .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
+                    .collect()
+            })
             .collect())
     };
     let (pa, pb) = (points(&ca)?, points(&cb)?);
     let mut wp = 0.0f64;
     for (x, y) in pa.iter().zip(&pb) {
         let s = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let d = x.iter().zip(y).fold(0.0f64, |m, (u, v)| m.max((u - v).abs()));
+        let d = x
+            .iter()
+            .zip(y)
+            .fold(0.0f64, |m, (u, v)| m.max((u - v).abs()));
         wp = wp.max(d / s.max(1e-300));
     }
     out.push(format!("stored points: max |Δx|/max|x| = {wp:.1e}"));
@@ -489,7 +595,9 @@ pub fn run(opts: &Options, out: &mut dyn Write) -> Result<()> {
     b.say(&format!(
         "# aster-nl bench ({}; old binary: {})",
         if opts.quick { "quick" } else { "full" },
-        opts.old.as_ref().map_or("none".into(), |p| p.display().to_string())
+        opts.old
+            .as_ref()
+            .map_or("none".into(), |p| p.display().to_string())
     ))?;
     if b.wants("whole") {
         b.whole_section()?;

@@ -57,7 +57,14 @@ fn mnl(h_lin: usize, h_nonl: usize, branches: usize, points: usize) -> Mnl {
     }
 }
 
-fn ring(node: &str, cmps: [&str; 2], gap: f64, stiffness: f64, regul: f64, origin: [f64; 3]) -> StoredShock {
+fn ring(
+    node: &str,
+    cmps: [&str; 2],
+    gap: f64,
+    stiffness: f64,
+    regul: f64,
+    origin: [f64; 3],
+) -> StoredShock {
     StoredShock {
         obstacle: "CERCLE".into(),
         node: node.into(),
@@ -156,18 +163,31 @@ pub fn utube(h_nonl: usize, branches: usize, points: usize, offset: f64) -> Case
     let (h, w) = (1.0, 0.5);
     let mut nodes = Vec::new();
     for i in 0..=3 {
-        nodes.push((format!("N{}", nodes.len() + 1), [0.0, h * i as f64 / 3.0, 0.0]));
+        nodes.push((
+            format!("N{}", nodes.len() + 1),
+            [0.0, h * i as f64 / 3.0, 0.0],
+        ));
     }
     for i in 1..=4 {
-        nodes.push((format!("N{}", nodes.len() + 1), [w * i as f64 / 4.0, h, 0.0]));
+        nodes.push((
+            format!("N{}", nodes.len() + 1),
+            [w * i as f64 / 4.0, h, 0.0],
+        ));
     }
     for i in 1..=3 {
-        nodes.push((format!("N{}", nodes.len() + 1), [w, h * (1.0 - i as f64 / 3.0), 0.0]));
+        nodes.push((
+            format!("N{}", nodes.len() + 1),
+            [w, h * (1.0 - i as f64 / 3.0), 0.0],
+        ));
     }
     let mail = mail_of(
         "U-tube, 10 POU_D_E elements",
         &nodes,
-        &[("PIEDS", vec!["N1".into(), "N11".into()]), ("R1", vec!["N2".into()]), ("R2", vec!["N10".into()])],
+        &[
+            ("PIEDS", vec!["N1".into(), "N11".into()]),
+            ("R1", vec!["N2".into()]),
+            ("R2", vec!["N10".into()]),
+        ],
     );
     let prefix = format!(
         "{BEAM_PREFIX}{}",
@@ -304,10 +324,22 @@ pub fn full_comm(case: &Case, coef_ampl: f64) -> String {
         let cmps = if s.cmps.len() == 1 {
             format!("'{}'", s.cmps[0])
         } else {
-            format!("({})", s.cmps.iter().map(|c| format!("'{c}'")).collect::<Vec<_>>().join(", "))
+            format!(
+                "({})",
+                s.cmps
+                    .iter()
+                    .map(|c| format!("'{c}'"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
         };
         let orig = if s.obstacle == "CERCLE" {
-            format!(", ORIG_OBST=({}, {}, {})", fmt_real(s.origin[0]), fmt_real(s.origin[1]), fmt_real(s.origin[2]))
+            format!(
+                ", ORIG_OBST=({}, {}, {})",
+                fmt_real(s.origin[0]),
+                fmt_real(s.origin[1]),
+                fmt_real(s.origin[2])
+            )
         } else {
             String::new()
         };
@@ -341,7 +373,11 @@ FIN()
         fmt_real(m.prec_man),
         fmt_real(m.prec_newton),
         m.points,
-        if m.det_test { "SERIE_DETERMINANT" } else { "SERIE" }
+        if m.det_test {
+            "SERIE_DETERMINANT"
+        } else {
+            "SERIE"
+        }
     )
 }
 

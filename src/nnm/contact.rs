@@ -83,6 +83,41 @@ pub fn choose(n_own: usize, nn: usize, ns: usize, solves: usize) -> Method {
     }
 }
 
+/// Reals held by one shock's block (route chosen or fallback), from its sizes alone, in
+/// `f64` so that absurd sizes give huge values, never an overflow: the Krylov basis and
+/// work vectors, W (d × m), the pointwise Jacobians, their inverses and the samples
+/// (N ≈ 3H_nl instants), and the dense block (d²) where the dense route may be taken
+/// (d ≤ `DENSE_MAX_DIM`). `nn` = 2H_nl+1, `nl` = 2H_l+1. Used by `budget`.
+pub fn block_reals(n_own: f64, n_comp: f64, nn: f64, nl: f64) -> f64 {
+    let d = n_own * nn;
+    let m = n_comp * nl;
+    let ns = 1.5 * nn + 8.0;
+    let cycle = KRYLOV_CYCLE as f64;
+    let krylov = (cycle + 4.0) * d + (cycle + 1.0) * (cycle + 5.0);
+    let samples = ns * (2.0 * n_own * n_own + n_own * n_comp + 3.0 * n_own + 2.0);
+    let dense = if d <= DENSE_MAX_DIM as f64 {
+        d * d
+    } else {
+        0.0
+    };
+    krylov + d * m + samples + dense + 3.0 * d
+}
+
+/// Flops of W and `solves` further solves of one block whose size is given in `f64`
+/// (`budget`): the cheaper of the two routes of [`cost`], with N ≈ 3H_nl samples.
+pub fn solve_flops(n_own: f64, nn: f64, solves: f64) -> f64 {
+    let d = n_own * nn;
+    let dense = 2.0 / 3.0 * d * d * d + 2.0 * d * d * solves;
+    let ns = 1.5 * nn + 8.0;
+    let apply = 2.0 * n_own * FFT_FLOPS * ns * ns.log2() + 2.0 * n_own * n_own * ns;
+    let krylov = KRYLOV_PENALTY * solves * ITER_GUESS * (2.0 * apply + 4.0 * ITER_GUESS * d);
+    if d <= DENSE_MAX_DIM as f64 {
+        dense.min(krylov)
+    } else {
+        krylov
+    }
+}
+
 /// The pointwise Jacobians of one law at the samples of one period, and the operators
 /// built on them (the Krylov operator and its preconditioner).
 struct Pointwise {
@@ -136,18 +171,28 @@ impl Pointwise {
 
     /// J(t) and J_u(t) at `x0` from the law's terms, and the pointwise inverse. Err with
     /// the first sample where J(t) is singular.
-    fn linearise(&mut self, sh: &ShockSys, lay: &Layout, x0: &[f64]) -> std::result::Result<(), usize> {
+    fn linearise(
+        &mut self,
+        sh: &ShockSys,
+        lay: &Layout,
+        x0: &[f64],
+    ) -> std::result::Result<(), usize> {
         let (ns, no, nc) = (self.ns, self.n_own, self.n_comp);
         // Samples of every variable: own unknowns then components.
         for k in 0..no {
             let o = sh.offset + k * lay.nn;
-            self.sampler
-                .synth_with(&x0[o..o + lay.nn], lay.hn, &mut self.xs[k * ns..(k + 1) * ns], &mut self.ws);
+            self.sampler.synth_with(
+                &x0[o..o + lay.nn],
+                lay.hn,
+                &mut self.xs[k * ns..(k + 1) * ns],
+                &mut self.ws,
+            );
         }
         for c in 0..nc {
             let o = lay.u(sh.dofs[c]);
             let dst = &mut self.xs[(no + c) * ns..(no + c + 1) * ns];
-            self.sampler.synth_with(&x0[o..o + lay.nl], lay.hl, dst, &mut self.ws);
+            self.sampler
+                .synth_with(&x0[o..o + lay.nl], lay.hl, dst, &mut self.ws);
         }
         let slot = |v: Var| match v {
             Var::Own(k) => k,
@@ -205,10 +250,18 @@ impl Pointwise {
     fn mul(&mut self, x: &[f64], y: &mut [f64]) {
         let (ns, no, nn, hn) = (self.ns, self.n_own, self.nn, self.hn);
         for k in 0..no {
-            self.sampler
-                .synth_with(&x[k * nn..(k + 1) * nn], hn, &mut self.xs[k * ns..(k + 1) * ns], &mut self.ws);
+            self.sampler.synth_with(
+                &x[k * nn..(k + 1) * nn],
+                hn,
+                &mut self.xs[k * ns..(k + 1) * ns],
+                &mut self.ws,
+            );
         }
-        let m = if self.use_inverse { &self.inv } else { &self.jac };
+        let m = if self.use_inverse {
+            &self.inv
+        } else {
+            &self.jac
+        };
         if no == 1 {
             for ((y, x), a) in self.ys.iter_mut().zip(&self.xs[..ns]).zip(m) {
                 *y = a * x;
@@ -226,8 +279,12 @@ impl Pointwise {
             }
         }
         for e in 0..no {
-            self.sampler
-                .analyse_with(&mut self.ys[e * ns..(e + 1) * ns], hn, &mut y[e * nn..(e + 1) * nn], &mut self.ws);
+            self.sampler.analyse_with(
+                &mut self.ys[e * ns..(e + 1) * ns],
+                hn,
+                &mut y[e * nn..(e + 1) * nn],
+                &mut self.ws,
+            );
         }
     }
 
@@ -245,8 +302,12 @@ impl Pointwise {
             }
         }
         for q in 0..no {
-            self.sampler
-                .analyse_with(&mut self.ys[q * ns..(q + 1) * ns], self.hn, &mut b[q * nn..(q + 1) * nn], &mut self.ws);
+            self.sampler.analyse_with(
+                &mut self.ys[q * ns..(q + 1) * ns],
+                self.hn,
+                &mut b[q * nn..(q + 1) * nn],
+                &mut self.ws,
+            );
         }
     }
 
@@ -262,7 +323,8 @@ impl Pointwise {
         for t in 0..ns {
             self.ys[t] = src[t * stride + idx];
         }
-        self.sampler.analyse_with(&mut self.ys[..ns], self.hn, out, &mut self.ws);
+        self.sampler
+            .analyse_with(&mut self.ys[..ns], self.hn, out, &mut self.ws);
     }
 }
 
@@ -398,14 +460,6 @@ impl ContactBlock {
         })
     }
 
-    pub fn method(&self) -> Method {
-        self.method
-    }
-
-    pub fn active(&self) -> Method {
-        self.active
-    }
-
     /// Dimension of the block (n_own·(2H_nl+1)) and number of coupled structural unknowns.
     pub fn dims(&self) -> (usize, usize) {
         (self.d, self.m)
@@ -413,11 +467,6 @@ impl ContactBlock {
 
     pub fn w(&self) -> &[f64] {
         &self.w
-    }
-
-    /// Sign of det A_ff when the dense route holds a factorisation.
-    pub fn dense_det_sign(&self) -> Option<f64> {
-        (self.active == Method::Dense).then(|| self.dense.det_sign())
     }
 
     fn err(&self, what: String) -> Error {
@@ -461,7 +510,12 @@ impl ContactBlock {
             self.pw.coupling_column(c, j, &mut self.b);
             let st = self
                 .gmres
-                .solve(&mut self.pw, &self.b, &mut self.w[col * d..(col + 1) * d], KRYLOV_RTOL)
+                .solve(
+                    &mut self.pw,
+                    &self.b,
+                    &mut self.w[col * d..(col + 1) * d],
+                    KRYLOV_RTOL,
+                )
                 .map_err(|f| self.krylov_error(f))?;
             self.counters.krylov_iterations += st.iterations;
         }
@@ -492,7 +546,15 @@ impl ContactBlock {
                     continue;
                 }
                 let a = self.dense.storage_mut();
-                series::fill_mul_operator(&series, hn, hn, hn, 1.0, &mut a[k * nn * d + e * nn..], d);
+                series::fill_mul_operator(
+                    &series,
+                    hn,
+                    hn,
+                    hn,
+                    1.0,
+                    &mut a[k * nn * d + e * nn..],
+                    d,
+                );
             }
         }
         self.series = series;
@@ -515,7 +577,15 @@ impl ContactBlock {
                 if series.iter().all(|&v| v == 0.0) {
                     continue;
                 }
-                series::fill_mul_operator(&series, hn, hl, hn, 1.0, &mut self.w[c * nl * d + e * nn..], d);
+                series::fill_mul_operator(
+                    &series,
+                    hn,
+                    hl,
+                    hn,
+                    1.0,
+                    &mut self.w[c * nl * d + e * nn..],
+                    d,
+                );
             }
         }
         self.series = series;
@@ -529,7 +599,10 @@ impl ContactBlock {
             Method::Dense => self.dense.solve(r, 1),
             Method::Krylov => {
                 self.b.copy_from_slice(r);
-                match self.gmres.solve(&mut self.pw, &self.b, &mut self.x, KRYLOV_RTOL) {
+                match self
+                    .gmres
+                    .solve(&mut self.pw, &self.b, &mut self.x, KRYLOV_RTOL)
+                {
                     Ok(st) => {
                         self.counters.krylov_iterations += st.iterations;
                         r.copy_from_slice(&self.x);
@@ -548,13 +621,6 @@ impl ContactBlock {
                 }
             }
         }
-    }
-
-    /// Bytes held (Krylov workspace, samples, W, dense factor if any).
-    pub fn bytes(&self) -> usize {
-        self.gmres.bytes()
-            + 8 * (self.pw.jac.len() + self.pw.jac_u.len() + self.pw.inv.len() + self.pw.xs.len() + self.pw.ys.len())
-            + 8 * (self.w.len() + 2 * self.d + self.dense.dim() * self.dense.dim())
     }
 }
 

@@ -25,7 +25,8 @@ pub struct DenseLu {
 /// A `Vec` of `len` zeros, or an out-of-memory error naming what needed it.
 pub fn try_zeroed(len: usize, what: &str) -> Result<Vec<f64>> {
     let mut v = Vec::new();
-    v.try_reserve_exact(len).map_err(|_| out_of_memory(len, what))?;
+    v.try_reserve_exact(len)
+        .map_err(|_| out_of_memory(len, what))?;
     v.resize(len, 0.0);
     Ok(v)
 }
@@ -38,10 +39,6 @@ pub fn out_of_memory(values: usize, what: &str) -> Error {
 }
 
 impl DenseLu {
-    pub fn dim(&self) -> usize {
-        self.dim
-    }
-
     /// The matrix storage to fill (column-major dim × dim), grown when `dim` grows; the
     /// caller writes every entry before `factor`.
     pub fn storage(&mut self, dim: usize) -> Result<&mut [f64]> {
@@ -68,7 +65,8 @@ impl DenseLu {
         let n = self.dim;
         if self.factor_mem.is_none() {
             let req = factor::lu_in_place_scratch::<usize, f64>(n, n, Par::Seq, Default::default());
-            self.factor_mem = Some(MemBuffer::try_new(req).map_err(|_| out_of_memory(n, "LU scratch"))?);
+            self.factor_mem =
+                Some(MemBuffer::try_new(req).map_err(|_| out_of_memory(n, "LU scratch"))?);
         }
         let mem = self
             .factor_mem
@@ -100,6 +98,7 @@ impl DenseLu {
     }
 
     /// Sign of the determinant of the factored matrix.
+    #[cfg(test)]
     pub fn det_sign(&self) -> f64 {
         let n = self.dim;
         (0..n).fold(self.perm_sign, |s, i| s * self.lu[i * n + i].signum())
@@ -109,7 +108,9 @@ impl DenseLu {
     pub fn solve(&mut self, rhs: &mut [f64], ncols: usize) -> Result<()> {
         let n = self.dim;
         if !self.factored || rhs.len() != n * ncols {
-            return Err(Error::internal("dense solve without a factorisation or of the wrong size"));
+            return Err(Error::internal(
+                "dense solve without a factorisation or of the wrong size",
+            ));
         }
         if ncols == 0 {
             return Ok(());
@@ -117,7 +118,8 @@ impl DenseLu {
         let fresh = !matches!(&self.solve_mem, Some((c, _)) if *c >= ncols);
         if fresh {
             let req = solve::solve_in_place_scratch::<usize, f64>(n, ncols, Par::Seq);
-            let mem = MemBuffer::try_new(req).map_err(|_| out_of_memory(n * ncols, "LU solve scratch"))?;
+            let mem = MemBuffer::try_new(req)
+                .map_err(|_| out_of_memory(n * ncols, "LU solve scratch"))?;
             self.solve_mem = Some((ncols, mem));
         }
         let mem = match &mut self.solve_mem {

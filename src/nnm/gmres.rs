@@ -35,7 +35,10 @@ pub struct Stats {
 pub enum Failure {
     /// The residual stopped decreasing above the tolerance (singular or too ill-conditioned
     /// operator for this preconditioner).
-    Stagnated { iterations: usize, relative_residual: f64 },
+    Stagnated {
+        iterations: usize,
+        relative_residual: f64,
+    },
     /// A value became NaN or infinite.
     NotFinite,
 }
@@ -83,15 +86,6 @@ impl Gmres {
             z: vec![0.0; n],
             r: vec![0.0; n],
         }
-    }
-
-    pub fn dim(&self) -> usize {
-        self.n
-    }
-
-    /// Bytes held by the workspace.
-    pub fn bytes(&self) -> usize {
-        8 * (self.v.len() + self.h.len() + 4 * self.m + 3 * self.n + 1)
     }
 
     /// Solve A x = b to relative residual `rtol` (or to the backward-error floor); `x` is
@@ -187,7 +181,7 @@ impl Gmres {
         while k < m {
             // w = A P v_k.
             {
-                let (head, _) = self.v.split_at(( k + 1) * n);
+                let (head, _) = self.v.split_at((k + 1) * n);
                 op.precondition(&head[k * n..], &mut self.z);
             }
             op.apply(&self.z, &mut self.w);
@@ -225,7 +219,11 @@ impl Gmres {
             }
             let (a, b) = (col[k], col[k + 1]);
             let rho = a.hypot(b);
-            let (c, s) = if rho == 0.0 { (1.0, 0.0) } else { (a / rho, b / rho) };
+            let (c, s) = if rho == 0.0 {
+                (1.0, 0.0)
+            } else {
+                (a / rho, b / rho)
+            };
             self.cs[k] = c;
             self.sn[k] = s;
             col[k] = rho;
@@ -307,11 +305,20 @@ mod tests {
             let st = g.solve(&mut op, &b, &mut x, 1e-13).unwrap();
             let mut r = vec![0.0; n];
             op.apply(&x, &mut r);
-            let res = r.iter().zip(&b).map(|(a, c)| (a - c).powi(2)).sum::<f64>().sqrt()
+            let res = r
+                .iter()
+                .zip(&b)
+                .map(|(a, c)| (a - c).powi(2))
+                .sum::<f64>()
+                .sqrt()
                 / norm(&b);
             assert!(res < 1e-13, "m {m}: residual {res}");
             assert!((st.relative_residual - res).abs() < 1e-15);
-            let err = x.iter().zip(&x_true).map(|(a, c)| (a - c).abs()).fold(0.0, f64::max);
+            let err = x
+                .iter()
+                .zip(&x_true)
+                .map(|(a, c)| (a - c).abs())
+                .fold(0.0, f64::max);
             assert!(err < 1e-11, "m {m}: error {err}");
         }
     }
@@ -329,7 +336,9 @@ mod tests {
         let mut g = Gmres::new(n, 30, 5);
         let mut x = vec![0.0; n];
         match g.solve(&mut op, &b, &mut x, 1e-13) {
-            Err(Failure::Stagnated { relative_residual, .. }) => {
+            Err(Failure::Stagnated {
+                relative_residual, ..
+            }) => {
                 assert!(relative_residual > 1e-3)
             }
             other => panic!("expected stagnation, got {other:?}"),

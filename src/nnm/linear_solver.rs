@@ -16,7 +16,7 @@
 //!   the determinant sign from a minor of its inverse (bifurcation.rs): the dense reference
 //!   the tests compare the structured solver with.
 
-use super::contact::{ContactBlock, Counters, Method};
+use super::contact::{ContactBlock, Method};
 use super::reduced::{Linearisation, ReducedSystem};
 use super::series;
 use super::system::System;
@@ -82,7 +82,11 @@ impl StructuredSolver {
             .iter()
             .map(|sh| vec![0.0; (sh.dofs.len() * l.nl).pow(2)])
             .collect();
-        let q = sys.shocks.iter().map(|sh| vec![0.0; sh.eqs.n_own * l.nn]).collect();
+        let q = sys
+            .shocks
+            .iter()
+            .map(|sh| vec![0.0; sh.eqs.n_own * l.nn])
+            .collect();
         Ok(StructuredSolver {
             reduced: ReducedSystem::new(sys)?,
             contacts,
@@ -101,32 +105,6 @@ impl StructuredSolver {
             tmp2: vec![0.0; nnl],
             factored: false,
         })
-    }
-
-    /// The route each shock's block takes.
-    pub fn contact_methods(&self) -> Vec<Method> {
-        self.contacts.iter().map(|c| c.method()).collect()
-    }
-
-    pub fn contact_counters(&self) -> Vec<Counters> {
-        self.contacts.iter().map(|c| c.counters).collect()
-    }
-
-    /// Reduced unknowns, pattern nonzeros, factor nonzeros, factorisations done.
-    pub fn reduced_stats(&self) -> (usize, usize, usize, usize) {
-        (
-            self.reduced.dim(),
-            self.reduced.nnz(),
-            self.reduced.factor_nnz(),
-            self.reduced.factorisations,
-        )
-    }
-
-    /// Bytes held by the solver (pattern, factors, contact workspaces, vectors).
-    pub fn bytes(&self) -> usize {
-        self.reduced.bytes()
-            + self.contacts.iter().map(|c| c.bytes()).sum::<usize>()
-            + 8 * (self.t.len() + self.y.len() + 6 * self.du0.len())
     }
 
     /// Reduced border candidates: U entries and Ω, by decreasing |t|.
@@ -222,7 +200,8 @@ impl TangentSolver for StructuredSolver {
         self.col_omega.fill(0.0);
         sys.m.mul_blocks(&self.tmp, nl, &mut self.col_omega);
         self.col_gamma.fill(0.0);
-        sys.m.mul_blocks(&x0[l.v(0)..l.v(0) + n * nl], nl, &mut self.col_gamma);
+        sys.m
+            .mul_blocks(&x0[l.v(0)..l.v(0) + n * nl], nl, &mut self.col_gamma);
         // Contact blocks and their Schur complements C W.
         for (s, sh) in sys.shocks.iter().enumerate() {
             self.contacts[s].factor(sh, &l, x0)?;
@@ -245,7 +224,9 @@ impl TangentSolver for StructuredSolver {
         self.t.copy_from_slice(border);
         let candidates = self.border_candidates(sys);
         if candidates.is_empty() {
-            return Err(Error::numerical("the border has no displacement or frequency component"));
+            return Err(Error::numerical(
+                "the border has no displacement or frequency component",
+            ));
         }
         let mut last_err = None;
         for j in candidates {
@@ -284,7 +265,9 @@ impl TangentSolver for StructuredSolver {
         let (n, nl, hl, nn) = (l.n, l.nl, l.hl, l.nn);
         let nnl = n * nl;
         if !self.factored || rhs.len() != l.n_unk {
-            return Err(Error::internal("solve without a factorisation or of the wrong size"));
+            return Err(Error::internal(
+                "solve without a factorisation or of the wrong size",
+            ));
         }
         let rho = rhs[l.n_eq()];
         for (s, sh) in sys.shocks.iter().enumerate() {

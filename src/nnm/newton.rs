@@ -6,19 +6,30 @@ use super::linear_solver::TangentSolver;
 use super::system::System;
 use crate::error::{Error, Result};
 
-/// ‖R(X)‖ / max(1, ‖X‖, ‖|K||U|‖), scaled units: the residual we report (RESIDU) and test
-/// against PREC_NEWTON. Relative to the point's size because round-off in the quadratic
-/// terms grows like ε‖X‖², which an absolute threshold cannot beat far up a branch; and
-/// relative to the stiffness terms because the round-off of K U is ε‖|K||U|‖, which grows
-/// with the mesh (the scaled K of a chain grows like n, of a bending beam like n³: a
-/// 10⁴-DOF beam's Newton stalled at 2e-8 with the first two terms alone). For a model
-/// whose scaled stiffness is O(1) (one DOF, k_ref = k) ‖|K||U|‖ ≤ ‖X‖ and the measure is the
-/// former ‖R‖/max(1, ‖X‖).
-pub fn relative(sys: &System, r: &[f64], x: &[f64]) -> f64 {
-    norm(r) / norm(x).max(1.0).max(sys.stiffness_term_norm(x))
+/// ‖R(X)‖ / max(1, ‖X‖), scaled units: the residual we report (RESIDU) and test against
+/// PREC_NEWTON. Relative to the point's size because round-off in the quadratic terms
+/// grows like ε‖X‖², which an absolute threshold cannot beat far up a branch.
+pub fn relative(r: &[f64], x: &[f64]) -> f64 {
+    norm(r) / norm(x).max(1.0)
 }
 
-/// Corrects `x` in place until ‖R‖ ≤ `tol`. Returns (iterations, final relative residual).
+/// Margin of [`roundoff_floor`] over ε‖|K||U|‖: the entries per row summed in K U (a few
+/// tens for beams and shells) and the growth of the round-off in the factorised solves.
+const ROUNDOFF_MARGIN: f64 = 1.0e3;
+
+/// What the residual of an exact solution may still be from round-off alone, in the units
+/// of [`relative`]: the stiffness terms K U are evaluated with an error up to about
+/// ε‖|K||U|‖ (componentwise absolute values), which grows with the mesh (the scaled K of a
+/// chain grows like n, of a bending beam like n³): a 10⁴-DOF beam's Newton stalls near
+/// 2e-8 whatever the iterations. For models whose scaled stiffness is O(1) it is far below
+/// any PREC_NEWTON.
+pub fn roundoff_floor(sys: &System, x: &[f64]) -> f64 {
+    ROUNDOFF_MARGIN * f64::EPSILON * sys.stiffness_term_norm(x) / norm(x).max(1.0)
+}
+
+/// Corrects `x` in place until ‖R‖ ≤ `tol`, or until the residual stops decreasing below
+/// the round-off floor (it cannot do better there: accepted, and RESIDU reports it).
+/// Returns (iterations, final relative residual).
 pub fn correct(
     sys: &System,
     solver: &mut dyn TangentSolver,
@@ -28,9 +39,10 @@ pub fn correct(
     max_iter: usize,
 ) -> Result<(usize, f64)> {
     let mut it = 0;
+    let mut previous = f64::INFINITY;
     loop {
         let r = sys.residual(x);
-        let nr = relative(sys, &r, x);
+        let nr = relative(&r, x);
         if !nr.is_finite() {
             return Err(Error::numerical(format!(
                 "the residual is not finite after {it} Newton iteration(s)"
@@ -39,6 +51,11 @@ pub fn correct(
         if nr <= tol {
             return Ok((it, nr));
         }
+        // Stalled (less than halved by the last iteration) at what round-off allows.
+        if it > 0 && nr > 0.5 * previous && nr <= roundoff_floor(sys, x) {
+            return Ok((it, nr));
+        }
+        previous = nr;
         if it >= max_iter {
             return Err(Error::numerical(format!(
                 "Newton correction did not converge: ‖R‖ = {nr:.3e} > PREC_NEWTON = {tol:.1e} after {it} iterations"
@@ -56,7 +73,7 @@ pub fn correct(
             for (xi, di) in x.iter_mut().zip(&d) {
                 *xi += di;
             }
-            return Ok((it + 1, relative(sys, &sys.residual(x), x)));
+            return Ok((it + 1, relative(&sys.residual(x), x)));
         }
         // Full step unless it increases the residual (a start point far from the branch,
         // e.g. a linear mode placed deep into contact): then halve it a few times.
@@ -66,7 +83,7 @@ pub fn correct(
             for ((xi, xo), di) in x.iter_mut().zip(&x_old).zip(&d) {
                 *xi = xo + step * di;
             }
-            let rn = relative(sys, &sys.residual(x), x);
+            let rn = relative(&sys.residual(x), x);
             if rn.is_finite() && rn < nr {
                 break;
             }

@@ -182,34 +182,23 @@ impl ReducedSystem {
             row_perm: vec![0; nr],
             row_perm_inv: vec![0; nr],
             lu: SimplicialLu::new(),
-            factor_mem: MemBuffer::try_new(simplicial::factorize_simplicial_numeric_lu_scratch::<usize, f64>(nr, nr))
-                .map_err(|_| out_of_memory(4 * nr, "the sparse LU workspace"))?,
-            solve_mem: MemBuffer::try_new(simplicial::solve_in_place_scratch::<usize, f64>(nr, 1, Par::Seq))
-                .map_err(|_| out_of_memory(nr, "the sparse solve workspace"))?,
+            factor_mem: MemBuffer::try_new(simplicial::factorize_simplicial_numeric_lu_scratch::<
+                usize,
+                f64,
+            >(nr, nr))
+            .map_err(|_| out_of_memory(4 * nr, "the sparse LU workspace"))?,
+            solve_mem: MemBuffer::try_new(simplicial::solve_in_place_scratch::<usize, f64>(
+                nr,
+                1,
+                Par::Seq,
+            ))
+            .map_err(|_| out_of_memory(nr, "the sparse solve workspace"))?,
             det_sign: 0.0,
             factored: false,
             factorisations: 0,
         };
         rs.build_pattern()?;
         Ok(rs)
-    }
-
-    /// Number of reduced unknowns n·(2H_l+1) + 2.
-    pub fn dim(&self) -> usize {
-        self.nr
-    }
-
-    /// Nonzeros of the pattern (border entry excluded).
-    pub fn nnz(&self) -> usize {
-        self.row_idx.len()
-    }
-
-    /// Nonzeros of the last L and U factors.
-    pub fn factor_nnz(&self) -> usize {
-        if !self.factored {
-            return 0;
-        }
-        self.lu.l_factor_unsorted().compute_nnz() + self.lu.u_factor_unsorted().compute_nnz()
     }
 
     /// Every entry of the matrix but the border, in a fixed order; `lin` None: pattern only.
@@ -383,7 +372,9 @@ impl ReducedSystem {
     /// Solve in place (length nr).
     pub fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
         if !self.factored || rhs.len() != self.nr {
-            return Err(Error::internal("reduced solve without a factorisation or of the wrong size"));
+            return Err(Error::internal(
+                "reduced solve without a factorisation or of the wrong size",
+            ));
         }
         let nr = self.nr;
         self.lu.solve_in_place_with_conj(
@@ -400,13 +391,6 @@ impl ReducedSystem {
             ));
         }
         Ok(())
-    }
-
-    /// Bytes of the pattern, values and factors.
-    pub fn bytes(&self) -> usize {
-        let pattern = 8 * (self.col_ptr.len() + 2 * self.row_idx.len() + self.pos.len() + self.a_col_ptr.len() + 2 * self.a_row_idx.len());
-        let factors = if self.factored { 16 * self.factor_nnz() } else { 0 };
-        pattern + factors + 8 * 6 * self.nr
     }
 }
 

@@ -30,7 +30,11 @@ fn diag(n: usize, v: f64) -> SparseColMat<usize, f64> {
 /// A point in contact: the first DOF at 1.3 JEU in its first harmonic, the second (CERCLE)
 /// at 0.4 JEU in quadrature, contact unknowns from their laws.
 fn system_and_point(law: ShockLaw, h_nonl: usize) -> Result<(System, Vec<f64>)> {
-    let dofs = if matches!(law, ShockLaw::Cercle { .. }) { vec![0, 1] } else { vec![0] };
+    let dofs = if matches!(law, ShockLaw::Cercle { .. }) {
+        vec![0, 1]
+    } else {
+        vec![0]
+    };
     let p = Problem {
         k: diag(2, 10.0),
         m: diag(2, 1.0),
@@ -70,14 +74,21 @@ pub fn contact_route_timings(h_values: &[usize], solves: usize) -> Result<Vec<Ro
     let mut rows = Vec::new();
     let laws = [
         ("PLAN", ShockLaw::Plan),
-        ("CERCLE", ShockLaw::Cercle { origin: [0.0, 0.003] }),
+        (
+            "CERCLE",
+            ShockLaw::Cercle {
+                origin: [0.0, 0.003],
+            },
+        ),
     ];
     for (name, law) in laws {
         for &h in h_values {
             let (sys, x) = system_and_point(law, h)?;
             let l = sys.lay;
             let sh = &sys.shocks[0];
-            let rhs: Vec<f64> = (0..sh.eqs.n_own * l.nn).map(|i| ((i * 7919) % 101) as f64 / 101.0 - 0.5).collect();
+            let rhs: Vec<f64> = (0..sh.eqs.n_own * l.nn)
+                .map(|i| ((i * 7919) % 101) as f64 / 101.0 - 0.5)
+                .collect();
             let time = |m: Method| -> Result<(f64, f64)> {
                 let mut block = ContactBlock::new(sh, 0, &l, solves, Some(m))?;
                 let mut best = f64::INFINITY;
@@ -93,7 +104,8 @@ pub fn contact_route_timings(h_values: &[usize], solves: usize) -> Result<Vec<Ro
                     best = best.min(t.elapsed().as_secs_f64());
                 }
                 let c = block.counters;
-                let per_solve = c.krylov_iterations as f64 / (c.solves + c.factorisations * block.dims().1).max(1) as f64;
+                let per_solve = c.krylov_iterations as f64
+                    / (c.solves + c.factorisations * block.dims().1).max(1) as f64;
                 Ok((best, per_solve))
             };
             let (dense_s, _) = time(Method::Dense)?;
@@ -105,7 +117,12 @@ pub fn contact_route_timings(h_values: &[usize], solves: usize) -> Result<Vec<Ro
                 dense_s,
                 krylov_s,
                 krylov_iterations,
-                model_choice: contact::choose(sh.eqs.n_own, l.nn, ns, solves + sh.dofs.len() * l.nl),
+                model_choice: contact::choose(
+                    sh.eqs.n_own,
+                    l.nn,
+                    ns,
+                    solves + sh.dofs.len() * l.nl,
+                ),
             });
         }
     }

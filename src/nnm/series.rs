@@ -278,10 +278,7 @@ impl Sampler {
 
     /// A scratch for `synth_with` and `analyse_with`.
     pub fn scratch(&self) -> FftScratch {
-        let len = self
-            .fwd
-            .get_scratch_len()
-            .max(self.inv.get_scratch_len());
+        let len = self.fwd.get_scratch_len().max(self.inv.get_scratch_len());
         FftScratch {
             spec: vec![Complex::new(0.0, 0.0); self.n / 2 + 1],
             work: vec![Complex::new(0.0, 0.0); len],
@@ -445,8 +442,17 @@ mod tests {
     fn direct_operator_fill_equals_the_convolution_operator() {
         // Every (hc, hx, hout) shape, including hc above and below hx + hout; exact
         // formulas on both sides: equal to round-off.
-        for (hc, hx, hout) in [(0, 0, 0), (2, 1, 3), (5, 2, 3), (3, 4, 4), (7, 7, 7), (1, 6, 2)] {
-            let c: Vec<f64> = (0..len(hc)).map(|i| ((i * 13 % 7) as f64 - 3.0) / 3.0).collect();
+        for (hc, hx, hout) in [
+            (0, 0, 0),
+            (2, 1, 3),
+            (5, 2, 3),
+            (3, 4, 4),
+            (7, 7, 7),
+            (1, 6, 2),
+        ] {
+            let c: Vec<f64> = (0..len(hc))
+                .map(|i| ((i * 13 % 7) as f64 - 3.0) / 3.0)
+                .collect();
             let m = mul_operator(&c, hc, hx, hout);
             let nr = len(hout);
             let ld = nr + 2;

@@ -13,7 +13,10 @@ use faer::Mat;
 struct Lcg(u64);
 impl Lcg {
     fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         ((self.0 >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
     }
 }
@@ -31,7 +34,16 @@ fn problem() -> Problem {
     }
     Problem {
         k: sparse(4, &k),
-        m: sparse(4, &[(0, 0, 1.0), (1, 1, 2.0), (2, 2, 1.5), (0, 1, 0.1), (1, 0, 0.1)]),
+        m: sparse(
+            4,
+            &[
+                (0, 0, 1.0),
+                (1, 1, 2.0),
+                (2, 2, 1.5),
+                (0, 1, 0.1),
+                (1, 0, 0.1),
+            ],
+        ),
         shocks: vec![
             Shock {
                 law: ShockLaw::Plan,
@@ -89,7 +101,11 @@ fn dense_full(sys: &System, x: &[f64], t: &[f64]) -> Mat<f64> {
 
 fn max_rel(a: &[f64], b: &[f64]) -> f64 {
     let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max) / scale
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+        / scale
 }
 
 fn solvers(sys: &System) -> Vec<(Method, StructuredSolver)> {
@@ -183,7 +199,12 @@ fn determinant_signs_change_together_with_the_dense_references() {
         }
     }
     assert!(seen.0 && seen.1, "the sample must exercise both signs");
-    assert!(ratios.windows(2).all(|w| w[0].0 == w[1].0 && w[0].1 == w[1].1), "{ratios:?}");
+    assert!(
+        ratios
+            .windows(2)
+            .all(|w| w[0].0 == w[1].0 && w[0].1 == w[1].1),
+        "{ratios:?}"
+    );
 }
 
 /// Whole runs: the structured solver (each route) and the reference give the same points
@@ -230,7 +251,11 @@ fn runs_with_the_structured_solver_equal_the_reference_runs() {
         for (g, w) in got.iter().zip(&want) {
             assert!((g.frequency / w.frequency - 1.0).abs() < 1e-10, "{kind:?}");
             assert!((g.energy / w.energy - 1.0).abs() < 1e-10, "{kind:?}");
-            assert!(max_rel(&g.x, &w.x) < 1e-10, "{kind:?}: {:e}", max_rel(&g.x, &w.x));
+            assert!(
+                max_rel(&g.x, &w.x) < 1e-10,
+                "{kind:?}: {:e}",
+                max_rel(&g.x, &w.x)
+            );
             assert_eq!(g.bifurcation, w.bifurcation);
         }
     }

@@ -152,13 +152,24 @@ impl<'a> PointWriter<'a> {
     /// The full unknown vector of row `nume_ordre`.
     pub fn point(&mut self, nume_ordre: i64, omega: f64, x: &[f64]) -> Result<()> {
         let mut stmt = self.store.conn().prepare_cached(INSERT_POINT)?;
-        stmt.execute(params![self.name, nume_ordre, omega, x.len() as i64, to_blob(x)])?;
+        stmt.execute(params![
+            self.name,
+            nume_ordre,
+            omega,
+            x.len() as i64,
+            to_blob(x)
+        ])?;
         Ok(())
     }
 
     /// The displacement coefficients of row `nume_ordre`: `coefs[d]` holds DOF `dofs[d]`'s
     /// 2H+1 coefficients ordered 0, C1..CH, S1..SH (HARM 0 gets COEF_S = 0).
-    pub fn fourier(&mut self, nume_ordre: i64, dofs: &[(String, String)], coefs: &[Vec<f64>]) -> Result<()> {
+    pub fn fourier(
+        &mut self,
+        nume_ordre: i64,
+        dofs: &[(String, String)],
+        coefs: &[Vec<f64>],
+    ) -> Result<()> {
         if self.dofs.as_slice() != dofs {
             self.flush()?;
             self.dofs = dofs.to_vec();
@@ -166,7 +177,11 @@ impl<'a> PointWriter<'a> {
         for (d, c) in coefs.iter().enumerate().take(dofs.len()) {
             let h = c.len().saturating_sub(1) / 2;
             for k in 0..=h {
-                let (cc, cs) = if k == 0 { (c[0], 0.0) } else { (c[k], c[h + k]) };
+                let (cc, cs) = if k == 0 {
+                    (c[0], 0.0)
+                } else {
+                    (c[k], c[h + k])
+                };
                 self.pending.push((nume_ordre, d, k, cc, cs));
                 if self.pending.len() == FOURIER_ROWS_PER_INSERT {
                     self.flush()?;
@@ -187,7 +202,15 @@ impl<'a> PointWriter<'a> {
         let harm: Vec<i64> = self.pending.iter().map(|r| r.2 as i64).collect();
         for (r, h) in self.pending.iter().zip(&harm) {
             let (node, cmp) = &self.dofs[r.1];
-            values.extend_from_slice(&[&self.name as &dyn rusqlite::ToSql, &r.0, node, cmp, h, &r.3, &r.4]);
+            values.extend_from_slice(&[
+                &self.name as &dyn rusqlite::ToSql,
+                &r.0,
+                node,
+                cmp,
+                h,
+                &r.3,
+                &r.4,
+            ]);
         }
         stmt.execute(values.as_slice())?;
         drop(stmt);
@@ -316,11 +339,17 @@ mod tests {
         s.register_concept("MNL", "table_container", "MODE_NON_LINE", "a.comm", 1)
             .unwrap();
         // 3 DOFs × 2 rows × (H + 1 = 40) harmonics: flushes at 64 and a remainder.
-        let dofs: Vec<(String, String)> = (0..3).map(|i| (format!("N{i}"), "DX".to_string())).collect();
+        let dofs: Vec<(String, String)> = (0..3)
+            .map(|i| (format!("N{i}"), "DX".to_string()))
+            .collect();
         let h = 39;
         let coefs = |row: i64| -> Vec<Vec<f64>> {
             (0..3)
-                .map(|d| (0..2 * h + 1).map(|j| row as f64 * 1000.0 + d as f64 * 100.0 + j as f64).collect())
+                .map(|d| {
+                    (0..2 * h + 1)
+                        .map(|j| row as f64 * 1000.0 + d as f64 * 100.0 + j as f64)
+                        .collect()
+                })
                 .collect()
         };
         let mut w = PointWriter::new(&s, "MNL").unwrap();
@@ -328,7 +357,10 @@ mod tests {
             w.fourier(row, &dofs, &coefs(row)).unwrap();
         }
         w.finish().unwrap();
-        let n: i64 = s.conn().query_row("SELECT count(*) FROM mnl_fourier", [], |r| r.get(0)).unwrap();
+        let n: i64 = s
+            .conn()
+            .query_row("SELECT count(*) FROM mnl_fourier", [], |r| r.get(0))
+            .unwrap();
         assert_eq!(n, 2 * 3 * (h as i64 + 1));
         let (c, sn): (f64, f64) = s
             .conn()
@@ -341,7 +373,11 @@ mod tests {
         assert_eq!((c, sn), (2107.0, 2000.0 + 100.0 + (h + 7) as f64));
         let s0: f64 = s
             .conn()
-            .query_row("SELECT COEF_S FROM mnl_fourier WHERE NUME_ORDRE = 1 AND NOEUD = 'N2' AND HARM = 0", [], |r| r.get(0))
+            .query_row(
+                "SELECT COEF_S FROM mnl_fourier WHERE NUME_ORDRE = 1 AND NOEUD = 'N2' AND HARM = 0",
+                [],
+                |r| r.get(0),
+            )
             .unwrap();
         assert_eq!(s0, 0.0);
     }
