@@ -61,6 +61,10 @@ enum Command {
         /// Sections to run: whole, hnl, n, det, routes, compare (default: all).
         #[arg(long)]
         only: Vec<String>,
+        /// The --old binary reads DIR_EVOLUTION=1 as forward (before the DIR_EVOLUTION
+        /// change): its command files get the sign flipped.
+        #[arg(long)]
+        old_plus_forward: bool,
     },
     /// One engine measurement of `bench` (run in a child process).
     #[command(hide = true)]
@@ -124,6 +128,7 @@ fn main() -> ExitCode {
             repeats,
             dir,
             only,
+            old_plus_forward,
         } => {
             let opts = aster_nl::bench::Options {
                 quick,
@@ -131,6 +136,7 @@ fn main() -> ExitCode {
                 repeats,
                 dir,
                 only,
+                old_plus_forward,
             };
             match aster_nl::bench::run(&opts, &mut std::io::stdout()) {
                 Ok(()) => ExitCode::SUCCESS,

@@ -49,9 +49,8 @@ fn mnl(h_lin: usize, h_nonl: usize, branches: usize, points: usize) -> Mnl {
         order: 20,
         prec_man: 1e-8,
         prec_newton: 1e-9,
-        // Toward increasing energy (DIR_EVOLUTION=1 in this version's convention,
-        // docs/mode_non_line.md).
-        direction: 1,
+        // Forward, toward increasing amplitude (DIR_EVOLUTION=-1, docs/mode_non_line.md).
+        direction: -1,
         coef_ampl: None,
         det_test: true,
     }
@@ -102,7 +101,7 @@ pub fn wall(h_nonl: usize, branches: usize) -> Case {
             order: 20,
             prec_man: 1e-14,
             prec_newton: 1e-9,
-            direction: 1,
+            direction: -1,
             coef_ampl: Some(1.0),
             det_test: true,
         },
@@ -317,8 +316,16 @@ fn fmt_real(v: f64) -> String {
 }
 
 /// The whole command file: the prefix, then MODE_NON_LINE with `coef_ampl`, then FIN.
-pub fn full_comm(case: &Case, coef_ampl: f64) -> String {
+/// `plus_forward`: write for a binary that reads DIR_EVOLUTION=1 as forward (aster-nl
+/// before the DIR_EVOLUTION change, e.g. main 33a8926), so that old and new binaries
+/// compute the same branches.
+pub fn full_comm(case: &Case, coef_ampl: f64, plus_forward: bool) -> String {
     let m = &case.mnl;
+    let direction = if plus_forward {
+        -m.direction
+    } else {
+        m.direction
+    };
     let mut choc = String::new();
     for s in &case.shocks {
         let cmps = if s.cmps.len() == 1 {
@@ -364,7 +371,7 @@ MNL = MODE_NON_LINE(MATR_RIGI=RIGIDITE, MATR_MASS=MASSE,
 FIN()
 ",
         case.prefix,
-        m.direction,
+        direction,
         fmt_real(coef_ampl),
         m.h_lin,
         m.h_nonl,

@@ -45,9 +45,10 @@ pub fn mnl_unknowns(s: &MnlSizes) -> f64 {
     2.0 * s.n_dofs as f64 * nl + own * nn + 2.0
 }
 
-/// Fill of the reduced system's sparse LU factors relative to its entries. Measured
-/// (`aster-nl bench`, bytes per nonzero) on beams and chains, whose factors stay within a
-/// few times the matrix; meshes with wider fronts fill more, so the factor keeps a margin.
+/// Fill of the reduced system's sparse LU factors relative to its entries, with a margin:
+/// on the bench's bar (10⁴ and 10⁵ DOFs, H_l 5) the engine measured about 2.5 kB per
+/// nonzero of K ∪ M (docs/performance.md), where this model (K and M counted separately)
+/// gives about 2.5 times as much; meshes with wider fronts than a bar fill more.
 const LU_FILL: f64 = 8.0;
 
 /// Entries of the reduced tangent that the sparse LU factorises (linear_solver.rs,

@@ -262,13 +262,13 @@ mod tests {
 
     impl Preconditioned for Dense {
         fn apply(&mut self, x: &[f64], y: &mut [f64]) {
-            for i in 0..self.n {
-                y[i] = (0..self.n).map(|j| self.a[i * self.n + j] * x[j]).sum();
+            for (yi, row) in y.iter_mut().zip(self.a.chunks_exact(self.n)) {
+                *yi = row.iter().zip(x).map(|(a, b)| a * b).sum();
             }
         }
         fn precondition(&mut self, x: &[f64], y: &mut [f64]) {
-            for i in 0..self.n {
-                y[i] = self.inv_diag[i] * x[i];
+            for ((yi, d), xi) in y.iter_mut().zip(&self.inv_diag).zip(x) {
+                *yi = d * xi;
             }
         }
         fn norm_bound(&self) -> f64 {

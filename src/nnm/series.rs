@@ -173,9 +173,9 @@ pub fn fft_size_smooth(need: usize) -> usize {
     let mut n = (need + 1).max(8);
     loop {
         let mut m = n;
-        if m % 2 == 0 {
+        if m.is_multiple_of(2) {
             for p in [2, 3, 5] {
-                while m % p == 0 {
+                while m.is_multiple_of(p) {
                     m /= p;
                 }
             }
@@ -475,7 +475,7 @@ mod tests {
         assert_eq!(fft_size_smooth(3), 8);
         for need in 1..2000 {
             let n = fft_size_smooth(need);
-            assert!(n > need && n % 2 == 0 && n <= fft_size(need));
+            assert!(n > need && n.is_multiple_of(2) && n <= fft_size(need));
         }
     }
 

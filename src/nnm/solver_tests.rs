@@ -223,7 +223,7 @@ fn runs_with_the_structured_solver_equal_the_reference_runs() {
     for _ in 0..200 {
         mode = lu.solve(&md * &mode);
         let big = (0..4).map(|i| mode[(i, 0)].abs()).fold(0.0, f64::max);
-        mode = mode * faer::Scale(1.0 / big);
+        mode *= faer::Scale(1.0 / big);
     }
     let kx = &kd * &mode;
     let mx = &md * &mode;
