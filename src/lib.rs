@@ -20,6 +20,7 @@
 #![allow(clippy::result_large_err)]
 
 pub mod args;
+pub mod bench;
 pub mod catalog;
 pub mod error;
 pub mod export;

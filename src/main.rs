@@ -44,6 +44,41 @@ enum Command {
     Catalog { operator: Option<String> },
     /// List the concepts and SQL tables of a database.
     Tables { db: PathBuf },
+    /// Speed and memory of MODE_NON_LINE, old and new side by side (docs/performance.md).
+    Bench {
+        /// Small cases only, new binary only (a smoke run).
+        #[arg(long)]
+        quick: bool,
+        /// An older aster-nl binary for the side-by-side whole runs and table comparison.
+        #[arg(long)]
+        old: Option<PathBuf>,
+        /// Repeats of each timed run (medians).
+        #[arg(long, default_value_t = 3)]
+        repeats: usize,
+        /// Scratch directory for case files and databases.
+        #[arg(long, default_value = "target/bench")]
+        dir: PathBuf,
+        /// Sections to run: whole, hnl, n, det, routes, compare (default: all).
+        #[arg(long)]
+        only: Vec<String>,
+        /// The --old binary reads DIR_EVOLUTION=1 as forward (before the DIR_EVOLUTION
+        /// change): its command files get the sign flipped.
+        #[arg(long)]
+        old_plus_forward: bool,
+    },
+    /// One engine measurement of `bench` (run in a child process).
+    #[command(hide = true)]
+    BenchCase {
+        model: String,
+        #[arg(long, default_value = "auto")]
+        solver: String,
+        #[arg(long)]
+        det: bool,
+        #[arg(long)]
+        no_det: bool,
+        #[arg(long, default_value = "target/bench")]
+        dir: PathBuf,
+    },
     /// Measure accuracy against time of MODE_NON_LINE settings (tables, CSV, plots).
     Study {
         /// Grid of settings: small (a quick look) or full (the documented study).
@@ -88,6 +123,40 @@ fn main() -> ExitCode {
         Command::Catalog { operator } => print_catalog(operator.as_deref()),
         Command::Tables { db } => tables(&db),
         Command::Study { grid, out, case } => study(grid, &out, case),
+        Command::Bench {
+            quick,
+            old,
+            repeats,
+            dir,
+            only,
+            old_plus_forward,
+        } => {
+            let opts = aster_nl::bench::Options {
+                quick,
+                old,
+                repeats,
+                dir,
+                only,
+                old_plus_forward,
+            };
+            match aster_nl::bench::run(&opts, &mut std::io::stdout()) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => fail(&e, None),
+            }
+        }
+        Command::BenchCase {
+            model,
+            solver,
+            det,
+            no_det,
+            dir,
+        } => {
+            let det = det || !no_det;
+            match aster_nl::bench::run_case(&model, &solver, det, &dir, &mut std::io::stdout()) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => fail(&e, None),
+            }
+        }
         Command::Sweep(args) => aster_nl::sweep::cli::sweep(&args),
         Command::Merge(args) => aster_nl::sweep::cli::merge(&args),
         Command::SweepTask(args) => aster_nl::sweep::cli::task(&args),

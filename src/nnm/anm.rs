@@ -9,7 +9,7 @@
 //! the NB_BRANCHE of Code_Aster's command files covers the same energy range (sdnd122a:
 //! 105 branches reach past ENERGIE = 6.5e-3, which ehman.md's estimate does not).
 
-use super::linear_solver::BorderedSolver;
+use super::linear_solver::TangentSolver;
 use super::system::System;
 use crate::error::{Error, Result};
 
@@ -73,7 +73,7 @@ pub struct AnmParams {
 /// wanted direction.
 pub fn compute(
     sys: &System,
-    solver: &mut dyn BorderedSolver,
+    solver: &mut dyn TangentSolver,
     x0: &[f64],
     p: &AnmParams,
     orient: &dyn Fn(&[f64]) -> f64,
@@ -81,7 +81,7 @@ pub fn compute(
     let n = sys.lay.n_unk;
     let mut y = vec![0.0; n];
     y[n - 1] = 1.0;
-    solver.solve(&mut y)?;
+    solver.solve(sys, &mut y)?;
     let ny = norm(&y);
     if !(ny.is_finite() && ny > 0.0) {
         return Err(Error::numerical(
@@ -108,7 +108,7 @@ pub fn compute(
         sys.quad_sum_cached(&pairs, Some(&cache), &mut rhs[..n - 1]);
         rhs.iter_mut().for_each(|v| *v = -*v);
         rhs[n - 1] = 0.0;
-        solver.solve(&mut rhs)?;
+        solver.solve(sys, &mut rhs)?;
         let c = dot(&rhs, &terms[0]) / y_x1;
         for (z, yi) in rhs.iter_mut().zip(&y) {
             *z -= c * yi;

@@ -69,20 +69,20 @@ pub fn energy_ca(sys: &System, x: &[f64]) -> f64 {
 }
 
 /// Samples over one period (θ_j = 2πj/N) of the total energy of the regularised system.
+///
+/// ½uᵀKu + ½vᵀMv is a trigonometric polynomial of degree 2H_l: its coefficients are
+/// Σ_i ½ u_i·(Ku)_i (products of series, O(n·H_l²) after one product by K and one by M),
+/// added to those of the contact work and sampled by one FFT (not n values per sample:
+/// O(N·nnz) was 0.7 s per point at 10⁴ DOFs).
 pub fn energy_samples(sys: &System, x: &[f64]) -> Vec<f64> {
     let l = sys.lay;
-    let (hl, hn, nl, nn) = (l.hl, l.hn, l.nl, l.nn);
+    let (n, hl, hn, nl, nn) = (l.n, l.hl, l.hn, l.nl, l.nn);
     let hw = hn + hl;
     let smp = Sampler::new(series::fft_size(2 * hw));
     let ns = smp.n();
-    let mut us = vec![vec![0.0; ns]; l.n];
-    let mut vs = vec![vec![0.0; ns]; l.n];
-    for i in 0..l.n {
-        smp.synth(&x[l.u(i)..l.u(i) + nl], hl, &mut us[i]);
-        smp.synth(&x[l.v(i)..l.v(i) + nl], hl, &mut vs[i]);
-    }
+    let nw = series::len(hw);
     // Work of the contact forces: p = Σ f_c u_c', W = ∫ p dθ (exact in Fourier space).
-    let mut p = vec![0.0; series::len(hw)];
+    let mut p = vec![0.0; nw];
     let mut du = vec![0.0; nl];
     for sh in &sys.shocks {
         for &(c, v) in &sh.eqs.forces {
@@ -92,21 +92,29 @@ pub fn energy_samples(sys: &System, x: &[f64]) -> Vec<f64> {
             series::mul_acc(f, hn, &du, hl, hw, 1.0, &mut p);
         }
     }
-    let mut w = vec![0.0; series::len(hw)];
+    let mut w = vec![0.0; nw];
     for k in 1..=hw {
         let kf = k as f64;
         w[series::ic(k)] = -p[series::is(hw, k)] / kf;
         w[series::is(hw, k)] = p[series::ic(k)] / kf;
     }
+    // ½uᵀKu + ½vᵀMv as a series of degree 2H_l ≤ H_l + H_nl, added to W.
+    let u = &x[l.u(0)..l.u(0) + n * nl];
+    let v = &x[l.v(0)..l.v(0) + n * nl];
+    let mut ku = vec![0.0; n * nl];
+    let mut mv = vec![0.0; n * nl];
+    sys.k.mul_blocks(u, nl, &mut ku);
+    sys.m.mul_blocks(v, nl, &mut mv);
+    for i in 0..n {
+        let r = i * nl..(i + 1) * nl;
+        series::mul_conv_acc(&u[r.clone()], hl, &ku[r.clone()], hl, hw, 0.5, &mut w);
+        series::mul_conv_acc(&v[r.clone()], hl, &mv[r], hl, hw, 0.5, &mut w);
+    }
     let mut ws = vec![0.0; ns];
     smp.synth(&w, hw, &mut ws);
-    (0..ns)
-        .map(|j| {
-            let theta = 2.0 * std::f64::consts::PI * j as f64 / ns as f64;
-            let u: Vec<f64> = us.iter().map(|s| s[j]).collect();
-            let v: Vec<f64> = vs.iter().map(|s| s[j]).collect();
-            quad_form(&sys.k.entries, &u) + quad_form(&sys.m.entries, &v) + ws[j] + p[0] * theta
-        })
+    ws.iter()
+        .enumerate()
+        .map(|(j, e)| e + p[0] * 2.0 * std::f64::consts::PI * j as f64 / ns as f64)
         .collect()
 }
 

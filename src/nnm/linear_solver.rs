@@ -1,10 +1,327 @@
-//! The solver of the bordered tangent, kept behind one trait so that a cheaper one (e.g. a
-//! Krylov solver preconditioned in the time domain, ehman.md §9) can replace it.
+//! Solvers of the bordered tangent J = [R_X(X0); tᵀ], behind one trait.
+//!
+//! - [`StructuredSolver`] (the engine's): V eliminated with the U rows, each shock's contact
+//!   block by its Schur complement (contact.rs), the rest one sparse LU of fixed pattern
+//!   (reduced.rs). The true border t is dense (the previous tangent); the reduced matrix
+//!   carries a *local* border e_j instead (j: the reduced unknown where |t| is largest), and
+//!   every solve of the true system is recovered exactly by one kernel correction: with y
+//!   the solution of [R_X; e_jᵀ] y = (0, 1) (computed once per factorisation, R_X y = 0) and
+//!   z' that of [R_X; e_jᵀ] z' = (r, 0), z = z' + ((ρ − tᵀz')/(tᵀy)) y solves
+//!   [R_X; tᵀ] z = (r, ρ). Determinant: det[R_X; tᵀ] = det[R_X; e_jᵀ]·(tᵀy) (both expand
+//!   along the border row with the same cofactors, and y is those cofactors over
+//!   det[R_X; e_jᵀ]), and det[R_X; e_jᵀ] = c·Π det A_ff·det S (block elimination, c a sign
+//!   fixed by the layout), so sign(det S)·sign(tᵀy) changes exactly where
+//!   det J·Π det A_ff does: where the minor of bifurcation.rs's reference test does.
+//! - [`ReferenceSolver`]: the whole tangent as triplets in one sparse LU ([`SparseLu`]),
+//!   the determinant sign from a minor of its inverse (bifurcation.rs): the dense reference
+//!   the tests compare the structured solver with.
 
+use super::contact::{ContactBlock, Method};
+use super::reduced::{Linearisation, ReducedSystem};
+use super::series;
+use super::system::System;
 use crate::error::{Error, Result};
 use faer::prelude::*;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat, Triplet};
+
+/// A factorisation of the bordered tangent of one system, and solves with it.
+pub trait TangentSolver {
+    /// Factorise [R_X(x0); borderᵀ].
+    fn factor(&mut self, sys: &System, x0: &[f64], border: &[f64]) -> Result<()>;
+    /// Solve in place; `rhs` = (right-hand side of the n_eq equations, border value).
+    fn solve(&mut self, sys: &System, rhs: &mut [f64]) -> Result<()>;
+    /// ±1: the sign of det[R_X; borderᵀ] times a factor fixed for the problem (only its
+    /// changes along a branch mean anything).
+    fn det_sign(&mut self, sys: &System) -> Result<f64>;
+}
+
+/// The engine's solver (module doc).
+pub struct StructuredSolver {
+    reduced: ReducedSystem,
+    contacts: Vec<ContactBlock>,
+    /// Per shock: C W (m × m, column-major).
+    schur: Vec<Vec<f64>>,
+    /// Per shock: A_ff⁻¹ r_f of the current solve.
+    q: Vec<Vec<f64>>,
+    omega: f64,
+    gamma: f64,
+    /// D U0, and the Ω and γ columns of the reduced velocity rows (n·nl each).
+    du0: Vec<f64>,
+    col_omega: Vec<f64>,
+    col_gamma: Vec<f64>,
+    /// The true border and the kernel vector of the local-border system.
+    t: Vec<f64>,
+    y: Vec<f64>,
+    ty: f64,
+    red: Vec<f64>,
+    tmp: Vec<f64>,
+    tmp2: Vec<f64>,
+    factored: bool,
+}
+
+/// Right-hand sides expected per factorisation (for the contact blocks' cost model):
+/// NB_ORDRE_MAN series terms, a few Newton corrections.
+pub fn solves_per_factorisation(order: usize) -> usize {
+    order + 4
+}
+
+impl StructuredSolver {
+    /// `force`: impose the contact route of every shock (tests, bench).
+    pub fn new(sys: &System, solves: usize, force: Option<Method>) -> Result<StructuredSolver> {
+        let l = sys.lay;
+        let nnl = l.n * l.nl;
+        let contacts = sys
+            .shocks
+            .iter()
+            .enumerate()
+            .map(|(i, sh)| ContactBlock::new(sh, i, &l, solves, force))
+            .collect::<Result<Vec<_>>>()?;
+        let schur = sys
+            .shocks
+            .iter()
+            .map(|sh| vec![0.0; (sh.dofs.len() * l.nl).pow(2)])
+            .collect();
+        let q = sys
+            .shocks
+            .iter()
+            .map(|sh| vec![0.0; sh.eqs.n_own * l.nn])
+            .collect();
+        Ok(StructuredSolver {
+            reduced: ReducedSystem::new(sys)?,
+            contacts,
+            schur,
+            q,
+            omega: 0.0,
+            gamma: 0.0,
+            du0: vec![0.0; nnl],
+            col_omega: vec![0.0; nnl],
+            col_gamma: vec![0.0; nnl],
+            t: vec![0.0; l.n_unk],
+            y: vec![0.0; l.n_unk],
+            ty: 0.0,
+            red: vec![0.0; nnl + 2],
+            tmp: vec![0.0; nnl],
+            tmp2: vec![0.0; nnl],
+            factored: false,
+        })
+    }
+
+    /// Reduced border candidates: U entries and Ω, by decreasing |t|.
+    fn border_candidates(&self, sys: &System) -> Vec<usize> {
+        let l = sys.lay;
+        let nnl = l.n * l.nl;
+        let mut best: Vec<(f64, usize)> = Vec::with_capacity(4);
+        let mut consider = |mag: f64, j: usize| {
+            if mag > 0.0 && mag.is_finite() {
+                best.push((mag, j));
+                best.sort_by(|a, b| b.0.total_cmp(&a.0));
+                best.truncate(3);
+            }
+        };
+        for (j, v) in self.t[..nnl].iter().enumerate() {
+            consider(v.abs(), j);
+        }
+        consider(self.t[l.omega()].abs(), nnl);
+        best.into_iter().map(|(_, j)| j).collect()
+    }
+
+    /// Full vector from a reduced solution `red` and the right-hand side `r` (None: zero),
+    /// into `z` (length n_unk). Needs `q` (A_ff⁻¹ r_f) when `r` is given.
+    fn expand(&mut self, sys: &System, r: Option<&[f64]>, z: &mut [f64]) {
+        let l = sys.lay;
+        let (n, nl, hl, nn) = (l.n, l.nl, l.hl, l.nn);
+        let nnl = n * nl;
+        let d_omega = self.red[nnl];
+        // δV = Ω D δU + D U0 δΩ − r_U.
+        for i in 0..n {
+            let du = &self.red[i * nl..(i + 1) * nl];
+            series::deriv(du, hl, &mut self.tmp[..nl]);
+            for j in 0..nl {
+                let mut v = self.omega * self.tmp[j] + self.du0[i * nl + j] * d_omega;
+                if let Some(r) = r {
+                    v -= r[l.u(i) + j];
+                }
+                z[l.v(i) + j] = v;
+            }
+        }
+        // δF = A_ff⁻¹ r_f − W δu_s.
+        for (s, sh) in sys.shocks.iter().enumerate() {
+            let d = sh.eqs.n_own * nn;
+            let f = &mut z[sh.offset..sh.offset + d];
+            match r {
+                Some(_) => f.copy_from_slice(&self.q[s]),
+                None => f.fill(0.0),
+            }
+            let w = self.contacts[s].w();
+            for (c, &dof) in sh.dofs.iter().enumerate() {
+                for j in 0..nl {
+                    let du = self.red[dof * nl + j];
+                    if du == 0.0 {
+                        continue;
+                    }
+                    let col = &w[(c * nl + j) * d..(c * nl + j + 1) * d];
+                    for (fi, wi) in f.iter_mut().zip(col) {
+                        *fi -= wi * du;
+                    }
+                }
+            }
+        }
+        z[..nnl].copy_from_slice(&self.red[..nnl]);
+        z[l.omega()] = d_omega;
+        z[l.gamma()] = self.red[nnl + 1];
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+impl TangentSolver for StructuredSolver {
+    fn factor(&mut self, sys: &System, x0: &[f64], border: &[f64]) -> Result<()> {
+        self.factored = false;
+        let l = sys.lay;
+        let (n, nl, hl, nn) = (l.n, l.nl, l.hl, l.nn);
+        if x0.len() != l.n_unk || border.len() != l.n_unk {
+            return Err(Error::internal("tangent point or border of the wrong size"));
+        }
+        self.omega = x0[l.omega()];
+        self.gamma = x0[l.gamma()];
+        // D U0; q = (ΩD + γ) D U0 + D V0; Ω column M q, γ column M V0.
+        for i in 0..n {
+            let r = i * nl..(i + 1) * nl;
+            series::deriv(&x0[l.u(i)..l.u(i) + nl], hl, &mut self.du0[r.clone()]);
+            series::deriv(&self.du0[r.clone()], hl, &mut self.tmp[r.clone()]);
+            series::deriv(&x0[l.v(i)..l.v(i) + nl], hl, &mut self.tmp2[r.clone()]);
+            for j in r {
+                self.tmp[j] = self.omega * self.tmp[j] + self.gamma * self.du0[j] + self.tmp2[j];
+            }
+        }
+        self.col_omega.fill(0.0);
+        sys.m.mul_blocks(&self.tmp, nl, &mut self.col_omega);
+        self.col_gamma.fill(0.0);
+        sys.m
+            .mul_blocks(&x0[l.v(0)..l.v(0) + n * nl], nl, &mut self.col_gamma);
+        // Contact blocks and their Schur complements C W.
+        for (s, sh) in sys.shocks.iter().enumerate() {
+            self.contacts[s].factor(sh, &l, x0)?;
+            let d = sh.eqs.n_own * nn;
+            let m = sh.dofs.len() * nl;
+            let w = self.contacts[s].w();
+            let g = &mut self.schur[s];
+            g.fill(0.0);
+            for col in 0..m {
+                let wc = &w[col * d..(col + 1) * d];
+                for &(c, v) in &sh.eqs.forces {
+                    for j in 0..nl {
+                        if let Some(p) = series::map_index(j, hl, l.hn) {
+                            g[col * m + c * nl + j] += wc[v * nn + p];
+                        }
+                    }
+                }
+            }
+        }
+        self.t.copy_from_slice(border);
+        let candidates = self.border_candidates(sys);
+        if candidates.is_empty() {
+            return Err(Error::numerical(
+                "the border has no displacement or frequency component",
+            ));
+        }
+        let mut last_err = None;
+        for j in candidates {
+            let lin = Linearisation {
+                omega: self.omega,
+                gamma: self.gamma,
+                col_omega: &self.col_omega,
+                col_gamma: &self.col_gamma,
+                schur: &self.schur,
+            };
+            if let Err(e) = self.reduced.factor(&lin, j) {
+                last_err = Some(e);
+                continue;
+            }
+            // Kernel: reduced right-hand side e_border, zero elsewhere.
+            self.red.fill(0.0);
+            let nr = self.red.len();
+            self.red[nr - 1] = 1.0;
+            self.reduced.solve(&mut self.red)?;
+            let mut y = std::mem::take(&mut self.y);
+            self.expand(sys, None, &mut y);
+            self.y = y;
+            self.ty = dot(&self.t, &self.y);
+            if self.ty != 0.0 && self.ty.is_finite() {
+                self.factored = true;
+                return Ok(());
+            }
+            last_err = Some(Error::numerical("the bordered tangent is singular (the border is orthogonal to the kernel)")
+                .hint("the branch may have reached a turning point of ω that the border cannot resolve"));
+        }
+        Err(last_err.unwrap_or_else(|| Error::internal("no border candidate")))
+    }
+
+    fn solve(&mut self, sys: &System, rhs: &mut [f64]) -> Result<()> {
+        let l = sys.lay;
+        let (n, nl, hl, nn) = (l.n, l.nl, l.hl, l.nn);
+        let nnl = n * nl;
+        if !self.factored || rhs.len() != l.n_unk {
+            return Err(Error::internal(
+                "solve without a factorisation or of the wrong size",
+            ));
+        }
+        let rho = rhs[l.n_eq()];
+        for (s, sh) in sys.shocks.iter().enumerate() {
+            let d = sh.eqs.n_own * nn;
+            self.q[s].copy_from_slice(&rhs[sh.offset..sh.offset + d]);
+            self.contacts[s].solve(&mut self.q[s])?;
+        }
+        // Velocity rows: r_V + M (ΩD + γ) r_U − Pᵀ C A_ff⁻¹ r_f.
+        for i in 0..n {
+            let r = i * nl..(i + 1) * nl;
+            series::deriv(&rhs[l.u(i)..l.u(i) + nl], hl, &mut self.tmp[r.clone()]);
+            for j in r {
+                self.tmp[j] = self.omega * self.tmp[j] + self.gamma * rhs[l.u(0) + j];
+            }
+        }
+        self.red[..nnl].copy_from_slice(&rhs[l.v(0)..l.v(0) + nnl]);
+        sys.m.mul_blocks(&self.tmp, nl, &mut self.red[..nnl]);
+        for (s, sh) in sys.shocks.iter().enumerate() {
+            for &(c, v) in &sh.eqs.forces {
+                let dof = sh.dofs[c];
+                for j in 0..nl {
+                    if let Some(p) = series::map_index(j, hl, l.hn) {
+                        self.red[dof * nl + j] -= self.q[s][v * nn + p];
+                    }
+                }
+            }
+        }
+        self.red[nnl] = rhs[l.omega()];
+        self.red[nnl + 1] = 0.0;
+        self.reduced.solve(&mut self.red)?;
+        let mut r_u = std::mem::take(&mut self.tmp2);
+        r_u.copy_from_slice(&rhs[..nnl]);
+        self.expand(sys, Some(&r_u), rhs);
+        self.tmp2 = r_u;
+        // The kernel correction to the true border.
+        let c = (rho - dot(&self.t, rhs)) / self.ty;
+        for (z, y) in rhs.iter_mut().zip(&self.y) {
+            *z += c * y;
+        }
+        if rhs.iter().any(|v| !v.is_finite()) {
+            return Err(Error::numerical(
+                "the bordered tangent is numerically singular (solution not finite)",
+            ));
+        }
+        Ok(())
+    }
+
+    fn det_sign(&mut self, _sys: &System) -> Result<f64> {
+        if !self.factored {
+            return Err(Error::internal("determinant sign without a factorisation"));
+        }
+        Ok(self.reduced.det_sign() * self.ty.signum())
+    }
+}
 
 /// Factor a square sparse matrix given as triplets (duplicates add), then solve with it.
 pub trait BorderedSolver {
@@ -124,6 +441,25 @@ impl BorderedSolver for SparseLu {
             ));
         }
         Ok(())
+    }
+}
+
+/// The whole tangent in one sparse LU (the engine before the structured solver): the
+/// reference of the tests and of the bench's old/new comparison.
+#[derive(Default)]
+pub struct ReferenceSolver {
+    pub lu: SparseLu,
+}
+
+impl TangentSolver for ReferenceSolver {
+    fn factor(&mut self, sys: &System, x0: &[f64], border: &[f64]) -> Result<()> {
+        self.lu.factor(sys.lay.n_unk, &sys.tangent(x0, border))
+    }
+    fn solve(&mut self, _sys: &System, rhs: &mut [f64]) -> Result<()> {
+        BorderedSolver::solve(&self.lu, rhs)
+    }
+    fn det_sign(&mut self, sys: &System) -> Result<f64> {
+        super::bifurcation::condensed_det_sign(sys, &self.lu)
     }
 }
 

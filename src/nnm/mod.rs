@@ -25,15 +25,20 @@
 mod anm;
 mod bifurcation;
 pub mod budget;
+mod contact;
+mod dense_lu;
 mod energy;
 pub mod exact;
+mod gmres;
 mod law_check;
 mod laws;
 mod linear_solver;
 mod newton;
 mod post;
 mod quadrature;
+mod reduced;
 mod resolution;
+mod route_timing;
 mod series;
 pub mod stability;
 mod system;
@@ -43,13 +48,18 @@ mod hard_tests;
 #[cfg(test)]
 mod reference;
 #[cfg(test)]
+mod solver_tests;
+#[cfg(test)]
 mod tests;
 
+pub use contact::Method as ContactMethod;
 pub use law_check::{contact_law_defect, LAW_DEFECT_ALARM};
 pub use linear_solver::{BorderedSolver, SparseLu};
+use linear_solver::{ReferenceSolver, StructuredSolver, TangentSolver};
 pub use post::{PostProcessor, RowOutputs};
 pub use quadrature::{check_degenerate_pair, start_from_mode_pair, QUAD_FREQ_TOL};
 pub use resolution::{resolution_warnings, tail_ratio};
+pub use route_timing::{contact_route_timings, RouteRow};
 
 use crate::error::{Error, Result};
 use faer::sparse::SparseColMat;
@@ -139,6 +149,34 @@ pub struct BranchReport {
     pub bifurcation: bool,
 }
 
+/// How the bordered tangent is solved (linear_solver.rs). Results agree to round-off; the
+/// engine uses `Structured`, the others are for tests and the bench.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SolverKind {
+    /// Schur complements of the contact blocks (route per shock by the cost model), V
+    /// eliminated, one sparse LU of the reduced system.
+    #[default]
+    Structured,
+    /// As `Structured` with every contact block on the given route.
+    StructuredWith(ContactMethod),
+    /// The whole tangent in one sparse LU, the determinant test from a dense minor of its
+    /// inverse (the engine before issue 9).
+    Reference,
+}
+
+fn make_solver(
+    sys: &System,
+    settings: &Settings,
+    kind: SolverKind,
+) -> Result<Box<dyn TangentSolver>> {
+    let solves = linear_solver::solves_per_factorisation(settings.order);
+    Ok(match kind {
+        SolverKind::Structured => Box::new(StructuredSolver::new(sys, solves, None)?),
+        SolverKind::StructuredWith(m) => Box::new(StructuredSolver::new(sys, solves, Some(m))?),
+        SolverKind::Reference => Box::new(ReferenceSolver::default()),
+    })
+}
+
 /// A corrected point to continue from.
 #[derive(Clone, Debug)]
 pub struct StartState {
@@ -152,6 +190,8 @@ pub struct StartState {
     /// The corrected start point (physical units).
     pub point: Point,
     pub newton_iterations: usize,
+    /// The solver the continuation uses (and the start used).
+    pub solver: SolverKind,
 }
 
 impl StartState {
@@ -292,7 +332,12 @@ fn make_point(sys: &System, x: &[f64], residual: f64, branch: usize, bifurcation
     }
 }
 
-fn start(sys: System, settings: &Settings, mut x: Vec<f64>) -> Result<StartState> {
+fn start(
+    sys: System,
+    settings: &Settings,
+    mut x: Vec<f64>,
+    kind: SolverKind,
+) -> Result<StartState> {
     if !finite(&x) {
         return Err(Error::numerical("the start point is not finite"));
     }
@@ -303,10 +348,10 @@ fn start(sys: System, settings: &Settings, mut x: Vec<f64>) -> Result<StartState
                 .keyword("ETAT_INIT"),
         );
     }
-    let mut solver = SparseLu::default();
+    let mut solver = make_solver(&sys, settings, kind)?;
     let (it, res) = newton::correct(
         &sys,
-        &mut solver,
+        solver.as_mut(),
         &mut x,
         &border,
         settings.prec_newton,
@@ -325,6 +370,7 @@ fn start(sys: System, settings: &Settings, mut x: Vec<f64>) -> Result<StartState
         ref_dof: sys.ref_dof,
         point,
         newton_iterations: it,
+        solver: kind,
     })
 }
 
@@ -390,6 +436,25 @@ pub fn start_from_mode(
     coef_ampl: f64,
     omega_lin: f64,
 ) -> Result<StartState> {
+    start_from_mode_using(
+        problem,
+        settings,
+        mode,
+        coef_ampl,
+        omega_lin,
+        SolverKind::default(),
+    )
+}
+
+/// [`start_from_mode`] with the tangent solved by `kind` (continued with it too).
+pub fn start_from_mode_using(
+    problem: &Problem,
+    settings: &Settings,
+    mode: &[f64],
+    coef_ampl: f64,
+    omega_lin: f64,
+    kind: SolverKind,
+) -> Result<StartState> {
     let n = check_start(
         problem,
         settings,
@@ -417,7 +482,7 @@ pub fn start_from_mode(
     }
     x[l.omega()] = om;
     init_contact(&sys, &mut x)?;
-    start(sys, settings, x)
+    start(sys, settings, x, kind)
 }
 
 /// Number of unknowns of `x` for this problem and these settings.
@@ -450,7 +515,7 @@ fn to_scaled(sys: &System, x: &[f64]) -> Vec<f64> {
 pub fn start_from_point(problem: &Problem, settings: &Settings, x: &[f64]) -> Result<StartState> {
     let sys = system_for_point(problem, settings, x)?;
     let xs = to_scaled(&sys, x);
-    start(sys, settings, xs)
+    start(sys, settings, xs, SolverKind::default())
 }
 
 /// Continue `settings.n_branches` branches from `start`; `on_branch` is called after each.
@@ -496,23 +561,24 @@ fn run(
         bif_terms: settings.bif_terms,
         bif_tol: settings.bif_tol,
     };
-    let mut solver = SparseLu::default();
+    let mut solver = make_solver(&sys, settings, st.solver)?;
     // A second factorisation for the points inside a branch where the bifurcation test
-    // looks for the sign change (the main one holds the next branch's tangent then).
-    let mut probe = SparseLu::default();
+    // looks for the sign change (the main one holds the next branch's tangent then); made
+    // when first needed.
+    let mut probe: Option<Box<dyn TangentSolver>> = None;
     let mut x0 = st.x;
     let border = st.border;
     solver
-        .factor(sys.lay.n_unk, &sys.tangent(&x0, &border))
+        .factor(&sys, &x0, &border)
         .map_err(|e| in_branch(e, 1))?;
-    let det_sign_at = |solver: &SparseLu| {
+    let det_sign_at = |solver: &mut dyn TangentSolver| {
         if settings.det_test {
-            bifurcation::condensed_det_sign(&sys, solver).ok()
+            solver.det_sign(&sys).ok()
         } else {
             None
         }
     };
-    let mut det_sign = det_sign_at(&solver);
+    let mut det_sign = det_sign_at(solver.as_mut());
     let mut prev_tangent: Option<Vec<f64>> = None;
     // DIR_EVOLUTION (module doc): −1 forward, +1 backward.
     let forward = settings.direction < 0;
@@ -535,8 +601,8 @@ fn run(
                 -1.0
             }
         };
-        let mut ser =
-            anm::compute(&sys, &mut solver, &x0, &params, &orient).map_err(|e| in_branch(e, b))?;
+        let mut ser = anm::compute(&sys, solver.as_mut(), &x0, &params, &orient)
+            .map_err(|e| in_branch(e, b))?;
         if b == 1 && anm::dot(&ser.terms[0], &border) < 0.0 {
             // The start was factorised with the motion as border, the branch leaves against
             // it: det [R_X; bᵀ] = (b·t)·det [R_X; tᵀ], so the start's sign flips with it (or
@@ -550,7 +616,7 @@ fn run(
         for _ in 0..40 {
             let xe = ser.eval(&x0, ser.a_max);
             let r = newton::relative(&sys.residual(&xe), &xe);
-            if r.is_finite() && r <= credible {
+            if r.is_finite() && r <= credible.max(newton::roundoff_floor(&sys, &xe)) {
                 break;
             }
             ser.a_max *= 0.5;
@@ -583,7 +649,7 @@ fn run(
             if i == np {
                 let (it, r) = newton::correct(
                     &sys,
-                    &mut solver,
+                    solver.as_mut(),
                     &mut x,
                     &tangent,
                     settings.prec_newton,
@@ -613,15 +679,19 @@ fn run(
         let end_factor = if last && !settings.det_test {
             Ok(())
         } else {
-            solver.factor(sys.lay.n_unk, &sys.tangent(&x0, &tangent))
+            solver.factor(&sys, &x0, &tangent)
         };
         let end_sign = match end_factor {
-            Ok(()) => det_sign_at(&solver),
+            Ok(()) => det_sign_at(solver.as_mut()),
             Err(_) => None,
         };
         if let (Some(s0), Some(s1)) = (det_sign, end_sign) {
             if s0 != s1 {
-                let row = first_row_past_sign_change(&sys, &mut probe, &ser, &x_start, np, s1);
+                let probe = match &mut probe {
+                    Some(p) => p,
+                    None => probe.insert(make_solver(&sys, settings, st.solver)?),
+                };
+                let row = first_row_past_sign_change(&sys, probe.as_mut(), &ser, &x_start, np, s1);
                 if let Some(p) = branch_points.get_mut(row - 1) {
                     p.bifurcation = true;
                 }
@@ -660,7 +730,7 @@ fn run(
 /// bifurcation. Points whose test cannot decide count as not yet past it.
 fn first_row_past_sign_change(
     sys: &System,
-    probe: &mut SparseLu,
+    probe: &mut dyn TangentSolver,
     ser: &anm::Series,
     x_start: &[f64],
     np: usize,
@@ -670,9 +740,7 @@ fn first_row_past_sign_change(
         let a = ser.a_max * i as f64 / np as f64;
         let x = ser.eval(x_start, a);
         let t = ser.unit_tangent(a);
-        let sign = probe
-            .factor(sys.lay.n_unk, &sys.tangent(&x, &t))
-            .and_then(|_| bifurcation::condensed_det_sign(sys, probe));
+        let sign = probe.factor(sys, &x, &t).and_then(|_| probe.det_sign(sys));
         if sign.ok() == Some(end_sign) {
             return i;
         }

@@ -129,7 +129,7 @@ pub fn start_from_mode_pair(
     }
     x[l.omega()] = om;
     init_contact(&sys, &mut x)?;
-    start(sys, settings, x)
+    start(sys, settings, x, super::SolverKind::default())
 }
 
 #[cfg(test)]

@@ -167,6 +167,84 @@ pub fn fft_size(need: usize) -> usize {
     (need + 1).next_power_of_two().max(8)
 }
 
+/// Smallest even size 2^a·3^b·5^c (a ≥ 1) strictly above `need` (and at least 8): the
+/// sizes realfft transforms fastest besides powers of two, up to 25 % fewer samples.
+pub fn fft_size_smooth(need: usize) -> usize {
+    let mut n = (need + 1).max(8);
+    loop {
+        let mut m = n;
+        if m.is_multiple_of(2) {
+            for p in [2, 3, 5] {
+                while m.is_multiple_of(p) {
+                    m /= p;
+                }
+            }
+            if m == 1 {
+                return n;
+            }
+        }
+        n += 1;
+    }
+}
+
+/// Dense operator x ↦ trunc_hout(c·x) written into `out` (column-major, leading dimension
+/// `ld` ≥ 2hout+1, (2hout+1) × (2hx+1)), from the trigonometric product formulas directly
+/// (O(1) per entry; `mul_operator` is the reference). With A(j) = c_{|j|} (cos part,
+/// A(0) = 2c₀) and B(j) = sign(j)·s_{|j|}: column cos l gives cos p ← (A(p−l) + A(p+l))/2,
+/// sin p ← (B(p−l) + B(p+l))/2, mean ← A(l)/2; column sin l gives cos p ← (B(p+l) −
+/// B(p−l))/2, sin p ← (A(p−l) − A(p+l))/2, mean ← B(l)/2.
+pub fn fill_mul_operator(
+    c: &[f64],
+    hc: usize,
+    hx: usize,
+    hout: usize,
+    scale: f64,
+    out: &mut [f64],
+    ld: usize,
+) {
+    let a = |j: i64| -> f64 {
+        let k = j.unsigned_abs() as usize;
+        if k == 0 {
+            2.0 * c[0]
+        } else if k <= hc {
+            c[ic(k)]
+        } else {
+            0.0
+        }
+    };
+    let b = |j: i64| -> f64 {
+        let k = j.unsigned_abs() as usize;
+        if k == 0 || k > hc {
+            0.0
+        } else if j > 0 {
+            c[is(hc, k)]
+        } else {
+            -c[is(hc, k)]
+        }
+    };
+    let hs = 0.5 * scale;
+    for l in 0..=hx {
+        let li = l as i64;
+        let col = &mut out[ic(l) * ld..];
+        col[0] += hs * a(li);
+        for p in 1..=hout {
+            let pi = p as i64;
+            col[ic(p)] += hs * (a(pi - li) + a(pi + li));
+            col[is(hout, p)] += hs * (b(pi - li) + b(pi + li));
+        }
+        if l == 0 {
+            continue;
+        }
+        let col = &mut out[is(hx, l) * ld..];
+        col[0] += hs * b(li);
+        for p in 1..=hout {
+            let pi = p as i64;
+            col[ic(p)] += hs * (b(pi + li) - b(pi - li));
+            col[is(hout, p)] += hs * (a(pi - li) - a(pi + li));
+        }
+    }
+}
+
 thread_local! {
     static PLANNER: RefCell<RealFftPlanner<f64>> = RefCell::new(RealFftPlanner::new());
 }
@@ -176,6 +254,13 @@ pub struct Sampler {
     n: usize,
     fwd: Arc<dyn RealToComplex<f64>>,
     inv: Arc<dyn ComplexToReal<f64>>,
+}
+
+/// What one transform needs besides its input and output, allocated once per user
+/// (`Sampler::scratch`) so that transforms in loops do not allocate.
+pub struct FftScratch {
+    spec: Vec<Complex<f64>>,
+    work: Vec<Complex<f64>>,
 }
 
 impl Sampler {
@@ -191,24 +276,52 @@ impl Sampler {
         self.n
     }
 
+    /// A scratch for `synth_with` and `analyse_with`.
+    pub fn scratch(&self) -> FftScratch {
+        let len = self.fwd.get_scratch_len().max(self.inv.get_scratch_len());
+        FftScratch {
+            spec: vec![Complex::new(0.0, 0.0); self.n / 2 + 1],
+            work: vec![Complex::new(0.0, 0.0); len],
+        }
+    }
+
     /// Samples of `x` (h harmonics, h < N/2) into `out` (length N).
     pub fn synth(&self, x: &[f64], h: usize, out: &mut [f64]) {
-        let mut spec = vec![Complex::new(0.0, 0.0); self.n / 2 + 1];
+        self.synth_with(x, h, out, &mut self.scratch())
+    }
+
+    /// `synth` with a reused scratch (no allocation).
+    pub fn synth_with(&self, x: &[f64], h: usize, out: &mut [f64], ws: &mut FftScratch) {
+        let spec = &mut ws.spec;
+        spec.fill(Complex::new(0.0, 0.0));
         spec[0] = Complex::new(x[0], 0.0);
         for k in 1..=h.min(self.n / 2 - 1) {
             spec[k] = Complex::new(0.5 * x[ic(k)], -0.5 * x[is(h, k)]);
         }
         // Lengths are consistent by construction, so the only failure (size mismatch) cannot
         // happen; on error leave NaN so callers' finiteness checks report it.
-        if self.inv.process(&mut spec, out).is_err() {
+        if self
+            .inv
+            .process_with_scratch(spec, out, &mut ws.work)
+            .is_err()
+        {
             out.iter_mut().for_each(|v| *v = f64::NAN);
         }
     }
 
     /// Coefficients (h harmonics, h < N/2) of the samples `s` (length N); `s` is clobbered.
     pub fn analyse(&self, s: &mut [f64], h: usize, out: &mut [f64]) {
-        let mut spec = vec![Complex::new(0.0, 0.0); self.n / 2 + 1];
-        if self.fwd.process(s, &mut spec).is_err() {
+        self.analyse_with(s, h, out, &mut self.scratch())
+    }
+
+    /// `analyse` with a reused scratch (no allocation).
+    pub fn analyse_with(&self, s: &mut [f64], h: usize, out: &mut [f64], ws: &mut FftScratch) {
+        let spec = &mut ws.spec;
+        if self
+            .fwd
+            .process_with_scratch(s, spec, &mut ws.work)
+            .is_err()
+        {
             out.iter_mut().for_each(|v| *v = f64::NAN);
             return;
         }
@@ -323,6 +436,64 @@ mod tests {
         let h = 1e-6;
         let fd = (eval(&c, 2, t + h) - eval(&c, 2, t - h)) / (2.0 * h);
         assert!((eval(&d, 2, t) - fd).abs() < 1e-8);
+    }
+
+    #[test]
+    fn direct_operator_fill_equals_the_convolution_operator() {
+        // Every (hc, hx, hout) shape, including hc above and below hx + hout; exact
+        // formulas on both sides: equal to round-off.
+        for (hc, hx, hout) in [
+            (0, 0, 0),
+            (2, 1, 3),
+            (5, 2, 3),
+            (3, 4, 4),
+            (7, 7, 7),
+            (1, 6, 2),
+        ] {
+            let c: Vec<f64> = (0..len(hc))
+                .map(|i| ((i * 13 % 7) as f64 - 3.0) / 3.0)
+                .collect();
+            let m = mul_operator(&c, hc, hx, hout);
+            let nr = len(hout);
+            let ld = nr + 2;
+            let mut f = vec![0.0; ld * len(hx)];
+            fill_mul_operator(&c, hc, hx, hout, 2.0, &mut f, ld);
+            for j in 0..len(hx) {
+                for r in 0..nr {
+                    assert!(
+                        (2.0 * m[j * nr + r] - f[j * ld + r]).abs() < 1e-14,
+                        "hc {hc} hx {hx} hout {hout} ({r}, {j})"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn smooth_sizes_are_even_5_smooth_and_above_the_need() {
+        assert_eq!(fft_size_smooth(601), 640);
+        assert_eq!(fft_size_smooth(3), 8);
+        for need in 1..2000 {
+            let n = fft_size_smooth(need);
+            assert!(n > need && n.is_multiple_of(2) && n <= fft_size(need));
+        }
+    }
+
+    #[test]
+    fn reused_scratch_gives_the_same_samples() {
+        let s = Sampler::new(640);
+        let mut ws = s.scratch();
+        let x: Vec<f64> = (0..len(200)).map(|i| 1.0 / (1.0 + i as f64)).collect();
+        let (mut a, mut b) = (vec![0.0; 640], vec![0.0; 640]);
+        s.synth(&x, 200, &mut a);
+        s.synth_with(&x, 200, &mut b, &mut ws);
+        assert_eq!(a, b);
+        let mut y = vec![0.0; len(200)];
+        s.analyse_with(&mut b, 200, &mut y, &mut ws);
+        for (p, q) in x.iter().zip(&y) {
+            assert!((p - q).abs() < 1e-15);
+        }
+        assert!((eval(&x, 200, 2.0 * std::f64::consts::PI * 7.0 / 640.0) - a[7]).abs() < 1e-13);
     }
 
     proptest! {

@@ -451,6 +451,21 @@ impl System {
         }
     }
 
+    /// ‖|K||U|‖: the size of the stiffness terms of the velocity equations at `x` (the
+    /// componentwise absolute values, what bounds their round-off).
+    pub fn stiffness_term_norm(&self, x: &[f64]) -> f64 {
+        let l = self.lay;
+        let nl = l.nl;
+        let mut t = vec![0.0; l.n * nl];
+        for &(i, c, a) in &self.k.entries {
+            let a = a.abs();
+            for j in 0..nl {
+                t[i * nl + j] += a * x[l.u(c) + j].abs();
+            }
+        }
+        t.iter().map(|v| v * v).sum::<f64>().sqrt()
+    }
+
     /// R(X) = C + L(X) + Q(X, X), length n_eq.
     pub fn residual(&self, x: &[f64]) -> Vec<f64> {
         let l = self.lay;

@@ -195,8 +195,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let ncoef = 2 * settings.h_lin as i64 + 1;
     let mut suspect: Vec<i64> = Vec::new();
     let mut worst_defect = 0.0f64;
-    // Built once: what every row's outputs share (layout, physical laws, FFT plan).
+    // Built once: what every row's outputs share (layout, physical laws, FFT plan), and
+    // the writer of the points (statements prepared once, Fourier rows batched).
     let post = nnm::PostProcessor::new(&problem, &settings)?;
+    let mut writer = mnl_store::PointWriter::new(ctx.store, &name)?;
     for (j, p) in outcome.points.iter().enumerate() {
         let order = first_order + j as i64;
         let out = post.row(&p.x)?;
@@ -206,9 +208,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         }
         worst_defect = worst_defect.max(defect);
         table.push_row(row(&name, &cara_choc, order, ncoef, reprise, p, defect))?;
-        mnl_store::save_point(ctx.store, &name, order, p.omega, &p.x)?;
-        mnl_store::save_fourier(ctx.store, &name, order, &dof_names, &out.displacement)?;
+        writer.point(order, p.omega, &p.x)?;
+        writer.fourier(order, &dof_names, &out.displacement)?;
     }
+    writer.finish()?;
     table_store::save_table(ctx.store, &name, &table)?;
     ctx.say(&format!(
         "  frequency against energy: SELECT NUME_ORDRE, ENERGIE, FREQUENCE FROM {name} ORDER BY NUME_ORDRE"
@@ -326,20 +329,24 @@ fn check_budget(
 ) -> Result<()> {
     use crate::nnm::budget;
     use crate::ops::resources;
-    let shock_unknowns = shocks
+    // Own unknowns and displacement components per law (laws.rs).
+    let shocks = shocks
         .iter()
-        .map(|c| match c.obstacle.as_str() {
-            "CERCLE" => 4,
-            "BI_PLAN" => 2,
-            _ => 1,
+        .map(|c| budget::ShockSizes {
+            unknowns: match c.obstacle.as_str() {
+                "CERCLE" => 4,
+                "BI_PLAN" => 2,
+                _ => 1,
+            },
+            components: c.cmps.len().max(1),
         })
-        .sum();
+        .collect::<Vec<_>>();
     let sizes = budget::MnlSizes {
         n_dofs: problem.k.nrows(),
         nnz: problem.k.compute_nnz() + problem.m.compute_nnz(),
         h_lin: s.h_lin,
         h_nonl: if shocks.is_empty() { s.h_lin } else { s.h_nonl },
-        shock_unknowns,
+        shocks,
         order: s.order,
         stored_points: s.n_branches as f64 * s.n_points_per_branch as f64,
     };

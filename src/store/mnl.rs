@@ -104,12 +104,124 @@ fn from_blob(b: &[u8]) -> Vec<f64> {
 }
 
 pub fn save_point(store: &Store, name: &str, nume_ordre: i64, omega: f64, x: &[f64]) -> Result<()> {
-    ensure_schema(store)?;
-    store.conn().execute(
-        "INSERT OR REPLACE INTO mnl_points(concept, NUME_ORDRE, omega, n, x) VALUES (?1, ?2, ?3, ?4, ?5)",
-        params![name, nume_ordre, omega, x.len() as i64, to_blob(x)],
-    )?;
-    Ok(())
+    PointWriter::new(store, name)?.point(nume_ordre, omega, x)
+}
+
+const INSERT_POINT: &str =
+    "INSERT OR REPLACE INTO mnl_points(concept, NUME_ORDRE, omega, n, x) VALUES (?1, ?2, ?3, ?4, ?5)";
+
+/// Rows of the Fourier table written by one statement: fewer statement executions
+/// (what dominates inserting small rows), a statement small enough to prepare once.
+const FOURIER_ROWS_PER_INSERT: usize = 64;
+
+fn fourier_insert_sql(rows: usize) -> String {
+    let mut sql = String::from(
+        "INSERT INTO mnl_fourier(concept, NUME_ORDRE, NOEUD, NOM_CMP, HARM, COEF_C, COEF_S) VALUES ",
+    );
+    for r in 0..rows {
+        if r > 0 {
+            sql.push(',');
+        }
+        sql.push_str("(?,?,?,?,?,?,?)");
+    }
+    sql
+}
+
+/// Writes the points of one MODE_NON_LINE concept and their Fourier coefficients: the
+/// schema checked once, the statements prepared once (SQLite's statement cache), the
+/// Fourier rows inserted FOURIER_ROWS_PER_INSERT at a time. Inside the operator's
+/// transaction like every write.
+pub struct PointWriter<'a> {
+    store: &'a Store,
+    name: &'a str,
+    pending: Vec<(i64, usize, usize, f64, f64)>,
+    dofs: Vec<(String, String)>,
+}
+
+impl<'a> PointWriter<'a> {
+    pub fn new(store: &'a Store, name: &'a str) -> Result<PointWriter<'a>> {
+        ensure_schema(store)?;
+        Ok(PointWriter {
+            store,
+            name,
+            pending: Vec::with_capacity(FOURIER_ROWS_PER_INSERT),
+            dofs: Vec::new(),
+        })
+    }
+
+    /// The full unknown vector of row `nume_ordre`.
+    pub fn point(&mut self, nume_ordre: i64, omega: f64, x: &[f64]) -> Result<()> {
+        let mut stmt = self.store.conn().prepare_cached(INSERT_POINT)?;
+        stmt.execute(params![
+            self.name,
+            nume_ordre,
+            omega,
+            x.len() as i64,
+            to_blob(x)
+        ])?;
+        Ok(())
+    }
+
+    /// The displacement coefficients of row `nume_ordre`: `coefs[d]` holds DOF `dofs[d]`'s
+    /// 2H+1 coefficients ordered 0, C1..CH, S1..SH (HARM 0 gets COEF_S = 0).
+    pub fn fourier(
+        &mut self,
+        nume_ordre: i64,
+        dofs: &[(String, String)],
+        coefs: &[Vec<f64>],
+    ) -> Result<()> {
+        if self.dofs.as_slice() != dofs {
+            self.flush()?;
+            self.dofs = dofs.to_vec();
+        }
+        for (d, c) in coefs.iter().enumerate().take(dofs.len()) {
+            let h = c.len().saturating_sub(1) / 2;
+            for k in 0..=h {
+                let (cc, cs) = if k == 0 {
+                    (c[0], 0.0)
+                } else {
+                    (c[k], c[h + k])
+                };
+                self.pending.push((nume_ordre, d, k, cc, cs));
+                if self.pending.len() == FOURIER_ROWS_PER_INSERT {
+                    self.flush()?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Write the rows still pending (also done by `finish`).
+    fn flush(&mut self) -> Result<()> {
+        if self.pending.is_empty() {
+            return Ok(());
+        }
+        let conn = self.store.conn();
+        let mut stmt = conn.prepare_cached(&fourier_insert_sql(self.pending.len()))?;
+        let mut values: Vec<&dyn rusqlite::ToSql> = Vec::with_capacity(7 * self.pending.len());
+        let harm: Vec<i64> = self.pending.iter().map(|r| r.2 as i64).collect();
+        for (r, h) in self.pending.iter().zip(&harm) {
+            let (node, cmp) = &self.dofs[r.1];
+            values.extend_from_slice(&[
+                &self.name as &dyn rusqlite::ToSql,
+                &r.0,
+                node,
+                cmp,
+                h,
+                &r.3,
+                &r.4,
+            ]);
+        }
+        stmt.execute(values.as_slice())?;
+        drop(stmt);
+        self.pending.clear();
+        Ok(())
+    }
+
+    /// Write what is pending; the writer is done.
+    pub fn finish(mut self) -> Result<()> {
+        self.flush()
+    }
 }
 
 /// The stored unknown vector of row `nume_ordre`, if any.
@@ -147,23 +259,9 @@ pub fn save_fourier(
     dofs: &[(String, String)],
     coefs: &[Vec<f64>],
 ) -> Result<()> {
-    ensure_schema(store)?;
-    let mut stmt = store.conn().prepare_cached(
-        "INSERT INTO mnl_fourier(concept, NUME_ORDRE, NOEUD, NOM_CMP, HARM, COEF_C, COEF_S)
-         VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)",
-    )?;
-    for ((node, cmp), c) in dofs.iter().zip(coefs) {
-        let h = c.len().saturating_sub(1) / 2;
-        for k in 0..=h {
-            let (cc, cs) = if k == 0 {
-                (c[0], 0.0)
-            } else {
-                (c[k], c[h + k])
-            };
-            stmt.execute(params![name, nume_ordre, node, cmp, k as i64, cc, cs])?;
-        }
-    }
-    Ok(())
+    let mut w = PointWriter::new(store, name)?;
+    w.fourier(nume_ordre, dofs, coefs)?;
+    w.finish()
 }
 
 /// Replace the Floquet multipliers stored for row `nume_ordre`.
@@ -233,5 +331,54 @@ mod tests {
         save_point(&s, "MNL", 3, 2.5, &x).unwrap();
         assert_eq!(load_point(&s, "MNL", 3).unwrap(), Some(x));
         assert_eq!(load_point(&s, "MNL", 4).unwrap(), None);
+    }
+
+    #[test]
+    fn batched_fourier_rows_are_the_coefficients_in_order() {
+        let s = Store::in_memory().unwrap();
+        s.register_concept("MNL", "table_container", "MODE_NON_LINE", "a.comm", 1)
+            .unwrap();
+        // 3 DOFs × 2 rows × (H + 1 = 40) harmonics: flushes at 64 and a remainder.
+        let dofs: Vec<(String, String)> = (0..3)
+            .map(|i| (format!("N{i}"), "DX".to_string()))
+            .collect();
+        let h = 39;
+        let coefs = |row: i64| -> Vec<Vec<f64>> {
+            (0..3)
+                .map(|d| {
+                    (0..2 * h + 1)
+                        .map(|j| row as f64 * 1000.0 + d as f64 * 100.0 + j as f64)
+                        .collect()
+                })
+                .collect()
+        };
+        let mut w = PointWriter::new(&s, "MNL").unwrap();
+        for row in 1..=2 {
+            w.fourier(row, &dofs, &coefs(row)).unwrap();
+        }
+        w.finish().unwrap();
+        let n: i64 = s
+            .conn()
+            .query_row("SELECT count(*) FROM mnl_fourier", [], |r| r.get(0))
+            .unwrap();
+        assert_eq!(n, 2 * 3 * (h as i64 + 1));
+        let (c, sn): (f64, f64) = s
+            .conn()
+            .query_row(
+                "SELECT COEF_C, COEF_S FROM mnl_fourier WHERE NUME_ORDRE = 2 AND NOEUD = 'N1' AND HARM = 7",
+                [],
+                |r| Ok((r.get(0)?, r.get(1)?)),
+            )
+            .unwrap();
+        assert_eq!((c, sn), (2107.0, 2000.0 + 100.0 + (h + 7) as f64));
+        let s0: f64 = s
+            .conn()
+            .query_row(
+                "SELECT COEF_S FROM mnl_fourier WHERE NUME_ORDRE = 1 AND NOEUD = 'N2' AND HARM = 0",
+                [],
+                |r| r.get(0),
+            )
+            .unwrap();
+        assert_eq!(s0, 0.0);
     }
 }

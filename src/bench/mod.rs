@@ -1,0 +1,650 @@
+//! `aster-nl bench`: the speed and memory of MODE_NON_LINE, printed as tables
+//! (docs/performance.md has the method and the measured figures).
+//!
+//! Every measurement runs in its own child process, so that its CPU time (user + system)
+//! and peak resident memory are its own: whole runs are `<binary> run case.comm` of an old
+//! and the new binary side by side (medians of `repeats`); engine runs are this binary's
+//! hidden `bench-case` subcommand, which runs the command-file prefix up to CALC_MODES
+//! in-process, then times the engine alone (start + continuation) with the tangent solver
+//! asked for. The old engine's linear algebra is also available inside the new binary
+//! (`reference`: the whole tangent in one sparse LU, the dense determinant test), for
+//! engine-level comparisons where the old binary cannot run the case.
+
+pub mod measure;
+pub mod models;
+
+use crate::error::{Error, ErrorKind, Result};
+use crate::nnm::{self, ContactMethod, SolverKind};
+use measure::{exponent, median, run_child, ChildRun};
+use models::Case;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// What to run.
+pub struct Options {
+    /// A smoke run (small cases, new binary only): what CI may afford.
+    pub quick: bool,
+    /// The old binary for the side-by-side whole runs and the table comparison.
+    pub old: Option<PathBuf>,
+    pub repeats: usize,
+    /// Scratch directory (case files, databases).
+    pub dir: PathBuf,
+    /// Sections to run (empty: all): whole, hnl, n, det, routes, compare.
+    pub only: Vec<String>,
+    /// The old binary reads DIR_EVOLUTION=1 as forward (before the DIR_EVOLUTION change):
+    /// its command files (generated ones and the sdnd122 copies) get the sign flipped.
+    pub old_plus_forward: bool,
+}
+
+fn io(e: impl std::fmt::Display) -> Error {
+    Error::new(ErrorKind::Io, format!("bench: {e}"))
+}
+
+/// A model named on the command line of `bench-case`:
+/// wall:H_nl:branches | utube:H_nl:branches:points:offset | beam:elements:H_l:H_nl:branches |
+/// chain:masses:H_l:H_nl:branches.
+pub fn parse_model(spec: &str) -> Result<Case> {
+    let p: Vec<&str> = spec.split(':').collect();
+    let num = |i: usize| -> Result<f64> {
+        p.get(i)
+            .and_then(|s| s.parse::<f64>().ok())
+            .ok_or_else(|| io(format!("model '{spec}': field {i} is not a number")))
+    };
+    let int = |i: usize| num(i).map(|v| v as usize);
+    match p.first().copied() {
+        Some("wall") => Ok(models::wall(int(1)?, int(2)?)),
+        Some("utube") => Ok(models::utube(int(1)?, int(2)?, int(3)?, num(4)?)),
+        Some("beam") => Ok(models::beam(int(1)?, int(2)?, int(3)?, int(4)?)),
+        Some("chain") => Ok(models::chain(int(1)?, int(2)?, int(3)?, int(4)?)),
+        _ => Err(io(format!(
+            "unknown model '{spec}' (wall:…, utube:…, beam:…)"
+        ))),
+    }
+}
+
+pub fn parse_solver(s: &str) -> Result<SolverKind> {
+    match s {
+        "auto" => Ok(SolverKind::Structured),
+        "dense" => Ok(SolverKind::StructuredWith(ContactMethod::Dense)),
+        "krylov" => Ok(SolverKind::StructuredWith(ContactMethod::Krylov)),
+        "reference" => Ok(SolverKind::Reference),
+        _ => Err(io(format!(
+            "unknown solver '{s}' (auto, dense, krylov, reference)"
+        ))),
+    }
+}
+
+/// The child side: prepare the model, time the engine, print one `BENCH` line.
+pub fn run_case(
+    model: &str,
+    solver: &str,
+    det: bool,
+    dir: &Path,
+    out: &mut dyn Write,
+) -> Result<()> {
+    let mut case = parse_model(model)?;
+    case.mnl.det_test = det;
+    let kind = parse_solver(solver)?;
+    let prep = models::prepare(&case, dir)?;
+    let rss0 = measure::rss_kb();
+    measure::reset_peak();
+    let t0 = measure::self_cpu();
+    let mut error = String::from("-");
+    let mut points = 0;
+    match nnm::start_from_mode_using(
+        &prep.problem,
+        &prep.settings,
+        &prep.mode,
+        prep.coef_ampl,
+        prep.omega,
+        kind,
+    ) {
+        Ok(st) => {
+            let o = nnm::continue_branches(&prep.problem, &prep.settings, st, &mut |_, _| {});
+            points = o.points.len();
+            if let Some(e) = o.error {
+                error = e.message.replace(' ', "_");
+            }
+        }
+        Err(e) => error = e.message.replace(' ', "_"),
+    }
+    let cpu = measure::self_cpu() - t0;
+    let peak = measure::peak_kb();
+    writeln!(
+        out,
+        "BENCH cpu={cpu:.6} peak_kb={peak} base_kb={rss0} points={points} n={} nnz={} unknowns={} error={error}",
+        prep.problem.k.nrows(),
+        prep.nnz,
+        nnm::unknown_count(&prep.problem, &prep.settings)
+    )
+    .map_err(io)
+}
+
+/// One engine measurement (parsed from a child's BENCH line).
+#[derive(Clone, Debug, Default)]
+struct EngineRun {
+    cpu: f64,
+    peak_kb: u64,
+    base_kb: u64,
+    points: usize,
+    n: usize,
+    nnz: usize,
+    error: String,
+}
+
+fn parse_bench_line(out: &str) -> Option<EngineRun> {
+    let line = out.lines().find(|l| l.starts_with("BENCH "))?;
+    let mut r = EngineRun::default();
+    for kv in line.split_whitespace().skip(1) {
+        let (k, v) = kv.split_once('=')?;
+        match k {
+            "cpu" => r.cpu = v.parse().ok()?,
+            "peak_kb" => r.peak_kb = v.parse().ok()?,
+            "base_kb" => r.base_kb = v.parse().ok()?,
+            "points" => r.points = v.parse().ok()?,
+            "n" => r.n = v.parse().ok()?,
+            "nnz" => r.nnz = v.parse().ok()?,
+            "error" => r.error = v.replace('_', " "),
+            _ => {}
+        }
+    }
+    Some(r)
+}
+
+struct Bench<'a> {
+    exe: PathBuf,
+    opts: &'a Options,
+    out: &'a mut dyn Write,
+}
+
+fn fmt_s(v: f64) -> String {
+    if !v.is_finite() {
+        "—".into()
+    } else if v < 1.0 {
+        format!("{:.1} ms", 1e3 * v)
+    } else {
+        format!("{v:.2} s")
+    }
+}
+
+fn fmt_mb(kb: u64) -> String {
+    format!("{:.0} MB", kb as f64 / 1024.0)
+}
+
+impl Bench<'_> {
+    fn say(&mut self, s: &str) -> Result<()> {
+        writeln!(self.out, "{s}").map_err(io)?;
+        self.out.flush().map_err(io)
+    }
+
+    fn wants(&self, section: &str) -> bool {
+        self.opts.only.is_empty() || self.opts.only.iter().any(|s| s == section)
+    }
+
+    /// Median engine run of `model` (`repeats` child processes).
+    fn engine(
+        &mut self,
+        model: &str,
+        solver: &str,
+        det: bool,
+        repeats: usize,
+    ) -> Result<EngineRun> {
+        let dir = self.opts.dir.join(model.replace(':', "_"));
+        std::fs::create_dir_all(&dir).map_err(io)?;
+        let mut runs = Vec::new();
+        for _ in 0..repeats.max(1) {
+            let args = [
+                "bench-case",
+                model,
+                "--solver",
+                solver,
+                if det { "--det" } else { "--no-det" },
+                "--dir",
+                dir.to_str().unwrap_or("."),
+            ];
+            let c = run_child(&self.exe, &args, &dir)?;
+            let r = parse_bench_line(&c.stdout).ok_or_else(|| {
+                io(format!(
+                    "bench-case {model} {solver}: no result (exit {})",
+                    c.code
+                ))
+            })?;
+            runs.push(r);
+        }
+        let mut cpus: Vec<f64> = runs.iter().map(|r| r.cpu).collect();
+        let cpu = median(&mut cpus);
+        let mut r = runs.remove(0);
+        r.cpu = cpu;
+        Ok(r)
+    }
+
+    /// Whole runs of a command file by `binary`, medians of `repeats`.
+    fn whole(
+        &mut self,
+        binary: &Path,
+        dir: &Path,
+        comm: &str,
+        repeats: usize,
+    ) -> Result<(f64, u64, i32)> {
+        let mut cpus = Vec::new();
+        let mut peak = 0;
+        let mut code = 0;
+        for _ in 0..repeats.max(1) {
+            let db = dir.join("run.db");
+            let _ = std::fs::remove_file(&db);
+            let c: ChildRun = run_child(
+                binary,
+                &[
+                    "run",
+                    comm,
+                    "--db",
+                    db.to_str().unwrap_or("run.db"),
+                    "--unit",
+                    "20=case.mail",
+                ],
+                dir,
+            )?;
+            cpus.push(c.cpu);
+            peak = peak.max(c.peak_kb);
+            code = c.code;
+        }
+        Ok((median(&mut cpus), peak, code))
+    }
+
+    /// Write a case's mesh and whole command file into its directory.
+    fn write_case(&mut self, case: &Case, tag: &str) -> Result<PathBuf> {
+        let dir = self.opts.dir.join(tag);
+        std::fs::create_dir_all(&dir).map_err(io)?;
+        let coef = match case.mnl.coef_ampl {
+            Some(c) => c,
+            None => models::prepare(case, &dir)?.coef_ampl,
+        };
+        std::fs::write(dir.join("case.mail"), &case.mail).map_err(io)?;
+        std::fs::write(dir.join("case.comm"), models::full_comm(case, coef, false)).map_err(io)?;
+        std::fs::write(
+            dir.join("case_old.comm"),
+            models::full_comm(case, coef, self.opts.old_plus_forward),
+        )
+        .map_err(io)?;
+        Ok(dir)
+    }
+
+    fn whole_section(&mut self) -> Result<()> {
+        self.say("\n## Whole runs (`aster-nl run case.comm`), CPU s (user + sys), peak RSS\n")?;
+        self.say("| case | old CPU | new CPU | speed-up | old peak | new peak |")?;
+        self.say("|---|---|---|---|---|---|")?;
+        let reps = self.opts.repeats;
+        let cases: Vec<(Case, &str, usize)> = if self.opts.quick {
+            vec![(models::wall(50, 20), "whole_wall50", reps)]
+        } else {
+            vec![
+                (models::wall(200, 105), "whole_sdnd122a", reps),
+                (models::wall(1000, 105), "whole_sdnd122a_h1000", 1),
+                (models::utube(201, 10, 10, 0.3), "whole_utube", 1),
+            ]
+        };
+        for (case, tag, old_reps) in cases {
+            let dir = self.write_case(&case, tag)?;
+            let exe = self.exe.clone();
+            let (cn, pn, coden) = self.whole(&exe, &dir, "case.comm", reps)?;
+            let (co, po) = match self.opts.old.clone() {
+                Some(old) => {
+                    let (c, p, _) = self.whole(&old, &dir, "case_old.comm", old_reps)?;
+                    (c, Some(p))
+                }
+                None => (f64::NAN, None),
+            };
+            let note = if coden == 2 { " (new: error)" } else { "" };
+            self.say(&format!(
+                "| {}{note} | {} | {} | {} | {} | {} |",
+                case.name,
+                fmt_s(co),
+                fmt_s(cn),
+                if co.is_finite() {
+                    format!("{:.1}×", co / cn)
+                } else {
+                    "—".into()
+                },
+                po.map_or("—".into(), fmt_mb),
+                fmt_mb(pn)
+            ))?;
+        }
+        Ok(())
+    }
+
+    fn hnl_section(&mut self) -> Result<()> {
+        self.say("\n## Cost against NB_HARM_NONL (sdnd122a, 105 branches, engine only)\n")?;
+        self.say("| H_nl | reference (old linear algebra) | new | speed-up | new peak |")?;
+        self.say("|---|---|---|---|---|")?;
+        let hs: &[usize] = if self.opts.quick {
+            &[20, 50]
+        } else {
+            &[50, 100, 200, 400, 1000]
+        };
+        let branches = if self.opts.quick { 10 } else { 105 };
+        let (mut new_pts, mut ref_pts) = (Vec::new(), Vec::new());
+        for &h in hs {
+            let model = format!("wall:{h}:{branches}");
+            let reps = if h >= 1000 { 1 } else { self.opts.repeats };
+            let n = self.engine(&model, "auto", true, reps)?;
+            let r = if self.opts.quick || h > 400 {
+                None
+            } else {
+                Some(self.engine(&model, "reference", true, 1)?)
+            };
+            new_pts.push((h as f64, n.cpu));
+            if let Some(r) = &r {
+                ref_pts.push((h as f64, r.cpu));
+            }
+            self.say(&format!(
+                "| {h} | {} | {} | {} | {} |",
+                r.as_ref().map_or("—".into(), |r| fmt_s(r.cpu)),
+                fmt_s(n.cpu),
+                r.as_ref()
+                    .map_or("—".into(), |r| format!("{:.1}×", r.cpu / n.cpu)),
+                fmt_mb(n.peak_kb)
+            ))?;
+        }
+        self.say(&format!(
+            "\nfitted exponent of CPU against H_nl: new {:.2}, reference {:.2} (H·log H over the same range: {:.2})",
+            exponent(&new_pts),
+            exponent(&ref_pts),
+            exponent(&hs.iter().map(|&h| (h as f64, h as f64 * (h as f64).ln())).collect::<Vec<_>>())
+        ))
+    }
+
+    fn n_section(&mut self) -> Result<()> {
+        self.say("\n## Cost against the number of DOFs (tube with two CERCLE rings, H_l 5, H_nl 200, engine only)\n")?;
+        self.say("| DOFs | branches | points | CPU | CPU per branch | peak RSS | engine memory / nonzero of K∪M |")?;
+        self.say("|---|---|---|---|---|---|---|")?;
+        let sizes: &[(usize, usize)] = if self.opts.quick {
+            &[(4, 2), (26, 2)]
+        } else {
+            &[
+                (4, 10),
+                (26, 10),
+                (101, 10),
+                (401, 10),
+                (2501, 10),
+                (2501, 50),
+                (25001, 5),
+            ]
+        };
+        let mut pts = Vec::new();
+        for &(el, br) in sizes {
+            let model = format!("beam:{el}:5:200:{br}");
+            let r = self.engine(&model, "auto", true, 1)?;
+            if br == 10 {
+                pts.push((r.n as f64, r.cpu / br as f64));
+            }
+            let per_nnz =
+                (r.peak_kb.saturating_sub(r.base_kb) as f64 * 1024.0) / r.nnz.max(1) as f64;
+            self.say(&format!(
+                "| {} | {br} | {}{} | {} | {} | {} | {:.0} B |",
+                r.n,
+                r.points,
+                if r.error != "-" {
+                    format!(" ({})", r.error)
+                } else {
+                    String::new()
+                },
+                fmt_s(r.cpu),
+                fmt_s(r.cpu / br as f64),
+                fmt_mb(r.peak_kb),
+                per_nnz
+            ))?;
+        }
+        self.say(&format!(
+            "\nfitted exponent of CPU per branch against DOFs (10 branches): {:.2}",
+            exponent(&pts)
+        ))
+    }
+
+    fn det_section(&mut self) -> Result<()> {
+        self.say("\n## Cost of the default bifurcation test (TEST_BIFURCATION='SERIE_DETERMINANT' against 'SERIE')\n")?;
+        self.say("| case | with | without | share of the run |")?;
+        self.say("|---|---|---|---|")?;
+        let models: &[&str] = if self.opts.quick {
+            &["wall:50:10"]
+        } else {
+            &[
+                "wall:200:105",
+                "utube:201:10:10:0.3",
+                "beam:401:5:200:10",
+                "beam:2501:5:200:10",
+            ]
+        };
+        for m in models {
+            let w = self.engine(m, "auto", true, self.opts.repeats)?;
+            let wo = self.engine(m, "auto", false, self.opts.repeats)?;
+            self.say(&format!(
+                "| {m} | {} | {} | {:.1} % |",
+                fmt_s(w.cpu),
+                fmt_s(wo.cpu),
+                100.0 * (w.cpu - wo.cpu) / w.cpu
+            ))?;
+        }
+        Ok(())
+    }
+
+    fn routes_section(&mut self) -> Result<()> {
+        self.say("\n## Contact-block routes: one factorisation (W) + 24 solves, per shock\n")?;
+        self.say(
+            "| law | H_nl | dense | Krylov | Krylov iterations per solve | model picks | faster |",
+        )?;
+        self.say("|---|---|---|---|---|---|---|")?;
+        let hs: &[usize] = if self.opts.quick {
+            &[10, 40]
+        } else {
+            &[10, 20, 40, 80, 160, 320, 640]
+        };
+        for row in nnm::contact_route_timings(hs, 24)? {
+            self.say(&format!(
+                "| {} | {} | {} | {} | {:.1} | {:?} | {:?} |",
+                row.law,
+                row.h_nonl,
+                fmt_s(row.dense_s),
+                fmt_s(row.krylov_s),
+                row.krylov_iterations,
+                row.model_choice,
+                if row.dense_s <= row.krylov_s {
+                    ContactMethod::Dense
+                } else {
+                    ContactMethod::Krylov
+                }
+            ))?;
+        }
+        Ok(())
+    }
+
+    fn compare_section(&mut self) -> Result<()> {
+        let Some(old) = self.opts.old.clone() else {
+            return self.say("\n(table comparison skipped: no --old binary)");
+        };
+        self.say(
+            "\n## Old and new tables of the sdnd122 cases (max relative difference per column)\n",
+        )?;
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("testcases");
+        for (name, tables) in [
+            ("sdnd122a", &["MNL"][..]),
+            ("sdnd122b", &["MNL"][..]),
+            ("sdnd122c", &["MNL", "MNL2"][..]),
+        ] {
+            let dir = self.opts.dir.join(format!("compare_{name}"));
+            std::fs::create_dir_all(&dir).map_err(io)?;
+            let mail = root.join(format!("{name}.mail"));
+            if mail.exists() {
+                std::fs::copy(&mail, dir.join(format!("{name}.mail"))).map_err(io)?;
+            }
+            let text = std::fs::read_to_string(root.join(format!("{name}.comm"))).map_err(io)?;
+            std::fs::write(dir.join(format!("{name}.comm")), &text).map_err(io)?;
+            // These files start forward (DIR_EVOLUTION=-1) and restart on in the stored
+            // direction of travel, which an old binary spells DIR_EVOLUTION=1.
+            let old_text = if self.opts.old_plus_forward {
+                text.replace("DIR_EVOLUTION=-1", "DIR_EVOLUTION=1")
+            } else {
+                text
+            };
+            std::fs::write(dir.join(format!("{name}_old.comm")), old_text).map_err(io)?;
+            let mut dbs = Vec::new();
+            for (tag, bin) in [("old", old.clone()), ("new", self.exe.clone())] {
+                let db = dir.join(format!("{tag}.db"));
+                let _ = std::fs::remove_file(&db);
+                let comm = if tag == "old" {
+                    format!("{name}_old.comm")
+                } else {
+                    format!("{name}.comm")
+                };
+                run_child(
+                    &bin,
+                    &[
+                        "run",
+                        &comm,
+                        "--db",
+                        db.to_str().unwrap_or("x.db"),
+                        "--unit",
+                        &format!("20={name}.mail"),
+                    ],
+                    &dir,
+                )?;
+                dbs.push(db);
+            }
+            for t in tables {
+                for line in compare_tables(&dbs[0], &dbs[1], t)? {
+                    self.say(&format!("{name} {t}: {line}"))?;
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Max relative difference of every numeric column of table `t` between two databases,
+/// and of the stored points (max |Δx| / max |x| per row). Columns that are round-off
+/// themselves (RESIDU, AMOR_FICTIF, ECART_LOI_CHOC) get the absolute difference.
+pub fn compare_tables(a: &Path, b: &Path, t: &str) -> Result<Vec<String>> {
+    let ca = rusqlite::Connection::open(a).map_err(io)?;
+    let cb = rusqlite::Connection::open(b).map_err(io)?;
+    let read =
+        |c: &rusqlite::Connection| -> Result<(Vec<String>, Vec<Vec<rusqlite::types::Value>>)> {
+            let mut st = c
+                .prepare(&format!("SELECT * FROM \"{t}\" ORDER BY NUME_ORDRE"))
+                .map_err(io)?;
+            let cols: Vec<String> = st.column_names().map(|s| s.to_string()).collect();
+            let n = cols.len();
+            let rows = st
+                .query_map([], |r| {
+                    (0..n)
+                        .map(|i| r.get::<_, rusqlite::types::Value>(i))
+                        .collect::<std::result::Result<Vec<_>, _>>()
+                })
+                .map_err(io)?
+                .collect::<std::result::Result<Vec<_>, _>>()
+                .map_err(io)?;
+            Ok((cols, rows))
+        };
+    let (cols, ra) = read(&ca)?;
+    let (_, rb) = read(&cb)?;
+    let mut out = vec![format!("{} rows old, {} rows new", ra.len(), rb.len())];
+    // Error measures (round-off themselves): ECART_LOI_CHOC is ~1e-9 where the law holds.
+    let absolute = ["RESIDU", "AMOR_FICTIF", "ECART_LOI_CHOC"];
+    let mut worst: Vec<(String, f64, bool)> = Vec::new();
+    for (j, c) in cols.iter().enumerate() {
+        let abs = absolute.contains(&c.as_str());
+        let mut w = 0.0f64;
+        let mut numeric = false;
+        let mut text_diff = false;
+        for (x, y) in ra.iter().zip(&rb) {
+            use rusqlite::types::Value::*;
+            match (&x[j], &y[j]) {
+                (Real(u), Real(v)) => {
+                    numeric = true;
+                    let d = (u - v).abs();
+                    w = w.max(if abs {
+                        d
+                    } else {
+                        d / u.abs().max(v.abs()).max(1e-300)
+                    });
+                }
+                (u, v) if u != v => text_diff = true,
+                _ => {}
+            }
+        }
+        if numeric {
+            worst.push((c.clone(), w, abs));
+        }
+        if text_diff {
+            out.push(format!("{c}: values differ"));
+        }
+    }
+    out.push(
+        worst
+            .iter()
+            .map(|(c, w, abs)| format!("{c} {w:.1e}{}", if *abs { " (abs)" } else { "" }))
+            .collect::<Vec<_>>()
+            .join(", "),
+    );
+    let points = |c: &rusqlite::Connection| -> Result<Vec<Vec<f64>>> {
+        let mut st = c
+            .prepare("SELECT x FROM mnl_points WHERE concept = ?1 ORDER BY NUME_ORDRE")
+            .map_err(io)?;
+        let rows = st
+            .query_map([t], |r| r.get::<_, Vec<u8>>(0))
+            .map_err(io)?
+            .collect::<std::result::Result<Vec<_>, _>>()
+            .map_err(io)?;
+        Ok(rows
+            .iter()
+            .map(|b| {
+                b.chunks_exact(8)
+                    .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
+                    .collect()
+            })
+            .collect())
+    };
+    let (pa, pb) = (points(&ca)?, points(&cb)?);
+    let mut wp = 0.0f64;
+    for (x, y) in pa.iter().zip(&pb) {
+        let s = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let d = x
+            .iter()
+            .zip(y)
+            .fold(0.0f64, |m, (u, v)| m.max((u - v).abs()));
+        wp = wp.max(d / s.max(1e-300));
+    }
+    out.push(format!("stored points: max |Δx|/max|x| = {wp:.1e}"));
+    Ok(out)
+}
+
+/// The parent side: every section, tables on `out`.
+pub fn run(opts: &Options, out: &mut dyn Write) -> Result<()> {
+    let exe = std::env::current_exe().map_err(io)?;
+    std::fs::create_dir_all(&opts.dir).map_err(io)?;
+    let mut b = Bench { exe, opts, out };
+    b.say(&format!(
+        "# aster-nl bench ({}; old binary: {})",
+        if opts.quick { "quick" } else { "full" },
+        opts.old
+            .as_ref()
+            .map_or("none".into(), |p| p.display().to_string())
+    ))?;
+    if b.wants("whole") {
+        b.whole_section()?;
+    }
+    if b.wants("hnl") {
+        b.hnl_section()?;
+    }
+    if b.wants("n") {
+        b.n_section()?;
+    }
+    if b.wants("det") {
+        b.det_section()?;
+    }
+    if b.wants("routes") {
+        b.routes_section()?;
+    }
+    if b.wants("compare") {
+        b.compare_section()?;
+    }
+    Ok(())
+}

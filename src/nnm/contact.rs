@@ -1,0 +1,657 @@
+//! The contact block of one shock in the tangent, solved by its structure.
+//!
+//! A law's equations, linearised at X0, read A_ff δF + A_fu δu = r_f, with A_ff the
+//! n_own × n_own array of truncated multiplication operators x ↦ Trunc_{H_nl}(J_ek(t)·x),
+//! J(t) the pointwise Jacobian of the law's equations with respect to its own unknowns, and
+//! A_fu the same with respect to the displacement components of the shock (H_l harmonics,
+//! zero-padded). Everything is derived from the generic law description (`LawEqs`: constant,
+//! linear and quadratic terms), never from the law's name.
+//!
+//! Two ways to solve with A_ff, chosen once per shock from a cost model:
+//! - **Dense**: A_ff assembled ((n_own·(2H_nl+1))², from the Fourier series of J) and
+//!   factorised by LU: cheap when the block is small.
+//! - **Krylov**: GMRES on A_ff applied by FFT (N > 3H_nl samples make the truncated product
+//!   exact), right-preconditioned by P = Trunc(J(t)⁻¹ ·), the pointwise inverse. A_ff P is
+//!   the identity plus a perturbation whose spectrum is clustered with a handful of
+//!   outliers, so GMRES converges in about ten iterations at any H_nl, each costing a few
+//!   real FFTs: O(H_nl log H_nl) per solve instead of O(H_nl²), and no O(H_nl³)
+//!   factorisation. If a Krylov solve stagnates (J(t) singular somewhere, off the physical
+//!   root of a law) the block falls back to the dense route when that fits in memory.
+//!
+//! The structure sees the block only through W = A_ff⁻¹ A_fu (m = n_comp·(2H_l+1)
+//! columns: one solve each per factorisation) and one solve A_ff⁻¹ r_f per right-hand side.
+
+use super::dense_lu::{try_zeroed, DenseLu};
+use super::gmres::{self, Gmres, Preconditioned};
+use super::laws::Var;
+use super::series::{self, FftScratch, Sampler};
+use super::system::{Layout, ShockSys};
+use crate::error::{Error, Result};
+
+/// How a shock's block is solved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    Dense,
+    Krylov,
+}
+
+/// Relative residual asked of each Krylov solve: the dense LU's accuracy, so that results
+/// do not depend on the route (gmres.rs adds the backward-error floor).
+const KRYLOV_RTOL: f64 = 1e-14;
+/// Krylov cycle length and number of cycles (observed: 5–15 iterations per solve).
+const KRYLOV_CYCLE: usize = 40;
+const KRYLOV_CYCLES: usize = 4;
+/// Largest block dimension the dense route (chosen or fallback) may take: 2.1e7 values,
+/// 170 MB.
+const DENSE_MAX_DIM: usize = 4600;
+
+/// Cost model of one factorisation followed by `rhs` solves, in units of one dense flop.
+/// Krylov: per solve `ITER_GUESS` iterations of 2 operator applications (n_own inverse and
+/// n_own forward real FFTs of N samples each, ~`FFT_FLOPS`·N·log₂N, and the pointwise
+/// products) plus the Gram-Schmidt work; dense: (2/3)d³ + 2d²·(solves). `KRYLOV_PENALTY`
+/// is the measured ratio of the time of one Krylov flop-equivalent to one dense LU flop
+/// (scattered FFT butterflies against blocked LU kernels); `aster-nl bench` prints the
+/// crossover this model gives and the measured one.
+const ITER_GUESS: f64 = 10.0;
+const FFT_FLOPS: f64 = 2.5;
+pub const KRYLOV_PENALTY: f64 = 4.0;
+
+pub fn cost(method: Method, n_own: usize, nn: usize, ns: usize, solves: usize) -> f64 {
+    let d = (n_own * nn) as f64;
+    let s = solves as f64;
+    match method {
+        Method::Dense => 2.0 / 3.0 * d * d * d + 2.0 * d * d * s,
+        Method::Krylov => {
+            let nsf = ns as f64;
+            let apply = 2.0 * n_own as f64 * FFT_FLOPS * nsf * nsf.log2()
+                + 2.0 * (n_own * n_own) as f64 * nsf;
+            let per_iter = 2.0 * apply + 4.0 * ITER_GUESS * d;
+            KRYLOV_PENALTY * s * ITER_GUESS * per_iter
+        }
+    }
+}
+
+/// The route the cost model picks for a block, given the solves made per factorisation.
+pub fn choose(n_own: usize, nn: usize, ns: usize, solves: usize) -> Method {
+    let d = n_own * nn;
+    if d <= DENSE_MAX_DIM
+        && cost(Method::Dense, n_own, nn, ns, solves) <= cost(Method::Krylov, n_own, nn, ns, solves)
+    {
+        Method::Dense
+    } else {
+        Method::Krylov
+    }
+}
+
+/// Reals held by one shock's block (route chosen or fallback), from its sizes alone, in
+/// `f64` so that absurd sizes give huge values, never an overflow: the Krylov basis and
+/// work vectors, W (d × m), the pointwise Jacobians, their inverses and the samples
+/// (N ≈ 3H_nl instants), and the dense block (d²) where the dense route may be taken
+/// (d ≤ `DENSE_MAX_DIM`). `nn` = 2H_nl+1, `nl` = 2H_l+1. Used by `budget`.
+pub fn block_reals(n_own: f64, n_comp: f64, nn: f64, nl: f64) -> f64 {
+    let d = n_own * nn;
+    let m = n_comp * nl;
+    let ns = 1.5 * nn + 8.0;
+    let cycle = KRYLOV_CYCLE as f64;
+    let krylov = (cycle + 4.0) * d + (cycle + 1.0) * (cycle + 5.0);
+    let samples = ns * (2.0 * n_own * n_own + n_own * n_comp + 3.0 * n_own + 2.0);
+    let dense = if d <= DENSE_MAX_DIM as f64 {
+        d * d
+    } else {
+        0.0
+    };
+    krylov + d * m + samples + dense + 3.0 * d
+}
+
+/// Flops of W and `solves` further solves of one block whose size is given in `f64`
+/// (`budget`): the cheaper of the two routes of [`cost`], with N ≈ 3H_nl samples.
+pub fn solve_flops(n_own: f64, nn: f64, solves: f64) -> f64 {
+    let d = n_own * nn;
+    let dense = 2.0 / 3.0 * d * d * d + 2.0 * d * d * solves;
+    let ns = 1.5 * nn + 8.0;
+    let apply = 2.0 * n_own * FFT_FLOPS * ns * ns.log2() + 2.0 * n_own * n_own * ns;
+    let krylov = KRYLOV_PENALTY * solves * ITER_GUESS * (2.0 * apply + 4.0 * ITER_GUESS * d);
+    if d <= DENSE_MAX_DIM as f64 {
+        dense.min(krylov)
+    } else {
+        krylov
+    }
+}
+
+/// The pointwise Jacobians of one law at the samples of one period, and the operators
+/// built on them (the Krylov operator and its preconditioner).
+struct Pointwise {
+    sampler: Sampler,
+    ws: FftScratch,
+    ns: usize,
+    n_own: usize,
+    n_comp: usize,
+    hn: usize,
+    hl: usize,
+    nn: usize,
+    /// J(t) w.r.t. the own unknowns, sample-major: [t][e·n_own + k].
+    jac: Vec<f64>,
+    /// J(t) w.r.t. the displacement components: [t][e·n_comp + c].
+    jac_u: Vec<f64>,
+    /// J(t)⁻¹: [t][k·n_own + e].
+    inv: Vec<f64>,
+    /// Samples, variable-major [k][t]: inputs and outputs of the pointwise products.
+    xs: Vec<f64>,
+    ys: Vec<f64>,
+    /// Bound of ‖A_ff‖₂ (√2·max_t ‖J(t)‖_F: the coefficient norm is within √2 of the
+    /// time-L² norm in which a multiplication operator's norm is max |J|).
+    bound: f64,
+    /// Which product `mul` applies.
+    use_inverse: bool,
+}
+
+impl Pointwise {
+    fn new(sh: &ShockSys, lay: &Layout, ns: usize) -> Pointwise {
+        let (n_own, n_comp) = (sh.eqs.n_own, sh.dofs.len());
+        let sampler = Sampler::new(ns);
+        let ws = sampler.scratch();
+        Pointwise {
+            sampler,
+            ws,
+            ns,
+            n_own,
+            n_comp,
+            hn: lay.hn,
+            hl: lay.hl,
+            nn: lay.nn,
+            jac: vec![0.0; ns * n_own * n_own],
+            jac_u: vec![0.0; ns * n_own * n_comp],
+            inv: vec![0.0; ns * n_own * n_own],
+            xs: vec![0.0; ns * (n_own + n_comp)],
+            ys: vec![0.0; ns * n_own],
+            bound: 0.0,
+            use_inverse: false,
+        }
+    }
+
+    /// J(t) and J_u(t) at `x0` from the law's terms, and the pointwise inverse. Err with
+    /// the first sample where J(t) is singular.
+    fn linearise(
+        &mut self,
+        sh: &ShockSys,
+        lay: &Layout,
+        x0: &[f64],
+    ) -> std::result::Result<(), usize> {
+        let (ns, no, nc) = (self.ns, self.n_own, self.n_comp);
+        // Samples of every variable: own unknowns then components.
+        for k in 0..no {
+            let o = sh.offset + k * lay.nn;
+            self.sampler.synth_with(
+                &x0[o..o + lay.nn],
+                lay.hn,
+                &mut self.xs[k * ns..(k + 1) * ns],
+                &mut self.ws,
+            );
+        }
+        for c in 0..nc {
+            let o = lay.u(sh.dofs[c]);
+            let dst = &mut self.xs[(no + c) * ns..(no + c + 1) * ns];
+            self.sampler
+                .synth_with(&x0[o..o + lay.nl], lay.hl, dst, &mut self.ws);
+        }
+        let slot = |v: Var| match v {
+            Var::Own(k) => k,
+            Var::U(c) => no + c,
+        };
+        self.jac.fill(0.0);
+        self.jac_u.fill(0.0);
+        // d(coef·a·b)/da = coef·b, d/db = coef·a (a = b gives 2·coef·a).
+        for t in &sh.eqs.quad {
+            for (wrt, other) in [(t.a, t.b), (t.b, t.a)] {
+                let src = slot(other) * ns;
+                match wrt {
+                    Var::Own(k) => {
+                        for j in 0..ns {
+                            self.jac[j * no * no + t.eq * no + k] += t.coef * self.xs[src + j];
+                        }
+                    }
+                    Var::U(c) => {
+                        for j in 0..ns {
+                            self.jac_u[j * no * nc + t.eq * nc + c] += t.coef * self.xs[src + j];
+                        }
+                    }
+                }
+            }
+        }
+        for l in &sh.eqs.lin {
+            match l.var {
+                Var::Own(k) => {
+                    for j in 0..ns {
+                        self.jac[j * no * no + l.eq * no + k] += l.coef;
+                    }
+                }
+                Var::U(c) => {
+                    for j in 0..ns {
+                        self.jac_u[j * no * nc + l.eq * nc + c] += l.coef;
+                    }
+                }
+            }
+        }
+        let mut bound = 0.0f64;
+        let mut a = vec![0.0; no * no];
+        for j in 0..ns {
+            let m = &self.jac[j * no * no..(j + 1) * no * no];
+            bound = bound.max(m.iter().map(|v| v * v).sum::<f64>().sqrt());
+            a.copy_from_slice(m);
+            if !invert_small(&mut a, &mut self.inv[j * no * no..(j + 1) * no * no], no) {
+                return Err(j);
+            }
+        }
+        self.bound = std::f64::consts::SQRT_2 * bound;
+        Ok(())
+    }
+
+    /// y = Trunc(M(t)·x(t)), M = J or J⁻¹ (`use_inverse`); x, y: n_own series of H_nl.
+    fn mul(&mut self, x: &[f64], y: &mut [f64]) {
+        let (ns, no, nn, hn) = (self.ns, self.n_own, self.nn, self.hn);
+        for k in 0..no {
+            self.sampler.synth_with(
+                &x[k * nn..(k + 1) * nn],
+                hn,
+                &mut self.xs[k * ns..(k + 1) * ns],
+                &mut self.ws,
+            );
+        }
+        let m = if self.use_inverse {
+            &self.inv
+        } else {
+            &self.jac
+        };
+        if no == 1 {
+            for ((y, x), a) in self.ys.iter_mut().zip(&self.xs[..ns]).zip(m) {
+                *y = a * x;
+            }
+        } else {
+            for j in 0..ns {
+                let mj = &m[j * no * no..(j + 1) * no * no];
+                for e in 0..no {
+                    let mut s = 0.0;
+                    for k in 0..no {
+                        s += mj[e * no + k] * self.xs[k * ns + j];
+                    }
+                    self.ys[e * ns + j] = s;
+                }
+            }
+        }
+        for e in 0..no {
+            self.sampler.analyse_with(
+                &mut self.ys[e * ns..(e + 1) * ns],
+                hn,
+                &mut y[e * nn..(e + 1) * nn],
+                &mut self.ws,
+            );
+        }
+    }
+
+    /// b = A_fu e_{c,j}: the law equations' response to harmonic j of component c.
+    fn coupling_column(&mut self, c: usize, j: usize, b: &mut [f64]) {
+        let (ns, no, nc, nn) = (self.ns, self.n_own, self.n_comp, self.nn);
+        let nl = series::len(self.hl);
+        let mut e = vec![0.0; nl];
+        e[j] = 1.0;
+        let us = &mut self.xs[..ns];
+        self.sampler.synth_with(&e, self.hl, us, &mut self.ws);
+        for q in 0..no {
+            for t in 0..ns {
+                self.ys[q * ns + t] = self.jac_u[t * no * nc + q * nc + c] * self.xs[t];
+            }
+        }
+        for q in 0..no {
+            self.sampler.analyse_with(
+                &mut self.ys[q * ns..(q + 1) * ns],
+                self.hn,
+                &mut b[q * nn..(q + 1) * nn],
+                &mut self.ws,
+            );
+        }
+    }
+
+    /// Fourier series (H_nl harmonics) of entry `idx` of the sample-major array `src` with
+    /// `stride` entries per sample: exact, J has at most H_nl harmonics.
+    fn entry_series(&mut self, which_u: bool, idx: usize, out: &mut [f64]) {
+        let ns = self.ns;
+        let (src, stride) = if which_u {
+            (&self.jac_u, self.n_own * self.n_comp)
+        } else {
+            (&self.jac, self.n_own * self.n_own)
+        };
+        for t in 0..ns {
+            self.ys[t] = src[t * stride + idx];
+        }
+        self.sampler
+            .analyse_with(&mut self.ys[..ns], self.hn, out, &mut self.ws);
+    }
+}
+
+impl Preconditioned for Pointwise {
+    fn apply(&mut self, x: &[f64], y: &mut [f64]) {
+        self.use_inverse = false;
+        self.mul(x, y);
+    }
+    fn precondition(&mut self, x: &[f64], y: &mut [f64]) {
+        self.use_inverse = true;
+        self.mul(x, y);
+        self.use_inverse = false;
+    }
+    fn norm_bound(&self) -> f64 {
+        self.bound
+    }
+}
+
+/// Inverse of the n × n row-major matrix `a` (destroyed) into `inv` (row-major), by
+/// Gauss-Jordan with partial pivoting; false when a pivot vanishes relative to the
+/// matrix's largest entry.
+fn invert_small(a: &mut [f64], inv: &mut [f64], n: usize) -> bool {
+    if n == 1 {
+        let d = a[0];
+        inv[0] = 1.0 / d;
+        return d != 0.0 && inv[0].is_finite();
+    }
+    let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if !(scale > 0.0 && scale.is_finite()) {
+        return false;
+    }
+    inv.fill(0.0);
+    for i in 0..n {
+        inv[i * n + i] = 1.0;
+    }
+    for col in 0..n {
+        let p = (col..n)
+            .max_by(|&r, &s| a[r * n + col].abs().total_cmp(&a[s * n + col].abs()))
+            .unwrap_or(col);
+        let piv = a[p * n + col];
+        if piv.abs() <= 1e-14 * scale {
+            return false;
+        }
+        if p != col {
+            for j in 0..n {
+                a.swap(p * n + j, col * n + j);
+                inv.swap(p * n + j, col * n + j);
+            }
+        }
+        let r = 1.0 / piv;
+        for j in 0..n {
+            a[col * n + j] *= r;
+            inv[col * n + j] *= r;
+        }
+        for i in 0..n {
+            if i != col {
+                let f = a[i * n + col];
+                if f != 0.0 {
+                    for j in 0..n {
+                        a[i * n + j] -= f * a[col * n + j];
+                        inv[i * n + j] -= f * inv[col * n + j];
+                    }
+                }
+            }
+        }
+    }
+    true
+}
+
+/// Counters of one block (for reports and the bench).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Counters {
+    pub factorisations: usize,
+    pub solves: usize,
+    pub krylov_iterations: usize,
+    pub dense_fallbacks: usize,
+}
+
+/// The contact block of one shock, linearised at one X0.
+pub struct ContactBlock {
+    /// Index of the shock (errors name CHOC number + 1).
+    shock: usize,
+    method: Method,
+    /// The route of the current factorisation (the chosen one, or dense after a fallback).
+    active: Method,
+    d: usize,
+    m: usize,
+    nl: usize,
+    nn: usize,
+    pw: Pointwise,
+    gmres: Gmres,
+    dense: DenseLu,
+    /// W = A_ff⁻¹ A_fu, column-major d × m, columns ordered component-major (c·nl + j).
+    w: Vec<f64>,
+    b: Vec<f64>,
+    x: Vec<f64>,
+    series: Vec<f64>,
+    pub counters: Counters,
+}
+
+impl ContactBlock {
+    /// `solves`: the right-hand sides expected per factorisation (for the cost model);
+    /// `force`: a route imposed (tests, bench), else the model's choice.
+    pub fn new(
+        sh: &ShockSys,
+        shock: usize,
+        lay: &Layout,
+        solves: usize,
+        force: Option<Method>,
+    ) -> Result<ContactBlock> {
+        let (n_own, n_comp) = (sh.eqs.n_own, sh.dofs.len());
+        let d = n_own * lay.nn;
+        let m = n_comp * lay.nl;
+        // Exact truncated products need N > 3H_nl (and > 2H_nl + H_l, implied).
+        let ns = series::fft_size_smooth(3 * lay.hn);
+        let method = force.unwrap_or_else(|| choose(n_own, lay.nn, ns, solves + m));
+        Ok(ContactBlock {
+            shock,
+            method,
+            active: method,
+            d,
+            m,
+            nl: lay.nl,
+            nn: lay.nn,
+            pw: Pointwise::new(sh, lay, ns),
+            gmres: Gmres::new(d, KRYLOV_CYCLE, KRYLOV_CYCLES),
+            dense: DenseLu::default(),
+            w: try_zeroed(d * m, "the contact coupling W")?,
+            b: vec![0.0; d],
+            x: vec![0.0; d],
+            series: vec![0.0; lay.nn],
+            counters: Counters::default(),
+        })
+    }
+
+    /// Dimension of the block (n_own·(2H_nl+1)) and number of coupled structural unknowns.
+    pub fn dims(&self) -> (usize, usize) {
+        (self.d, self.m)
+    }
+
+    pub fn w(&self) -> &[f64] {
+        &self.w
+    }
+
+    fn err(&self, what: String) -> Error {
+        Error::numerical(format!("CHOC {}: {what}", self.shock + 1)).hint(
+            "the branch may have left the physical root of the regularised law; \
+             lower PREC_MAN or raise PARA_REGUL",
+        )
+    }
+
+    /// Linearise at `x0` and compute W.
+    pub fn factor(&mut self, sh: &ShockSys, lay: &Layout, x0: &[f64]) -> Result<()> {
+        self.counters.factorisations += 1;
+        let singular_at = self.pw.linearise(sh, lay, x0).err();
+        self.active = self.method;
+        if self.method == Method::Krylov {
+            match singular_at {
+                None => match self.krylov_w() {
+                    Ok(()) => return Ok(()),
+                    Err(e) if self.d > DENSE_MAX_DIM => return Err(e),
+                    Err(_) => {}
+                },
+                Some(j) if self.d > DENSE_MAX_DIM => {
+                    return Err(self.err(format!(
+                        "the law's pointwise Jacobian is singular at instant {j} of {} \
+                         (no preconditioner), and the block ({} unknowns) is too large for a dense factorisation",
+                        self.pw.ns, self.d
+                    )))
+                }
+                Some(_) => {}
+            }
+            self.counters.dense_fallbacks += 1;
+            self.active = Method::Dense;
+        }
+        self.dense_w()
+    }
+
+    fn krylov_w(&mut self) -> Result<()> {
+        let (d, nl) = (self.d, self.nl);
+        for col in 0..self.m {
+            let (c, j) = (col / nl, col % nl);
+            self.pw.coupling_column(c, j, &mut self.b);
+            let st = self
+                .gmres
+                .solve(
+                    &mut self.pw,
+                    &self.b,
+                    &mut self.w[col * d..(col + 1) * d],
+                    KRYLOV_RTOL,
+                )
+                .map_err(|f| self.krylov_error(f))?;
+            self.counters.krylov_iterations += st.iterations;
+        }
+        Ok(())
+    }
+
+    fn krylov_error(&self, f: gmres::Failure) -> Error {
+        match f {
+            gmres::Failure::NotFinite => self.err("the contact block's Krylov solve produced non-finite values".into()),
+            gmres::Failure::Stagnated {
+                iterations,
+                relative_residual,
+            } => self.err(format!(
+                "the contact block is singular or too ill-conditioned: GMRES stagnated at relative residual {relative_residual:.2e} after {iterations} iterations"
+            )),
+        }
+    }
+
+    /// Assemble A_ff densely from the Fourier series of J and factorise it.
+    fn dense_factor(&mut self) -> Result<()> {
+        let (d, nn, no, hn) = (self.d, self.nn, self.pw.n_own, self.pw.hn);
+        let mut series = std::mem::take(&mut self.series);
+        self.dense.storage(d)?.fill(0.0);
+        for e in 0..no {
+            for k in 0..no {
+                self.pw.entry_series(false, e * no + k, &mut series);
+                if series.iter().all(|&v| v == 0.0) {
+                    continue;
+                }
+                let a = self.dense.storage_mut();
+                series::fill_mul_operator(
+                    &series,
+                    hn,
+                    hn,
+                    hn,
+                    1.0,
+                    &mut a[k * nn * d + e * nn..],
+                    d,
+                );
+            }
+        }
+        self.series = series;
+        self.dense
+            .factor()
+            .map_err(|e| self.err(format!("the contact block is singular ({})", e.message)))
+    }
+
+    /// The dense route: A_ff factorised, A_fu assembled (from the series of J_u), W solved.
+    fn dense_w(&mut self) -> Result<()> {
+        self.dense_factor()?;
+        let (d, nn, m) = (self.d, self.nn, self.m);
+        let (no, nc, hn, hl) = (self.pw.n_own, self.pw.n_comp, self.pw.hn, self.pw.hl);
+        let nl = series::len(hl);
+        let mut series = std::mem::take(&mut self.series);
+        self.w.fill(0.0);
+        for e in 0..no {
+            for c in 0..nc {
+                self.pw.entry_series(true, e * nc + c, &mut series);
+                if series.iter().all(|&v| v == 0.0) {
+                    continue;
+                }
+                series::fill_mul_operator(
+                    &series,
+                    hn,
+                    hl,
+                    hn,
+                    1.0,
+                    &mut self.w[c * nl * d + e * nn..],
+                    d,
+                );
+            }
+        }
+        self.series = series;
+        self.dense.solve(&mut self.w, m)
+    }
+
+    /// r ← A_ff⁻¹ r (length d).
+    pub fn solve(&mut self, r: &mut [f64]) -> Result<()> {
+        self.counters.solves += 1;
+        match self.active {
+            Method::Dense => self.dense.solve(r, 1),
+            Method::Krylov => {
+                self.b.copy_from_slice(r);
+                match self
+                    .gmres
+                    .solve(&mut self.pw, &self.b, &mut self.x, KRYLOV_RTOL)
+                {
+                    Ok(st) => {
+                        self.counters.krylov_iterations += st.iterations;
+                        r.copy_from_slice(&self.x);
+                        Ok(())
+                    }
+                    // The rest of this factorisation's solves on the dense route (W, from
+                    // converged Krylov solves, stays: it agrees with the dense one to
+                    // round-off and the reduced matrix was built with it).
+                    Err(f) if self.d > DENSE_MAX_DIM => Err(self.krylov_error(f)),
+                    Err(_) => {
+                        self.counters.dense_fallbacks += 1;
+                        self.active = Method::Dense;
+                        self.dense_factor()?;
+                        self.dense.solve(r, 1)
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn small_inverse_matches_and_detects_singularity() {
+        let mut a = vec![2.0, 1.0, 0.0, 1.0, 3.0, 1.0, 0.0, 1.0, 4.0];
+        let a0 = a.clone();
+        let mut inv = vec![0.0; 9];
+        assert!(invert_small(&mut a, &mut inv, 3));
+        for i in 0..3 {
+            for j in 0..3 {
+                let v: f64 = (0..3).map(|k| a0[i * 3 + k] * inv[k * 3 + j]).sum();
+                assert!((v - if i == j { 1.0 } else { 0.0 }).abs() < 1e-14);
+            }
+        }
+        let mut s = vec![1.0, 2.0, 2.0, 4.0];
+        assert!(!invert_small(&mut s, &mut inv[..4], 2));
+        // A zero leading pivot needs the row exchange.
+        let mut p = vec![0.0, 1.0, 1.0, 0.0];
+        assert!(invert_small(&mut p, &mut inv[..4], 2));
+        assert_eq!(&inv[..4], &[0.0, 1.0, 1.0, 0.0]);
+    }
+
+    #[test]
+    fn the_cost_model_prefers_dense_for_small_blocks_and_krylov_for_large() {
+        let ns = |hn: usize| series::fft_size_smooth(3 * hn);
+        assert_eq!(choose(1, 41, ns(20), 40), Method::Dense);
+        assert_eq!(choose(4, 2001, ns(1000), 40), Method::Krylov);
+    }
+}

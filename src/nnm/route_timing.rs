@@ -1,0 +1,131 @@
+//! Measured cost of the two routes of a contact block (contact.rs) against NB_HARM_NONL,
+//! for `aster-nl bench`: where the cost model's choice lands against the measured
+//! crossover.
+
+use super::contact::{self, ContactBlock, Method};
+use super::linear_solver::solves_per_factorisation;
+use super::system::{Scaling, System};
+use super::{init_contact, series, Problem, Settings, Shock, ShockLaw};
+use crate::error::Result;
+use faer::sparse::{SparseColMat, Triplet};
+use std::time::Instant;
+
+/// One row: a law at one H_nl, wall seconds of one factorisation + `solves` solves (best
+/// of a few repeats), Krylov iterations per solve, the cost model's choice.
+#[derive(Clone, Debug)]
+pub struct RouteRow {
+    pub law: &'static str,
+    pub h_nonl: usize,
+    pub dense_s: f64,
+    pub krylov_s: f64,
+    pub krylov_iterations: f64,
+    pub model_choice: Method,
+}
+
+fn diag(n: usize, v: f64) -> SparseColMat<usize, f64> {
+    let t: Vec<Triplet<usize, usize, f64>> = (0..n).map(|i| Triplet::new(i, i, v)).collect();
+    SparseColMat::try_new_from_triplets(n, n, &t).expect("diagonal")
+}
+
+/// A point in contact: the first DOF at 1.3 JEU in its first harmonic, the second (CERCLE)
+/// at 0.4 JEU in quadrature, contact unknowns from their laws.
+fn system_and_point(law: ShockLaw, h_nonl: usize) -> Result<(System, Vec<f64>)> {
+    let dofs = if matches!(law, ShockLaw::Cercle { .. }) {
+        vec![0, 1]
+    } else {
+        vec![0]
+    };
+    let p = Problem {
+        k: diag(2, 10.0),
+        m: diag(2, 1.0),
+        shocks: vec![Shock {
+            law,
+            dofs,
+            gap: 0.01,
+            stiffness: 50.0,
+            regul: 5e-5,
+        }],
+    };
+    let s = Settings {
+        h_lin: 5,
+        h_nonl,
+        n_branches: 1,
+        n_points_per_branch: 1,
+        order: 20,
+        prec_man: 1e-8,
+        prec_newton: 1e-9,
+        iter_newton_max: 15,
+        bif_terms: 3,
+        bif_tol: 1e-4,
+        det_test: true,
+        direction: 1,
+    };
+    let sys = System::new(&p, &s, Scaling::new(&p, 1.0, 0)?, 0)?;
+    let l = sys.lay;
+    let mut x = vec![0.0; l.n_unk];
+    x[l.u(0) + series::ic(1)] = 1.3;
+    x[l.u(1) + series::is(l.hl, 1)] = 0.4;
+    x[l.omega()] = 1.0;
+    init_contact(&sys, &mut x)?;
+    Ok((sys, x))
+}
+
+pub fn contact_route_timings(h_values: &[usize], solves: usize) -> Result<Vec<RouteRow>> {
+    let mut rows = Vec::new();
+    let laws = [
+        ("PLAN", ShockLaw::Plan),
+        (
+            "CERCLE",
+            ShockLaw::Cercle {
+                origin: [0.0, 0.003],
+            },
+        ),
+    ];
+    for (name, law) in laws {
+        for &h in h_values {
+            let (sys, x) = system_and_point(law, h)?;
+            let l = sys.lay;
+            let sh = &sys.shocks[0];
+            let rhs: Vec<f64> = (0..sh.eqs.n_own * l.nn)
+                .map(|i| ((i * 7919) % 101) as f64 / 101.0 - 0.5)
+                .collect();
+            let time = |m: Method| -> Result<(f64, f64)> {
+                let mut block = ContactBlock::new(sh, 0, &l, solves, Some(m))?;
+                let mut best = f64::INFINITY;
+                let repeats = if h >= 320 { 2 } else { 5 };
+                for _ in 0..repeats {
+                    let t = Instant::now();
+                    block.factor(sh, &l, &x)?;
+                    let mut r = rhs.clone();
+                    for _ in 0..solves {
+                        r.copy_from_slice(&rhs);
+                        block.solve(&mut r)?;
+                    }
+                    best = best.min(t.elapsed().as_secs_f64());
+                }
+                let c = block.counters;
+                let per_solve = c.krylov_iterations as f64
+                    / (c.solves + c.factorisations * block.dims().1).max(1) as f64;
+                Ok((best, per_solve))
+            };
+            let (dense_s, _) = time(Method::Dense)?;
+            let (krylov_s, krylov_iterations) = time(Method::Krylov)?;
+            let ns = series::fft_size_smooth(3 * h);
+            rows.push(RouteRow {
+                law: name,
+                h_nonl: h,
+                dense_s,
+                krylov_s,
+                krylov_iterations,
+                model_choice: contact::choose(
+                    sh.eqs.n_own,
+                    l.nn,
+                    ns,
+                    solves + sh.dofs.len() * l.nl,
+                ),
+            });
+        }
+    }
+    let _ = solves_per_factorisation;
+    Ok(rows)
+}
