@@ -446,3 +446,33 @@ fn hard_failed_correction_stops_with_the_reason_and_keeps_the_rows() {
     assert_eq!(v.len(), 2);
     assert!(v.iter().all(|r| r.residual <= 1e-8), "{v:?}");
 }
+
+/// Issue 12, item 1: the same run as `failed_correction` with the default
+/// NB_REPRISE_PAS_MAXI: branch 3 is retried with a halved step, converges, and the run
+/// reaches its 20 branches; the retry is in the table and in the INFO=1 report.
+#[test]
+fn hard_failed_correction_is_retried_with_a_shorter_step() {
+    let (_d, c) = run_ok("failed_correction_retry.comm", 1);
+    let v = rows(&c, "MNL");
+    assert_eq!(v.len(), 20);
+    assert!(v.iter().all(|r| r.residual <= 1e-8), "{v:?}");
+    let retries: Vec<(i64, i64)> = c
+        .prepare("SELECT BRANCHE, NB_REPRISE_PAS FROM MNL WHERE NB_REPRISE_PAS > 0")
+        .unwrap()
+        .query_map([], |r| Ok((r.get(0)?, r.get(1)?)))
+        .unwrap()
+        .map(|r| r.unwrap())
+        .collect();
+    // Without retries branch 3 fails (failed_correction.comm): it must be among them.
+    assert!(
+        retries.iter().any(|&(b, n)| b == 3 && n >= 1),
+        "{retries:?}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let o = run("failed_correction_retry.comm", &dir.path().join("r.db"));
+    assert!(
+        text(&o).contains("branch    3:") && text(&o).contains("step halved"),
+        "{}",
+        text(&o)
+    );
+}
