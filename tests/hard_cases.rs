@@ -476,3 +476,51 @@ fn hard_failed_correction_is_retried_with_a_shorter_step() {
         text(&o)
     );
 }
+
+/// Issue 12, item 5: the stiff wall whose steps collapse at first contact (wall_onset.comm)
+/// crawled 400 branches on a wrong branch with exit 0 (frequency below the linear one);
+/// it must stop with the no-progress error, naming the keyword and the remedies, rows kept.
+#[test]
+fn hard_collapsed_steps_stop_with_a_clear_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("w.db");
+    let o = run("wall_onset.comm", &db);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    for want in [
+        "no progress over the last 50 branches",
+        "RESOLUTION/NB_BRANCHE_SANS_PROGRES",
+        "ENER_MAX",
+        "the rows computed before the failure are stored",
+    ] {
+        assert!(out.contains(want), "{want} missing:\n{out}");
+    }
+    let c = Connection::open(&db).unwrap();
+    let v = rows(&c, "MNL");
+    // NB_PAS_MAN = 2: two rows per branch, at least the 51 of the window.
+    assert!(v.len() >= 2 * 51, "{}", v.len());
+    assert!(v.iter().all(|r| r.freq > 0.0), "{v:?}");
+}
+
+/// Issue 12, items 1 and 6: the one-DOF BI_PLAN stop whose correction failed far up the
+/// branch (ENERGIE ~ 1e17 J) now ends normally at ENER_MAX, the message naming the bound;
+/// every row converged (the .comm's test).
+#[test]
+fn hard_biplan_long_ends_at_ener_max() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("b.db");
+    let o = run("biplan_long.comm", &db);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert!(out.contains("tests: 1 OK, 0 NOOK"), "{out}");
+    assert!(
+        out.contains("stopped at the bound asked for in RESOLUTION")
+            && out.contains("passed ENER_MAX = 1.000000e15"),
+        "{out}"
+    );
+    let c = Connection::open(&db).unwrap();
+    let v = rows(&c, "MNL");
+    assert!(v.len() < 400, "{}", v.len());
+    let last = v[v.len() - 1];
+    assert!(last.energy >= 1e15 && v[v.len() - 2].energy < 1e15, "{v:?}");
+}

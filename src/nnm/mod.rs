@@ -166,12 +166,24 @@ pub struct StepControl {
     /// A failed correction is retried from the same series with a_max halved, at most
     /// this many times per branch, before the run stops.
     pub retries_max: usize,
+    /// Stop with an error when the branch ends of this many consecutive branches stay
+    /// within [`STALL_ENERGY`] in energy and [`STALL_FREQUENCY`] in frequency (0: never).
+    pub stall_branches: usize,
 }
+
+/// Relative spread of ENERGIE over the window of [`StepControl::stall_branches`] below which
+/// a run counts as making no progress.
+pub const STALL_ENERGY: f64 = 1.0e-2;
+/// Relative spread of FREQUENCE over that window, likewise.
+pub const STALL_FREQUENCY: f64 = 1.0e-3;
 
 impl StepControl {
     /// No retry: a failed correction stops the run.
     pub fn none() -> StepControl {
-        StepControl { retries_max: 0 }
+        StepControl {
+            retries_max: 0,
+            stall_branches: 0,
+        }
     }
 }
 
@@ -671,6 +683,8 @@ fn run(
             .map(|(v, f)| v / f)
             .collect()
     });
+    // (energy, frequency) of every branch end, for the no-progress guard.
+    let mut ends: Vec<(f64, f64)> = Vec::new();
     for b in 1..=settings.n_branches {
         let orient = |x1: &[f64]| -> f64 {
             let ahead = match (&prev_tangent, &travel) {
@@ -732,6 +746,10 @@ fn run(
             p.step_retries = step_retries;
         }
         let at_floor = branch_points.last().is_some_and(|p| p.at_floor);
+        if let Some(p) = branch_points.last() {
+            ends.push((p.energy, p.frequency));
+        }
+        let stalled = no_progress(&ends, control.stall_branches);
         // NB_PAS_MAN ≥ 1 (system::validate): the last point is the corrected end.
         let x_start = std::mem::replace(&mut x0, x_end);
         // The next branch starts from the corrected end point with this branch's end tangent
@@ -784,10 +802,49 @@ fn run(
         if !go_on || last {
             break;
         }
+        if let Some((e, f)) = stalled {
+            let w = control.stall_branches;
+            return Err(in_branch(
+                Error::numerical(format!(
+                    "no progress over the last {w} branches: ENERGIE stayed within {:.0} % of {e:.6e} \
+                     and FREQUENCE within {:.1} % of {f:.6e} Hz (a_max = {:.3e})",
+                    100.0 * STALL_ENERGY,
+                    100.0 * STALL_FREQUENCY,
+                    ser.a_max
+                ))
+                .keyword("RESOLUTION/NB_BRANCHE_SANS_PROGRES")
+                .hint(
+                    "the series steps have collapsed (typically at the onset of a stiff contact, or far up a \
+                     nearly homogeneous branch where round-off dominates): if the branch has reached what you \
+                     need, bound the run with ENER_MAX, FREQ_MAX or DEPL_MAX; otherwise raise PARA_REGUL, \
+                     NB_HARM_LINE, or lower PREC_MAN",
+                ),
+                b,
+            ));
+        }
         end_factor.map_err(|e| in_branch(e, b + 1))?;
         prev_tangent = Some(tangent);
     }
     Ok(())
+}
+
+/// The window's (energy, frequency) when the last `window` + 1 branch ends all lie within
+/// [`STALL_ENERGY`] and [`STALL_FREQUENCY`] of each other (relative spreads).
+fn no_progress(ends: &[(f64, f64)], window: usize) -> Option<(f64, f64)> {
+    if window == 0 || ends.len() <= window {
+        return None;
+    }
+    let w = &ends[ends.len() - 1 - window..];
+    let spread = |f: &dyn Fn(&(f64, f64)) -> f64| {
+        let (lo, hi) = w
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(f(p)), hi.max(f(p)))
+            });
+        (hi - lo) / hi.abs().max(f64::MIN_POSITIVE)
+    };
+    let last = w[w.len() - 1];
+    (spread(&|p| p.0) < STALL_ENERGY && spread(&|p| p.1) < STALL_FREQUENCY).then_some(last)
 }
 
 /// The points of one branch: the series evaluated at a_max·i/np, the last one corrected.
@@ -853,6 +910,19 @@ fn branch_points_of(
                 Error::numerical(format!("energy or frequency not finite at point {i}")),
                 b,
             ));
+        }
+        if p.frequency <= 0.0 {
+            // Not a periodic orbit: the series has jumped off the family (a shorter step
+            // stays closer to its origin).
+            return Ok(Err(Error::numerical(format!(
+                "the frequency is not positive at point {i} ({:.6e} Hz): the branch has left the \
+                 family of periodic orbits",
+                p.frequency
+            ))
+            .keyword("RESOLUTION/PREC_MAN")
+            .hint(
+                "lower PREC_MAN (shorter, more accurate branches) or raise PARA_REGUL",
+            )));
         }
         branch_points.push(p);
     }

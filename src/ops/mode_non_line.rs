@@ -409,11 +409,12 @@ fn settings(args: &Args) -> Result<Settings> {
     })
 }
 
-/// RESOLUTION/NB_REPRISE_PAS_MAXI (aster-nl extension; default and bounds in the catalog).
+/// RESOLUTION/NB_REPRISE_PAS_MAXI and NB_BRANCHE_SANS_PROGRES (aster-nl extensions; default and bounds in the catalog).
 fn step_control(args: &Args) -> Result<nnm::StepControl> {
     let r = args.req_fact("RESOLUTION")?;
     Ok(nnm::StepControl {
         retries_max: r.req_count("NB_REPRISE_PAS_MAXI")?,
+        stall_branches: r.req_count("NB_BRANCHE_SANS_PROGRES")?,
     })
 }
 
