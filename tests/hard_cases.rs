@@ -483,3 +483,81 @@ fn hard_failed_correction_stops_with_the_reason_and_keeps_the_rows() {
     assert_eq!(v.len(), 2);
     assert!(v.iter().all(|r| r.residual <= 1e-8), "{v:?}");
 }
+
+/// Issue 12, item 1: the same run as `failed_correction` with the default
+/// NB_REPRISE_PAS_MAXI: branch 3 is retried with a halved step, converges, and the run
+/// reaches its 20 branches; the retry is in the table and in the INFO=1 report.
+#[test]
+fn hard_failed_correction_is_retried_with_a_shorter_step() {
+    let (_d, c) = run_ok("failed_correction_retry.comm", 1);
+    let v = rows(&c, "MNL");
+    assert_eq!(v.len(), 20);
+    assert!(v.iter().all(|r| r.residual <= 1e-8), "{v:?}");
+    let retries: Vec<(i64, i64)> = c
+        .prepare("SELECT BRANCHE, NB_REPRISE_PAS FROM MNL WHERE NB_REPRISE_PAS > 0")
+        .unwrap()
+        .query_map([], |r| Ok((r.get(0)?, r.get(1)?)))
+        .unwrap()
+        .map(|r| r.unwrap())
+        .collect();
+    // Without retries branch 3 fails (failed_correction.comm): it must be among them.
+    assert!(
+        retries.iter().any(|&(b, n)| b == 3 && n >= 1),
+        "{retries:?}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let o = run("failed_correction_retry.comm", &dir.path().join("r.db"));
+    assert!(
+        text(&o).contains("branch    3:") && text(&o).contains("step halved"),
+        "{}",
+        text(&o)
+    );
+}
+
+/// Issue 12, item 5: the stiff wall whose steps collapse at first contact (wall_onset.comm)
+/// crawled 400 branches on a wrong branch with exit 0 (frequency below the linear one);
+/// it must stop with the no-progress error, naming the keyword and the remedies, rows kept.
+#[test]
+fn hard_collapsed_steps_stop_with_a_clear_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("w.db");
+    let o = run("wall_onset.comm", &db);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    for want in [
+        "no progress over the last 50 branches",
+        "RESOLUTION/NB_BRANCHE_SANS_PROGRES",
+        "ENER_MAX",
+        "the rows computed before the failure are stored",
+    ] {
+        assert!(out.contains(want), "{want} missing:\n{out}");
+    }
+    let c = Connection::open(&db).unwrap();
+    let v = rows(&c, "MNL");
+    // NB_PAS_MAN = 2: two rows per branch, at least the 51 of the window.
+    assert!(v.len() >= 2 * 51, "{}", v.len());
+    assert!(v.iter().all(|r| r.freq > 0.0), "{v:?}");
+}
+
+/// Issue 12, items 1 and 6: the one-DOF BI_PLAN stop whose correction failed far up the
+/// branch (ENERGIE ~ 1e17 J) now ends normally at ENER_MAX, the message naming the bound;
+/// every row converged (the .comm's test).
+#[test]
+fn hard_biplan_long_ends_at_ener_max() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("b.db");
+    let o = run("biplan_long.comm", &db);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert!(out.contains("tests: 1 OK, 0 NOOK"), "{out}");
+    assert!(
+        out.contains("stopped at the bound asked for in RESOLUTION")
+            && out.contains("passed ENER_MAX = 1.000000e15"),
+        "{out}"
+    );
+    let c = Connection::open(&db).unwrap();
+    let v = rows(&c, "MNL");
+    assert!(v.len() < 400, "{}", v.len());
+    let last = v[v.len() - 1];
+    assert!(last.energy >= 1e15 && v[v.len() - 2].energy < 1e15, "{v:?}");
+}

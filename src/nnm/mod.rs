@@ -136,6 +136,12 @@ pub struct Point {
     pub bifurcation: bool,
     pub branch: usize,
     pub harm_max: usize,
+    /// Retries of this branch with a shorter series step before its correction converged
+    /// (on the branch's corrected end row; 0 on the others).
+    pub step_retries: usize,
+    /// The correction was accepted at the round-off floor (newton.rs), not below
+    /// PREC_NEWTON.
+    pub at_floor: bool,
 }
 
 #[derive(Clone, Debug)]
@@ -147,6 +153,38 @@ pub struct BranchReport {
     pub a_max: f64,
     pub newton_iterations: usize,
     pub bifurcation: bool,
+    /// Retries with a halved step before the correction converged.
+    pub step_retries: usize,
+    /// The end point was accepted at the round-off floor (newton.rs).
+    pub at_floor: bool,
+}
+
+/// How the run reacts to a branch that goes wrong; the values come from the catalog
+/// (RESOLUTION), the engine's own callers use [`StepControl::none`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct StepControl {
+    /// A failed correction is retried from the same series with a_max halved, at most
+    /// this many times per branch, before the run stops.
+    pub retries_max: usize,
+    /// Stop with an error when the branch ends of this many consecutive branches stay
+    /// within [`STALL_ENERGY`] in energy and [`STALL_FREQUENCY`] in frequency (0: never).
+    pub stall_branches: usize,
+}
+
+/// Relative spread of ENERGIE over the window of [`StepControl::stall_branches`] below which
+/// a run counts as making no progress.
+pub const STALL_ENERGY: f64 = 1.0e-2;
+/// Relative spread of FREQUENCE over that window, likewise.
+pub const STALL_FREQUENCY: f64 = 1.0e-3;
+
+impl StepControl {
+    /// No retry: a failed correction stops the run.
+    pub fn none() -> StepControl {
+        StepControl {
+            retries_max: 0,
+            stall_branches: 0,
+        }
+    }
 }
 
 /// How the bordered tangent is solved (linear_solver.rs). Results agree to round-off; the
@@ -329,6 +367,8 @@ fn make_point(sys: &System, x: &[f64], residual: f64, branch: usize, bifurcation
         bifurcation,
         branch,
         harm_max: energy::harm_max(sys, x),
+        step_retries: 0,
+        at_floor: false,
     }
 }
 
@@ -349,7 +389,7 @@ fn start(
         );
     }
     let mut solver = make_solver(&sys, settings, kind)?;
-    let (it, res) = newton::correct(
+    let corr = newton::correct(
         &sys,
         solver.as_mut(),
         &mut x,
@@ -361,7 +401,9 @@ fn start(
         message: format!("start point: {}", e.message),
         ..e
     })?;
-    let point = make_point(&sys, &x, res, 0, false);
+    let it = corr.iterations;
+    let mut point = make_point(&sys, &x, corr.residual, 0, false);
+    point.at_floor = corr.at_floor;
     Ok(StartState {
         travel: None,
         border: motion_border(&sys, &x),
@@ -539,14 +581,26 @@ pub fn continue_while(
     start: StartState,
     on_branch: &mut dyn FnMut(&BranchReport, &[Point]) -> bool,
 ) -> Outcome {
+    continue_controlled(problem, settings, StepControl::none(), start, on_branch)
+}
+
+/// As [`continue_while`], with `control` deciding what happens to a branch that fails.
+pub fn continue_controlled(
+    problem: &Problem,
+    settings: &Settings,
+    control: StepControl,
+    start: StartState,
+    on_branch: &mut dyn FnMut(&BranchReport, &[Point]) -> bool,
+) -> Outcome {
     let mut points = Vec::new();
-    let error = run(problem, settings, start, on_branch, &mut points).err();
+    let error = run(problem, settings, control, start, on_branch, &mut points).err();
     Outcome { points, error }
 }
 
 fn run(
     problem: &Problem,
     settings: &Settings,
+    control: StepControl,
     st: StartState,
     on_branch: &mut dyn FnMut(&BranchReport, &[Point]) -> bool,
     out: &mut Vec<Point>,
@@ -588,6 +642,8 @@ fn run(
             .map(|(v, f)| v / f)
             .collect()
     });
+    // (energy, frequency) of every branch end, for the no-progress guard.
+    let mut ends: Vec<(f64, f64)> = Vec::new();
     for b in 1..=settings.n_branches {
         let orient = |x1: &[f64]| -> f64 {
             let ahead = match (&prev_tangent, &travel) {
@@ -622,53 +678,37 @@ fn run(
             ser.a_max *= 0.5;
         }
         let np = settings.n_points_per_branch;
-        let mut branch_points = Vec::with_capacity(np);
-        let mut newton_iterations = 0;
-        let tangent = ser.unit_tangent(ser.a_max);
-        if !finite(&tangent) {
-            return Err(in_branch(
-                Error::numerical("the branch tangent is not finite"),
-                b,
-            ));
+        // A failed correction is retried from the same series with a_max halved (the series
+        // is more accurate closer to its origin), at most `control.retries_max` times.
+        let mut step_retries = 0;
+        let (mut branch_points, x_end, newton_iterations, tangent) = loop {
+            match branch_points_of(&sys, solver.as_mut(), settings, &ser, &x0, b)? {
+                Ok(done) => break done,
+                Err(_) if step_retries < control.retries_max => {
+                    step_retries += 1;
+                    ser.a_max *= 0.5;
+                }
+                Err(e) if step_retries > 0 => {
+                    let e = Error {
+                        message: format!(
+                            "{} (also with the series step halved {step_retries} times, a_max = {:.3e})",
+                            e.message, ser.a_max
+                        ),
+                        ..e
+                    };
+                    return Err(in_branch(e, b));
+                }
+                Err(e) => return Err(in_branch(e, b)),
+            }
+        };
+        if let Some(p) = branch_points.last_mut() {
+            p.step_retries = step_retries;
         }
-        let series_bif = ser
-            .bifurcation
-            .map(|ab| (((ab / ser.a_max) * np as f64).round() as usize).clamp(1, np));
-        // The corrected end point; x0 stays the series origin until every point is out.
-        let mut x_end = Vec::new();
-        for i in 1..=np {
-            let a = ser.a_max * i as f64 / np as f64;
-            let mut x = ser.eval(&x0, a);
-            if !finite(&x) {
-                return Err(in_branch(
-                    Error::numerical(format!("the series diverged at a = {a:.3e} (point {i})")),
-                    b,
-                ));
-            }
-            let mut res = newton::relative(&sys.residual(&x), &x);
-            if i == np {
-                let (it, r) = newton::correct(
-                    &sys,
-                    solver.as_mut(),
-                    &mut x,
-                    &tangent,
-                    settings.prec_newton,
-                    settings.iter_newton_max,
-                )
-                .map_err(|e| in_branch(e, b))?;
-                newton_iterations = it;
-                res = r;
-                x_end = x.clone();
-            }
-            let p = make_point(&sys, &x, res, b, series_bif == Some(i));
-            if !(p.energy.is_finite() && p.omega.is_finite() && p.energy_spread.is_finite()) {
-                return Err(in_branch(
-                    Error::numerical(format!("energy or frequency not finite at point {i}")),
-                    b,
-                ));
-            }
-            branch_points.push(p);
+        let at_floor = branch_points.last().is_some_and(|p| p.at_floor);
+        if let Some(p) = branch_points.last() {
+            ends.push((p.energy, p.frequency));
         }
+        let stalled = no_progress(&ends, control.stall_branches);
         // NB_PAS_MAN ≥ 1 (system::validate): the last point is the corrected end.
         let x_start = std::mem::replace(&mut x0, x_end);
         // The next branch starts from the corrected end point with this branch's end tangent
@@ -713,16 +753,138 @@ fn run(
             a_max: ser.a_max,
             newton_iterations,
             bifurcation: branch_points.iter().any(|p| p.bifurcation),
+            step_retries,
+            at_floor,
         };
         let go_on = on_branch(&report, &branch_points);
         out.extend(branch_points);
         if !go_on || last {
             break;
         }
+        if let Some((e, f)) = stalled {
+            let w = control.stall_branches;
+            return Err(in_branch(
+                Error::numerical(format!(
+                    "no progress over the last {w} branches: ENERGIE stayed within {:.0} % of {e:.6e} \
+                     and FREQUENCE within {:.1} % of {f:.6e} Hz (a_max = {:.3e})",
+                    100.0 * STALL_ENERGY,
+                    100.0 * STALL_FREQUENCY,
+                    ser.a_max
+                ))
+                .keyword("RESOLUTION/NB_BRANCHE_SANS_PROGRES")
+                .hint(
+                    "the series steps have collapsed (typically at the onset of a stiff contact, or far up a \
+                     nearly homogeneous branch where round-off dominates): if the branch has reached what you \
+                     need, bound the run with ENER_MAX, FREQ_MAX or DEPL_MAX; otherwise raise PARA_REGUL, \
+                     NB_HARM_LINE, or lower PREC_MAN",
+                ),
+                b,
+            ));
+        }
         end_factor.map_err(|e| in_branch(e, b + 1))?;
         prev_tangent = Some(tangent);
     }
     Ok(())
+}
+
+/// The window's (energy, frequency) when the last `window` + 1 branch ends all lie within
+/// [`STALL_ENERGY`] and [`STALL_FREQUENCY`] of each other (relative spreads).
+fn no_progress(ends: &[(f64, f64)], window: usize) -> Option<(f64, f64)> {
+    if window == 0 || ends.len() <= window {
+        return None;
+    }
+    let w = &ends[ends.len() - 1 - window..];
+    let spread = |f: &dyn Fn(&(f64, f64)) -> f64| {
+        let (lo, hi) = w
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(f(p)), hi.max(f(p)))
+            });
+        (hi - lo) / hi.abs().max(f64::MIN_POSITIVE)
+    };
+    let last = w[w.len() - 1];
+    (spread(&|p| p.0) < STALL_ENERGY && spread(&|p| p.1) < STALL_FREQUENCY).then_some(last)
+}
+
+/// The points of one branch: the series evaluated at a_max·i/np, the last one corrected.
+/// Ok(Err(e)): the correction failed (retryable with a shorter step); Err: anything else.
+/// Returns the points, the corrected end, the Newton iterations and the end tangent.
+type BranchPoints = (Vec<Point>, Vec<f64>, usize, Vec<f64>);
+
+fn branch_points_of(
+    sys: &System,
+    solver: &mut dyn TangentSolver,
+    settings: &Settings,
+    ser: &anm::Series,
+    x0: &[f64],
+    b: usize,
+) -> Result<std::result::Result<BranchPoints, Error>> {
+    let np = settings.n_points_per_branch;
+    let mut branch_points = Vec::with_capacity(np);
+    let mut newton_iterations = 0;
+    let tangent = ser.unit_tangent(ser.a_max);
+    if !finite(&tangent) {
+        return Err(in_branch(
+            Error::numerical("the branch tangent is not finite"),
+            b,
+        ));
+    }
+    let series_bif = ser
+        .bifurcation
+        .map(|ab| (((ab / ser.a_max) * np as f64).round() as usize).clamp(1, np));
+    let mut x_end = Vec::new();
+    for i in 1..=np {
+        let a = ser.a_max * i as f64 / np as f64;
+        let mut x = ser.eval(x0, a);
+        if !finite(&x) {
+            return Err(in_branch(
+                Error::numerical(format!("the series diverged at a = {a:.3e} (point {i})")),
+                b,
+            ));
+        }
+        let mut res = newton::relative(&sys.residual(&x), &x);
+        let mut at_floor = false;
+        if i == np {
+            let corr = match newton::correct(
+                sys,
+                solver,
+                &mut x,
+                &tangent,
+                settings.prec_newton,
+                settings.iter_newton_max,
+            ) {
+                Ok(c) => c,
+                Err(e) => return Ok(Err(e)),
+            };
+            newton_iterations = corr.iterations;
+            res = corr.residual;
+            at_floor = corr.at_floor;
+            x_end = x.clone();
+        }
+        let mut p = make_point(sys, &x, res, b, series_bif == Some(i));
+        p.at_floor = at_floor;
+        if !(p.energy.is_finite() && p.omega.is_finite() && p.energy_spread.is_finite()) {
+            return Err(in_branch(
+                Error::numerical(format!("energy or frequency not finite at point {i}")),
+                b,
+            ));
+        }
+        if p.frequency <= 0.0 {
+            // Not a periodic orbit: the series has jumped off the family (a shorter step
+            // stays closer to its origin).
+            return Ok(Err(Error::numerical(format!(
+                "the frequency is not positive at point {i} ({:.6e} Hz): the branch has left the \
+                 family of periodic orbits",
+                p.frequency
+            ))
+            .keyword("RESOLUTION/PREC_MAN")
+            .hint(
+                "lower PREC_MAN (shorter, more accurate branches) or raise PARA_REGUL",
+            )));
+        }
+        branch_points.push(p);
+    }
+    Ok(Ok((branch_points, x_end, newton_iterations, tangent)))
 }
 
 /// The first point of a branch (1-based, among its `np` points) where the bordered tangent's
@@ -807,6 +969,26 @@ pub fn time_history(
 
 /// Fourier coefficients (0, C1..CH_l, S1..SH_l) of the displacement of each DOF (physical).
 /// For many points of one problem, build a [`PostProcessor`] once instead.
+/// Instants per harmonic of the displacement at which [`largest_displacement`] samples.
+const MAX_SAMPLES_PER_HARMONIC: usize = 8;
+
+/// The largest |u_i(t)| over the DOFs and one period (physical units), sampled at
+/// 8·NB_HARM_LINE + 2 instants (the sampled maximum of a sum of H harmonics is within a few
+/// per cent of the true one at that density).
+pub fn largest_displacement(problem: &Problem, settings: &Settings, x: &[f64]) -> Result<f64> {
+    let th = time_history(
+        problem,
+        settings,
+        x,
+        MAX_SAMPLES_PER_HARMONIC * settings.h_lin + 2,
+    )?;
+    Ok(th
+        .displacement
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, u| m.max(u.abs())))
+}
+
 pub fn displacement_coefficients(
     problem: &Problem,
     settings: &Settings,

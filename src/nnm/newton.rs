@@ -27,9 +27,52 @@ pub fn roundoff_floor(sys: &System, x: &[f64]) -> f64 {
     ROUNDOFF_MARGIN * f64::EPSILON * sys.stiffness_term_norm(x) / norm(x).max(1.0)
 }
 
-/// Corrects `x` in place until ‖R‖ ≤ `tol`, or until the residual stops decreasing below
-/// the round-off floor (it cannot do better there: accepted, and RESIDU reports it).
-/// Returns (iterations, final relative residual).
+/// Ulps by which [`observed_noise`] perturbs every unknown.
+const NOISE_ULPS: f64 = 4.0;
+
+/// How far above the round-off level a stalled residual may be and still be accepted
+/// ([`correct`]): the level is an estimate (one perturbation, not a bound).
+const FLOOR_FACTOR: f64 = 10.0;
+
+/// Iterations without halving the residual before a correction counts as stalled.
+const STALL_ITERATIONS: usize = 3;
+
+/// The residual's round-off level seen at `x` (units of [`relative`]): R recomputed at `x`
+/// with every unknown moved by a few ulps (alternating signs), minus R(x). A solution stored
+/// in floating point is uncertain by that much, so no correction can bring the residual
+/// below it; it grows with the conditioning of the equations at `x` (a stiff regularised
+/// contact law makes the contact rows steep in u), which [`roundoff_floor`] does not see.
+pub fn observed_noise(sys: &System, x: &[f64], r: &[f64]) -> f64 {
+    let xp: Vec<f64> = x
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let s = if i % 2 == 0 { 1.0 } else { -1.0 };
+            v * (1.0 + s * NOISE_ULPS * f64::EPSILON)
+        })
+        .collect();
+    let rp = sys.residual(&xp);
+    let d: Vec<f64> = rp.iter().zip(r).map(|(a, b)| a - b).collect();
+    relative(&d, x)
+}
+
+/// The outcome of a correction.
+#[derive(Clone, Copy, Debug)]
+pub struct Correction {
+    pub iterations: usize,
+    /// Final relative residual (RESIDU).
+    pub residual: f64,
+    /// Accepted above the target because it had stopped decreasing at the round-off level
+    /// (the rule of [`correct`]); the caller raises an alarm.
+    pub at_floor: bool,
+}
+
+/// Corrects `x` in place until ‖R‖ ≤ `tol`. Round-off rule (docs/nnm.md): a residual above
+/// `tol` is still accepted, flagged `at_floor`, when it has stopped decreasing (not halved
+/// over the last [`STALL_ITERATIONS`] iterations, and not above the smallest residual seen
+/// by more than a factor 2: a growing residual is a failure) at the level round-off allows:
+/// at most [`FLOOR_FACTOR`] × max([`observed_noise`], [`roundoff_floor`]). Below the
+/// deterministic floor alone a stalled residual is accepted silently, as before.
 pub fn correct(
     sys: &System,
     solver: &mut dyn TangentSolver,
@@ -37,9 +80,14 @@ pub fn correct(
     border: &[f64],
     tol: f64,
     max_iter: usize,
-) -> Result<(usize, f64)> {
+) -> Result<Correction> {
     let mut it = 0;
-    let mut previous = f64::INFINITY;
+    let mut history: Vec<f64> = Vec::new();
+    let done = |iterations: usize, residual: f64, at_floor: bool| Correction {
+        iterations,
+        residual,
+        at_floor,
+    };
     loop {
         let r = sys.residual(x);
         let nr = relative(&r, x);
@@ -49,13 +97,25 @@ pub fn correct(
             )));
         }
         if nr <= tol {
-            return Ok((it, nr));
+            return Ok(done(it, nr, false));
         }
+        let previous = history.last().copied().unwrap_or(f64::INFINITY);
         // Stalled (less than halved by the last iteration) at what round-off allows.
         if it > 0 && nr > 0.5 * previous && nr <= roundoff_floor(sys, x) {
-            return Ok((it, nr));
+            return Ok(done(it, nr, false));
         }
-        previous = nr;
+        history.push(nr);
+        let stalled = history.len() > STALL_ITERATIONS && {
+            let h = &history[history.len() - 1 - STALL_ITERATIONS..];
+            let best = history.iter().copied().fold(f64::INFINITY, f64::min);
+            nr > 0.5 * h[0] && nr <= 2.0 * best
+        };
+        if stalled || it >= max_iter {
+            let level = observed_noise(sys, x, &r).max(roundoff_floor(sys, x));
+            if history.len() > STALL_ITERATIONS && stalled && nr <= FLOOR_FACTOR * level {
+                return Ok(done(it, nr, true));
+            }
+        }
         if it >= max_iter {
             return Err(Error::numerical(format!(
                 "Newton correction did not converge: ‖R‖ = {nr:.3e} > PREC_NEWTON = {tol:.1e} after {it} iterations"
@@ -73,7 +133,7 @@ pub fn correct(
             for (xi, di) in x.iter_mut().zip(&d) {
                 *xi += di;
             }
-            return Ok((it + 1, relative(&sys.residual(x), x)));
+            return Ok(done(it + 1, relative(&sys.residual(x), x), false));
         }
         // Full step unless it increases the residual (a start point far from the branch,
         // e.g. a linear mode placed deep into contact): then halve it a few times.

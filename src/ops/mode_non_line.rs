@@ -40,6 +40,9 @@ const COLUMNS: &[(&str, ColKind)] = &[
     // when the branch has drifted onto a non-physical root of an implicit law.
     ("ECART_LOI_CHOC", ColKind::R),
     ("BRANCHE", ColKind::I),
+    // Retries of the row's branch with a halved series step before its correction
+    // converged (on the branch's corrected end row).
+    ("NB_REPRISE_PAS", ColKind::I),
 ];
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
@@ -60,6 +63,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     }
     let free = k.free_dofs();
     let settings = settings(args)?;
+    let control = step_control(args)?;
+    let bounds = stop_bounds(args)?;
     let etat = args.req_fact("ETAT_INIT")?;
 
     // Shocks: from CHOC on a first run, from the stored CARA_CHOC on a restart.
@@ -123,11 +128,13 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let info = ctx.info;
     let mut lines = Vec::new();
     let progress = Progress::new(ctx.progress, settings.n_branches as u64, "MODE_NON_LINE");
-    let outcome = nnm::continue_branches(&problem, &settings, start, &mut |rep, _pts| {
+    let mut stopped_by: Option<String> = None;
+    let mut bound_error: Option<Error> = None;
+    let outcome = nnm::continue_controlled(&problem, &settings, control, start, &mut |rep, pts| {
         progress.inc();
         if info >= 1 {
             lines.push(format!(
-                "  branch {:>4}: {:>3} pts  freq {:.6e} .. {:.6e} Hz  energy {:.6e} .. {:.6e}  a_max {:.3e}  newton {:>2}  bifurcation {}",
+                "  branch {:>4}: {:>3} pts  freq {:.6e} .. {:.6e} Hz  energy {:.6e} .. {:.6e}  a_max {:.3e}  newton {:>2}  bifurcation {}{}{}",
                 rep.branch,
                 rep.points,
                 rep.freq_range.0,
@@ -136,17 +143,42 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 rep.energy_range.1,
                 rep.a_max,
                 rep.newton_iterations,
-                if rep.bifurcation { "yes" } else { "no" }
+                if rep.bifurcation { "yes" } else { "no" },
+                if rep.step_retries > 0 {
+                    format!("  step halved {} time(s) after a failed correction", rep.step_retries)
+                } else {
+                    String::new()
+                },
+                if rep.at_floor { "  residual accepted at its round-off floor" } else { "" }
             ));
+        }
+        match bounds.passed(&problem, &settings, pts) {
+            Ok(Some(why)) => {
+                stopped_by = Some(format!("branch {}: {why}", rep.branch));
+                false
+            }
+            Ok(None) => true,
+            Err(e) => {
+                bound_error = Some(e);
+                false
+            }
         }
     });
     progress.finish();
+    if let Some(e) = bound_error {
+        return Err(e);
+    }
     ctx.say(&format!(
         "MODE_NON_LINE {name}: {} point(s)",
         outcome.points.len()
     ))?;
     for l in &lines {
         ctx.say(l)?;
+    }
+    if let Some(why) = &stopped_by {
+        ctx.say(&format!(
+            "MODE_NON_LINE {name}: stopped at the bound asked for in RESOLUTION: {why}"
+        ))?;
     }
 
     // The result table: a new one, or the reused one extended.
@@ -226,6 +258,25 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                  left the physical root of the regularised law; treat those rows as suspect",
                 suspect.len(),
                 worst_defect
+            ),
+        )?;
+    }
+    let floor_rows: Vec<i64> = outcome
+        .points
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.at_floor)
+        .map(|(j, _)| first_order + j as i64)
+        .collect();
+    if let (Some(first), Some(last)) = (floor_rows.first(), floor_rows.last()) {
+        ctx.alarm(
+            "MODE_NON_LINE_5",
+            &format!(
+                "{} row(s) between NUME_ORDRE {first} and {last} were accepted with RESIDU above \
+                 PREC_NEWTON: the correction had stopped decreasing at the round-off level of the \
+                 equations there (docs/nnm.md, 'Convergence at the round-off floor'); a larger \
+                 PARA_REGUL or a smaller RIGI_NOR lowers that level",
+                floor_rows.len()
             ),
         )?;
     }
@@ -396,6 +447,61 @@ fn settings(args: &Args) -> Result<Settings> {
     })
 }
 
+/// RESOLUTION/NB_REPRISE_PAS_MAXI and NB_BRANCHE_SANS_PROGRES (aster-nl extensions; default and bounds in the catalog).
+fn step_control(args: &Args) -> Result<nnm::StepControl> {
+    let r = args.req_fact("RESOLUTION")?;
+    Ok(nnm::StepControl {
+        retries_max: r.req_count("NB_REPRISE_PAS_MAXI")?,
+        stall_branches: r.req_count("NB_BRANCHE_SANS_PROGRES")?,
+    })
+}
+
+/// RESOLUTION/ENER_MAX, FREQ_MAX, DEPL_MAX (aster-nl extensions): the run stops normally
+/// after the first branch with a row past one of them.
+struct StopBounds {
+    energy: Option<f64>,
+    frequency: Option<f64>,
+    displacement: Option<f64>,
+}
+
+impl StopBounds {
+    /// Which bound a row of `pts` has passed, said in words.
+    fn passed(&self, problem: &Problem, s: &Settings, pts: &[Point]) -> Result<Option<String>> {
+        for p in pts {
+            if let Some(e) = self.energy.filter(|&e| p.energy >= e) {
+                return Ok(Some(format!(
+                    "ENERGIE = {:.6e} passed ENER_MAX = {e:.6e}",
+                    p.energy
+                )));
+            }
+            if let Some(f) = self.frequency.filter(|&f| p.frequency >= f) {
+                return Ok(Some(format!(
+                    "FREQUENCE = {:.6e} Hz passed FREQ_MAX = {f:.6e} Hz",
+                    p.frequency
+                )));
+            }
+            if let Some(d) = self.displacement {
+                let u = nnm::largest_displacement(problem, s, &p.x)?;
+                if u >= d {
+                    return Ok(Some(format!(
+                        "the largest displacement {u:.6e} passed DEPL_MAX = {d:.6e}"
+                    )));
+                }
+            }
+        }
+        Ok(None)
+    }
+}
+
+fn stop_bounds(args: &Args) -> Result<StopBounds> {
+    let r = args.req_fact("RESOLUTION")?;
+    Ok(StopBounds {
+        energy: r.real("ENER_MAX"),
+        frequency: r.real("FREQ_MAX"),
+        displacement: r.real("DEPL_MAX"),
+    })
+}
+
 fn check_restart_harmonics(setup: &MnlSetup, s: &Settings) -> Result<()> {
     if setup.h_lin != s.h_lin || setup.h_nonl != s.h_nonl {
         return Err(Error::validation(format!(
@@ -546,6 +652,7 @@ fn row(
         Cell::R(p.energy_spread),
         Cell::R(law_defect),
         Cell::I(p.branch as i64),
+        Cell::I(p.step_retries as i64),
     ]
 }
 
