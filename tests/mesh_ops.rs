@@ -429,7 +429,6 @@ fn defi_group_errors_roll_back() {
     assert_eq!(load_mesh(&st, "MAIL").unwrap(), before);
 }
 
-#[cfg(feature = "med")]
 #[test]
 fn lire_maillage_med_and_nom_med() {
     let st = Store::in_memory().unwrap();
