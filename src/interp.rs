@@ -10,7 +10,7 @@ use crate::error::{Error, Result};
 use crate::lang::{self, Env, Host, Source};
 use crate::ops::{self, OpContext, TestOutcome, Units};
 use crate::store::Store;
-use crate::value::{CommandCall, ConceptRef, Value};
+use crate::value::{CommandCall, ConceptRef, Keyword, Value};
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -51,22 +51,56 @@ impl RunSummary {
 }
 
 /// DEBUT/POURSUITE keywords accepted for compatibility with Code_Aster files that have no
-/// effect in aster-nl; the run says so when a file gives them.
+/// effect in aster-nl; the run says so when a file gives them. IGNORE_ALARM and
+/// ERREUR/ALARME have an effect and are not listed.
 const DEBUT_NO_EFFECT: &[&str] = &[
     "CODE",
     "DEBUG",
     "PAR_LOT",
     "MEMOIRE",
     "RESERVE_CPU",
+    "RESERVE_MEMOIRE",
     "LANG",
     "IMPR_MACRO",
     "ERREUR",
     "FORMAT_HDF",
     "BASE",
+    "CATALOGUE",
     "MESURE_TEMPS",
     "HDF",
     "INFO",
 ];
+
+/// `KEY` for a simple keyword, `KEY/SUB` for each keyword given inside a factor
+/// (`CODE='OUI'`, the plain-value form of a factor, is `CODE`), of the keywords in `names`
+/// that the call gives, in the call's order. ERREUR/ALARME is left out: it has an effect.
+fn given_no_effect(call: &CommandCall, names: &[&str]) -> Vec<String> {
+    fn occurrences(v: &Value) -> Vec<&[Keyword]> {
+        match v {
+            Value::Fact(k) => vec![k.as_slice()],
+            Value::Seq(items) => items.iter().flat_map(occurrences).collect(),
+            _ => Vec::new(),
+        }
+    }
+    let mut out: Vec<String> = Vec::new();
+    for a in call.args.iter().filter(|a| names.contains(&a.name.as_str())) {
+        let occ = occurrences(&a.value);
+        if occ.is_empty() {
+            out.push(a.name.clone());
+            continue;
+        }
+        for k in occ.into_iter().flatten() {
+            if a.name == "ERREUR" && k.name == "ALARME" {
+                continue;
+            }
+            let key = format!("{}/{}", a.name, k.name);
+            if !out.contains(&key) {
+                out.push(key);
+            }
+        }
+    }
+    out
+}
 
 struct Runner<'o> {
     file: String,
@@ -75,6 +109,7 @@ struct Runner<'o> {
     progress: bool,
     store: Option<Store>,
     ignored_alarms: Vec<String>,
+    alarms_are_errors: bool,
     summary: RunSummary,
     out: &'o mut dyn Write,
 }
@@ -113,14 +148,18 @@ impl Runner<'_> {
         if let Some(alarms) = args.texts("IGNORE_ALARM") {
             self.ignored_alarms = alarms;
         }
-        let no_effect: Vec<&str> = args
-            .simple
-            .iter()
-            .map(|(k, _, _)| k.as_str())
-            .chain(args.factor.iter().map(|(k, _, _)| k.as_str()))
-            .filter(|k| DEBUT_NO_EFFECT.contains(k))
-            .filter(|k| call.args.iter().any(|a| a.name == *k))
-            .collect();
+        self.alarms_are_errors = args
+            .fact("ERREUR")
+            .and_then(|e| e.text("ALARME"))
+            .is_some_and(|a| a == "EXCEPTION");
+        if self.alarms_are_errors {
+            writeln!(
+                self.out,
+                "{}: ERREUR/ALARME='EXCEPTION': an alarm not silenced by IGNORE_ALARM stops the run as an error",
+                call.op
+            )?;
+        }
+        let no_effect = given_no_effect(call, DEBUT_NO_EFFECT);
         if !no_effect.is_empty() {
             writeln!(
                 self.out,
@@ -189,6 +228,7 @@ impl Runner<'_> {
         ctx.line = call.span.line;
         ctx.info = info;
         ctx.ignored_alarms = &self.ignored_alarms;
+        ctx.alarms_are_errors = self.alarms_are_errors;
         ctx.progress = self.progress;
         let outcome = op_fn(&mut ctx, args);
         let created = std::mem::take(&mut ctx.created);
@@ -345,6 +385,7 @@ pub fn run_source(
         progress,
         store: None,
         ignored_alarms: Vec::new(),
+        alarms_are_errors: false,
         summary: RunSummary::default(),
         out,
     };

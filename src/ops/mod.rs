@@ -90,6 +90,9 @@ pub struct OpContext<'a> {
     pub units: &'a Units,
     /// Alarms the user silenced in DEBUT(IGNORE_ALARM=...).
     pub ignored_alarms: &'a [String],
+    /// DEBUT(ERREUR=_F(ALARME='EXCEPTION')): an alarm that is not silenced stops the
+    /// operator as an error, as in Code_Aster.
+    pub alarms_are_errors: bool,
     /// Tests run by TEST_* operators, in order.
     pub tests: &'a mut Vec<TestOutcome>,
     /// Concepts created by this call: (name, type). Filled by [`OpContext::create`].
@@ -125,6 +128,7 @@ impl<'a> OpContext<'a> {
             out,
             units,
             ignored_alarms: &[],
+            alarms_are_errors: false,
             tests,
             created: Vec::new(),
             progress: false,
@@ -151,11 +155,20 @@ impl<'a> OpContext<'a> {
         Ok(())
     }
 
-    /// Print an alarm (warning) unless the user silenced its id in DEBUT(IGNORE_ALARM=...).
+    /// Print an alarm (warning) unless the user silenced its id in DEBUT(IGNORE_ALARM=...);
+    /// with DEBUT(ERREUR=_F(ALARME='EXCEPTION')) the alarm is an error instead.
     pub fn alarm(&mut self, id: &str, message: &str) -> Result<()> {
-        if !self.ignored_alarms.iter().any(|a| a == id) {
-            writeln!(self.out, "<A> <{id}> {message}")?;
+        if self.ignored_alarms.iter().any(|a| a == id) {
+            return Ok(());
         }
+        if self.alarms_are_errors {
+            return Err(Error::input(format!("alarm <{id}> raised as an error: {message}"))
+                .hint(format!(
+                    "DEBUT(ERREUR=_F(ALARME='EXCEPTION')) turns alarms into errors; \
+                     silence this one with IGNORE_ALARM='{id}', or drop ALARME='EXCEPTION'"
+                )));
+        }
+        writeln!(self.out, "<A> <{id}> {message}")?;
         Ok(())
     }
 
