@@ -30,6 +30,7 @@ pub mod impr_table;
 pub mod lire_maillage;
 pub mod mnl_common;
 pub mod mnl_start;
+pub mod mode_iter_simult;
 pub mod mode_non_line;
 pub mod nume_ddl;
 #[cfg(test)]
@@ -205,6 +206,7 @@ pub fn lookup(name: &str) -> Option<OpFn> {
         "CALC_MATR_ELEM" => calc_matr_elem::run,
         "NUME_DDL" => nume_ddl::run,
         "CALC_MODES" => calc_modes::run,
+        "MODE_ITER_SIMULT" => mode_iter_simult::run,
         "CALC_STABILITE" => calc_stabilite::run,
         "MODE_NON_LINE" => mode_non_line::run,
         "REST_MODE_NONL" => rest_mode_nonl::run,
