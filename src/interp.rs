@@ -23,6 +23,9 @@ pub struct RunOptions {
     pub units: Units,
     /// Draw progress bars (only when stderr is a terminal).
     pub progress: bool,
+    /// `--tole-machine X`: every real non-regression tolerance (VALE_CALC) is at least X,
+    /// for files whose VALE_CALC another code computed. None: Code_Aster's semantics.
+    pub tole_machine: Option<f64>,
 }
 
 /// What a run did, for the FIN summary and the exit code.
@@ -102,6 +105,14 @@ fn given_no_effect(call: &CommandCall, names: &[&str]) -> Vec<String> {
     out
 }
 
+/// The line printed at the start of a run and in the FIN summary under `--tole-machine`.
+fn tole_machine_note(t: f64) -> String {
+    format!(
+        "--tole-machine {t:e}: every real non-regression tolerance (VALE_CALC) is at least {t:e} \
+         (files whose VALE_CALC another code computed); references (VALE_REFE) keep their PRECISION"
+    )
+}
+
 struct Runner<'o> {
     file: String,
     default_db: PathBuf,
@@ -110,6 +121,7 @@ struct Runner<'o> {
     store: Option<Store>,
     ignored_alarms: Vec<String>,
     alarms_are_errors: bool,
+    tole_machine: Option<f64>,
     summary: RunSummary,
     out: &'o mut dyn Write,
 }
@@ -185,6 +197,9 @@ impl Runner<'_> {
             s.ok_count(),
             s.nook_count()
         ));
+        if let Some(t) = self.tole_machine {
+            text.push_str(&format!("{}\n", tole_machine_note(t)));
+        }
         text.push_str("time per operator:\n");
         let mut per_op: BTreeMap<&str, (usize, Duration)> = BTreeMap::new();
         for (op, _, t) in &s.timings {
@@ -229,6 +244,7 @@ impl Runner<'_> {
         ctx.info = info;
         ctx.ignored_alarms = &self.ignored_alarms;
         ctx.alarms_are_errors = self.alarms_are_errors;
+        ctx.tole_machine = self.tole_machine;
         ctx.progress = self.progress;
         let outcome = op_fn(&mut ctx, args);
         let created = std::mem::take(&mut ctx.created);
@@ -358,7 +374,7 @@ pub fn run_file(path: &Path, opts: RunOptions, out: &mut dyn Write) -> Result<Ru
     let default_db = opts.db.clone().unwrap_or_else(|| path.with_extension("db"));
     let mut units = opts.units;
     units.comm_file.get_or_insert_with(|| path.to_path_buf());
-    run_source(&src, default_db, units, opts.progress, out)
+    run_source(&src, default_db, units, opts.progress, opts.tole_machine, out)
 }
 
 /// Run source text (the file name in `src` is used in messages and in the `concepts` table).
@@ -367,6 +383,7 @@ pub fn run_source(
     db: PathBuf,
     units: Units,
     progress: bool,
+    tole_machine: Option<f64>,
     out: &mut dyn Write,
 ) -> Result<RunSummary> {
     let program = match lang::parse(src) {
@@ -386,9 +403,13 @@ pub fn run_source(
         store: None,
         ignored_alarms: Vec::new(),
         alarms_are_errors: false,
+        tole_machine,
         summary: RunSummary::default(),
         out,
     };
+    if let Some(t) = tole_machine {
+        let _ = writeln!(runner.out, "{}", tole_machine_note(t));
+    }
     let mut env = Env::default();
     if let Err(e) = lang::execute(&program, src, &mut env, &mut runner) {
         runner.summary.error = Some(e);

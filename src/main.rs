@@ -37,6 +37,11 @@ enum Command {
         /// Map a logical unit to a file, e.g. --unit 20=mesh.mail (repeatable).
         #[arg(long = "unit", value_name = "N=PATH")]
         units: Vec<String>,
+        /// Raise every real non-regression tolerance (VALE_CALC) to at least X, for files
+        /// whose VALE_CALC another code computed (e.g. 1e-4). Default: Code_Aster's
+        /// semantics (TOLE_MACHINE, 1e-6 unless the file says otherwise).
+        #[arg(long = "tole-machine", value_name = "X", value_parser = parse_tole)]
+        tole_machine: Option<f64>,
     },
     /// Check a command file against the catalogs without running it; reports every error.
     Check { file: PathBuf },
@@ -74,7 +79,12 @@ enum CaseArg {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
-        Command::Run { file, db, units } => run(&file, db, &units),
+        Command::Run {
+            file,
+            db,
+            units,
+            tole_machine,
+        } => run(&file, db, &units, tole_machine),
         Command::Check { file } => check(&file),
         Command::Catalog { operator } => print_catalog(operator.as_deref()),
         Command::Tables { db } => tables(&db),
@@ -113,7 +123,20 @@ fn parse_units(specs: &[String], base: &Path) -> Result<Units, Error> {
     Ok(units)
 }
 
-fn run(file: &Path, db: Option<PathBuf>, unit_specs: &[String]) -> ExitCode {
+/// A tolerance: a finite positive real.
+fn parse_tole(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+        _ => Err(format!("'{s}' is not a positive real (e.g. 1e-4)")),
+    }
+}
+
+fn run(
+    file: &Path,
+    db: Option<PathBuf>,
+    unit_specs: &[String],
+    tole_machine: Option<f64>,
+) -> ExitCode {
     let cwd = PathBuf::from(".");
     let mut units = match parse_units(unit_specs, &cwd) {
         Ok(u) => u,
@@ -137,6 +160,7 @@ fn run(file: &Path, db: Option<PathBuf>, unit_specs: &[String]) -> ExitCode {
         db,
         units,
         progress: std::io::stderr().is_terminal(),
+        tole_machine,
     };
     let mut stdout = std::io::stdout();
     let summary = match interp::run_file(&comm, opts, &mut stdout) {

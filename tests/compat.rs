@@ -132,3 +132,35 @@ fn debut_keywords_are_validated() {
     assert_eq!(code, Some(2), "{out}");
     assert!(out.contains("SDVERI"), "{out}");
 }
+
+/// A value "computed by another code": 1 + 5e-5 against our exact 1.
+const OTHER_CODE_VALUE: &str = "\
+DEBUT()
+T = CREA_TABLE(LISTE=(_F(PARA='A', LISTE_R=(1.,)), _F(PARA='N', LISTE_I=(3,)),))
+TEST_TABLE(TABLE=T, NOM_PARA='A', TYPE_TEST='MAX', VALE_CALC=1.00005)
+TEST_TABLE(TABLE=T, NOM_PARA='A', TYPE_TEST='MAX', VALE_CALC=1.00005, TOLE_MACHINE=1.e-3)
+TEST_TABLE(TABLE=T, NOM_PARA='N', TYPE_TEST='MAX', VALE_CALC_I=3)
+FIN()
+";
+
+#[test]
+fn tole_machine_widens_non_regression_tolerances_only_when_asked() {
+    // Code_Aster's semantics by default: 5e-5 is outside TOLE_MACHINE = 1e-6.
+    let (code, out, _d) = run_text(OTHER_CODE_VALUE, &[]);
+    assert_eq!(code, Some(1), "{out}");
+    assert!(out.contains("tests: 2 OK, 1 NOOK"), "{out}");
+    assert!(!out.contains("--tole-machine"), "{out}");
+
+    let (code, out, _d) = run_text(OTHER_CODE_VALUE, &["--tole-machine", "1e-4"]);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("tests: 3 OK, 0 NOOK"), "{out}");
+    // Said at the start, on the widened line only, and in the FIN summary.
+    assert!(out.starts_with("--tole-machine 1e-4"), "{out}");
+    assert_eq!(out.matches("(--tole-machine)").count(), 1, "{out}");
+    let fin = &out[out.find("=== FIN ===").unwrap()..];
+    assert!(fin.contains("--tole-machine 1e-4: every real non-regression"), "{out}");
+
+    let (code, out, _d) = run_text(OTHER_CODE_VALUE, &["--tole-machine=-1"]);
+    assert_eq!(code, Some(2), "{out}");
+    assert!(out.contains("not a positive real"), "{out}");
+}

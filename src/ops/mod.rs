@@ -94,6 +94,9 @@ pub struct OpContext<'a> {
     /// DEBUT(ERREUR=_F(ALARME='EXCEPTION')): an alarm that is not silenced stops the
     /// operator as an error, as in Code_Aster.
     pub alarms_are_errors: bool,
+    /// `aster-nl run --tole-machine X`: every real non-regression tolerance (VALE_CALC)
+    /// is at least X.
+    pub tole_machine: Option<f64>,
     /// Tests run by TEST_* operators, in order.
     pub tests: &'a mut Vec<TestOutcome>,
     /// Concepts created by this call: (name, type). Filled by [`OpContext::create`].
@@ -130,6 +133,7 @@ impl<'a> OpContext<'a> {
             units,
             ignored_alarms: &[],
             alarms_are_errors: false,
+            tole_machine: None,
             tests,
             created: Vec::new(),
             progress: false,
