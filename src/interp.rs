@@ -86,7 +86,11 @@ fn given_no_effect(call: &CommandCall, names: &[&str]) -> Vec<String> {
         }
     }
     let mut out: Vec<String> = Vec::new();
-    for a in call.args.iter().filter(|a| names.contains(&a.name.as_str())) {
+    for a in call
+        .args
+        .iter()
+        .filter(|a| names.contains(&a.name.as_str()))
+    {
         let occ = occurrences(&a.value);
         if occ.is_empty() {
             out.push(a.name.clone());
@@ -374,7 +378,14 @@ pub fn run_file(path: &Path, opts: RunOptions, out: &mut dyn Write) -> Result<Ru
     let default_db = opts.db.clone().unwrap_or_else(|| path.with_extension("db"));
     let mut units = opts.units;
     units.comm_file.get_or_insert_with(|| path.to_path_buf());
-    run_source(&src, default_db, units, opts.progress, opts.tole_machine, out)
+    run_source(
+        &src,
+        default_db,
+        units,
+        opts.progress,
+        opts.tole_machine,
+        out,
+    )
 }
 
 /// Run source text (the file name in `src` is used in messages and in the `concepts` table).

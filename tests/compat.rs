@@ -22,12 +22,7 @@ fn run_text(comm: &str, extra: &[&str]) -> (Option<i32>, String, tempfile::TempD
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("case.comm");
     std::fs::write(&path, comm).unwrap();
-    let o = bin()
-        .arg("run")
-        .arg(&path)
-        .args(extra)
-        .output()
-        .unwrap();
+    let o = bin().arg("run").arg(&path).args(extra).output().unwrap();
     (o.status.code(), text(&o), dir)
 }
 
@@ -35,12 +30,7 @@ fn check_text(comm: &str, extra: &[&str]) -> (Option<i32>, String) {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("case.comm");
     std::fs::write(&path, comm).unwrap();
-    let o = bin()
-        .arg("check")
-        .arg(&path)
-        .args(extra)
-        .output()
-        .unwrap();
+    let o = bin().arg("check").arg(&path).args(extra).output().unwrap();
     (o.status.code(), text(&o))
 }
 
@@ -93,9 +83,15 @@ fn erreur_alarme_exception_turns_alarms_into_errors() {
         &[],
     );
     assert_eq!(code, Some(2), "{out}");
-    assert!(out.contains("alarm <FONCT0_62> raised as an error"), "{out}");
+    assert!(
+        out.contains("alarm <FONCT0_62> raised as an error"),
+        "{out}"
+    );
     assert!(out.contains("IGNORE_ALARM='FONCT0_62'"), "{out}");
-    assert!(out.contains("line 4") || out.contains("case.comm:4"), "{out}");
+    assert!(
+        out.contains("line 4") || out.contains("case.comm:4"),
+        "{out}"
+    );
 
     // An alarm the file silences is not raised; the other keywords are reported as
     // having no effect, in both spellings of CODE.
@@ -158,7 +154,10 @@ fn tole_machine_widens_non_regression_tolerances_only_when_asked() {
     assert!(out.starts_with("--tole-machine 1e-4"), "{out}");
     assert_eq!(out.matches("(--tole-machine)").count(), 1, "{out}");
     let fin = &out[out.find("=== FIN ===").unwrap()..];
-    assert!(fin.contains("--tole-machine 1e-4: every real non-regression"), "{out}");
+    assert!(
+        fin.contains("--tole-machine 1e-4: every real non-regression"),
+        "{out}"
+    );
 
     let (code, out, _d) = run_text(OTHER_CODE_VALUE, &["--tole-machine=-1"]);
     assert_eq!(code, Some(2), "{out}");

@@ -308,7 +308,10 @@ fn crea_poi1_shares_one_cell_per_node_between_occurrences() {
     let masses = &m.cell_group("MASSES").unwrap().members;
     let a4 = &m.cell_group("A4").unwrap().members;
     assert_eq!(a4.len(), 1);
-    assert!(masses.contains(&a4[0]), "the per-node group holds the shared cell");
+    assert!(
+        masses.contains(&a4[0]),
+        "the per-node group holds the shared cell"
+    );
     assert_eq!(m.cells[a4[0]].nodes, vec![3]);
     let s1p = &m.cell_group("S1P").unwrap().members;
     assert_eq!(s1p.len(), 2);

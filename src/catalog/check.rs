@@ -62,6 +62,24 @@ pub(crate) fn check_op(op: &OperatorDef, out: &mut Vec<String>) {
             }
         }
     }
+    if let Some(path) = &op.reuse_of {
+        if op.reuse == super::def::Reuse::No {
+            out.push(format!("{}: reuse_of without reuse", op.name));
+        }
+        let found = match path.split_once('/') {
+            Some((f, k)) => op
+                .fact
+                .iter()
+                .any(|d| d.name == f && d.simp.iter().any(|s| s.name == k)),
+            None => op.simp.iter().any(|s| s.name == *path),
+        };
+        if !found {
+            out.push(format!(
+                "{}: reuse_of names unknown keyword {path}",
+                op.name
+            ));
+        }
+    }
     check_level(&Level::of_op(op), out);
 }
 

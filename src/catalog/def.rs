@@ -205,6 +205,11 @@ pub struct OperatorDef {
     pub result_from: Option<ResultFrom>,
     #[serde(default)]
     pub reuse: Reuse,
+    /// With `reuse=`, the keyword (path `FACT/SIMP` or `SIMP`) that must name the same
+    /// concept (Code_Aster's `reentrant='f:KEYWORD'`): `MODE_NON_LINE(reuse=MNL,
+    /// ETAT_INIT=_F(MODE_NON_LINE=MNL, ...))` extends the table it restarts from.
+    #[serde(default)]
+    pub reuse_of: Option<String>,
     #[serde(default)]
     pub doc: String,
     #[serde(default)]

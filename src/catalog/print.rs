@@ -66,10 +66,15 @@ pub(crate) fn result_label(op: &OperatorDef) -> String {
         }
         (None, None) => "nothing".into(),
     };
+    let of = op
+        .reuse_of
+        .as_ref()
+        .map(|k| format!(": the concept of {k}"))
+        .unwrap_or_default();
     match op.reuse {
         Reuse::No => {}
-        Reuse::Optional => s.push_str(" (reuse= allowed)"),
-        Reuse::Required => s.push_str(" (reuse= required)"),
+        Reuse::Optional => s.push_str(&format!(" (reuse= allowed{of})")),
+        Reuse::Required => s.push_str(&format!(" (reuse= required{of})")),
     }
     s
 }

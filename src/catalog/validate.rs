@@ -111,7 +111,39 @@ fn check_reuse(
                         .at(file, call.span)
                         .keyword(key),
                     );
+                    return;
                 }
+            }
+            let Some(path) = &op.reuse_of else {
+                return;
+            };
+            let given = match path.split_once('/') {
+                Some((f, k)) => args.fact(f).and_then(|occ| occ.concept(k)),
+                None => args.concept(path),
+            };
+            match given {
+                Some(g) if g.name == c.name => {}
+                Some(g) => errors.push(
+                    Error::validation(format!(
+                        "reuse={} but {path}={}: a reused concept is the one the call extends",
+                        c.name, g.name
+                    ))
+                    .at(file, call.span)
+                    .keyword(key)
+                    .hint(format!(
+                        "give {path}={} to extend {}, or drop reuse= and assign a new name",
+                        c.name, c.name
+                    )),
+                ),
+                None => errors.push(
+                    Error::validation(format!(
+                        "reuse={} needs {path}={}: {} extends the concept it starts from",
+                        c.name, c.name, op.name
+                    ))
+                    .at(file, call.span)
+                    .keyword(key)
+                    .hint("drop reuse= and assign the result to a new name"),
+                ),
             }
         }
         _ => {}

@@ -364,7 +364,11 @@ mod tests {
         let o = order_points(&mut x, &mut y);
         assert_eq!(o.reorder, Reorder::Sorted);
         assert_eq!(x, vec![0.5, 1.0, 2.0, 3.0]);
-        assert_eq!(y, vec![5., 10., 20., 30.], "the first row of an abscissa is kept");
+        assert_eq!(
+            y,
+            vec![5., 10., 20., 30.],
+            "the first row of an abscissa is kept"
+        );
         assert_eq!(o.dropped, 1);
         assert_eq!(o.max_dropped_dy, 1.0);
 
@@ -380,7 +384,10 @@ mod tests {
         // sorted, one copy kept, nothing lost.
         let (mut x, mut y) = (vec![1.0, 2.0, 2.0, 3.0], vec![1., 4., 4., 9.]);
         let o = order_points(&mut x, &mut y);
-        assert_eq!((o.reorder, o.dropped, o.max_dropped_dy), (Reorder::Sorted, 1, 0.0));
+        assert_eq!(
+            (o.reorder, o.dropped, o.max_dropped_dy),
+            (Reorder::Sorted, 1, 0.0)
+        );
         assert_eq!(x, vec![1.0, 2.0, 3.0]);
     }
 

@@ -65,7 +65,10 @@ impl Reader {
     }
 
     fn has_dataset(&self, g: &h5::Group, name: &str, what: &str) -> Result<bool> {
-        Ok(g.datasets().map_err(self.h5(what))?.iter().any(|n| n == name))
+        Ok(g.datasets()
+            .map_err(self.h5(what))?
+            .iter()
+            .any(|n| n == name))
     }
 
     /// An integer attribute, whatever its stored width.
@@ -80,7 +83,9 @@ impl Reader {
             Some(A::U32(v)) => Ok(i64::from(*v)),
             Some(A::U16(v)) => Ok(i64::from(*v)),
             Some(A::U8(v)) => Ok(i64::from(*v)),
-            Some(other) => Err(self.bad(format!("{what}: attribute {name} is {other:?}, not an integer"))),
+            Some(other) => Err(self.bad(format!(
+                "{what}: attribute {name} is {other:?}, not an integer"
+            ))),
             None => Err(self.bad(format!("{what}: attribute {name} is missing"))),
         }
     }
@@ -104,7 +109,13 @@ impl Reader {
     }
 
     /// Fixed-width names (`NOM` dataset), if present: `count` names of `width` characters.
-    fn names(&self, g: &h5::Group, width: usize, count: usize, what: &str) -> Result<Option<Vec<String>>> {
+    fn names(
+        &self,
+        g: &h5::Group,
+        width: usize,
+        count: usize,
+        what: &str,
+    ) -> Result<Option<Vec<String>>> {
         if !self.has_dataset(g, "NOM", what)? {
             return Ok(None);
         }
@@ -121,7 +132,9 @@ impl Reader {
     /// The bytes of a character dataset, stored as arrays of 80 (or 16) bytes or as a
     /// plain table of bytes: the raw record bytes are the characters in both cases.
     fn chars(&self, g: &h5::Group, name: &str, what: &str) -> Result<Vec<u8>> {
-        g.dataset(name).and_then(|d| d.read_raw()).map_err(self.h5(what))
+        g.dataset(name)
+            .and_then(|d| d.read_raw())
+            .map_err(self.h5(what))
     }
 
     /// `family number -> group names` of one FAS branch (NOEUD or ELEME).

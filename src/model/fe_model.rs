@@ -134,7 +134,11 @@ impl Model {
             })?;
             if occ.has("GROUP_NO") || occ.has("NOEUD") {
                 // 13.x: elements on nodes, carried by point cells of the model.
-                let key = if occ.has("GROUP_NO") { "GROUP_NO" } else { "NOEUD" };
+                let key = if occ.has("GROUP_NO") {
+                    "GROUP_NO"
+                } else {
+                    "NOEUD"
+                };
                 if !m.is_discrete() {
                     return Err(Error::input(format!(
                         "MODELISATION {name} cannot be assigned to nodes: only discrete elements (DIS_T, DIS_TR, 2D_DIS_T) live on nodes"
@@ -205,7 +209,10 @@ impl Model {
         }
         for &n in &self.point_cells {
             let node = mesh.nodes.get(n).ok_or_else(|| {
-                Error::internal(format!("model point cell on node index {n}, not in mesh {}", self.mesh))
+                Error::internal(format!(
+                    "model point cell on node index {n}, not in mesh {}",
+                    self.mesh
+                ))
             })?;
             let name = point_cell_name(&node.name);
             mesh.cells.push(Cell {

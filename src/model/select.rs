@@ -33,7 +33,11 @@ pub fn model_point_cells(model: &Model, mesh: &Mesh, args: &Args) -> Result<Vec<
     node_args
         .simple
         .retain(|(k, _, _)| k == "GROUP_NO" || k == "NOEUD");
-    let key = if args.has("GROUP_NO") { "GROUP_NO" } else { "NOEUD" };
+    let key = if args.has("GROUP_NO") {
+        "GROUP_NO"
+    } else {
+        "NOEUD"
+    };
     let nodes = crate::mesh::select::select_nodes(mesh, &node_args)?;
     let mut out = Vec::new();
     for n in nodes {

@@ -26,7 +26,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             .collect();
         let new_cells = edit::add_poi1(&mut mesh, &new_nodes)?;
         poi1_of.extend(new_nodes.iter().copied().zip(new_cells));
-        let cells: Vec<usize> = nodes.iter().filter_map(|n| poi1_of.get(n).copied()).collect();
+        let cells: Vec<usize> = nodes
+            .iter()
+            .filter_map(|n| poi1_of.get(n).copied())
+            .collect();
         if let Some(g) = occ.text("NOM_GROUP_MA") {
             edit::add_cell_group(&mut mesh, g, cells.clone())
                 .map_err(|e| e.keyword(occ.key_path("NOM_GROUP_MA")))?;

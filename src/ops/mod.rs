@@ -167,11 +167,12 @@ impl<'a> OpContext<'a> {
             return Ok(());
         }
         if self.alarms_are_errors {
-            return Err(Error::input(format!("alarm <{id}> raised as an error: {message}"))
-                .hint(format!(
+            return Err(
+                Error::input(format!("alarm <{id}> raised as an error: {message}")).hint(format!(
                     "DEBUT(ERREUR=_F(ALARME='EXCEPTION')) turns alarms into errors; \
                      silence this one with IGNORE_ALARM='{id}', or drop ALARME='EXCEPTION'"
-                )));
+                )),
+            );
         }
         writeln!(self.out, "<A> <{id}> {message}")?;
         Ok(())

@@ -80,7 +80,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         };
         ctx.alarm(
             "FONCT0_62",
-            &format!("function {name}: the abscissas ({px} of table {}) {how}", c.name),
+            &format!(
+                "function {name}: the abscissas ({px} of table {}) {how}",
+                c.name
+            ),
         )?;
     }
     if order.dropped > 0 {
