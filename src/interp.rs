@@ -431,12 +431,174 @@ pub fn run_source(
     Ok(runner.summary)
 }
 
+/// How to check a file.
+#[derive(Default)]
+pub struct CheckOptions {
+    /// Database a POURSUITE file continues (default: `<case>.db` beside the file).
+    pub db: Option<PathBuf>,
+    /// Logical units, to check the mesh files LIRE_MAILLAGE would read.
+    pub units: Units,
+}
+
 /// A host for `check`: validates every call, runs nothing, collects all errors.
 struct Checker {
     file: String,
     errors: Vec<Error>,
-    /// Concepts the file would create: name -> type.
+    /// Concepts the file would create, or that the continued database holds: name -> type.
     concepts: BTreeMap<String, String>,
+    /// The database a POURSUITE continues (opened read-only in effect: only queried).
+    store: Option<Store>,
+    /// Concepts that come from `store` (not created by this file).
+    from_db: Vec<String>,
+    /// POURSUITE without a database: names no statement binds are taken as concepts of an
+    /// unknown type (one error says so) rather than reported one by one.
+    names_unknown: bool,
+    default_db: PathBuf,
+    explicit_db: Option<PathBuf>,
+    units: Units,
+}
+
+impl Checker {
+    fn start(&mut self, call: &CommandCall) {
+        if call.op != "POURSUITE" {
+            return;
+        }
+        let path = self
+            .explicit_db
+            .clone()
+            .unwrap_or_else(|| self.default_db.clone());
+        match Store::open(&path) {
+            Ok(store) => match store.concepts() {
+                Ok(list) => {
+                    for c in list {
+                        self.from_db.push(c.name.clone());
+                        self.concepts.insert(c.name, c.ty);
+                    }
+                    self.store = Some(store);
+                }
+                Err(e) => self.errors.push(e.at(&self.file, call.op_span)),
+            },
+            Err(_) => {
+                self.names_unknown = true;
+                self.errors.push(
+                    Error::validation(format!(
+                        "no database to continue at {}: the concepts this file takes from an \
+                         earlier run cannot be checked",
+                        path.display()
+                    ))
+                    .at(&self.file, call.op_span)
+                    .keyword("POURSUITE")
+                    .hint("give the database: aster-nl check FILE --db STUDY.db"),
+                );
+            }
+        }
+    }
+
+    /// Problems a run would meet that the file and the database show without running:
+    /// a mesh file that is missing or of the wrong kind, a restart row that the stored
+    /// table does not have.
+    fn static_checks(&mut self, call: &CommandCall, args: &Args) {
+        let at = |e: Error| e.at(&self.file, call.op_span);
+        match call.op.as_str() {
+            "LIRE_MAILLAGE" => {
+                let format = args
+                    .text("FORMAT")
+                    .and_then(crate::mesh::MeshFormat::from_keyword)
+                    .unwrap_or(crate::mesh::MeshFormat::Aster);
+                let unit = args.int("UNITE").unwrap_or(20);
+                match ops::lire_maillage::resolve_file(&self.units, unit, format) {
+                    Ok((path, _)) => {
+                        if let Some(e) = mesh_file_problem(&path, format) {
+                            self.errors
+                                .push(at(e.keyword(format!("{}/FORMAT", call.op))));
+                        }
+                    }
+                    Err(e) => self
+                        .errors
+                        .push(at(e.keyword(format!("{}/UNITE", call.op)))),
+                }
+            }
+            "MODE_NON_LINE" | "REST_MODE_NONL" | "CALC_STABILITE" => {
+                let (table, rows, key) = match call.op.as_str() {
+                    "MODE_NON_LINE" => {
+                        let Some(etat) = args.fact("ETAT_INIT") else {
+                            return;
+                        };
+                        (
+                            etat.concept("MODE_NON_LINE").map(|c| c.name.clone()),
+                            etat.int("NUME_ORDRE").into_iter().collect::<Vec<_>>(),
+                            "ETAT_INIT/NUME_ORDRE",
+                        )
+                    }
+                    "REST_MODE_NONL" => (
+                        args.concept("MODE_NON_LINE").map(|c| c.name.clone()),
+                        args.int("NUME_ORDRE").into_iter().collect(),
+                        "NUME_ORDRE",
+                    ),
+                    _ => (
+                        args.concept("MODE_NON_LINE").map(|c| c.name.clone()),
+                        args.fact("FILTRE")
+                            .and_then(|f| f.ints("NUME_ORDRE"))
+                            .unwrap_or_default(),
+                        "FILTRE/NUME_ORDRE",
+                    ),
+                };
+                let (Some(table), Some(store)) = (table, self.store.as_ref()) else {
+                    return;
+                };
+                if !self.from_db.contains(&table) || rows.is_empty() {
+                    return;
+                }
+                let Ok(t) = crate::store::table::load_table(store, &table) else {
+                    return;
+                };
+                let Ok(col) = t.req_col("NUME_ORDRE") else {
+                    return;
+                };
+                let present: Vec<i64> = t
+                    .rows
+                    .iter()
+                    .filter_map(|r| r.get(col).and_then(|c| c.as_f64()))
+                    .map(|x| x as i64)
+                    .collect();
+                for n in rows.iter().filter(|n| !present.contains(n)) {
+                    let (lo, hi) = (
+                        present.iter().min().copied().unwrap_or(0),
+                        present.iter().max().copied().unwrap_or(0),
+                    );
+                    self.errors.push(at(Error::validation(format!(
+                        "NUME_ORDRE {n} is not a row of table {table} in the database (rows {lo}..{hi})"
+                    ))
+                    .keyword(format!("{}/{key}", call.op))));
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+/// Why a mesh file cannot be read in `format`, as far as its first bytes show.
+fn mesh_file_problem(path: &Path, format: crate::mesh::MeshFormat) -> Option<Error> {
+    use std::io::Read;
+    let mut head = [0u8; 8];
+    let n = std::fs::File::open(path)
+        .and_then(|mut f| f.read(&mut head))
+        .ok()?;
+    let hdf5 = n == 8 && head == *b"\x89HDF\r\n\x1a\n";
+    match format {
+        crate::mesh::MeshFormat::Med if !hdf5 => Some(
+            Error::input(format!(
+                "{} is not a MED file (MED files are HDF5 files)",
+                path.display()
+            ))
+            .hint("FORMAT='ASTER' reads .mail files, FORMAT='GMSH' .msh files"),
+        ),
+        crate::mesh::MeshFormat::Aster | crate::mesh::MeshFormat::Gmsh if hdf5 => Some(
+            Error::input(format!("{} is a MED (HDF5) file", path.display()))
+                .hint("read it with FORMAT='MED'"),
+        ),
+        _ => None,
+    }
 }
 
 impl Host for Checker {
@@ -450,14 +612,23 @@ impl Host for Checker {
             .collect()
     }
     fn lookup_concept(&self, name: &str) -> Option<ConceptRef> {
-        self.concepts.get(name).map(|ty| ConceptRef {
-            name: name.to_string(),
-            ty: ty.clone(),
-        })
+        match self.concepts.get(name) {
+            Some(ty) => Some(ConceptRef {
+                name: name.to_string(),
+                ty: ty.clone(),
+            }),
+            None if self.names_unknown => Some(ConceptRef {
+                name: name.to_string(),
+                ty: catalog::UNKNOWN_CONCEPT_TYPE.to_string(),
+            }),
+            None => None,
+        }
     }
     fn call(&mut self, call: CommandCall) -> Result<Value> {
+        self.start(&call);
         match catalog::validate(&call, &self.file) {
             Ok(args) => {
+                self.static_checks(&call, &args);
                 for (name, ty) in co_outputs(&args) {
                     self.concepts.insert(name, ty);
                 }
@@ -465,6 +636,7 @@ impl Host for Checker {
                 match (&call.result, ty) {
                     (Some(name), Some(ty)) if !matches!(ty.as_str(), "R" | "I" | "TXM") => {
                         self.concepts.insert(name.clone(), ty.clone());
+                        self.from_db.retain(|n| n != name);
                         Ok(Value::Concept(ConceptRef {
                             name: name.clone(),
                             ty,
@@ -495,16 +667,28 @@ impl Host for Checker {
     }
 }
 
-/// Check a file without running it: every syntax and validation error, all together.
-pub fn check_source(src: &Source) -> Vec<Error> {
+/// Check a file without running it: every syntax and validation error, all together,
+/// and what the file and the continued database show statically (mesh files, restart
+/// rows).
+pub fn check_source(src: &Source, opts: CheckOptions) -> Vec<Error> {
     let program = match lang::parse(src) {
         Ok(p) => p,
         Err(e) => return vec![e],
     };
+    let mut units = opts.units;
+    units
+        .comm_file
+        .get_or_insert_with(|| PathBuf::from(&src.name));
     let mut checker = Checker {
         file: src.name.clone(),
         errors: Vec::new(),
         concepts: BTreeMap::new(),
+        store: None,
+        from_db: Vec::new(),
+        names_unknown: false,
+        default_db: Path::new(&src.name).with_extension("db"),
+        explicit_db: opts.db,
+        units,
     };
     let mut env = Env::default();
     if let Err(e) = lang::execute(&program, src, &mut env, &mut checker) {

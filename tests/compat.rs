@@ -34,7 +34,6 @@ fn check_text(comm: &str, extra: &[&str]) -> (Option<i32>, String) {
     (o.status.code(), text(&o))
 }
 
-#[allow(dead_code)]
 fn case(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("testcases")
@@ -162,4 +161,111 @@ fn tole_machine_widens_non_regression_tolerances_only_when_asked() {
     let (code, out, _d) = run_text(OTHER_CODE_VALUE, &["--tole-machine=-1"]);
     assert_eq!(code, Some(2), "{out}");
     assert!(out.contains("not a positive real"), "{out}");
+}
+
+#[test]
+fn check_takes_a_poursuite_file_with_its_database() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("study.db");
+    let first = bin()
+        .arg("run")
+        .arg(case("poursuite_debut.comm"))
+        .arg("--db")
+        .arg(&db)
+        .output()
+        .unwrap();
+    assert_eq!(first.status.code(), Some(0), "{}", text(&first));
+    // Without the database: one clear error, not one per name.
+    let o = bin()
+        .arg("check")
+        .arg(case("poursuite_suite.comm"))
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("1 error(s)") && out.contains("--db"), "{out}");
+    // With it: the concepts of the first run are known, and checked.
+    let o = bin()
+        .arg("check")
+        .arg(case("poursuite_suite.comm"))
+        .arg("--db")
+        .arg(&db)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+}
+
+#[test]
+fn check_reports_restart_and_mesh_misuse_statically() {
+    // reuse= must name the table the restart starts from; a first run cannot reuse one.
+    let (code, out) = check_text(
+        "DEBUT()\nT = CREA_TABLE(LISTE=_F(PARA='A', LISTE_R=(1.,)))\n\
+         T2 = CALC_TABLE(reuse=T, TABLE=T, ACTION=_F(OPERATION='FILTRE', NOM_PARA='A', VALE=1.))\n\
+         U = CREA_TABLE(LISTE=_F(PARA='A', LISTE_R=(2.,)))\n\
+         T = CALC_TABLE(reuse=T, TABLE=U, ACTION=_F(OPERATION='FILTRE', NOM_PARA='A', VALE=2.))\n\
+         M = LIRE_MAILLAGE(FORMAT='MED')\nFIN()\n",
+        &[],
+    );
+    assert_eq!(code, Some(2), "{out}");
+    assert!(out.contains("reuse=T but TABLE=U"), "{out}");
+    // No mesh beside the file, unit 20 not mapped.
+    assert!(out.contains("no mesh file for unit 20"), "{out}");
+    assert!(out.contains("2 error(s)"), "{out}");
+
+    // A .mail file read as MED.
+    let dir = tempfile::tempdir().unwrap();
+    let comm = dir.path().join("m.comm");
+    std::fs::write(
+        &comm,
+        "DEBUT()\nM = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\nFIN()\n",
+    )
+    .unwrap();
+    let o = bin()
+        .arg("check")
+        .arg(&comm)
+        .arg("--unit")
+        .arg(format!("20={}", case("sdnd122a.mail").display()))
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("is not a MED file"), "{out}");
+}
+
+#[test]
+fn check_knows_the_rows_of_a_stored_table() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("r.db");
+    let first = bin()
+        .arg("run")
+        .arg(case("hard/restart_part1.comm"))
+        .arg("--db")
+        .arg(&db)
+        .output()
+        .unwrap();
+    assert_eq!(first.status.code(), Some(0), "{}", text(&first));
+    let o = bin()
+        .arg("check")
+        .arg(case("hard/restart_part2.comm"))
+        .arg("--db")
+        .arg(&db)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let src = std::fs::read_to_string(case("hard/restart_part2.comm")).unwrap();
+    let bad = dir.path().join("bad.comm");
+    std::fs::write(&bad, src.replace("NUME_ORDRE=5,", "NUME_ORDRE=500,")).unwrap();
+    let o = bin()
+        .arg("check")
+        .arg(&bad)
+        .arg("--db")
+        .arg(&db)
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(
+        out.contains("NUME_ORDRE 500 is not a row of table MNL"),
+        "{out}"
+    );
 }

@@ -63,6 +63,10 @@ pub fn operator_names() -> Vec<&'static str> {
 }
 
 /// The catalog of one operator.
+/// Type of a concept `aster-nl check` cannot know (a name of a POURSUITE file checked
+/// without its database): accepted wherever a concept is expected.
+pub const UNKNOWN_CONCEPT_TYPE: &str = "?";
+
 pub fn get(op: &str) -> Option<&'static OperatorDef> {
     catalog().ops.iter().find(|o| o.name == op)
 }

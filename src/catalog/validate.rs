@@ -102,7 +102,7 @@ fn check_reuse(
         ),
         (Reuse::Optional | Reuse::Required, Some(c)) => {
             if let Some(ty) = super::result_type_with(op, args) {
-                if ty != c.ty && is_concept_type(&ty) {
+                if ty != c.ty && is_concept_type(&ty) && c.ty != super::UNKNOWN_CONCEPT_TYPE {
                     errors.push(
                         Error::validation(format!(
                             "expected reuse= a concept of type {ty}, got {} of type {}",
@@ -514,7 +514,9 @@ fn type_ok(types: &[String], v: &Value) -> bool {
         ("C", v) => v.as_f64().is_some() || is_complex_tuple(v),
         ("CO", Value::Co(_)) => true,
         ("assd", Value::Concept(_)) => true,
-        (t, Value::Concept(c)) => is_concept_type(t) && c.ty == t,
+        (t, Value::Concept(c)) => {
+            is_concept_type(t) && (c.ty == t || c.ty == super::UNKNOWN_CONCEPT_TYPE)
+        }
         _ => false,
     })
 }
