@@ -315,6 +315,10 @@ impl Host for Runner<'_> {
             .collect()
     }
 
+    fn unsupported_operator(&self, name: &str) -> Option<String> {
+        catalog::unsupported(name).map(str::to_string)
+    }
+
     fn lookup_concept(&self, name: &str) -> Option<ConceptRef> {
         let store = self.store.as_ref()?;
         let ty = store.concept_type(name).ok().flatten()?;
@@ -610,6 +614,10 @@ impl Host for Checker {
             .into_iter()
             .map(str::to_string)
             .collect()
+    }
+
+    fn unsupported_operator(&self, name: &str) -> Option<String> {
+        catalog::unsupported(name).map(str::to_string)
     }
     fn lookup_concept(&self, name: &str) -> Option<ConceptRef> {
         match self.concepts.get(name) {

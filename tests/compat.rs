@@ -269,3 +269,20 @@ fn check_knows_the_rows_of_a_stored_table() {
         "{out}"
     );
 }
+
+#[test]
+fn code_aster_operators_we_do_not_implement_say_so() {
+    let (code, out, _d) = run_text(
+        "DEBUT()\nIMPR_RESU(FORMAT='RESULTAT', RESU=_F(RESULTAT=MODES))\nFIN()\n",
+        &[],
+    );
+    assert_eq!(code, Some(2), "{out}");
+    assert!(
+        out.contains("IMPR_RESU is a Code_Aster operator that aster-nl does not support"),
+        "{out}"
+    );
+    assert!(out.contains("SQLite"), "{out}");
+    let (code, out) = check_text("DEBUT()\nMA = MODI_MAILLAGE(reuse=MA)\nFIN()\n", &[]);
+    assert_eq!(code, Some(2), "{out}");
+    assert!(out.contains("MODI_MAILLAGE is a Code_Aster operator"), "{out}");
+}

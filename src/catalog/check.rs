@@ -41,6 +41,9 @@ pub fn check_consistency() -> Vec<String> {
     }
     for op in &cat.ops {
         check_op(op, &mut out);
+        if super::unsupported(&op.name).is_some() {
+            out.push(format!("{}: both implemented and listed as unsupported", op.name));
+        }
     }
     out
 }

@@ -384,6 +384,14 @@ impl Evaluator<'_> {
         if self.host.is_operator(name) {
             return self.operator(name, func.span, args, site);
         }
+        if let Some(instead) = self.host.unsupported_operator(name) {
+            return Err(self
+                .input(
+                    format!("{name} is a Code_Aster operator that aster-nl does not support"),
+                    func.span,
+                )
+                .hint(instead));
+        }
         if is_upper_name(name) {
             let mut err = self.input(format!("unknown operator '{name}'"), func.span);
             if let Some(h) = did_you_mean(&suggestions(name, &self.host.operator_names())) {

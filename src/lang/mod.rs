@@ -150,6 +150,11 @@ pub trait Host {
         Vec::new()
     }
 
+    /// For a Code_Aster operator the host does not implement: what to do instead.
+    fn unsupported_operator(&self, _name: &str) -> Option<String> {
+        None
+    }
+
     /// The concept named `name` if it exists: after a call, every `CO('NAME')` of its
     /// keywords that the host reports here becomes a Python name, and a name no statement
     /// bound is looked up here (concepts of an earlier run continued by POURSUITE).
