@@ -286,3 +286,57 @@ fn code_aster_operators_we_do_not_implement_say_so() {
     assert_eq!(code, Some(2), "{out}");
     assert!(out.contains("MODI_MAILLAGE is a Code_Aster operator"), "{out}");
 }
+
+/// Runs a testcase with its database in `dir`; asserts exit 0, no NOOK, `n_ok` tests OK.
+fn run_case(name: &str, dir: &Path, n_ok: usize) -> PathBuf {
+    let db = dir.join(format!("{}.db", name.replace('/', "_")));
+    let o = bin()
+        .arg("run")
+        .arg(case(name))
+        .arg("--db")
+        .arg(&db)
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{name}:\n{out}");
+    assert!(
+        out.contains(&format!("tests: {n_ok} OK, 0 NOOK")),
+        "{name}:\n{out}"
+    );
+    db
+}
+
+fn energy_frequency(db: &Path) -> Vec<(i64, f64, f64)> {
+    let c = rusqlite::Connection::open(db).unwrap();
+    let mut st = c
+        .prepare("SELECT NUME_ORDRE, ENERGIE, FREQUENCE FROM MNL ORDER BY NUME_ORDRE")
+        .unwrap();
+    st.query_map([], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)))
+        .unwrap()
+        .map(Result::unwrap)
+        .collect()
+}
+
+/// The same system written with the 13.x spellings (elements on nodes through the
+/// model's own point cells, MODE_ITER_SIMULT, NOEUD=/MAILLE=) and with the 15-17.x ones
+/// (CREA_POI1 groups sharing one cell per node, CALC_MODES, GROUP_NO=/GROUP_MA=) gives
+/// the same branch, row for row.
+#[test]
+fn spellings_13x_and_17x_give_the_same_branch() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = energy_frequency(&run_case("compat_2dof_13.comm", dir.path(), 7));
+    let b = energy_frequency(&run_case("compat_2dof_17.comm", dir.path(), 7));
+    assert_eq!(a.len(), 25);
+    assert_eq!(a.len(), b.len());
+    for ((n, e, f), (m, e2, f2)) in a.iter().zip(&b) {
+        assert_eq!(n, m);
+        assert!((e - e2).abs() <= 1e-12 * e.abs(), "row {n}: {e} {e2}");
+        assert!((f - f2).abs() <= 1e-12 * f.abs(), "row {n}: {f} {f2}");
+    }
+}
+
+#[test]
+fn med_mesh_beam_against_the_closed_form() {
+    let dir = tempfile::tempdir().unwrap();
+    run_case("beam_med.comm", dir.path(), 6);
+}

@@ -88,6 +88,20 @@ def rewrite_like_med4(src, dst):
         copy(s, d)
 
 
+# beam_med (testcases/beam_med.comm): a straight tube along X, L = 1, 20 SEG2 cells in
+# Tube, its end nodes in BaseL and BaseR, written in the MED-library layout.
+n = 21
+points = np.array([[i / (n - 1), 0.0, 0.0] for i in range(n)])
+m = meshio.Mesh(points, [("line", np.array([[i, i + 1] for i in range(n - 1)]))])
+m.cell_data["cell_tags"] = [np.full(n - 1, -1)]
+m.cell_tags = {-1: ["Tube"]}
+m.point_data["point_tags"] = np.array([1] + [0] * (n - 2) + [2])
+m.point_tags = {1: ["BaseL"], 2: ["BaseR"]}
+meshio.write("beam_med_meshio.med", m, file_format="med")
+
 rewrite_like_med4("plate_med.med", "plate_med4.med")
 rewrite_like_med4("line_med.med", "line_med4.med")
-print("wrote plate_med.med, solid_med.med, line_med.med, plate_med4.med, line_med4.med")
+rewrite_like_med4("beam_med_meshio.med", "../beam_med.med")
+import os
+os.remove("beam_med_meshio.med")
+print("wrote plate_med.med, solid_med.med, line_med.med, plate_med4.med, line_med4.med, ../beam_med.med")
