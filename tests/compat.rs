@@ -284,7 +284,10 @@ fn code_aster_operators_we_do_not_implement_say_so() {
     assert!(out.contains("SQLite"), "{out}");
     let (code, out) = check_text("DEBUT()\nMA = MODI_MAILLAGE(reuse=MA)\nFIN()\n", &[]);
     assert_eq!(code, Some(2), "{out}");
-    assert!(out.contains("MODI_MAILLAGE is a Code_Aster operator"), "{out}");
+    assert!(
+        out.contains("MODI_MAILLAGE is a Code_Aster operator"),
+        "{out}"
+    );
 }
 
 /// Runs a testcase with its database in `dir`; asserts exit 0, no NOOK, `n_ok` tests OK.

@@ -42,7 +42,10 @@ pub fn check_consistency() -> Vec<String> {
     for op in &cat.ops {
         check_op(op, &mut out);
         if super::unsupported(&op.name).is_some() {
-            out.push(format!("{}: both implemented and listed as unsupported", op.name));
+            out.push(format!(
+                "{}: both implemented and listed as unsupported",
+                op.name
+            ));
         }
     }
     out
