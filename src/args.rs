@@ -159,6 +159,25 @@ impl Args {
     pub fn req_int(&self, key: &str) -> Result<i64> {
         self.int(key).ok_or_else(|| self.missing(key, "an integer"))
     }
+    /// A count (a size, a number of steps): an integer the catalog bounds below (`val_min`),
+    /// so that a negative value never reaches an operator; the conversion still fails
+    /// cleanly if a catalog lacks the bound.
+    pub fn count(&self, key: &str) -> Result<Option<usize>> {
+        self.int(key)
+            .map(|v| {
+                usize::try_from(v).map_err(|_| {
+                    Error::internal(format!(
+                        "{key}={v} reached the operator: its catalog needs val_min >= 0"
+                    ))
+                    .keyword(self.key_path(key))
+                })
+            })
+            .transpose()
+    }
+    pub fn req_count(&self, key: &str) -> Result<usize> {
+        self.count(key)?
+            .ok_or_else(|| self.missing(key, "an integer"))
+    }
     pub fn req_text(&self, key: &str) -> Result<&str> {
         self.text(key).ok_or_else(|| self.missing(key, "a text"))
     }

@@ -10,7 +10,8 @@ use crate::error::{Error, Result};
 use crate::lang::{self, Env, Host, Source};
 use crate::ops::{self, OpContext, TestOutcome, Units};
 use crate::store::Store;
-use crate::value::{CommandCall, ConceptRef, Keyword, Value};
+use crate::table::Cell;
+use crate::value::{CommandCall, ConceptRef, Keyword, TableValue, Value};
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -146,10 +147,11 @@ impl Runner<'_> {
                 call.op
             )));
         }
+        let purpose = format!("{} (started {})", self.file, started_at());
         let store = if call.op == "DEBUT" {
-            Store::create(&self.default_db)?
+            Store::create_for(&self.default_db, &purpose)?
         } else {
-            Store::open(&self.default_db)?
+            Store::open_for(&self.default_db, &purpose)?
         };
         if call.op == "POURSUITE" {
             let n = store.concepts()?.len();
@@ -238,6 +240,10 @@ impl Runner<'_> {
         })?;
         let info = args.int("INFO").unwrap_or(1);
         let mut tests = Vec::new();
+        // Every concept given to the operator must still be what it was computed from.
+        for used in concept_arguments(args) {
+            store.check_dependencies(&used)?;
+        }
         store.begin_op()?;
         let started = Instant::now();
         let mut ctx = OpContext::new(store, &call.op, &mut *self.out, &self.units, &mut tests);
@@ -271,6 +277,10 @@ impl Runner<'_> {
             self.summary
                 .created
                 .push((name.clone(), ty.clone(), call.op.clone()));
+        }
+        if let Some(reused) = &ctx_reuse_name(call) {
+            // Changed in place: what was computed from it no longer matches.
+            store.new_generation(reused)?;
         }
         if let Some(e) = deferred {
             // The operator's results are committed; the run still stops here.
@@ -328,6 +338,29 @@ impl Host for Runner<'_> {
         })
     }
 
+    fn table_contents(&mut self, table: &ConceptRef) -> Result<Value> {
+        let t = crate::store::table::load_table(self.store()?, &table.name)?;
+        let rows = t
+            .rows
+            .iter()
+            .map(|r| {
+                r.iter()
+                    .map(|c| match c {
+                        Cell::Null => Value::None,
+                        Cell::R(x) => Value::Real(*x),
+                        Cell::I(i) => Value::Int(*i),
+                        Cell::K(s) => Value::Str(s.clone()),
+                    })
+                    .collect()
+            })
+            .collect();
+        Ok(Value::Table(std::sync::Arc::new(TableValue {
+            name: table.name.clone(),
+            columns: t.columns.iter().map(|c| c.name.clone()).collect(),
+            rows,
+        })))
+    }
+
     fn call(&mut self, call: CommandCall) -> Result<Value> {
         if self.summary.finished {
             return Ok(Value::None);
@@ -366,6 +399,15 @@ impl Host for Runner<'_> {
     }
 }
 
+/// Now, as seconds since the Unix epoch (what the lock file records; no time zone needed).
+fn started_at() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0);
+    format!("at Unix time {secs}")
+}
+
 /// Run a command file. Errors that stop the run are in `RunSummary::error`; the
 /// `Err` case is reserved for failures before anything ran (unreadable file).
 pub fn run_file(path: &Path, opts: RunOptions, out: &mut dyn Write) -> Result<RunSummary> {
@@ -382,6 +424,9 @@ pub fn run_file(path: &Path, opts: RunOptions, out: &mut dyn Write) -> Result<Ru
     let default_db = opts.db.clone().unwrap_or_else(|| path.with_extension("db"));
     let mut units = opts.units;
     units.comm_file.get_or_insert_with(|| path.to_path_buf());
+    units
+        .protected
+        .push((path.to_path_buf(), "the command file of the run".into()));
     run_source(
         &src,
         default_db,
@@ -410,6 +455,19 @@ pub fn run_source(
             })
         }
     };
+    let mut units = units;
+    units
+        .protected
+        .push((db.clone(), "the database of the study".into()));
+    units.protected.push((
+        crate::store::study_file::lock_path(&db),
+        "the lock file of the study".into(),
+    ));
+    for j in crate::store::study_file::journal_paths(&db) {
+        units
+            .protected
+            .push((j, "a journal of the study's database".into()));
+    }
     let mut runner = Runner {
         file: src.name.clone(),
         default_db: db,
@@ -632,6 +690,10 @@ impl Host for Checker {
             None => None,
         }
     }
+    fn table_contents(&mut self, _table: &ConceptRef) -> Result<Value> {
+        // Nothing runs: the rows are known only when the file runs.
+        Ok(Value::Unknown)
+    }
     fn call(&mut self, call: CommandCall) -> Result<Value> {
         self.start(&call);
         match catalog::validate(&call, &self.file) {
@@ -703,6 +765,34 @@ pub fn check_source(src: &Source, opts: CheckOptions) -> Vec<Error> {
         checker.errors.push(e);
     }
     checker.errors
+}
+
+/// Names of the concepts given to a call (every keyword, at every level).
+fn concept_arguments(args: &Args) -> Vec<String> {
+    fn walk(v: &Value, out: &mut Vec<String>) {
+        match v {
+            Value::Concept(c) => out.push(c.name.clone()),
+            Value::Seq(items) => items.iter().for_each(|i| walk(i, out)),
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    for (_, v, _) in &args.simple {
+        walk(v, &mut out);
+    }
+    for (_, occurrences, _) in &args.factor {
+        for occ in occurrences {
+            out.extend(concept_arguments(occ));
+        }
+    }
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// The concept a call changes in place (`reuse=`), if any.
+fn ctx_reuse_name(call: &CommandCall) -> Option<String> {
+    call.reuse.as_ref().map(|c| c.name.clone())
 }
 
 /// Concepts a macro command creates through `CO('NAME')` keywords, with their types (for

@@ -12,6 +12,8 @@
 //! - [`ops`]: one thin file per operator.
 //! - [`interp`]: runs a command file, one store transaction per operator.
 //! - [`study`]: the measured accuracy-versus-time study of the engine (`aster-nl study`).
+//! - [`sweep`]: parametric sweeps, one `aster-nl run` process per point, local or Slurm,
+//!   merged into one SQLite file (`aster-nl sweep`, `aster-nl merge`).
 
 // `Error` carries a location, a keyword and a hint for the user: it is larger than clippy's
 // default budget for error types, on purpose, and never sits on a hot path.
@@ -32,5 +34,6 @@ pub mod ops;
 pub mod plot;
 pub mod store;
 pub mod study;
+pub mod sweep;
 pub mod table;
 pub mod value;

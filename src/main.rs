@@ -71,6 +71,14 @@ enum Command {
         #[arg(long, value_enum, default_value = "both")]
         case: CaseArg,
     },
+    /// Run a parametric sweep of a .comm template: one run per point, locally or on Slurm,
+    /// merged into one SQLite database (docs/sweeps.md).
+    Sweep(aster_nl::sweep::cli::SweepArgs),
+    /// Merge run databases into one, the sweep's parameters as columns.
+    Merge(aster_nl::sweep::cli::MergeArgs),
+    /// One task of a sweep's Slurm job array (what the job script runs).
+    #[command(hide = true)]
+    SweepTask(aster_nl::sweep::cli::TaskArgs),
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -99,6 +107,9 @@ fn main() -> ExitCode {
         Command::Catalog { operator } => print_catalog(operator.as_deref()),
         Command::Tables { db } => tables(&db),
         Command::Study { grid, out, case } => study(grid, &out, case),
+        Command::Sweep(args) => aster_nl::sweep::cli::sweep(&args),
+        Command::Merge(args) => aster_nl::sweep::cli::merge(&args),
+        Command::SweepTask(args) => aster_nl::sweep::cli::task(&args),
     }
 }
 
@@ -155,7 +166,14 @@ fn run(
     let comm = if file.extension().is_some_and(|e| e == "export") {
         match export::read_export(file) {
             Ok(exp) => {
+                units
+                    .protected
+                    .push((file.to_path_buf(), "the export file of the run".into()));
                 for (n, p) in exp.units {
+                    units.protected.push((
+                        p.clone(),
+                        format!("the input file of unit {n} in the export"),
+                    ));
                     units.map.entry(n).or_insert(p);
                 }
                 exp.comm
@@ -266,7 +284,7 @@ fn print_catalog(op: Option<&str>) -> ExitCode {
 }
 
 fn tables(db: &Path) -> ExitCode {
-    let s = match store::Store::open(db) {
+    let s = match store::Store::open_read_only(db) {
         Ok(s) => s,
         Err(e) => return fail(&e, None),
     };

@@ -379,3 +379,61 @@ fn cercle_shock_with_one_component_is_one_clear_error() {
     // Not the operator's message on top of it.
     assert!(!out.contains("component(s) in NOM_CMP"), "{out}");
 }
+
+/// DIR_EVOLUTION (testcases/dir_evolution.comm): +1 from the linear mode goes down in
+/// energy; a restart with +1 turns back against the stored direction of travel (up) and
+/// retraces the same orbits; a restart with -1 goes on (up).
+#[test]
+fn dir_evolution_backward_then_restarts_against_and_along_the_travel() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("case.db");
+    let o = bin()
+        .arg("run")
+        .arg(case("dir_evolution.comm"))
+        .arg("--db")
+        .arg(&db)
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert!(out.contains("tests: 4 OK, 0 NOOK"), "{out}");
+    assert!(
+        out.contains("restart from MNL row 80: DIR_EVOLUTION=1 goes back against")
+            && out.contains("restart from MNL2 row 20: DIR_EVOLUTION=-1 goes on in"),
+        "{out}"
+    );
+    let c = rusqlite::Connection::open(&db).unwrap();
+    let rows = |t: &str| -> Vec<(f64, f64)> {
+        let mut st = c
+            .prepare(&format!(
+                "SELECT ENERGIE, FREQUENCE FROM {t} ORDER BY NUME_ORDRE"
+            ))
+            .unwrap();
+        st.query_map([], |r| Ok((r.get(0)?, r.get(1)?)))
+            .unwrap()
+            .map(|r| r.unwrap())
+            .collect()
+    };
+    let (down, up, on) = (rows("MNL"), rows("MNL2"), rows("MNL3"));
+    let falls = |v: &[(f64, f64)]| v.windows(2).all(|w| w[1].0 < w[0].0);
+    let rises = |v: &[(f64, f64)]| v.windows(2).all(|w| w[1].0 > w[0].0);
+    // The start (COEF_AMPL=1: amplitude JEU) has the linear energy ½·k·JEU² = 5e-4.
+    assert!(falls(&down) && down[0].0 < 5e-4, "{down:?}");
+    assert!(rises(&up) && up[0].0 > down[79].0, "{up:?}");
+    assert!(rises(&on) && on[0].0 > up[19].0, "{on:?}");
+    // MNL2 climbs back through the energies MNL came down: the same orbits, so the same
+    // frequency at equal energy, to the LIN interpolation error of MNL's 80 rows (measured
+    // at most 1.8e-7; 8.7e-6 with 8 rows: it shrinks as the row spacing squared; a different
+    // orbit family would differ at first order).
+    let mut compared = 0;
+    for &(e, f) in up.iter().filter(|r| r.0 < down[0].0) {
+        let w = down
+            .windows(2)
+            .find(|w| w[1].0 <= e && e <= w[0].0)
+            .unwrap();
+        let fl = w[1].1 + (e - w[1].0) / (w[0].0 - w[1].0) * (w[0].1 - w[1].1);
+        assert!((f / fl - 1.0).abs() < 1e-6, "E {e}: {f} vs {fl}");
+        compared += 1;
+    }
+    assert!(compared >= 3, "{compared}");
+}

@@ -348,13 +348,13 @@ fn hard_cercle_whirl_needs_a_degenerate_pair() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::copy(case("cercle_offset.mail"), dir.path().join("pair.mail")).unwrap();
     let base = std::fs::read_to_string(case("cercle_offset.comm")).unwrap();
-    let one = "ETAT_INIT=_F(MODE_LINE=MODES, NUME_ORDRE=1, DIR_EVOLUTION=1, COEF_AMPL=1.)";
+    let one = "ETAT_INIT=_F(MODE_LINE=MODES, NUME_ORDRE=1, DIR_EVOLUTION=-1, COEF_AMPL=1.)";
     assert!(base.contains(one));
     let attempt = |quad: i64| -> String {
         let comm = dir.path().join("pair.comm");
         let src = base.replacen(
             one,
-            &format!("ETAT_INIT=_F(MODE_LINE=MODES, NUME_ORDRE=1, NUME_ORDRE_QUAD={quad}, DIR_EVOLUTION=1, COEF_AMPL=1.)"),
+            &format!("ETAT_INIT=_F(MODE_LINE=MODES, NUME_ORDRE=1, NUME_ORDRE_QUAD={quad}, DIR_EVOLUTION=-1, COEF_AMPL=1.)"),
             1,
         );
         std::fs::write(&comm, src).unwrap();

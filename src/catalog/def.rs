@@ -114,6 +114,12 @@ pub struct SimpDef {
     pub val_min: Option<f64>,
     #[serde(default)]
     pub val_max: Option<f64>,
+    /// `val_min` itself is refused (a strict bound: `> val_min`).
+    #[serde(default)]
+    pub val_min_excluded: bool,
+    /// `val_max` itself is refused (a strict bound: `< val_max`).
+    #[serde(default)]
+    pub val_max_excluded: bool,
     #[serde(default)]
     pub doc: String,
     #[serde(default)]
@@ -178,6 +184,8 @@ impl FactDef {
             into: o.into.clone(),
             val_min: None,
             val_max: None,
+            val_min_excluded: false,
+            val_max_excluded: false,
             doc: String::new(),
             when: None,
         })

@@ -25,11 +25,16 @@ pub(crate) fn into_label(s: &SimpDef) -> Option<String> {
 
 pub(crate) fn range_label(s: &SimpDef) -> Option<String> {
     let t = |x: f64| bound_text(x, &s.types);
+    let ge = if s.val_min_excluded { ">" } else { ">=" };
+    let le = if s.val_max_excluded { "<" } else { "<=" };
     match (s.val_min, s.val_max) {
         (None, None) => None,
-        (Some(a), None) => Some(format!(">= {}", t(a))),
-        (None, Some(b)) => Some(format!("<= {}", t(b))),
-        (Some(a), Some(b)) => Some(format!("{} to {}", t(a), t(b))),
+        (Some(a), None) => Some(format!("{ge} {}", t(a))),
+        (None, Some(b)) => Some(format!("{le} {}", t(b))),
+        (Some(a), Some(b)) if !s.val_min_excluded && !s.val_max_excluded => {
+            Some(format!("{} to {}", t(a), t(b)))
+        }
+        (Some(a), Some(b)) => Some(format!("{ge} {} and {le} {}", t(a), t(b))),
     }
 }
 

@@ -655,7 +655,24 @@ fn values_outside_into_and_bounds() {
         "MODE_NON_LINE/CHOC/JEU",
         62,
     );
-    assert_eq!(e.message, "expected a value >= 0.0, got -0.5");
+    assert_eq!(e.message, "expected a value > 0.0, got -0.5");
+    // The bound itself is refused when the catalog excludes it.
+    let e = single_error(
+        &mnl_with("CHOC", "JEU", Some(r(0.0)), 62),
+        "MODE_NON_LINE/CHOC/JEU",
+        62,
+    );
+    assert_eq!(e.message, "expected a value > 0.0, got 0.0");
+    let e = single_error(
+        &mnl_with("CHOC", "JEU", Some(r(f64::NAN)), 62),
+        "MODE_NON_LINE/CHOC/JEU",
+        62,
+    );
+    assert!(
+        e.message.starts_with("expected a finite number"),
+        "{}",
+        e.message
+    );
     let c = call(
         "DEBUT",
         vec![k("RESERVE_CPU", f(vec![k("POURCENTAGE", r(1.5), 3)]), 2)],

@@ -557,11 +557,20 @@ fn check_item(def: &SimpDef, v: &Value) -> Option<Msg> {
         }
     }
     if let Some(x) = v.as_f64() {
+        // No keyword takes an infinite or undefined number (1e400, float('nan')).
+        if !x.is_finite() {
+            return Some((format!("expected a finite number, got {v}"), None));
+        }
         if let Some(lo) = def.val_min {
-            if x < lo {
+            let (refused, op) = if def.val_min_excluded {
+                (x <= lo, ">")
+            } else {
+                (x < lo, ">=")
+            };
+            if refused {
                 return Some((
                     format!(
-                        "expected a value >= {}, got {v}",
+                        "expected a value {op} {}, got {v}",
                         bound_text(lo, &def.types)
                     ),
                     None,
@@ -569,10 +578,15 @@ fn check_item(def: &SimpDef, v: &Value) -> Option<Msg> {
             }
         }
         if let Some(hi) = def.val_max {
-            if x > hi {
+            let (refused, op) = if def.val_max_excluded {
+                (x >= hi, "<")
+            } else {
+                (x > hi, "<=")
+            };
+            if refused {
                 return Some((
                     format!(
-                        "expected a value <= {}, got {v}",
+                        "expected a value {op} {}, got {v}",
                         bound_text(hi, &def.types)
                     ),
                     None,

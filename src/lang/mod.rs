@@ -162,6 +162,15 @@ pub trait Host {
         None
     }
 
+    /// The contents of the table concept `table` (`T.EXTR_TABLE()`, `T['PARA', i]`):
+    /// `Value::Table`, or `Value::Unknown` when nothing runs (`aster-nl check`).
+    fn table_contents(&mut self, table: &ConceptRef) -> Result<Value> {
+        Err(crate::error::Error::input(format!(
+            "the contents of table {} are not available here",
+            table.name
+        )))
+    }
+
     /// Output of `print(...)` in the command file.
     fn print(&mut self, text: &str) {
         println!("{text}");

@@ -67,6 +67,22 @@ pub fn reduced(
     from_triplets(m, m, &kept)
 }
 
+/// The diagonal of a square sparse matrix (a missing entry is 0).
+pub fn diagonal(a: &SparseColMat<usize, f64>) -> Vec<f64> {
+    let n = a.nrows().min(a.ncols());
+    let mut d = vec![0.0; n];
+    for (j, dj) in d.iter_mut().enumerate() {
+        let rows = a.symbolic().row_idx_of_col_raw(j);
+        let vals = a.val_of_col(j);
+        for (&i, &v) in rows.iter().zip(vals) {
+            if i == j {
+                *dj += v;
+            }
+        }
+    }
+    d
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

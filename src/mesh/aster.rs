@@ -102,6 +102,8 @@ struct Raw<'a> {
 
 /// Parse the text of a `.mail` file; `file` names it in error messages.
 pub fn parse(text: &str, file: &str) -> Result<Mesh> {
+    // A file saved by an editor with a UTF-8 byte order mark reads as without one.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let lines = lines_of(text);
     let err = |msg: String, line: usize| Error::input(msg).at_line(file, line);
     let mut raw = Raw::default();
@@ -528,6 +530,14 @@ mod tests {
         let loc = e.location.clone().expect("errors carry a location");
         assert_eq!(loc.file, "t.mail");
         (loc.span.line, e.to_string())
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_accepted_and_coordinates_must_be_finite() {
+        let m = parse(&format!("\u{feff}{GOOD}"), "t.mail").unwrap();
+        assert_eq!(m.nodes.len(), 2);
+        let (line, msg) = fails(&GOOD.replace("N2 1 0 0", "N2 nan 0 0"));
+        assert_eq!(line, 6, "{msg}");
     }
 
     #[test]

@@ -69,6 +69,17 @@ impl<'a> Lines<'a> {
     fn err(&self, msg: impl Into<String>, line: usize) -> Error {
         Error::input(msg).at_line(self.file, line)
     }
+    /// A tag of a node, an element or an entity: a positive integer (Gmsh numbers from 1).
+    fn tag(&self, word: &str, what: &str, n: usize) -> Result<i64> {
+        match word.parse::<i64>() {
+            Ok(t) if t > 0 => Ok(t),
+            Ok(t) => Err(self.err(format!("{what} tag {t}: tags are positive integers"), n)),
+            Err(_) => Err(self.err(
+                format!("{what} tag '{word}' is not a positive integer that fits in 64 bits"),
+                n,
+            )),
+        }
+    }
     fn last_line(&self) -> usize {
         self.lines.last().map_or(1, |l| l.0)
     }
@@ -157,6 +168,30 @@ fn check_total(l: &Lines<'_>, found: usize, announced: i64, line: usize, what: &
     Ok(())
 }
 
+/// A number of the `$Entities` section (read as reals, because of the bounding boxes) that
+/// must be an integer.
+fn whole(l: &Lines<'_>, v: f64, n: usize, what: &str) -> Result<i64> {
+    if v.fract() == 0.0 && v.abs() < 9.0e15 {
+        Ok(v as i64)
+    } else {
+        Err(l.err(
+            format!("$Entities: {what} must be an integer, found {v}"),
+            n,
+        ))
+    }
+}
+
+/// An entity dimension of a 4.1 block: 0 to 3.
+fn entity_dim(l: &Lines<'_>, v: i64, n: usize) -> Result<usize> {
+    match usize::try_from(v) {
+        Ok(d) if d <= 3 => Ok(d),
+        _ => Err(l.err(
+            format!("entity dimension {v}: Gmsh entities have dimension 0 to 3"),
+            n,
+        )),
+    }
+}
+
 fn to_usize(l: &Lines<'_>, v: i64, n: usize, what: &str) -> Result<usize> {
     usize::try_from(v).map_err(|_| l.err(format!("{what} must not be negative, found {v}"), n))
 }
@@ -166,6 +201,8 @@ fn to_usize(l: &Lines<'_>, v: i64, n: usize, what: &str) -> Result<usize> {
 struct Parsed {
     nodes: Vec<Node>,
     node_tag: HashMap<i64, usize>,
+    /// Element tag -> line where it was first defined.
+    cell_tags: HashMap<i64, usize>,
     cells: Vec<Cell>,
     /// For each cell, its physical tags (with the dimension of the cell).
     phys: Vec<Vec<i64>>,
@@ -176,6 +213,8 @@ struct Parsed {
 }
 
 pub fn parse(text: &str, file: &str) -> Result<Mesh> {
+    // Gmsh itself reads a file saved with a UTF-8 byte order mark.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut l = Lines::new(text, file);
     let (n0, first) = l.next("MeshFormat")?;
     if first != "$MeshFormat" {
@@ -217,6 +256,11 @@ pub fn parse(text: &str, file: &str) -> Result<Mesh> {
             "$PhysicalNames" => read_physical_names(&mut l, &mut p)?,
             "$Entities" if v4 => entities = read_entities(&mut l)?,
             "$Nodes" => {
+                if saw_nodes {
+                    return Err(l
+                        .err("a second $Nodes section", n)
+                        .hint("a mesh has one $Nodes section; merge the two"));
+                }
                 if v4 {
                     read_nodes_41(&mut l, &mut p)?
                 } else {
@@ -227,6 +271,11 @@ pub fn parse(text: &str, file: &str) -> Result<Mesh> {
             "$Elements" => {
                 if !saw_nodes {
                     return Err(l.err("$Elements comes before $Nodes", n));
+                }
+                if saw_elements {
+                    return Err(l
+                        .err("a second $Elements section", n)
+                        .hint("a mesh has one $Elements section; merge the two"));
                 }
                 if v4 {
                     read_elements_41(&mut l, &mut p, &entities)?
@@ -269,7 +318,17 @@ fn read_physical_names(l: &mut Lines<'_>, p: &mut Parsed) -> Result<()> {
         let mut it = line.splitn(3, char::is_whitespace);
         let dim = it.next().and_then(|w| w.parse::<usize>().ok());
         let tag = it.next().and_then(|w| w.parse::<i64>().ok());
-        let name = it.next().map(|s| s.trim().trim_matches('"').to_string());
+        let name = match it.next().map(str::trim) {
+            Some(q) if q.starts_with('"') => match q[1..].find('"') {
+                Some(close) => Some(q[1..1 + close].to_string()),
+                None => {
+                    return Err(l
+                        .err(format!("${S}: the name {q} has no closing quote"), n)
+                        .hint("a physical name is written between double quotes"));
+                }
+            },
+            other => other.map(str::to_string),
+        };
         match (dim, tag, name) {
             (Some(d), Some(t), Some(name)) if !name.is_empty() => {
                 if p.names.insert((d, t), name).is_none() {
@@ -300,19 +359,36 @@ fn read_entities(l: &mut Lines<'_>) -> Result<HashMap<(usize, i64), Vec<i64>>> {
     )?;
     let mut out = HashMap::new();
     for (dim, &count) in counts.iter().take(4).enumerate() {
-        for _ in 0..(count as usize) {
+        if !(count >= 0.0 && count.fract() == 0.0) {
+            return Err(l.err(
+                format!("${S}: the number of entities of dimension {dim} must be a count, found {count}"),
+                n,
+            ));
+        }
+        // A count beyond the lines of the file fails at the end of the file.
+        let mut left = count;
+        while left > 0.0 {
+            left -= 1.0;
             // point: tag x y z nphys phys...; others: tag 6 bbox numbers nphys phys... nbound ...
             let (n, v) = l.nums::<f64>(S, "an entity")?;
             let at = if dim == 0 { 4 } else { 7 };
             need(l, &v, at + 1, n, S, "an entity with its physical tags")?;
-            let nphys = v[at] as usize;
-            let phys = v.get(at + 1..at + 1 + nphys).ok_or_else(|| {
-                l.err(
-                    format!("${S}: the entity lists fewer physical tags than {nphys}"),
-                    n,
-                )
-            })?;
-            out.insert((dim, v[0] as i64), phys.iter().map(|&t| t as i64).collect());
+            let tag = whole(l, v[0], n, "an entity tag")?;
+            let nphys = whole(l, v[at], n, "numPhysicalTags")?;
+            let phys = usize::try_from(nphys)
+                .ok()
+                .and_then(|k| v.get(at + 1..(at + 1).checked_add(k)?))
+                .ok_or_else(|| {
+                    l.err(
+                        format!("${S}: the entity lists fewer physical tags than {nphys}"),
+                        n,
+                    )
+                })?;
+            let phys = phys
+                .iter()
+                .map(|&t| whole(l, t, n, "a physical tag"))
+                .collect::<Result<Vec<i64>>>()?;
+            out.insert((dim, tag), phys);
         }
     }
     l.expect_end(S)?;
@@ -320,6 +396,12 @@ fn read_entities(l: &mut Lines<'_>) -> Result<HashMap<(usize, i64), Vec<i64>>> {
 }
 
 fn add_node(l: &Lines<'_>, p: &mut Parsed, tag: i64, xyz: &[f64], n: usize) -> Result<()> {
+    if let Some(bad) = xyz.iter().take(3).find(|c| !c.is_finite()) {
+        return Err(l.err(
+            format!("node {tag} has the coordinate {bad}: coordinates must be finite numbers"),
+            n,
+        ));
+    }
     if p.node_tag.insert(tag, p.nodes.len()).is_some() {
         return Err(l.err(format!("node {tag} is defined twice"), n));
     }
@@ -335,9 +417,23 @@ fn read_nodes_22(l: &mut Lines<'_>, p: &mut Parsed) -> Result<()> {
     let (n, count) = l.nums::<i64>(S, "the number of nodes")?;
     need(l, &count, 1, n, S, "the number of nodes")?;
     for _ in 0..count[0] {
-        let (n, v) = l.nums::<f64>(S, "tag x y z")?;
-        need(l, &v, 4, n, S, "tag x y z")?;
-        add_node(l, p, v[0] as i64, &v[1..4], n)?;
+        let (n, line) = l.next(S)?;
+        if line.starts_with('$') {
+            return Err(l.err(
+                format!("${S} ends early: expected tag x y z, found {line}"),
+                n,
+            ));
+        }
+        let mut words = line.split_whitespace();
+        let tag = l.tag(words.next().unwrap_or(""), "node", n)?;
+        let xyz = words
+            .map(|w| {
+                w.parse::<f64>()
+                    .map_err(|_| l.err(format!("${S}: '{w}' is not a valid number (x y z)"), n))
+            })
+            .collect::<Result<Vec<f64>>>()?;
+        need(l, &xyz, 3, n, S, "x y z after the tag")?;
+        add_node(l, p, tag, &xyz, n)?;
     }
     l.expect_end(S)
 }
@@ -363,17 +459,28 @@ fn read_nodes_41(l: &mut Lines<'_>, p: &mut Parsed) -> Result<()> {
             S,
             "entityDim entityTag parametric numNodesInBlock",
         )?;
+        entity_dim(l, b[0], n)?;
         if b[2] != 0 {
             return Err(l.err("parametric nodes are not supported", n));
         }
         let count = to_usize(l, b[3], n, "numNodesInBlock")?;
-        let mut tags = Vec::with_capacity(count);
+        // The count comes from the file: the tags grow as they are read, never reserved.
+        let mut tags = Vec::new();
         for _ in 0..count {
-            let (n, t) = l.nums::<i64>(S, "a node tag")?;
-            need(l, &t, 1, n, S, "a node tag")?;
-            tags.push(t[0]);
+            let (n, t) = l.next(S)?;
+            if t.starts_with('$') {
+                return Err(l.err(
+                    format!("${S} ends early: expected a node tag, found {t}"),
+                    n,
+                ));
+            }
+            let mut words = t.split_whitespace();
+            tags.push((l.tag(words.next().unwrap_or(""), "node", n)?, n));
+            if words.next().is_some() {
+                return Err(l.err(format!("${S}: expected one node tag, found '{t}'"), n));
+            }
         }
-        for tag in tags {
+        for (tag, _) in tags {
             let (n, v) = l.nums::<f64>(S, "x y z")?;
             need(l, &v, 3, n, S, "x y z")?;
             add_node(l, p, tag, &v, n)?;
@@ -392,6 +499,16 @@ fn add_cell(
     phys: Vec<i64>,
     n: usize,
 ) -> Result<()> {
+    if tag <= 0 {
+        return Err(l.err(format!("element tag {tag}: tags are positive integers"), n));
+    }
+    if let Some(&first) = p.cell_tags.get(&tag) {
+        return Err(l.err(
+            format!("element {tag} is defined twice (first at line {first})"),
+            n,
+        ));
+    }
+    p.cell_tags.insert(tag, n);
     let kind = kind_of(ty).ok_or_else(|| {
         l.err(format!("element {tag} has type {ty}, which is not supported"), n)
             .hint("supported types: 15 point, 1 line2, 8 line3, 2 tri3, 9 tri6, 3 quad4, 16 quad8, 4 tet4, 5 hex8, 6 prism, 7 pyramid")
@@ -436,8 +553,9 @@ fn read_elements_22(l: &mut Lines<'_>, p: &mut Parsed) -> Result<()> {
         let (n, v) = l.nums::<i64>(S, "an element")?;
         need(l, &v, 3, n, S, "elm-number elm-type number-of-tags")?;
         let ntags = to_usize(l, v[2], n, "number-of-tags")?;
-        let tags = v
-            .get(3..3 + ntags)
+        let tags = 3usize
+            .checked_add(ntags)
+            .and_then(|end| v.get(3..end))
             .ok_or_else(|| l.err(format!("element {} lists fewer tags than {ntags}", v[0]), n))?;
         // The first tag is the physical group; 0 means none.
         let phys = tags
@@ -445,7 +563,7 @@ fn read_elements_22(l: &mut Lines<'_>, p: &mut Parsed) -> Result<()> {
             .filter(|&&t| t != 0)
             .map(|&t| vec![t])
             .unwrap_or_default();
-        add_cell(l, p, v[0], v[1], &v[3 + ntags..], phys, n)?;
+        add_cell(l, p, v[0], v[1], &v[3 + tags.len()..], phys, n)?;
     }
     l.expect_end(S)
 }
@@ -475,7 +593,7 @@ fn read_elements_41(
             S,
             "entityDim entityTag elementType numElementsInBlock",
         )?;
-        let dim = to_usize(l, b[0], n, "entityDim")?;
+        let dim = entity_dim(l, b[0], n)?;
         let phys = entities.get(&(dim, b[1])).cloned().unwrap_or_default();
         for _ in 0..b[3] {
             let (n, v) = l.nums::<i64>(S, "an element")?;
@@ -645,6 +763,122 @@ mod tests {
             msg.contains("announces 2 nodes, the blocks hold 1"),
             "{msg}"
         );
+    }
+
+    const V41: &str = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 2\n0 1 0 2\n1\n2\n0 0 0\n1 0 0\n$EndNodes\n$Elements\n1 1 1 1\n1 1 1 1\n1 1 2\n$EndElements\n";
+
+    #[test]
+    fn v41_reference_file_reads() {
+        let m = parse(V41, "t.msh").unwrap();
+        assert_eq!((m.nodes.len(), m.cells.len()), (2, 1));
+    }
+
+    #[test]
+    fn a_huge_node_count_is_not_reserved() {
+        // The count is read from the file; reserving it aborted the process.
+        // (The tags run into the coordinate lines, whose "0 0 0" is no tag.)
+        let (line, msg) = fails(&V41.replace("0 1 0 2\n", "0 1 0 4000000000000000000\n"));
+        assert_eq!(line, 9, "{msg}");
+        let cut = V41.replace(
+            "0 1 0 2\n1\n2\n0 0 0\n1 0 0\n$EndNodes\n",
+            "0 1 0 4000000000000000000\n1\n",
+        );
+        let (_, msg) = fails(&cut);
+        assert!(msg.contains("ends"), "{msg}");
+    }
+
+    #[test]
+    fn duplicate_element_tags_are_refused() {
+        let t = V22.replace(
+            "$Elements\n1\n1 1 2 0 1 1 2",
+            "$Elements\n2\n1 1 2 0 1 1 2\n1 1 2 0 1 2 1",
+        );
+        let (line, msg) = fails(&t);
+        assert_eq!(line, 12);
+        assert!(
+            msg.contains("element 1 is defined twice (first at line 11)"),
+            "{msg}"
+        );
+    }
+
+    #[test]
+    fn tags_must_be_positive_and_fit() {
+        let (line, msg) = fails(&V22.replace("2 1 0 0", "0 1 0 0"));
+        assert_eq!(line, 7);
+        assert!(msg.contains("tags are positive"), "{msg}");
+        let (_, msg) = fails(&V22.replace("2 1 0 0", "-3 1 0 0"));
+        assert!(msg.contains("tags are positive"), "{msg}");
+        let (_, msg) = fails(&V22.replace("2 1 0 0", "99999999999999999999999 1 0 0"));
+        assert!(msg.contains("fits in 64 bits"), "{msg}");
+        let (_, msg) = fails(&V22.replace("1 1 2 0 1 1 2", "0 1 2 0 1 1 2"));
+        assert!(msg.contains("tags are positive"), "{msg}");
+        let (_, msg) = fails(&V41.replace("1\n2\n0 0 0", "1\n1e30\n0 0 0"));
+        assert!(msg.contains("positive integer"), "{msg}");
+    }
+
+    #[test]
+    fn non_finite_coordinates_are_refused_with_their_line() {
+        for bad in ["nan", "inf", "-inf", "1e400"] {
+            let (line, msg) = fails(&V22.replace("2 1 0 0", &format!("2 {bad} 0 0")));
+            assert_eq!(line, 7, "{bad}");
+            assert!(msg.contains("must be finite"), "{msg}");
+            let (line, msg) = fails(&V41.replace("1 0 0\n", &format!("1 {bad} 0\n")));
+            assert_eq!(line, 10, "{bad}");
+            assert!(msg.contains("must be finite"), "{msg}");
+        }
+    }
+
+    #[test]
+    fn a_second_nodes_or_elements_section_is_refused() {
+        let nodes = "$Nodes\n2\n1 0 0 0\n2 1 0 0\n$EndNodes\n";
+        let (line, msg) = fails(&V22.replace(nodes, &format!("{nodes}{nodes}")));
+        assert_eq!(line, 9);
+        assert!(msg.contains("a second $Nodes"), "{msg}");
+        let elems = "$Elements\n1\n1 1 2 0 1 1 2\n$EndElements\n";
+        let (_, msg) = fails(&format!("{V22}{elems}"));
+        assert!(msg.contains("a second $Elements"), "{msg}");
+    }
+
+    #[test]
+    fn entity_dimensions_above_three_are_refused() {
+        let (line, msg) = fails(&V41.replace("0 1 0 2\n", "4 1 0 2\n"));
+        assert_eq!(line, 6);
+        assert!(msg.contains("dimension 0 to 3"), "{msg}");
+        let (line, msg) = fails(&V41.replace("1 1 1 1\n1 1 2", "7 1 1 1\n1 1 2"));
+        assert_eq!(line, 14);
+        assert!(msg.contains("dimension 0 to 3"), "{msg}");
+    }
+
+    #[test]
+    fn an_unterminated_physical_name_is_refused() {
+        let names = "$PhysicalNames\n1\n1 1 \"left\n$EndPhysicalNames\n";
+        let t = V22.replace("$Nodes\n", &format!("{names}$Nodes\n"));
+        let (line, msg) = fails(&t);
+        assert_eq!(line, 6);
+        assert!(msg.contains("no closing quote"), "{msg}");
+        let ok = t.replace("\"left\n", "\"left side\"\n");
+        let m = parse(&ok.replace("1 1 2 0 1 1 2", "1 1 2 1 1 1 2"), "t.msh").unwrap();
+        assert_eq!(m.cell_groups[0].name, "left side");
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_accepted() {
+        let m = parse(&format!("\u{feff}{V22}"), "t.msh").unwrap();
+        assert_eq!(m.nodes.len(), 2);
+    }
+
+    #[test]
+    fn absurd_entity_counts_fail_cleanly() {
+        let ent = "$Entities\n0 1 0 0\n1 0 0 0 1 0 0 1e300 1 2 0\n$EndEntities\n";
+        let t = V41.replace("$Nodes\n", &format!("{ent}$Nodes\n"));
+        let (_, msg) = fails(&t);
+        assert!(
+            msg.contains("fewer physical tags") || msg.contains("integer"),
+            "{msg}"
+        );
+        let ent = "$Entities\n0 1e300 0 0\n$EndEntities\n";
+        let (_, msg) = fails(&V41.replace("$Nodes\n", &format!("{ent}$Nodes\n")));
+        assert!(msg.contains("$Entities"), "{msg}");
     }
 
     #[test]

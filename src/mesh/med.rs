@@ -215,6 +215,13 @@ pub fn read_file(path: &Path, name: Option<&str>) -> Result<Mesh> {
         )));
     }
     let n_nodes = coo.len() / dim;
+    if let Some(i) = coo.iter().position(|c| !c.is_finite()) {
+        return Err(r.bad(format!(
+            "node {} has the coordinate {}: coordinates must be finite numbers",
+            i % n_nodes.max(1) + 1,
+            coo[i]
+        )));
+    }
     let node_names = r.names(&noe, 16, n_nodes, "NOE")?;
     let nodes: Vec<Node> = (0..n_nodes)
         .map(|i| {

@@ -14,7 +14,8 @@ use super::series::{self, Sampler};
 use super::system::System;
 use std::f64::consts::FRAC_PI_2;
 
-/// Time-averaged ½uᵀKu + ½vᵀMv (Parseval), quadratic in x: used to orient the first branch.
+/// Time-averaged ½uᵀKu + ½vᵀMv (Parseval), quadratic in x: the size of the motion that
+/// orients a start from linear modes (DIR_EVOLUTION).
 pub fn mean_quadratic_energy(sys: &System, x: &[f64]) -> f64 {
     let l = sys.lay;
     let nl = l.nl;

@@ -44,7 +44,7 @@ fn check_points(pts: &[Point], s: &Settings) -> Stats {
     st
 }
 
-/// Energy strictly increasing along the run (direction +1) and, for a hardening stop,
+/// Energy strictly increasing along the run (DIR_EVOLUTION −1, forward) and, for a hardening stop,
 /// frequency non-decreasing with it (1e-9 relative slack: below contact the frequency is
 /// the linear one and only round-off moves it).
 fn assert_hardening(pts: &[Point]) {

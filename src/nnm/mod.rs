@@ -10,8 +10,12 @@
 //!   2H_nl+1 coefficients; forces in N, r in m), then ω (rad/s) and γ (1/s, the unfolding
 //!   parameter, zero on an exact solution). Without any shock H_nl is taken equal to H_l.
 //! - ENERGIE is Code_Aster's (see `energy.rs`); `energy_spread` is our a-posteriori check.
-//! - `Settings::direction`: +1 follows the branch toward increasing energy, −1 toward
-//!   decreasing energy (Code_Aster's sign has no physical meaning; ours does).
+//! - `Settings::direction` (DIR_EVOLUTION): −1 goes forward, +1 backward. From a linear
+//!   mode, forward is toward increasing amplitude; backward toward decreasing amplitude
+//!   first, through zero and up again along the same orbits half a period later. From a
+//!   stored point given its direction of travel ([`StartState::travelling`]), forward goes
+//!   on that way and backward turns back. Code_Aster's sign comes from a random bordering
+//!   vector; this rule follows the paths of its validation cases (docs/mode_non_line.md).
 //! - Branch numbers in reports start at 1.
 
 // The shared `Error` (a contract of the crate) is large; boxing it here would diverge from
@@ -20,6 +24,7 @@
 
 mod anm;
 mod bifurcation;
+pub mod budget;
 mod energy;
 pub mod exact;
 mod law_check;
@@ -99,7 +104,7 @@ pub struct Settings {
     /// TEST_BIFURCATION = 'SERIE_DETERMINANT': also test the sign of the bordered
     /// tangent's determinant at every branch end (bifurcation.rs).
     pub det_test: bool,
-    /// +1: increasing energy, −1: decreasing.
+    /// DIR_EVOLUTION: −1 forward, +1 backward (module doc).
     pub direction: i32,
 }
 
@@ -137,6 +142,9 @@ pub struct BranchReport {
 /// A corrected point to continue from.
 #[derive(Clone, Debug)]
 pub struct StartState {
+    /// The direction the stored branch travelled at the start point (physical units, the
+    /// layout of `x`); None from linear modes.
+    travel: Option<Vec<f64>>,
     x: Vec<f64>,
     scaling: Scaling,
     ref_dof: usize,
@@ -144,6 +152,36 @@ pub struct StartState {
     /// The corrected start point (physical units).
     pub point: Point,
     pub newton_iterations: usize,
+}
+
+impl StartState {
+    /// The same start, continued relative to `travel`: the direction (physical units, the
+    /// layout of `Point::x`) in which the stored branch was travelling at this point, e.g.
+    /// the chord to the next stored row. DIR_EVOLUTION = −1 then goes on that way, +1 turns
+    /// back. Only the sign of its projection on the new tangent is used.
+    pub fn travelling(mut self, travel: Vec<f64>) -> Result<StartState> {
+        if travel.len() != self.x.len() || !finite(&travel) || travel.iter().all(|&v| v == 0.0) {
+            return Err(Error::internal(format!(
+                "direction of travel: {} finite values, not all zero, expected {}",
+                travel.len(),
+                self.x.len()
+            )));
+        }
+        self.travel = Some(travel);
+        Ok(self)
+    }
+}
+
+/// Forward (DIR_EVOLUTION = −1) from a linear mode: the motion grows along `x1`, measured
+/// by its time-averaged ½uᵀKu + ½vᵀMv (the energy norm of the orbit). Counting only the
+/// harmonic amplitudes, without the mean, is not enough: at first contact with a very
+/// stiff stop the harmonics can grow while the orbit's energy falls (the mean backs off the
+/// stop), which is not what "toward increasing amplitude" means to a user reading ENERGIE.
+fn motion_grows(sys: &System, x0: &[f64], x1: &[f64]) -> bool {
+    // The measure is quadratic in X: the centred difference with step 1 is exact.
+    let plus: Vec<f64> = x0.iter().zip(x1).map(|(a, c)| a + c).collect();
+    let minus: Vec<f64> = x0.iter().zip(x1).map(|(a, c)| a - c).collect();
+    energy::mean_quadratic_energy(sys, &plus) > energy::mean_quadratic_energy(sys, &minus)
 }
 
 pub struct Outcome {
@@ -321,6 +359,7 @@ fn start(sys: System, settings: &Settings, mut x: Vec<f64>) -> Result<StartState
     check_rings(&sys, &x)?;
     let point = make_point(&sys, &x, res, 0, false);
     Ok(StartState {
+        travel: None,
         border: motion_border(&sys, &x),
         x,
         scaling: sys.sc,
@@ -516,33 +555,35 @@ fn run(
     };
     let mut det_sign = det_sign_at(&solver);
     let mut prev_tangent: Option<Vec<f64>> = None;
-    let dir = if settings.direction < 0 { -1.0 } else { 1.0 };
+    // DIR_EVOLUTION (module doc): −1 forward, +1 backward.
+    let forward = settings.direction < 0;
+    let travel: Option<Vec<f64>> = st.travel.map(|t| {
+        t.iter()
+            .zip(unit_factors(&sys))
+            .map(|(v, f)| v / f)
+            .collect()
+    });
     for b in 1..=settings.n_branches {
         let orient = |x1: &[f64]| -> f64 {
-            match &prev_tangent {
-                Some(t) => {
-                    if x1.iter().zip(t).map(|(a, c)| a * c).sum::<f64>() < 0.0 {
-                        -1.0
-                    } else {
-                        1.0
-                    }
-                }
-                None => {
-                    // Energy is quadratic in X: the centred difference with step 1 is exact.
-                    let plus: Vec<f64> = x0.iter().zip(x1).map(|(a, c)| a + c).collect();
-                    let minus: Vec<f64> = x0.iter().zip(x1).map(|(a, c)| a - c).collect();
-                    let de = energy::mean_quadratic_energy(&sys, &plus)
-                        - energy::mean_quadratic_energy(&sys, &minus);
-                    if de < 0.0 {
-                        -dir
-                    } else {
-                        dir
-                    }
-                }
+            let ahead = match (&prev_tangent, &travel) {
+                (Some(t), _) => return if anm::dot(x1, t) < 0.0 { -1.0 } else { 1.0 },
+                (None, Some(t)) => anm::dot(x1, t) > 0.0,
+                (None, None) => motion_grows(&sys, &x0, x1),
+            };
+            if ahead == forward {
+                1.0
+            } else {
+                -1.0
             }
         };
         let mut ser =
             anm::compute(&sys, &mut solver, &x0, &params, &orient).map_err(|e| in_branch(e, b))?;
+        if b == 1 && anm::dot(&ser.terms[0], &border) < 0.0 {
+            // The start was factorised with the motion as border, the branch leaves against
+            // it: det [R_X; bᵀ] = (b·t)·det [R_X; tᵀ], so the start's sign flips with it (or
+            // a backward start would be flagged as a bifurcation).
+            det_sign = det_sign.map(|s| -s);
+        }
         // Safeguard: the step-length estimate assumes the series converges at a_max; where it
         // does not (nearly homogeneous regimes far up a branch, where the estimate grows
         // without bound), the end residual says so: halve the step until it is credible.

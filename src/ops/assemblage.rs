@@ -23,6 +23,13 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 .keyword(occ.key_path("OPTION"))
                 .hint("use RIGI_MECA or MASS_MECA")
         })?;
+        // Two matrices under one name: the second would silently replace the first.
+        if wanted.iter().any(|(w, _)| w == co) || args.co("NUME_DDL") == Some(co) {
+            return Err(Error::validation(format!(
+                "CO('{co}') is given twice: each result of ASSEMBLAGE needs its own name"
+            ))
+            .keyword(occ.key_path("MATRICE")));
+        }
         wanted.push((co.to_string(), kind));
     }
     // Element matrices of each requested kind (the stiffness defines the numbering, as in

@@ -44,6 +44,7 @@ pub fn run_with_option(ctx: &mut OpContext<'_>, args: &Args, option: &str) -> Re
                 .keyword(format!("{op}/MATR_RIGI")),
         );
     }
+    check_definite(ctx, &kr, &mr, &k, k_name, m_name)?;
     let set = eigen::solve_modes(&kr, &mr, &request, &EigenOptions::default())?;
     if ctx.info >= 2 {
         ctx.say(&format!(
@@ -125,15 +126,13 @@ pub fn run_with_option(ctx: &mut OpContext<'_>, args: &Args, option: &str) -> Re
 
 fn mode_request(args: &Args, option: &str, op: &str) -> Result<ModeRequest> {
     let cf = args.fact("CALC_FREQ");
-    let nmax = cf.and_then(|c| c.int("NMAX_FREQ")).unwrap_or(10);
     let freqs = cf.and_then(|c| c.reals("FREQ")).unwrap_or_default();
-    let n = usize::try_from(nmax)
-        .ok()
-        .filter(|&n| n > 0)
-        .ok_or_else(|| {
-            Error::validation(format!("NMAX_FREQ must be a positive integer, got {nmax}"))
-                .keyword(format!("{op}/CALC_FREQ/NMAX_FREQ"))
-        })?;
+    // At least 1: the catalog's bound.
+    let n = match cf {
+        Some(c) => c.count("NMAX_FREQ")?,
+        None => None,
+    }
+    .unwrap_or(10);
     match option {
         "PLUS_PETITE" => Ok(ModeRequest::Smallest { n }),
         "BANDE" => match freqs.as_slice() {
@@ -192,4 +191,52 @@ fn mode_norm(
             )
         }
     })
+}
+
+/// A negative stiffness or mass on a DOF, or a mass that is zero everywhere, has no
+/// vibration modes: say so, instead of reporting an empty band.
+fn check_definite(
+    ctx: &mut OpContext<'_>,
+    kr: &faer::sparse::SparseColMat<usize, f64>,
+    mr: &faer::sparse::SparseColMat<usize, f64>,
+    k: &crate::model::AssembledMatrix,
+    k_name: &str,
+    m_name: &str,
+) -> Result<()> {
+    use crate::linalg::sparse::diagonal;
+    let free = k.free_dofs();
+    let dof_name = |i: usize| {
+        free.get(i)
+            .and_then(|&f| k.numbering.dofs.get(f))
+            .map(|d| format!("{} {}", d.node, d.cmp.name()))
+            .unwrap_or_else(|| format!("DOF {i}"))
+    };
+    let (kd, md) = (diagonal(kr), diagonal(mr));
+    for (name, kw, d) in [(k_name, "MATR_RIGI", &kd), (m_name, "MATR_MASS", &md)] {
+        if let Some((i, v)) = d.iter().copied().enumerate().find(|(_, v)| *v < 0.0) {
+            return Err(Error::input(format!(
+                "{name} has the negative diagonal term {v:e} at {}: a stiffness or mass is negative, so there is no vibration mode",
+                dof_name(i)
+            ))
+            .keyword(format!("CALC_MODES/{kw}"))
+            .hint("check the signs of the values given to AFFE_CARA_ELEM and DEFI_MATERIAU"));
+        }
+    }
+    if !md.is_empty() && md.iter().all(|&v| v == 0.0) {
+        return Err(Error::input(format!(
+            "{m_name} is zero on every free DOF: there is no mass, so there is no vibration mode"
+        ))
+        .keyword("CALC_MODES/MATR_MASS")
+        .hint("give the masses (AFFE_CARA_ELEM M_T_D_N..., DEFI_MATERIAU RHO)"));
+    }
+    if let Some(i) = md.iter().position(|&v| v == 0.0) {
+        ctx.alarm(
+            "CALC_MODES_1",
+            &format!(
+                "{m_name} has no mass at {} (and maybe elsewhere): that DOF has no finite frequency",
+                dof_name(i)
+            ),
+        )?;
+    }
+    Ok(())
 }

@@ -29,11 +29,11 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         "RUNGE_KUTTA_4" => Integrator::Rk4,
         _ => Integrator::Newmark,
     };
-    let n_inst = schema.and_then(|s| s.int("NB_INST")).unwrap_or(1000);
-    let n_inst = usize::try_from(n_inst).map_err(|_| {
-        Error::validation(format!("NB_INST must be positive, got {n_inst}"))
-            .keyword("CALC_STABILITE/SCHEMA_TEMPS/NB_INST")
-    })?;
+    let n_inst = match schema {
+        Some(s) => s.count("NB_INST")?,
+        None => None,
+    }
+    .unwrap_or(1000);
     let rows = selected_rows(&table, args.req_fact("FILTRE")?)?;
     if rows.is_empty() {
         return Err(Error::validation("FILTRE selects no row of the table")
@@ -43,10 +43,26 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     if ctx.reuse.is_none() && name != src {
         ctx.create(&name, "table_container")?;
         mnl_store::copy_data(ctx.store, &src, &name)?;
+        ctx.store.copy_dependencies(&src, &name)?;
     }
     let stab_col = table.req_col("STABILITE")?;
     let order_col = table.req_col("NUME_ORDRE")?;
     // Built once: what every row's analysis shares (layout, dense K and M, laws).
+    let n = problem.k.nrows();
+    crate::ops::resources::check_memory(
+        "CALC_STABILITE/SCHEMA_TEMPS/NB_INST",
+        &format!("the monodromy matrix of {n} DOF(s)"),
+        crate::nnm::budget::floquet_bytes(n),
+    )?;
+    crate::ops::resources::warn_long_work(
+        ctx,
+        "CALC_STABILITE/SCHEMA_TEMPS/NB_INST",
+        &format!(
+            "{n_inst} steps per period for each of {} row(s)",
+            rows.len()
+        ),
+        crate::nnm::budget::floquet_flops(n, n_inst) * rows.len() as f64,
+    )?;
     let analyser = FloquetAnalyser::new(&problem, &settings)?;
     let progress = Progress::new(ctx.progress, rows.len() as u64, "CALC_STABILITE");
     let (mut stable, mut unstable) = (0usize, 0usize);

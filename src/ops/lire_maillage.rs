@@ -24,6 +24,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             path.display()
         ))?;
     }
+    ctx.units.read.borrow_mut().push(path.clone());
     let mesh = mesh::read_file(&path, format, args.text("NOM_MED"))?;
 
     if let Some(v) = args.fact("VERI_MAIL") {

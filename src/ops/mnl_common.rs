@@ -101,7 +101,7 @@ pub fn engine_problem(
         bif_terms: 3,
         bif_tol: 1e-4,
         det_test: false,
-        direction: 1,
+        direction: -1,
     };
     Ok((problem, settings, free))
 }

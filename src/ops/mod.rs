@@ -29,6 +29,7 @@ pub mod impr_fonction;
 pub mod impr_table;
 pub mod lire_maillage;
 pub mod mnl_common;
+pub mod mnl_restart;
 pub mod mnl_start;
 pub mod mode_iter_simult;
 pub mod mode_non_line;
@@ -41,6 +42,7 @@ pub mod plot_args;
 mod plot_op_tests;
 pub mod progress;
 pub mod recu_fonction;
+pub mod resources;
 pub mod rest_mode_nonl;
 pub mod table_args;
 pub mod test_fonction;
@@ -70,6 +72,11 @@ pub struct Units {
     /// The command file: used to find `<stem>.mail`/`.msh`/`.med` beside it when a unit is
     /// not mapped.
     pub comm_file: Option<PathBuf>,
+    /// Files of the run that no operator may write to (the database and its journals, the
+    /// command and export files), with what each is, for the message.
+    pub protected: Vec<(PathBuf, String)>,
+    /// Input files operators have read during the run (meshes): protected as well.
+    pub read: std::cell::RefCell<Vec<PathBuf>>,
 }
 
 /// Everything an operator may use besides its arguments.

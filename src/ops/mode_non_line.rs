@@ -9,6 +9,7 @@ use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::nnm::{self, Point, Problem, Settings, StartState};
 use crate::ops::mnl_common::{engine_shock, row_of, shocks_from_cara_choc};
+use crate::ops::mnl_restart;
 use crate::ops::mnl_start;
 use crate::ops::{progress::Progress, OpContext};
 use crate::store::mnl::{self as mnl_store, MnlSetup, StoredShock};
@@ -97,6 +98,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         shocks,
     };
 
+    check_budget(ctx, &problem, &settings, &stored_shocks)?;
+
     // Start point.
     let nume_ordre = etat.req_int("NUME_ORDRE")?;
     let start: StartState = match &restart_from {
@@ -105,7 +108,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 Error::input(format!("{src} has no row NUME_ORDRE={nume_ordre}"))
                     .keyword("MODE_NON_LINE/ETAT_INIT/NUME_ORDRE")
             })?;
-            nnm::start_from_point(&problem, &settings, &x)?
+            let st = nnm::start_from_point(&problem, &settings, &x)?;
+            restart_direction(ctx, src, nume_ordre, settings.direction, st)?
         }
         None => mnl_start::from_linear_modes(ctx, etat, &problem, &settings, &k, &k_name)?,
     };
@@ -157,6 +161,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let cara_choc = format!("{name}_CHOC");
     if ctx.reuse.is_none() {
         ctx.create(&name, "table_container")?;
+        // The table names K and M and rebuilds the problem from them when it is used
+        // again: it belongs to these K and M (checked at every use, store::deps).
+        ctx.store.record_dependency(&name, &k_name)?;
+        ctx.store.record_dependency(&name, &m_name)?;
         ctx.create(&cara_choc, "table_sdaster")?;
         table_store::save_table(ctx.store, &cara_choc, &cara_choc_table(&stored_shocks)?)?;
         mnl_store::save_setup(
@@ -229,15 +237,91 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     Ok(())
 }
 
+/// A restart goes on (DIR_EVOLUTION = −1) or back (+1) relative to the direction the
+/// stored branch was travelling at the start row (mnl_restart.rs); said at INFO ≥ 1.
+fn restart_direction(
+    ctx: &mut OpContext<'_>,
+    src: &str,
+    order: i64,
+    direction: i32,
+    st: StartState,
+) -> Result<StartState> {
+    let t = table_store::load_table(ctx.store, src)?;
+    let way = if direction < 0 {
+        "on in"
+    } else {
+        "back against"
+    };
+    match mnl_restart::travel_at_row(ctx.store, &t, src, order)? {
+        Some(tr) => {
+            if ctx.info >= 1 {
+                ctx.say(&format!(
+                    "  restart from {src} row {order}: DIR_EVOLUTION={direction} goes {way} the direction \
+                     the stored branch travelled there (rows {} -> {})",
+                    tr.from, tr.to
+                ))?;
+            }
+            st.travelling(tr.direction)
+        }
+        None => {
+            ctx.alarm(
+                "MODE_NON_LINE_4",
+                &format!(
+                    "row {order} of {src} is the only stored row of its run: the direction the branch \
+                     travelled there is unknown, so DIR_EVOLUTION={direction} goes toward {} \
+                     amplitude, as from a linear mode",
+                    if direction < 0 { "increasing" } else { "decreasing" }
+                ),
+            )?;
+            Ok(st)
+        }
+    }
+}
+
+/// Refuse a call that cannot fit in memory, warn about one that will take very long: from
+/// the sizes alone, before the engine allocates anything.
+fn check_budget(
+    ctx: &mut OpContext<'_>,
+    problem: &Problem,
+    s: &Settings,
+    shocks: &[StoredShock],
+) -> Result<()> {
+    use crate::nnm::budget;
+    use crate::ops::resources;
+    let shock_unknowns = shocks
+        .iter()
+        .map(|c| match c.obstacle.as_str() {
+            "CERCLE" => 4,
+            "BI_PLAN" => 2,
+            _ => 1,
+        })
+        .sum();
+    let sizes = budget::MnlSizes {
+        n_dofs: problem.k.nrows(),
+        nnz: problem.k.compute_nnz() + problem.m.compute_nnz(),
+        h_lin: s.h_lin,
+        h_nonl: if shocks.is_empty() { s.h_lin } else { s.h_nonl },
+        shock_unknowns,
+        order: s.order,
+        stored_points: s.n_branches as f64 * s.n_points_per_branch as f64,
+    };
+    resources::check_memory(
+        "MODE_NON_LINE/RESOLUTION (NB_HARM_LINE, NB_HARM_NONL, NB_ORDRE_MAN, NB_BRANCHE, NB_PAS_MAN)",
+        "the harmonic-balance continuation",
+        budget::memory_estimate(&sizes),
+    )?;
+    resources::warn_long_work(
+        ctx,
+        "MODE_NON_LINE/RESOLUTION",
+        "the continuation",
+        budget::mnl_branch_flops(&sizes) * s.n_branches as f64,
+    )
+}
+
 fn settings(args: &Args) -> Result<Settings> {
     let r = args.req_fact("RESOLUTION")?;
-    let usize_of = |key: &str| -> Result<usize> {
-        let v = r.req_int(key)?;
-        usize::try_from(v).ok().filter(|&v| v > 0).ok_or_else(|| {
-            Error::validation(format!("{key} must be a positive integer, got {v}"))
-                .keyword(format!("MODE_NON_LINE/RESOLUTION/{key}"))
-        })
-    };
+    // The bounds (at least 1, NB_ORDRE_MAN at least 2) are the catalog's.
+    let usize_of = |key: &str| r.req_count(key);
     let h_lin = usize_of("NB_HARM_LINE")?;
     let h_nonl = usize_of("NB_HARM_NONL")?;
     if h_nonl < h_lin {
@@ -310,14 +394,8 @@ fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<StoredShock>
             }));
         }
         let node = choc_node(ctx, args, c, &kw)?;
-        let positive = |key: &str| -> Result<f64> {
-            let v = c.req_real(key)?;
-            if v > 0.0 && v.is_finite() {
-                Ok(v)
-            } else {
-                Err(Error::validation(format!("{key} must be positive, got {v}")).keyword(kw(key)))
-            }
-        };
+        // Finite and > 0: the catalog's bounds (val_min = 0, excluded).
+        let positive = |key: &str| c.req_real(key);
         let gap = positive("JEU")?;
         let stiffness = positive("RIGI_NOR")?;
         let regul = positive("PARA_REGUL")?;
@@ -327,6 +405,19 @@ fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<StoredShock>
                 Error::validation(format!("ORIG_OBST needs 3 reals, got {}", o.len()))
                     .keyword(kw("ORIG_OBST")),
             );
+        }
+        // The same shock twice doubles its stiffness without a word: refuse it.
+        if let Some(j) = out
+            .iter()
+            .position(|s: &StoredShock| s.node == node && s.cmps == cmps)
+        {
+            return Err(Error::validation(format!(
+                "CHOC[{}] acts on the same node and components as CHOC[{}]",
+                i + 1,
+                j + 1
+            ))
+            .keyword(format!("MODE_NON_LINE/CHOC[{}]", i + 1))
+            .hint("give each shock once; two obstacles on one DOF are one BI_PLAN"));
         }
         out.push(StoredShock {
             obstacle,

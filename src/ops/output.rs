@@ -5,7 +5,7 @@
 use super::{OpContext, Units};
 use crate::error::{Error, Result};
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The file behind unit `unite` (not called for 6 and 8).
 pub fn unit_path(units: &Units, unite: i64) -> PathBuf {
@@ -17,6 +17,35 @@ pub fn unit_path(units: &Units, unite: i64) -> PathBuf {
         Some(dir) => dir.join(name),
         None => PathBuf::from(name),
     }
+}
+
+/// Refuse to write to `path` when it is a file of the run (the database, its journals, the
+/// command file, a mesh read by the run) or any SQLite database: a print must never destroy
+/// what the study is made of.
+pub fn check_output_path(units: &Units, path: &Path) -> Result<()> {
+    let same = |p: &Path| p == path || crate::store::study_file::same_path(p, path);
+    if let Some((_, what)) = units.protected.iter().find(|(p, _)| same(p)) {
+        return Err(Error::validation(format!(
+            "{} is {what}: an operator will not write over it",
+            path.display()
+        ))
+        .hint("give the output another file (FICHIER, or --unit N=PATH)"));
+    }
+    if units.read.borrow().iter().any(|p| same(p)) {
+        return Err(Error::validation(format!(
+            "{} is an input file this run read: an operator will not write over it",
+            path.display()
+        ))
+        .hint("give the output another file (FICHIER, or --unit N=PATH)"));
+    }
+    if path.is_file() && crate::store::study_file::has_sqlite_header(path) {
+        return Err(Error::validation(format!(
+            "{} is an SQLite database: an operator will not write over it",
+            path.display()
+        ))
+        .hint("give the output another file (FICHIER, or --unit N=PATH)"));
+    }
+    Ok(())
 }
 
 /// Write `text` to unit `unite`.
@@ -31,6 +60,7 @@ pub fn write_unit(ctx: &mut OpContext<'_>, unite: i64, text: &str) -> Result<()>
         );
     }
     let path = unit_path(ctx.units, unite);
+    check_output_path(ctx.units, &path).map_err(|e| e.keyword("UNITE"))?;
     let mut f = std::fs::OpenOptions::new()
         .create(true)
         .append(true)

@@ -63,9 +63,17 @@ pub fn picture(ctx: &OpContext<'_>, args: &Args) -> Result<Option<Picture>> {
     if fichier.is_some_and(|f| f.trim().is_empty()) {
         return Err(Error::validation("FICHIER is empty").keyword(args.key_path("FICHIER")));
     }
+    let path = picture_path(ctx.units, fichier, unite, format.extension());
+    super::output::check_output_path(ctx.units, &path).map_err(|e| {
+        e.keyword(args.key_path(if fichier.is_some() {
+            "FICHIER"
+        } else {
+            "UNITE"
+        }))
+    })?;
     Ok(Some(Picture {
         format,
-        path: picture_path(ctx.units, fichier, unite, format.extension()),
+        path,
         // A picture title is one line.
         title: args.texts("TITRE").map(|l| l.join(" ")),
         x_label: args.text("LEGENDE_X").map(str::to_string),

@@ -61,14 +61,14 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             )
         }
         _ => {
-            let n_inst = args.int("NB_INST").unwrap_or(512);
-            let n_inst = usize::try_from(n_inst)
-                .ok()
-                .filter(|&n| n >= 2)
-                .ok_or_else(|| {
-                    Error::validation(format!("NB_INST must be at least 2, got {n_inst}"))
-                        .keyword("REST_MODE_NONL/NB_INST")
-                })?;
+            // At least 2 (the catalog's bound).
+            let n_inst = args.count("NB_INST")?.unwrap_or(512);
+            let n = problem.k.nrows();
+            crate::ops::resources::check_memory(
+                "REST_MODE_NONL/NB_INST",
+                &format!("the time history of {n} DOF(s) at {n_inst} instants"),
+                nnm::budget::time_history_bytes(n, n_inst),
+            )?;
             let th = nnm::time_history(&problem, &settings, &x, n_inst)?;
             let mut t = Table::new(format!("REST_MODE_NONL {src} NUME_ORDRE={order}"));
             for (c, kind) in [

@@ -46,6 +46,10 @@ struct MatrixMeta {
     kind: MatrixKind,
     /// Indices of the eliminated DOFs.
     eliminated: Vec<usize>,
+    /// Rows written to `matrix_entries`: a load that finds another count refuses the
+    /// matrix (rows removed or added outside aster-nl). Absent in studies written before.
+    #[serde(default)]
+    entries: Option<usize>,
 }
 
 /// Remove the rows a numbering or matrix concept owns (called by `Store::delete_concept`).
@@ -137,6 +141,7 @@ pub fn save_matrix(store: &Store, name: &str, m: &AssembledMatrix, numbering: &s
                 .filter(|(_, e)| **e)
                 .map(|(i, _)| i)
                 .collect(),
+            entries: Some(m.triplets.len()),
         },
     )
 }
@@ -173,6 +178,15 @@ pub fn load_matrix(store: &Store, name: &str) -> Result<AssembledMatrix> {
                     "matrix {name} has an entry outside its numbering of {n} DOFs"
                 )))
             }
+        }
+    }
+    if let Some(want) = meta.entries {
+        if triplets.len() != want {
+            return Err(Error::store(format!(
+                "matrix {name} has {} rows in matrix_entries, {want} were stored: the database was changed outside aster-nl",
+                triplets.len()
+            ))
+            .hint("recompute the matrix (rerun the study from DEBUT)"));
         }
     }
     let mut eliminated = vec![false; n];

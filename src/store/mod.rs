@@ -12,12 +12,14 @@
 //! Each operator runs inside one transaction ([`Store::begin_op`] / [`Store::commit_op`] /
 //! [`Store::rollback_op`]): an operator that fails leaves the file exactly as before.
 
+pub mod deps;
 pub mod function;
 pub mod matrix;
 pub mod mesh;
 pub mod mnl;
 pub mod model;
 pub mod modes;
+pub mod study_file;
 pub mod table;
 
 use crate::error::{Error, Result};
@@ -31,6 +33,9 @@ pub const SCHEMA_VERSION: i64 = 1;
 pub struct Store {
     conn: Connection,
     path: Option<PathBuf>,
+    /// The run's exclusive lock on the study (none for in-memory and read-only stores).
+    /// Declared after `conn` so that the connection closes before the lock is released.
+    _lock: Option<study_file::StudyLock>,
 }
 
 /// One row of the `concepts` table.
@@ -63,9 +68,29 @@ CREATE TABLE IF NOT EXISTS concept_data (
 ";
 
 impl Store {
-    /// Start a new study (DEBUT): any existing file at `path` is replaced.
+    /// Start a new study (DEBUT). The study is locked first (a second run on it is refused);
+    /// an existing file at `path` is replaced only if it is an aster-nl database
+    /// (see [`study_file`]); `purpose` names the run in the lock file.
     pub fn create(path: &Path) -> Result<Store> {
-        if path.exists() {
+        Self::create_for(path, "a study")
+    }
+
+    /// [`Store::create`] recording `purpose` (e.g. the command file) in the lock.
+    pub fn create_for(path: &Path, purpose: &str) -> Result<Store> {
+        let lock = study_file::StudyLock::acquire(path, purpose)?;
+        let replace = study_file::check_replaceable(path)?;
+        study_file::check_writable(path)?;
+        if replace {
+            // Our lock is held, so no aster-nl run uses these: a journal left by a killed
+            // run of the old study must not be applied to the new one.
+            for j in study_file::journal_paths(path) {
+                if matches!(
+                    study_file::file_kind(&j)?,
+                    study_file::FileKind::OtherFile | study_file::FileKind::Sqlite
+                ) {
+                    let _ = std::fs::remove_file(&j);
+                }
+            }
             std::fs::remove_file(path).map_err(|e| {
                 Error::store(format!(
                     "cannot replace the database {}: {e}",
@@ -77,24 +102,45 @@ impl Store {
         let store = Store {
             conn,
             path: Some(path.to_path_buf()),
+            _lock: Some(lock),
         };
         store.init_schema()?;
         Ok(store)
     }
 
-    /// Continue a study (POURSUITE): the file must exist and carry a schema we know.
+    /// Continue a study (POURSUITE): the file must exist, carry a schema we know and be
+    /// writable; the study is locked for as long as the store lives.
     pub fn open(path: &Path) -> Result<Store> {
-        if !path.exists() {
-            return Err(
-                Error::store(format!("no database to continue at {}", path.display())).hint(
-                    "POURSUITE continues a study started by DEBUT; run that one first or pass --db",
-                ),
-            );
-        }
+        Self::open_for(path, "a study")
+    }
+
+    /// [`Store::open`] recording `purpose` (e.g. the command file) in the lock.
+    pub fn open_for(path: &Path, purpose: &str) -> Result<Store> {
+        let lock = study_file::StudyLock::acquire(path, purpose)?;
+        study_file::check_openable(path)?;
+        study_file::check_writable(path)?;
         let conn = Connection::open(path)?;
         let store = Store {
             conn,
             path: Some(path.to_path_buf()),
+            _lock: Some(lock),
+        };
+        store.check_schema()?;
+        // A study written before dependencies were recorded gets the tables now.
+        store.conn.execute_batch(deps::SCHEMA)?;
+        Ok(store)
+    }
+
+    /// Open a study to read it (`aster-nl tables`): no lock, nothing written, so it works
+    /// while a run holds the study.
+    pub fn open_read_only(path: &Path) -> Result<Store> {
+        use rusqlite::OpenFlags;
+        study_file::check_openable(path)?;
+        let conn = Connection::open_with_flags(path, OpenFlags::SQLITE_OPEN_READ_ONLY)?;
+        let store = Store {
+            conn,
+            path: Some(path.to_path_buf()),
+            _lock: None,
         };
         store.check_schema()?;
         Ok(store)
@@ -105,6 +151,7 @@ impl Store {
         let store = Store {
             conn: Connection::open_in_memory()?,
             path: None,
+            _lock: None,
         };
         store.init_schema()?;
         Ok(store)
@@ -122,6 +169,7 @@ impl Store {
     fn init_schema(&self) -> Result<()> {
         self.conn.execute_batch("PRAGMA foreign_keys = ON;")?;
         self.conn.execute_batch(CORE_SCHEMA)?;
+        self.conn.execute_batch(deps::SCHEMA)?;
         self.conn.execute(
             "INSERT OR REPLACE INTO meta(key, value) VALUES ('schema_version', ?1)",
             params![SCHEMA_VERSION.to_string()],
@@ -210,6 +258,7 @@ impl Store {
             "INSERT INTO concepts(name, type, operator, file, line) VALUES (?1, ?2, ?3, ?4, ?5)",
             params![name, ty, operator, file, line as i64],
         )?;
+        self.new_generation(name)?;
         Ok(())
     }
 
@@ -245,6 +294,7 @@ impl Store {
     /// cleanup in [`Store::drop_typed_data`].
     pub fn delete_concept(&self, name: &str) -> Result<()> {
         self.drop_typed_data(name)?;
+        self.drop_dependency_data(name)?;
         self.conn
             .execute("DELETE FROM concept_data WHERE concept = ?1", params![name])?;
         self.conn

@@ -125,12 +125,26 @@ pub fn load_modes(store: &Store, name: &str) -> Result<ModeMeca> {
         let entries = vals.query_map(params![name, m.nume_ordre as i64], |r| {
             Ok((r.get::<_, i64>(0)?, r.get::<_, f64>(1)?))
         })?;
+        let mut found = 0;
         for e in entries {
             let (i, v) = e?;
-            let slot = shape.get_mut(i as usize).ok_or_else(|| {
-                Error::store(format!("mode_shapes of {name} names DOF {i} out of range"))
-            })?;
+            let slot = usize::try_from(i)
+                .ok()
+                .and_then(|i| shape.get_mut(i))
+                .ok_or_else(|| {
+                    Error::store(format!("mode_shapes of {name} names DOF {i} out of range"))
+                })?;
             *slot = v;
+            found += 1;
+        }
+        // Every DOF of every mode is stored: fewer rows mean the file was edited.
+        if found != numbering.len() {
+            return Err(Error::store(format!(
+                "mode {} of {name} has {found} rows in mode_shapes for {} DOFs: the database was changed outside aster-nl",
+                m.nume_ordre,
+                numbering.len()
+            ))
+            .hint("recompute the modes (rerun the study from DEBUT)"));
         }
         m.shape = shape;
     }

@@ -27,6 +27,8 @@ pub const INTERNAL_TABLES: &[&str] = &[
     "meta",
     "concepts",
     "concept_data",
+    "concept_generations",
+    "concept_deps",
     "table_meta",
     "table_columns",
     "table_links",

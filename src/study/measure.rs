@@ -46,7 +46,7 @@ pub fn settings(cfg: &Config, points_per_branch: usize, det_test: bool) -> Setti
         bif_terms: 3,
         bif_tol: 1e-4,
         det_test,
-        direction: 1,
+        direction: -1,
     }
 }
 

@@ -28,7 +28,7 @@ fn settings(hl: usize, hn: usize, branches: usize) -> Settings {
         bif_terms: 3,
         bif_tol: 1e-4,
         det_test: true,
-        direction: 1,
+        direction: -1,
     }
 }
 

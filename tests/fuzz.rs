@@ -1,0 +1,449 @@
+//! Fuzzing the `aster-nl` binary with mutated inputs (issue 11): every command file of
+//! `testcases/` (and `testcases/hard/`) and every mesh of `testcases/meshes/` is mutated
+//! (bytes, lines, numbers, keywords), then `check` and `run` are executed on the mutants in
+//! a child process under a memory limit and a timeout. Whatever the input, the process must
+//! end by itself with exit code 0, 1 or 2: no panic, no abort, no signal, no hang.
+//!
+//! In CI this runs a bounded number of mutants (a minute or two). A long campaign:
+//!
+//! ```sh
+//! FUZZ_CHECKS=100000 FUZZ_RUNS=5000 FUZZ_MESHES=20000 FUZZ_SEED=7 \
+//!   nice -n 19 cargo test --release --test fuzz -- --nocapture
+//! ```
+//!
+//! Findings (the input, the command and its output) are written under
+//! `target/fuzz-findings/`; the test fails if there is any.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// Address-space limit of each child (bytes): far below the machine, far above any case.
+const MEMORY_LIMIT_KB: u64 = 4 * 1024 * 1024;
+
+fn env_usize(name: &str, default: usize) -> usize {
+    std::env::var(name)
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
+}
+
+/// A small deterministic generator (xorshift64*): reproducible from FUZZ_SEED.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+    fn below(&mut self, n: usize) -> usize {
+        if n == 0 {
+            0
+        } else {
+            (self.next() % n as u64) as usize
+        }
+    }
+    fn pick<'a>(&mut self, items: &[&'a str]) -> &'a str {
+        items[self.below(items.len())]
+    }
+}
+
+/// Tokens a hostile but fair user might type.
+const TOKENS: &[&str] = &[
+    "0",
+    "-1",
+    "1e400",
+    "-1e400",
+    "nan",
+    "1e-320",
+    "9223372036854775807",
+    "18446744073709551616",
+    "100000",
+    "1e9",
+    "0.",
+    "(",
+    ")",
+    "[",
+    "]",
+    "_F(",
+    ",",
+    "=",
+    "'",
+    "\"",
+    "\\",
+    "#",
+    "\n",
+    "\t",
+    " ",
+    "\u{feff}",
+    "é",
+    "CO('K2')",
+    "reuse=",
+    "DEBUT()",
+    "POURSUITE()",
+    "FIN()",
+    "None",
+    "for i in range(3):",
+    "    ",
+    "from math import *",
+    "**",
+    "/0",
+    "1/0.",
+    "2**1000",
+    "NB_HARM_NONL=",
+    "NB_INST=",
+    "NB_PAS_MAN=",
+    "NB_BRANCHE=",
+    "JEU=",
+    "RIGI_NOR=",
+    "UNITE=",
+    "FICHIER='x.db'",
+    "CHOC=_F(",
+    "MATR_RIGI=",
+    "TABLE=",
+    "NUME_ORDRE=",
+    "DETRUIRE(CONCEPT=_F(NOM=K))",
+    "$Nodes",
+    "$EndNodes",
+    "$Elements",
+    "COOR_3D",
+    "FINSF",
+    "FIN",
+    "SEG2",
+    "POI1",
+    "GROUP_MA",
+    "N1",
+    "M1",
+    "-0",
+    "+",
+    "-",
+];
+
+/// One mutation of `text`.
+fn mutate(rng: &mut Rng, text: &str) -> String {
+    let bytes = text.as_bytes();
+    let mut out: Vec<u8> = bytes.to_vec();
+    let n_mut = 1 + rng.below(3);
+    for _ in 0..n_mut {
+        let len = out.len().max(1);
+        match rng.below(9) {
+            // Delete a range.
+            0 => {
+                let a = rng.below(len);
+                let b = (a + 1 + rng.below(40)).min(out.len());
+                if a < b {
+                    out.drain(a..b);
+                }
+            }
+            // Insert a token.
+            1 | 2 => {
+                let at = rng.below(len + 1).min(out.len());
+                let tok = rng.pick(TOKENS);
+                out.splice(at..at, tok.bytes());
+            }
+            // Replace a number by an extreme one.
+            3 | 4 => {
+                let starts: Vec<usize> = (0..out.len())
+                    .filter(|&i| {
+                        out[i].is_ascii_digit() && (i == 0 || !out[i - 1].is_ascii_alphanumeric())
+                    })
+                    .collect();
+                if !starts.is_empty() {
+                    let a = starts[rng.below(starts.len())];
+                    let mut b = a;
+                    while b < out.len() && (out[b].is_ascii_digit() || b".eE-+".contains(&out[b])) {
+                        b += 1;
+                    }
+                    let tok = rng.pick(&[
+                        "0",
+                        "-1",
+                        "1e400",
+                        "nan",
+                        "100000",
+                        "1000000000",
+                        "9223372036854775807",
+                        "1e-300",
+                        "2",
+                        "3.5",
+                        "-0.",
+                        "1e6",
+                    ]);
+                    out.splice(a..b, tok.bytes());
+                }
+            }
+            // Duplicate a line.
+            5 => {
+                let s = String::from_utf8_lossy(&out).into_owned();
+                let lines: Vec<&str> = s.split('\n').collect();
+                let i = rng.below(lines.len());
+                let mut v: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
+                v.insert(i, lines[i].to_string());
+                out = v.join("\n").into_bytes();
+            }
+            // Delete a line.
+            6 => {
+                let s = String::from_utf8_lossy(&out).into_owned();
+                let mut v: Vec<&str> = s.split('\n').collect();
+                if v.len() > 1 {
+                    v.remove(rng.below(v.len()));
+                }
+                out = v.join("\n").into_bytes();
+            }
+            // Flip a byte (printable).
+            7 => {
+                if !out.is_empty() {
+                    let i = rng.below(out.len());
+                    const PRINTABLE: &[u8] = b" !\"#$%&'()*+,-./0123456789:;<=>?@AZ[\\]^_az{|}~";
+                    out[i] = PRINTABLE[rng.below(PRINTABLE.len())];
+                }
+            }
+            // Truncate.
+            _ => {
+                let at = rng.below(len).min(out.len());
+                out.truncate(at);
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+/// How one child ended.
+enum Ending {
+    Ok,
+    Finding(String),
+}
+
+/// Run the binary with `args` in `dir` under the memory limit; `timeout` ends a hang.
+fn run_child(dir: &Path, args: &[&str], timeout: Duration) -> Ending {
+    let bin = env!("CARGO_BIN_EXE_aster-nl");
+    let mut cmd = Command::new("sh");
+    cmd.arg("-c")
+        .arg(format!("ulimit -v {MEMORY_LIMIT_KB}; exec \"$0\" \"$@\""))
+        .arg(bin)
+        .args(args)
+        .current_dir(dir)
+        .env("RUST_BACKTRACE", "0")
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped());
+    let mut child = match cmd.spawn() {
+        Ok(c) => c,
+        Err(e) => return Ending::Finding(format!("cannot start: {e}")),
+    };
+    // Read stderr on a thread so that a chatty child never blocks on a full pipe.
+    let mut stderr = child.stderr.take();
+    let reader = std::thread::spawn(move || {
+        let mut s = String::new();
+        if let Some(e) = stderr.as_mut() {
+            let _ = e.read_to_string(&mut s);
+        }
+        s
+    });
+    let started = Instant::now();
+    let status = loop {
+        match child.try_wait() {
+            Ok(Some(st)) => break Some(st),
+            Ok(None) if started.elapsed() > timeout => {
+                let _ = child.kill();
+                let _ = child.wait();
+                break None;
+            }
+            Ok(None) => std::thread::sleep(Duration::from_millis(5)),
+            Err(_) => break None,
+        }
+    };
+    let err = reader.join().unwrap_or_default();
+    match status {
+        None => Ending::Finding(format!("no end after {timeout:?} (hang)\n{err}")),
+        Some(st) => match st.code() {
+            Some(0..=2) if !err.contains("panicked") => Ending::Ok,
+            Some(c) => Ending::Finding(format!("exit code {c}\n{err}")),
+            None => Ending::Finding(format!("killed by a signal ({st:?})\n{err}")),
+        },
+    }
+}
+
+fn files(dir: &Path, ext: &[&str]) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map(|rd| {
+            rd.filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| {
+                    p.extension()
+                        .and_then(|e| e.to_str())
+                        .is_some_and(|e| ext.contains(&e))
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    v.sort();
+    v
+}
+
+struct Campaign {
+    findings_dir: PathBuf,
+    findings: Vec<String>,
+    counts: [usize; 3],
+}
+
+impl Campaign {
+    /// A progress line every 1000 mutants (a long campaign can be read while it runs).
+    fn progress(&self) {
+        let total: usize = self.counts.iter().sum();
+        if total.is_multiple_of(1000) {
+            println!(
+                "fuzz progress: {} check, {} run, {} mesh mutants; {} finding(s)",
+                self.counts[0],
+                self.counts[1],
+                self.counts[2],
+                self.findings.len()
+            );
+        }
+    }
+
+    fn record(&mut self, what: &str, input_name: &str, input: &str, ending: Ending) {
+        if let Ending::Finding(why) = ending {
+            let n = self.findings.len();
+            let _ = std::fs::create_dir_all(&self.findings_dir);
+            let base = self.findings_dir.join(format!("{n:04}-{input_name}"));
+            let _ = std::fs::write(&base, input);
+            let _ = std::fs::write(base.with_extension("why"), format!("{what}\n{why}"));
+            self.findings.push(format!(
+                "{what} on {}: {}",
+                base.display(),
+                why.lines().next().unwrap_or("")
+            ));
+        }
+    }
+}
+
+#[test]
+fn mutated_inputs_never_crash_or_hang() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let seed = env_usize("FUZZ_SEED", 11) as u64;
+    let n_checks = env_usize("FUZZ_CHECKS", 600);
+    let n_runs = env_usize("FUZZ_RUNS", 40);
+    let n_meshes = env_usize("FUZZ_MESHES", 200);
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ seed.wrapping_mul(0x1000_0000_01B3));
+    let mut comms = files(&root.join("testcases"), &["comm"]);
+    comms.extend(files(&root.join("testcases/hard"), &["comm"]));
+    comms.extend(files(&root.join("testcases/errors"), &["comm"]));
+    assert!(!comms.is_empty());
+    let texts: Vec<(PathBuf, String)> = comms
+        .iter()
+        .map(|p| (p.clone(), std::fs::read_to_string(p).unwrap()))
+        .collect();
+    let work = tempfile::tempdir().unwrap();
+    let mut c = Campaign {
+        findings_dir: root.join("target/fuzz-findings"),
+        findings: Vec::new(),
+        counts: [0; 3],
+    };
+
+    // `check` on mutants of every command file, in turn.
+    for i in 0..n_checks {
+        let (path, text) = &texts[i % texts.len()];
+        let mutant = mutate(&mut rng, text);
+        let f = work.path().join("m.comm");
+        std::fs::write(&f, &mutant).unwrap();
+        let e = run_child(work.path(), &["check", "m.comm"], Duration::from_secs(30));
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        c.record("check", &name, &mutant, e);
+        c.counts[0] += 1;
+        c.progress();
+    }
+
+    // `run` on mutants, beside the case's mesh, with a database of its own. The cases that
+    // take more than a second as they are stay out of the CI budget unless asked for.
+    let quick: Vec<&(PathBuf, String)> = texts
+        .iter()
+        .filter(|(p, _)| {
+            let n = p.file_name().unwrap().to_string_lossy();
+            std::env::var_os("FUZZ_ALL_RUNS").is_some()
+                || [
+                    "chain_fixed_fixed",
+                    "chain_free_free",
+                    "beam_cantilever",
+                    "tables_functions",
+                    "poursuite_debut",
+                    "sdnd122a",
+                    "syntax",
+                    "catalog",
+                    "runtime",
+                    "nook",
+                ]
+                .iter()
+                .any(|q| n.starts_with(q))
+        })
+        .collect();
+    for i in 0..n_runs {
+        let (path, text) = quick[i % quick.len()];
+        let mutant = mutate(&mut rng, text);
+        let case_dir = work.path().join(format!("run{}", i % 4));
+        let _ = std::fs::remove_dir_all(&case_dir);
+        std::fs::create_dir_all(&case_dir).unwrap();
+        let stem = path.file_stem().unwrap().to_string_lossy().into_owned();
+        for ext in ["mail", "msh"] {
+            let m = path.with_extension(ext);
+            if m.exists() {
+                std::fs::copy(&m, case_dir.join(format!("{stem}.{ext}"))).unwrap();
+            }
+        }
+        let comm = format!("{stem}.comm");
+        std::fs::write(case_dir.join(&comm), &mutant).unwrap();
+        let e = run_child(&case_dir, &["run", &comm], Duration::from_secs(60));
+        c.record("run", &comm, &mutant, e);
+        c.counts[1] += 1;
+        c.progress();
+    }
+
+    // Mutated meshes through LIRE_MAILLAGE.
+    let meshes: Vec<(PathBuf, String)> = files(&root.join("testcases/meshes"), &["mail", "msh"])
+        .into_iter()
+        .chain(files(&root.join("testcases"), &["mail"]))
+        .map(|p| {
+            let t = std::fs::read_to_string(&p).unwrap();
+            (p, t)
+        })
+        .collect();
+    let mesh_dir = work.path().join("mesh");
+    std::fs::create_dir_all(&mesh_dir).unwrap();
+    for i in 0..n_meshes {
+        let (path, text) = &meshes[i % meshes.len()];
+        let mutant = mutate(&mut rng, text);
+        let ext = path.extension().unwrap().to_string_lossy().into_owned();
+        let format = if ext == "msh" { "GMSH" } else { "ASTER" };
+        std::fs::write(mesh_dir.join(format!("m.{ext}")), &mutant).unwrap();
+        std::fs::write(
+            mesh_dir.join("m.comm"),
+            format!("DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='{format}', UNITE=20)\nFIN()\n"),
+        )
+        .unwrap();
+        let _ = std::fs::remove_file(mesh_dir.join("m.db"));
+        let e = run_child(
+            &mesh_dir,
+            &["run", "m.comm", "--unit", &format!("20=m.{ext}")],
+            Duration::from_secs(30),
+        );
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        c.record("run (mesh)", &name, &mutant, e);
+        c.counts[2] += 1;
+        c.progress();
+    }
+
+    println!(
+        "fuzz (seed {seed}): {} check, {} run, {} mesh mutants; {} finding(s)",
+        c.counts[0],
+        c.counts[1],
+        c.counts[2],
+        c.findings.len()
+    );
+    assert!(
+        c.findings.is_empty(),
+        "{} finding(s):\n{}",
+        c.findings.len(),
+        c.findings.join("\n")
+    );
+}

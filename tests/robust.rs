@@ -1,0 +1,577 @@
+//! Issue 11: nothing a user types can destroy data, crash the program or hang it.
+//! Each test drives the `aster-nl` binary as a user would and fails on the builds before
+//! the fix (the item of the issue is named in each test's comment).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_aster-nl"))
+}
+
+fn case(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("testcases")
+        .join(name)
+}
+
+fn text(o: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+/// `aster-nl run <comm> --db <db> [extra...]`.
+fn run_with_db(comm: &Path, db: &Path, extra: &[&str]) -> Output {
+    bin()
+        .arg("run")
+        .arg(comm)
+        .arg("--db")
+        .arg(db)
+        .args(extra)
+        .output()
+        .unwrap()
+}
+
+/// A directory holding a copy of a test case (command file and its mesh, if any).
+fn copy_case(stem: &str) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    for ext in ["comm", "mail"] {
+        let from = case(&format!("{stem}.{ext}"));
+        if from.exists() {
+            std::fs::copy(&from, dir.path().join(format!("{stem}.{ext}"))).unwrap();
+        }
+    }
+    let comm = dir.path().join(format!("{stem}.comm"));
+    (dir, comm)
+}
+
+fn db_concepts(db: &Path) -> Vec<String> {
+    let c = rusqlite::Connection::open(db).unwrap();
+    let mut st = c
+        .prepare("SELECT name FROM concepts ORDER BY rowid")
+        .unwrap();
+    let names = st
+        .query_map([], |r| r.get::<_, String>(0))
+        .unwrap()
+        .collect::<Result<Vec<_>, _>>()
+        .unwrap();
+    names
+}
+
+// ---- item 1: DEBUT only replaces an aster-nl database ----
+
+#[test]
+fn debut_refuses_to_replace_the_command_file() {
+    let (_dir, comm) = copy_case("chain_fixed_fixed");
+    let before = std::fs::read(&comm).unwrap();
+    let o = run_with_db(&comm, &comm, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("is not an aster-nl database"), "{out}");
+    assert!(
+        out.contains("--db"),
+        "the message says how to proceed: {out}"
+    );
+    assert_eq!(
+        std::fs::read(&comm).unwrap(),
+        before,
+        "the command file was touched"
+    );
+    assert!(!out.contains("every concept created before"), "{out}");
+}
+
+#[test]
+fn debut_refuses_to_replace_the_mesh() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let mesh = dir.path().join("chain_fixed_fixed.mail");
+    let before = std::fs::read(&mesh).unwrap();
+    let o = run_with_db(&comm, &mesh, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("chain_fixed_fixed.mail"), "{out}");
+    assert_eq!(
+        std::fs::read(&mesh).unwrap(),
+        before,
+        "the mesh was touched"
+    );
+}
+
+#[test]
+fn debut_never_touches_a_directory_or_a_device() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let o = run_with_db(&comm, dir.path(), &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("is a directory"), "{out}");
+    let o = run_with_db(&comm, Path::new("/dev/null"), &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("not a regular file"), "{out}");
+    use std::os::unix::fs::FileTypeExt;
+    let ft = std::fs::symlink_metadata("/dev/null").unwrap().file_type();
+    assert!(ft.is_char_device(), "/dev/null was replaced");
+}
+
+#[test]
+fn debut_refuses_an_sqlite_file_that_is_not_a_study() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let other = dir.path().join("other.db");
+    rusqlite::Connection::open(&other)
+        .unwrap()
+        .execute_batch("CREATE TABLE precious(x); INSERT INTO precious VALUES (42);")
+        .unwrap();
+    let o = run_with_db(&comm, &other, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("not an aster-nl study"), "{out}");
+    let n: i64 = rusqlite::Connection::open(&other)
+        .unwrap()
+        .query_row("SELECT x FROM precious", [], |r| r.get(0))
+        .unwrap();
+    assert_eq!(n, 42);
+}
+
+#[test]
+fn debut_replaces_an_aster_database() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let db = dir.path().join("s.db");
+    for _ in 0..2 {
+        let o = run_with_db(&comm, &db, &[]);
+        assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    }
+    assert!(!db_concepts(&db).is_empty());
+    assert!(
+        !aster_nl::store::study_file::lock_path(&db).exists(),
+        "the lock file is removed at the end of the run"
+    );
+}
+
+// ---- item 2: one run at a time on a study ----
+
+#[test]
+fn a_second_run_on_a_locked_study_is_refused_at_once() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let db = dir.path().join("s.db");
+    let o = run_with_db(&comm, &db, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let before = db_concepts(&db);
+    // Another run holds the study (this test process takes the lock a run takes).
+    let lock =
+        aster_nl::store::study_file::StudyLock::acquire(&db, "first.comm (the first run)").unwrap();
+    for comm in [comm.clone(), case("poursuite_suite.comm")] {
+        let o = run_with_db(&comm, &db, &[]);
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{out}");
+        assert!(out.contains("is in use by"), "{out}");
+        assert!(
+            out.contains(&format!("process {}", std::process::id())),
+            "names the other process: {out}"
+        );
+        assert!(!out.contains("every concept created before"), "{out}");
+    }
+    assert_eq!(db_concepts(&db), before, "the locked study was changed");
+    drop(lock);
+    let o = run_with_db(&case("poursuite_suite.comm"), &db, &[]);
+    // poursuite_suite continues poursuite_debut, not this study: it fails, but it ran.
+    assert!(!text(&o).contains("is in use by"), "{}", text(&o));
+}
+
+#[test]
+fn tables_reads_a_study_while_a_run_holds_it() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let db = dir.path().join("s.db");
+    let o = run_with_db(&comm, &db, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let _lock = aster_nl::store::study_file::StudyLock::acquire(&db, "x").unwrap();
+    let o = bin().arg("tables").arg(&db).output().unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(text(&o).contains("concepts:"));
+}
+
+// ---- item 7: a study that cannot be written is refused before any operator runs ----
+
+#[test]
+fn poursuite_on_a_read_only_study_is_refused_before_running() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("study.db");
+    let o = run_with_db(&case("poursuite_debut.comm"), &db, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    std::fs::set_permissions(&db, std::fs::Permissions::from_mode(0o444)).unwrap();
+    let o = run_with_db(&case("poursuite_suite.comm"), &db, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("read-only"), "{out}");
+    assert!(!out.contains("TEST_RESU"), "an operator ran: {out}");
+    assert!(!out.contains(" OK "), "an operator ran: {out}");
+}
+
+#[test]
+fn debut_in_a_read_only_directory_is_refused_before_running() {
+    use std::os::unix::fs::PermissionsExt;
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let studies = dir.path().join("studies");
+    std::fs::create_dir(&studies).unwrap();
+    std::fs::set_permissions(&studies, std::fs::Permissions::from_mode(0o555)).unwrap();
+    let o = run_with_db(&comm, &studies.join("s.db"), &[]);
+    std::fs::set_permissions(&studies, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("read-only"), "{out}");
+    assert!(!out.contains(" OK "), "an operator ran: {out}");
+}
+
+// ---- item 5: errors far along a long line, and long lines in linear time ----
+
+#[test]
+fn an_error_past_column_65535_is_reported_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let comm = dir.path().join("long.comm");
+    let vale: Vec<String> = (0..7000)
+        .map(|i| format!("{i}.0, {}", i as f64 * 0.5))
+        .collect();
+    let line = format!(
+        "F = DEFI_FONCTION(NOM_PARA='INST', VALE=({}, BADKW))",
+        vale.join(", ")
+    );
+    let col = line.find("BADKW").unwrap() + 1;
+    assert!(col > 65_535);
+    std::fs::write(&comm, format!("DEBUT()\n{line}\nFIN()\n")).unwrap();
+    for sub in ["check", "run"] {
+        let o = bin().arg(sub).arg(&comm).output().unwrap();
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{sub}: {out}");
+        assert!(!out.contains("panicked"), "{sub}: {out}");
+        assert!(out.contains("BADKW"), "{sub}: {out}");
+        assert!(out.contains(&format!("long.comm:2:{col}")), "{sub}: {out}");
+    }
+}
+
+// ---- item 6: prints never write over the study or the files of the run ----
+
+const PRINTS: &str = "DEBUT()
+T = CREA_TABLE(LISTE=(_F(PARA='NUME_ORDRE', LISTE_I=(1, 2)), _F(PARA='FREQ', LISTE_R=(1., 2.))))
+F = DEFI_FONCTION(NOM_PARA='INST', VALE=(0., 0., 1., 1.))
+IMPR_TABLE(TABLE=T, UNITE=30)
+FIN()
+";
+
+#[test]
+fn impr_table_refuses_to_write_over_the_database_or_the_command_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let comm = dir.path().join("p.comm");
+    std::fs::write(&comm, PRINTS).unwrap();
+    let db = dir.path().join("p.db");
+    let o = run_with_db(&comm, &db, &["--unit", &format!("30={}", db.display())]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("the database of the study"), "{out}");
+    // The database is whole: the concepts before the print are there.
+    assert_eq!(db_concepts(&db), vec!["T".to_string(), "F".to_string()]);
+    let c = rusqlite::Connection::open(&db).unwrap();
+    let ok: String = c
+        .query_row("PRAGMA integrity_check", [], |r| r.get(0))
+        .unwrap();
+    assert_eq!(ok, "ok");
+    let o = run_with_db(&comm, &db, &["--unit", &format!("30={}", comm.display())]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("the command file of the run"), "{out}");
+    assert_eq!(std::fs::read_to_string(&comm).unwrap(), PRINTS);
+}
+
+#[test]
+fn impr_fonction_refuses_to_write_over_the_mesh_it_read_or_another_database() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let mesh = dir.path().join("chain_fixed_fixed.mail");
+    let before = std::fs::read(&mesh).unwrap();
+    let mut text_comm = std::fs::read_to_string(&comm).unwrap();
+    let fin = text_comm.rfind("FIN(").unwrap();
+    text_comm.insert_str(
+        fin,
+        "FX = DEFI_FONCTION(NOM_PARA='INST', VALE=(0., 0., 1., 1.))\nIMPR_FONCTION(UNITE=20, COURBE=_F(FONCTION=FX))\n",
+    );
+    std::fs::write(&comm, &text_comm).unwrap();
+    let db = dir.path().join("s.db");
+    let o = run_with_db(&comm, &db, &["--unit", &format!("20={}", mesh.display())]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("input file this run read"), "{out}");
+    assert_eq!(std::fs::read(&mesh).unwrap(), before);
+    // Another study's database is not a print target either.
+    let other = dir.path().join("other.db");
+    let o = run_with_db(&case("tables_functions.comm"), &other, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let before = std::fs::read(&other).unwrap();
+    std::fs::write(&comm, PRINTS).unwrap();
+    let o = run_with_db(&comm, &db, &["--unit", &format!("30={}", other.display())]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("is an SQLite database"), "{out}");
+    assert_eq!(std::fs::read(&other).unwrap(), before);
+}
+
+#[test]
+fn a_picture_may_not_replace_the_database() {
+    let dir = tempfile::tempdir().unwrap();
+    let comm = dir.path().join("p.comm");
+    std::fs::write(
+        &comm,
+        PRINTS.replace(
+            "IMPR_TABLE(TABLE=T, UNITE=30)",
+            "IMPR_FONCTION(FORMAT='PNG', FICHIER='p.db', COURBE=_F(FONCTION=F))",
+        ),
+    )
+    .unwrap();
+    let db = dir.path().join("p.db");
+    let o = run_with_db(&comm, &db, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("the database of the study"), "{out}");
+    assert!(out.contains("FICHIER"), "{out}");
+    assert_eq!(db_concepts(&db), vec!["T".to_string(), "F".to_string()]);
+}
+
+// ---- item 3: the catalog's bounds are what the operators enforce ----
+
+/// `check` and `run` agree on each bound: both refuse the value, naming the keyword (before
+/// the fix, `check` accepted every one of these values and `run` refused them).
+#[test]
+fn check_refuses_what_run_refuses() {
+    let base = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let cases: &[(&str, &str, &str)] = &[
+        ("NB_BRANCHE=105", "NB_BRANCHE=0", "NB_BRANCHE"),
+        ("NB_ORDRE_MAN=20", "NB_ORDRE_MAN=1", "NB_ORDRE_MAN"),
+        (
+            "ITER_NEWTON_MAXI=15",
+            "ITER_NEWTON_MAXI=0",
+            "ITER_NEWTON_MAXI",
+        ),
+        ("PREC_MAN=1.e-14", "PREC_MAN=0.", "PREC_MAN"),
+        ("PREC_NEWTON=1.e-9", "PREC_NEWTON=0.", "PREC_NEWTON"),
+        ("NB_PAS_MAN=1", "NB_PAS_MAN=0", "NB_PAS_MAN"),
+        ("NB_HARM_LINE=5", "NB_HARM_LINE=0", "NB_HARM_LINE"),
+        ("PREC_MAN=1.e-14", "PREC_MAN=1.e400", "PREC_MAN"),
+        ("JEU=0.01", "JEU=0.", "JEU"),
+        ("RIGI_NOR=50.", "RIGI_NOR=0.", "RIGI_NOR"),
+        ("PARA_REGUL=5.e-5", "PARA_REGUL=0.", "PARA_REGUL"),
+        ("COEF_AMPL=1.", "COEF_AMPL=0.", "COEF_AMPL"),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("b.mail")).unwrap();
+    let comm = dir.path().join("b.comm");
+    for (from, to, kw) in cases {
+        assert!(base.contains(from), "{from}");
+        std::fs::write(&comm, base.replace(from, to)).unwrap();
+        let o = bin().arg("check").arg(&comm).output().unwrap();
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "check {to}: {out}");
+        assert!(out.contains(kw), "check {to}: {out}");
+        let o = run_with_db(&comm, &dir.path().join("b.db"), &[]);
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "run {to}: {out}");
+        assert!(out.contains(kw), "run {to}: {out}");
+        assert!(
+            !out.contains("MODE_NON_LINE: branch"),
+            "run {to} computed: {out}"
+        );
+    }
+}
+
+/// Size keywords that asked for terabytes (and aborted the process) or overflowed a
+/// capacity (a panic) are refused at once, naming the keyword, the estimate and the memory.
+#[test]
+fn size_keywords_that_cannot_fit_are_refused_before_allocating() {
+    let base = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("b.mail")).unwrap();
+    let comm = dir.path().join("b.comm");
+    let huge = i64::MAX.to_string();
+    let cases: Vec<(String, &str)> = vec![
+        (
+            base.replace("NB_HARM_NONL=200", "NB_HARM_NONL=100000"),
+            "NB_HARM_NONL",
+        ),
+        (
+            base.replace("NB_HARM_NONL=200", &format!("NB_HARM_NONL={huge}"))
+                .replace("NB_HARM_LINE=5", &format!("NB_HARM_LINE={huge}")),
+            "NB_HARM_NONL",
+        ),
+        (
+            base.replace("NB_PAS_MAN=1", "NB_PAS_MAN=1000000"),
+            "NB_PAS_MAN",
+        ),
+        (
+            base.replace("NB_INST=256", "NB_INST=1000000000000"),
+            "REST_MODE_NONL/NB_INST",
+        ),
+    ];
+    for (text_comm, kw) in cases {
+        std::fs::write(&comm, &text_comm).unwrap();
+        let o = run_with_db(&comm, &dir.path().join("b.db"), &[]);
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{kw}: {out}");
+        assert!(out.contains(kw), "{kw}: {out}");
+        assert!(out.contains("of memory"), "{kw}: {out}");
+        assert!(
+            out.contains("available") || out.contains("unknown"),
+            "{kw}: {out}"
+        );
+        assert!(!out.contains("panicked"), "{kw}: {out}");
+    }
+}
+
+// ---- item 9: a concept computed from another is refused once that one is redefined ----
+
+#[test]
+fn a_mode_non_line_table_is_refused_after_its_stiffness_is_reassigned() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("first.mail")).unwrap();
+    let base = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let mnl = base
+        .find("MNL = MODE_NON_LINE(")
+        .expect("sdnd122a computes MNL");
+    let cut = mnl
+        + base[mnl..]
+            .find("\n\n")
+            .expect("a blank line after the call");
+    let first = format!("{}\nFIN()\n", &base[..cut]).replace("NB_BRANCHE=105", "NB_BRANCHE=5");
+    std::fs::write(dir.path().join("first.comm"), &first).unwrap();
+    let db = dir.path().join("s.db");
+    let o = run_with_db(&dir.path().join("first.comm"), &db, &[]);
+    assert!(matches!(o.status.code(), Some(0) | Some(1)), "{}", text(&o));
+    // POURSUITE: the same model with another spring, same size, assembled as RIGIDITE again.
+    let second = "POURSUITE()
+CARA2 = AFFE_CARA_ELEM(MODELE=MODELE,
+                       DISCRET=(_F(CARA='M_T_D_N', GROUP_MA='P2', VALE=1.0),
+                                _F(CARA='K_T_D_N', GROUP_MA='P2', VALE=(0., 0., 0.)),
+                                _F(CARA='K_T_D_L', GROUP_MA='M1', VALE=(40., 0., 0.),
+                                   REPERE='GLOBAL'),))
+ASSEMBLAGE(MODELE=MODELE, CARA_ELEM=CARA2, CHAR_CINE=CL, NUME_DDL=CO('NUMEDDL'),
+           MATR_ASSE=(_F(MATRICE=CO('RIGIDITE'), OPTION='RIGI_MECA'),))
+HIST = REST_MODE_NONL(MODE_NON_LINE=MNL, NUME_ORDRE=2, TYPE_RESU='DYNA_TRANS', NB_INST=64)
+FIN()
+";
+    std::fs::write(dir.path().join("second.comm"), second).unwrap();
+    let o = run_with_db(&dir.path().join("second.comm"), &db, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("MNL was computed from RIGIDITE"), "{out}");
+    assert!(out.contains("redefined"), "{out}");
+    assert!(!db_concepts(&db).contains(&"HIST".to_string()), "{out}");
+    // CALC_STABILITE is refused the same way.
+    let third = "POURSUITE()
+MNL2 = CALC_STABILITE(MODE_NON_LINE=MNL, FILTRE=_F(NUME_ORDRE=2))
+FIN()
+";
+    std::fs::write(dir.path().join("third.comm"), third).unwrap();
+    let o = run_with_db(&dir.path().join("third.comm"), &db, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("MNL was computed from RIGIDITE"), "{out}");
+}
+
+// ---- item 8: silent acceptance ----
+
+#[test]
+fn the_same_choc_twice_and_one_co_name_twice_are_refused() {
+    let base = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let choc = "_F(OBSTACLE='PLAN', GROUP_NO='N2', NOM_CMP='DX',
+                            JEU=0.01, RIGI_NOR=50., PARA_REGUL=5.e-5)";
+    assert!(base.contains(choc));
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("b.mail")).unwrap();
+    let comm = dir.path().join("b.comm");
+    std::fs::write(&comm, base.replace(choc, &format!("({choc}, {choc})"))).unwrap();
+    let o = run_with_db(&comm, &dir.path().join("b.db"), &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("CHOC[2] acts on the same node"), "{out}");
+    std::fs::write(
+        &comm,
+        base.replace("MATRICE=CO('MASSE')", "MATRICE=CO('RIGIDITE')"),
+    )
+    .unwrap();
+    let o = run_with_db(&comm, &dir.path().join("b.db"), &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("CO('RIGIDITE') is given twice"), "{out}");
+}
+
+#[test]
+fn an_export_with_two_command_files_or_a_device_unit_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("chain_fixed_fixed.comm"), dir.path().join("a.comm")).unwrap();
+    let export = dir.path().join("a.export");
+    std::fs::write(&export, "F comm a.comm D 1\nF comm a.comm D 1\n").unwrap();
+    let o = bin().arg("run").arg(&export).output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("a second F comm"), "{out}");
+    std::fs::write(&export, "F comm a.comm D 1\nF mail /dev/null D 20\n").unwrap();
+    let o = bin().arg("run").arg(&export).output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("not a regular file"), "{out}");
+}
+
+#[test]
+fn a_database_with_removed_matrix_or_shape_rows_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("study.db");
+    let o = run_with_db(&case("poursuite_debut.comm"), &db, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let backup = std::fs::read(&db).unwrap();
+    for (sql, what) in [
+        (
+            "DELETE FROM matrix_entries WHERE rowid IN (SELECT rowid FROM matrix_entries LIMIT 1)",
+            "matrix_entries",
+        ),
+        (
+            "DELETE FROM mode_shapes WHERE rowid IN (SELECT rowid FROM mode_shapes LIMIT 1)",
+            "mode_shapes",
+        ),
+    ] {
+        std::fs::write(&db, &backup).unwrap();
+        rusqlite::Connection::open(&db)
+            .unwrap()
+            .execute_batch(sql)
+            .unwrap();
+        let o = run_with_db(&case("poursuite_suite.comm"), &db, &[]);
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{what}: {out}");
+        assert!(out.contains(what), "{what}: {out}");
+        assert!(out.contains("changed outside aster-nl"), "{what}: {out}");
+    }
+}
+
+#[test]
+fn a_negative_or_zero_mass_is_named_not_an_empty_band() {
+    let base = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("b.mail")).unwrap();
+    let comm = dir.path().join("b.comm");
+    for (from, to, want) in [
+        ("VALE=1.0", "VALE=-1.0", "negative diagonal term"),
+        ("VALE=1.0", "VALE=0.0", "no mass"),
+        (
+            "VALE=(10., 0., 0.)",
+            "VALE=(-10., 0., 0.)",
+            "negative diagonal term",
+        ),
+    ] {
+        assert!(base.contains(from));
+        std::fs::write(&comm, base.replacen(from, to, 1)).unwrap();
+        let o = run_with_db(&comm, &dir.path().join("b.db"), &[]);
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{to}: {out}");
+        assert!(out.contains(want), "{to}: {out}");
+        assert!(
+            !out.contains("no mode in the requested band"),
+            "{to}: {out}"
+        );
+    }
+}
