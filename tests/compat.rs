@@ -282,10 +282,10 @@ fn code_aster_operators_we_do_not_implement_say_so() {
         "{out}"
     );
     assert!(out.contains("SQLite"), "{out}");
-    let (code, out) = check_text("DEBUT()\nMA = MODI_MAILLAGE(reuse=MA)\nFIN()\n", &[]);
+    let (code, out) = check_text("DEBUT()\nDEFI_FICHIER(UNITE=38)\nFIN()\n", &[]);
     assert_eq!(code, Some(2), "{out}");
     assert!(
-        out.contains("MODI_MAILLAGE is a Code_Aster operator"),
+        out.contains("DEFI_FICHIER is a Code_Aster operator"),
         "{out}"
     );
 }
@@ -342,4 +342,48 @@ fn spellings_13x_and_17x_give_the_same_branch() {
 fn med_mesh_beam_against_the_closed_form() {
     let dir = tempfile::tempdir().unwrap();
     run_case("beam_med.comm", dir.path(), 6);
+}
+
+/// The sdnd122a system in a 13.x PAR_LOT='NON' file: CODE=_F(NOM=...), MODI_MAILLAGE
+/// DEFORME/ALEA, MODE_ITER_SIMULT, and the reference computed in Python from
+/// T.EXTR_TABLE() / tab.ENERGIE[0] / T['FREQUENCE', 1].
+#[test]
+fn par_lot_non_file_reads_its_table_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = bin()
+        .arg("run")
+        .arg(case("compat_par_lot.comm"))
+        .arg("--db")
+        .arg(dir.path().join("c.db"))
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert!(out.contains("tests: 6 OK, 0 NOOK"), "{out}");
+    assert!(
+        out.contains("DEFORME/ALEA=1e-8: 2 node(s) moved at random"),
+        "{out}"
+    );
+    assert!(out.contains("rows in the energy window:"), "{out}");
+}
+
+/// Under ERREUR=_F(ALARME='EXCEPTION') an alarm of aster-nl's own (here DEFI_GROUP's note
+/// that a GROUP_NO exists, on the second TOUT_GROUP_MA) stays an alarm: Code_Aster would not stop the file there.
+#[test]
+fn own_alarms_do_not_stop_an_exception_file() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("compat_par_lot.mail"), dir.path().join("case.mail")).unwrap();
+    let path = dir.path().join("case.comm");
+    std::fs::write(
+        &path,
+        "DEBUT(ERREUR=_F(ALARME='EXCEPTION'))\nMA = LIRE_MAILLAGE(FORMAT='ASTER')\n\
+         MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_NO=_F(TOUT_GROUP_MA='OUI'))\n\
+         MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_NO=_F(TOUT_GROUP_MA='OUI'))\nFIN()\n",
+    )
+    .unwrap();
+    let o = bin().arg("run").arg(&path).output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert!(out.contains("<A> <DEFI_GROUP_EXISTS>"), "{out}");
+    assert!(out.contains("applies to Code_Aster's alarms only"), "{out}");
 }

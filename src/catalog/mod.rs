@@ -67,7 +67,6 @@ pub fn operator_names() -> Vec<&'static str> {
 /// file using one gets a clear error naming it, not "unknown operator".
 const UNSUPPORTED: &[(&str, &str)] = &[
     ("IMPR_RESU", "every result is in the SQLite database (`aster-nl tables DB`, docs/store.md); IMPR_TABLE prints tables"),
-    ("MODI_MAILLAGE", "give the mesh with the orientation it needs"),
     ("DEFI_FICHIER", "map logical units with --unit N=FILE or the F lines of a .export"),
     ("INFO_MODE", "CALC_MODES prints the frequencies it finds"),
     ("NORM_MODE", "CALC_MODES normalises with its NORM_MODE keyword"),
@@ -123,6 +122,11 @@ pub fn result_type(op: &str, args: &Args) -> Option<String> {
 
 /// [`result_type`] for a given catalog.
 pub fn result_type_with(def: &OperatorDef, args: &Args) -> Option<String> {
+    if let Some(c) = def.result_type_of.as_ref().and_then(|k| args.concept(k)) {
+        if c.ty != UNKNOWN_CONCEPT_TYPE {
+            return Some(c.ty.clone());
+        }
+    }
     if let Some(rf) = &def.result_from {
         if let Some(t) = args.text(&rf.keyword).and_then(|v| rf.map.get(v)) {
             return Some(t.clone());

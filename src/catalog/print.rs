@@ -71,6 +71,9 @@ pub(crate) fn result_label(op: &OperatorDef) -> String {
         }
         (None, None) => "nothing".into(),
     };
+    if let Some(k) = &op.result_type_of {
+        s = format!("the type of {k} ({s} when unknown)");
+    }
     let of = op
         .reuse_of
         .as_ref()

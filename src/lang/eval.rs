@@ -447,7 +447,7 @@ impl Evaluator<'_> {
                 let vals = self.positional(&attr.text, args)?;
                 return builtins::call_math(&attr.text, &vals).map_err(|m| self.input(m, span));
             }
-            if !self.env.vars.contains_key(m) {
+            if !self.env.vars.contains_key(m) && self.host.lookup_concept(m).is_none() {
                 let mut err = self.input(format!("name '{m}' is not defined"), base.span);
                 if m == "math" {
                     err = err.hint("add `import math` at the top of the file");
@@ -462,7 +462,10 @@ impl Evaluator<'_> {
                     if let Some(s) = pos.first().map(|p| p.1).or(kws.first().map(|k| k.span)) {
                         return Err(self.syntax("EXTR_TABLE() takes no argument", s));
                     }
-                    return self.host.table_contents(&c).map_err(|e| e.at(self.file, span));
+                    return self
+                        .host
+                        .table_contents(&c)
+                        .map_err(|e| e.at(self.file, span));
                 }
                 return Err(self.input(
                     format!(
@@ -497,12 +500,22 @@ impl Evaluator<'_> {
         if para.is_empty() {
             return Err(self
                 .input(
-                    format!("a table is indexed by ('PARA', row), got {}", key.kind_name()),
+                    format!(
+                        "a table is indexed by ('PARA', row), got {}",
+                        key.kind_name()
+                    ),
                     span,
                 )
-                .hint(format!("write {}['FREQUENCE', 1] (rows count from 1)", table.name)));
+                .hint(format!(
+                    "write {}['FREQUENCE', 1] (rows count from 1)",
+                    table.name
+                )));
         }
-        let t = match self.host.table_contents(table).map_err(|e| e.at(self.file, span))? {
+        let t = match self
+            .host
+            .table_contents(table)
+            .map_err(|e| e.at(self.file, span))?
+        {
             Value::Table(t) => t,
             other => return Ok(other),
         };

@@ -6,6 +6,7 @@ pub mod edit;
 pub mod gmsh;
 pub mod med;
 pub mod select;
+pub mod transform;
 
 use crate::error::Result;
 use serde::{Deserialize, Serialize};

@@ -33,6 +33,7 @@ pub mod mnl_restart;
 pub mod mnl_start;
 pub mod mode_iter_simult;
 pub mod mode_non_line;
+pub mod modi_maillage;
 pub mod nume_ddl;
 #[cfg(test)]
 mod op_tests;
@@ -168,9 +169,19 @@ impl<'a> OpContext<'a> {
     }
 
     /// Print an alarm (warning) unless the user silenced its id in DEBUT(IGNORE_ALARM=...);
-    /// with DEBUT(ERREUR=_F(ALARME='EXCEPTION')) the alarm is an error instead.
+    /// with DEBUT(ERREUR=_F(ALARME='EXCEPTION')) an alarm Code_Aster raises in the same
+    /// situation ([`CODE_ASTER_ALARMS`]) is an error instead. aster-nl's own alarms stay
+    /// alarms there: a file written for Code_Aster asks for Code_Aster's alarms to stop
+    /// it, and must not be stopped by a diagnostic Code_Aster does not make.
     pub fn alarm(&mut self, id: &str, message: &str) -> Result<()> {
         if self.ignored_alarms.iter().any(|a| a == id) {
+            return Ok(());
+        }
+        if self.alarms_are_errors && !CODE_ASTER_ALARMS.contains(&id) {
+            writeln!(
+                self.out,
+                "<A> <{id}> {message} (aster-nl's own alarm: ERREUR/ALARME='EXCEPTION' applies to Code_Aster's alarms only)"
+            )?;
             return Ok(());
         }
         if self.alarms_are_errors {
@@ -190,6 +201,17 @@ impl<'a> OpContext<'a> {
         Ok(())
     }
 }
+
+/// Alarms Code_Aster raises in the same situation: RECU_FONCTION reordering the abscissas
+/// (FONCT0_62, the id Code_Aster's files silence) and LIRE_MAILLAGE's checks of the mesh
+/// (orphan, coincident nodes, degenerate cells: Code_Aster's VERI_MAIL, on by default).
+/// Only these become errors under DEBUT(ERREUR=_F(ALARME='EXCEPTION')).
+pub const CODE_ASTER_ALARMS: &[&str] = &[
+    "FONCT0_62",
+    "MAILLAGE_ORPHAN_NODES",
+    "MAILLAGE_COINCIDENT_NODES",
+    "MAILLAGE_DEGENERATE_CELLS",
+];
 
 /// Signature of every operator.
 pub type OpFn = fn(&mut OpContext<'_>, &Args) -> Result<()>;
@@ -228,6 +250,7 @@ pub fn lookup(name: &str) -> Option<OpFn> {
         "LIRE_MAILLAGE" => lire_maillage::run,
         "CREA_MAILLAGE" => crea_maillage::run,
         "DEFI_GROUP" => defi_group::run,
+        "MODI_MAILLAGE" => modi_maillage::run,
         _ => return None,
     };
     Some(f)
