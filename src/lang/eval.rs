@@ -448,6 +448,21 @@ impl Evaluator<'_> {
                 return builtins::call_math(&attr.text, &vals).map_err(|m| self.input(m, span));
             }
             if !self.env.vars.contains_key(m) && self.host.lookup_concept(m).is_none() {
+                if m == "code_aster" {
+                    return Err(self
+                        .input(
+                            format!(
+                                "code_aster.{}(): the Python API of Code_Aster (code_aster.init(), \
+                                 code_aster.Mesh(), TestCase...) is not supported",
+                                attr.text
+                            ),
+                            span,
+                        )
+                        .hint(
+                            "write the study as a command file: DEBUT(), LIRE_MAILLAGE(...) and \
+                             the other operators, FIN()",
+                        ));
+                }
                 let mut err = self.input(format!("name '{m}' is not defined"), base.span);
                 if m == "math" {
                     err = err.hint("add `import math` at the top of the file");

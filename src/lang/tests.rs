@@ -956,3 +956,16 @@ fn table_contents_in_python() {
         );
     }
 }
+
+#[test]
+fn the_code_aster_python_api_is_named_as_unsupported() {
+    let src = Source::new("t.py", "import code_aster\ncode_aster.init()\n");
+    let e = run(&src, &mut Env::new(), &mut Recorder::default()).unwrap_err();
+    assert!(
+        e.message
+            .starts_with("code_aster.init(): the Python API of Code_Aster"),
+        "{}",
+        e.message
+    );
+    assert!(e.hint.unwrap_or_default().contains("DEBUT()"));
+}
