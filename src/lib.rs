@@ -34,6 +34,7 @@ pub mod ops;
 pub mod plot;
 pub mod store;
 pub mod study;
+pub mod suggest;
 pub mod sweep;
 pub mod table;
 pub mod value;

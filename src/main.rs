@@ -64,8 +64,9 @@ enum Command {
         /// Grid of settings: small (a quick look) or full (the documented study).
         #[arg(long, value_enum, default_value = "small")]
         grid: GridArg,
-        /// Directory receiving accuracy_<case>.csv/.md/.png/.svg.
-        #[arg(long, default_value = "docs")]
+        /// Directory receiving accuracy_<case>.csv/.md/.png/.svg (created if missing;
+        /// no default, so that a study never writes into a source tree unasked).
+        #[arg(long)]
         out: PathBuf,
         /// Which system: the one-DOF wall (exact reference), the 2-DOF chain, or both.
         #[arg(long, value_enum, default_value = "both")]

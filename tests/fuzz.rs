@@ -447,3 +447,152 @@ fn mutated_inputs_never_crash_or_hang() {
         c.findings.join("\n")
     );
 }
+
+/// What one in-process input did: nothing wrong, or a panic / a hang with its message.
+fn in_process<F: FnOnce() + Send + 'static>(work: F, timeout: Duration) -> Ending {
+    let (done, wait) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(work));
+        let _ = done.send(outcome.map_err(|p| {
+            p.downcast_ref::<String>()
+                .cloned()
+                .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_else(|| "panic".to_string())
+        }));
+    });
+    match wait.recv_timeout(timeout) {
+        Ok(Ok(())) => Ending::Ok,
+        Ok(Err(msg)) => Ending::Finding(format!("panicked: {msg}")),
+        Err(_) => Ending::Finding(format!("no end after {timeout:?} (hang)")),
+    }
+}
+
+/// The same mutants through the library, without a process per input: the parser, the
+/// static checker and the rendering of every error it reports (what `aster-nl check`
+/// does), and the ASTER and Gmsh mesh readers on mutated meshes. A process costs about a
+/// tenth of a second, so this is how a campaign reaches 10⁵ inputs in minutes; aborts and
+/// memory limits stay the business of the process campaign above.
+///
+/// ```sh
+/// FUZZ_INPROC_CHECKS=100000 FUZZ_INPROC_MESHES=30000 FUZZ_SEED=7 \
+///   nice -n 19 cargo test --release --test fuzz in_process -- --nocapture
+/// ```
+#[test]
+fn mutated_inputs_never_panic_in_process() {
+    use aster_nl::lang::{render_plain, Source};
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let seed = env_usize("FUZZ_SEED", 11) as u64;
+    let n_checks = env_usize("FUZZ_INPROC_CHECKS", 3000);
+    let n_meshes = env_usize("FUZZ_INPROC_MESHES", 1000);
+    let mut rng = Rng(0x2545_F491_4F6C_DD1D ^ seed.wrapping_mul(0x1000_0000_01B3));
+    let mut comms = files(&root.join("testcases"), &["comm"]);
+    comms.extend(files(&root.join("testcases/hard"), &["comm"]));
+    comms.extend(files(&root.join("testcases/errors"), &["comm"]));
+    let texts: Vec<(String, String)> = comms
+        .iter()
+        .map(|p| {
+            let name = p.file_name().unwrap().to_string_lossy().into_owned();
+            (name, std::fs::read_to_string(p).unwrap())
+        })
+        .collect();
+    let meshes: Vec<(String, String)> = files(&root.join("testcases/meshes"), &["mail", "msh"])
+        .into_iter()
+        .chain(files(&root.join("testcases"), &["mail"]))
+        .map(|p| {
+            let name = p.file_name().unwrap().to_string_lossy().into_owned();
+            (name, std::fs::read_to_string(&p).unwrap())
+        })
+        .collect();
+    assert!(!texts.is_empty() && !meshes.is_empty());
+    // A panic is caught and recorded; the default hook would print each one as it happens.
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let mut c = Campaign {
+        findings_dir: root.join("target/fuzz-findings/in-process"),
+        findings: Vec::new(),
+        counts: [0; 3],
+    };
+    let started = Instant::now();
+    let mut n_errors = 0usize;
+    let errors_seen = std::sync::Arc::new(std::sync::atomic::AtomicUsize::new(0));
+    for i in 0..n_checks {
+        let (name, text) = &texts[i % texts.len()];
+        let mutant = mutate(&mut rng, text);
+        let src = Source {
+            name: name.clone(),
+            text: mutant.clone(),
+        };
+        let seen = errors_seen.clone();
+        let e = in_process(
+            move || {
+                let errors = aster_nl::interp::check_source(&src);
+                for e in &errors {
+                    // Rendering is where the column-65,536 panic lived (issue 11, item 5).
+                    let shown = render_plain(e, Some(&src));
+                    assert!(!shown.is_empty(), "an error renders as nothing");
+                }
+                seen.fetch_add(errors.len().min(1), std::sync::atomic::Ordering::Relaxed);
+            },
+            Duration::from_secs(30),
+        );
+        c.record("check (in process)", name, &mutant, e);
+        c.counts[0] += 1;
+        c.progress();
+    }
+    n_errors += errors_seen.load(std::sync::atomic::Ordering::Relaxed);
+    for i in 0..n_meshes {
+        let (name, text) = &meshes[i % meshes.len()];
+        let mutant = mutate(&mut rng, text);
+        let (m, file) = (mutant.clone(), name.clone());
+        let e = in_process(
+            move || {
+                let _ = if file.ends_with(".msh") {
+                    aster_nl::mesh::gmsh::parse(&m, &file)
+                } else {
+                    aster_nl::mesh::aster::parse(&m, &file)
+                };
+            },
+            Duration::from_secs(30),
+        );
+        c.record("mesh (in process)", name, &mutant, e);
+        c.counts[2] += 1;
+        c.progress();
+    }
+    std::panic::set_hook(hook);
+    println!(
+        "fuzz in process (seed {seed}): {} check mutants ({} with errors reported), {} mesh mutants in {:.1} s; {} finding(s)",
+        c.counts[0],
+        n_errors,
+        c.counts[2],
+        started.elapsed().as_secs_f64(),
+        c.findings.len()
+    );
+    // The mutations must exercise the error paths, not only files that stay valid.
+    assert!(
+        n_checks == 0 || n_errors * 4 >= n_checks,
+        "{n_errors} of {n_checks} mutants gave an error"
+    );
+    assert!(
+        c.findings.is_empty(),
+        "{} finding(s):\n{}",
+        c.findings.len(),
+        c.findings.join("\n")
+    );
+}
+
+#[test]
+fn the_in_process_harness_reports_a_panic_and_a_hang() {
+    assert!(matches!(
+        in_process(|| (), Duration::from_secs(5)),
+        Ending::Ok
+    ));
+    match in_process(|| panic!("on purpose"), Duration::from_secs(5)) {
+        Ending::Finding(why) => assert!(why.contains("on purpose"), "{why}"),
+        Ending::Ok => panic!("a panic was not seen"),
+    }
+    let hang = in_process(
+        || std::thread::sleep(Duration::from_secs(3)),
+        Duration::from_millis(100),
+    );
+    assert!(matches!(hang, Ending::Finding(ref w) if w.contains("hang")));
+}

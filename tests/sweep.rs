@@ -143,7 +143,7 @@ fn check_merged(out: &Path) -> Vec<Vec<Value>> {
             let Value::Text(err) = &p[4] else {
                 panic!("{p:?}")
             };
-            assert!(err.contains("JEU") && err.contains(">= 0"), "{err}");
+            assert!(err.contains("JEU") && err.contains("> 0"), "{err}");
         } else {
             assert_eq!(*status, Value::Text("ok".into()), "{p:?}");
             let (Value::Text(id), Value::Text(db)) = (&p[0], &p[5]) else {

@@ -263,31 +263,12 @@ impl miette::SourceCode for Excerpt {
     }
 }
 
-/// Levenshtein distance (in characters).
-pub fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut cur = vec![i + 1; b.len() + 1];
-        for (j, cb) in b.iter().enumerate() {
-            let sub = prev[j] + usize::from(ca != *cb);
-            cur[j + 1] = sub.min(prev[j + 1] + 1).min(cur[j] + 1);
-        }
-        prev = cur;
-    }
-    prev[b.len()]
-}
-
-/// Up to three names close to `name`, closest first.
+/// Up to three names close to `name`, closest first (the rule of `crate::suggest`).
 pub fn suggestions(name: &str, candidates: &[String]) -> Vec<String> {
-    let limit = (name.chars().count() / 3).max(1);
-    let mut scored: Vec<(usize, &String)> = candidates
-        .iter()
-        .map(|c| (edit_distance(name, c), c))
-        .filter(|(d, _)| *d <= limit)
-        .collect();
-    scored.sort();
-    scored.into_iter().take(3).map(|(_, c)| c.clone()).collect()
+    crate::suggest::closest(name, candidates.iter().map(String::as_str))
+        .into_iter()
+        .map(str::to_string)
+        .collect()
 }
 
 /// "did you mean 'A' or 'B'?" for a list of suggestions.
@@ -414,6 +395,5 @@ mod tests {
             vec!["AFFE_MODELE".to_string()]
         );
         assert!(suggestions("XYZ", &names).is_empty());
-        assert_eq!(edit_distance("kitten", "sitting"), 3);
     }
 }

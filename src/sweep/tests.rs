@@ -201,10 +201,10 @@ fn point_directories_are_readable_or_hashed_and_stable() {
 
 #[test]
 fn the_error_line_of_a_failed_run_keeps_message_and_place() {
-    let stderr = "  × MODE_NON_LINE/CHOC/JEU: expected a value >= 0.0, got -0.01\n    ╭─[/tmp/x/points/p/wall.comm:24:29]\n 23 │ ...\n";
+    let stderr = "  × MODE_NON_LINE/CHOC/JEU: expected a value > 0.0, got -0.01\n    ╭─[/tmp/x/points/p/wall.comm:24:29]\n 23 │ ...\n";
     assert_eq!(
         first_error_line(stderr).unwrap(),
-        "MODE_NON_LINE/CHOC/JEU: expected a value >= 0.0, got -0.01 (wall.comm:24:29)"
+        "MODE_NON_LINE/CHOC/JEU: expected a value > 0.0, got -0.01 (wall.comm:24:29)"
     );
     let stderr = "Error: cannot read /x.comm\n  --> /a/b/x.comm:3:1\n";
     assert_eq!(

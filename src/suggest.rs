@@ -1,0 +1,80 @@
+//! "Did you mean" for every kind of name a user types: operators, keywords, Python
+//! variables. One rule everywhere, so a typo is caught the same way wherever it is made.
+//!
+//! Distance: optimal-string-alignment (Levenshtein plus the swap of two neighbouring
+//! characters as one edit, the commonest typo: `JUE` for `JEU`), case-insensitive, since
+//! Code_Aster's names are upper case and users type `info=` as often as `INFO=`.
+//! Closeness: at most one edit per three characters (at least one), so long Code_Aster names
+//! with two or three typos are still found while short names do not match everything.
+
+/// Edits (insert, delete, substitute, swap of neighbours) between two names, case-insensitive.
+pub fn distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.chars().flat_map(char::to_uppercase).collect();
+    let b: Vec<char> = b.chars().flat_map(char::to_uppercase).collect();
+    // Three rows of the dynamic programme: two back (for swaps), one back, current.
+    let mut before: Vec<usize> = vec![0; b.len() + 1];
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    let mut cur = vec![0; b.len() + 1];
+    for i in 0..a.len() {
+        cur[0] = i + 1;
+        for j in 0..b.len() {
+            let subst = prev[j] + usize::from(a[i] != b[j]);
+            let mut d = subst.min(prev[j + 1] + 1).min(cur[j] + 1);
+            if i > 0 && j > 0 && a[i] == b[j - 1] && a[i - 1] == b[j] {
+                d = d.min(before[j - 1] + 1);
+            }
+            cur[j + 1] = d;
+        }
+        std::mem::swap(&mut before, &mut prev);
+        std::mem::swap(&mut prev, &mut cur);
+    }
+    prev[b.len()]
+}
+
+/// Up to three candidates close to `name`, closest first (ties in the candidates' order of
+/// sorting); a candidate differing only in case always counts as close.
+pub fn closest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> Vec<&'a str> {
+    let limit = (name.chars().count() / 3).max(1);
+    let mut scored: Vec<(usize, &str)> = candidates
+        .into_iter()
+        .map(|c| (distance(name, c), c))
+        .filter(|(d, _)| *d <= limit)
+        .collect();
+    scored.sort();
+    scored.dedup_by(|a, b| a.1 == b.1);
+    scored.into_iter().take(3).map(|(_, c)| c).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn distance_counts_edits() {
+        assert_eq!(distance("JEU", "JEU"), 0);
+        assert_eq!(
+            distance("JEU", "JUE"),
+            1,
+            "a swap of neighbours is one edit"
+        );
+        assert_eq!(distance("RIGI_NOR", "RIGINOR"), 1);
+        assert_eq!(distance("info", "INFO"), 0);
+        assert_eq!(distance("", "ABC"), 3);
+        // The textbook Levenshtein example (no swap in it).
+        assert_eq!(distance("kitten", "sitting"), 3);
+        // Optimal string alignment: a swapped pair is not edited again.
+        assert_eq!(distance("CA", "ABC"), 3);
+    }
+
+    #[test]
+    fn closest_ranks_and_filters() {
+        let c = ["MATR_RIGI", "MATR_MASS", "CHOC", "INFO"];
+        assert_eq!(closest("MATR_RIGU", c), vec!["MATR_RIGI"]);
+        assert_eq!(closest("MATR_MAS", c), vec!["MATR_MASS"]);
+        assert_eq!(closest("CHCO", c), vec!["CHOC"]);
+        assert_eq!(closest("info", c), vec!["INFO"]);
+        assert!(closest("ZZZZZZZZZ", c).is_empty());
+        // A short name is not close to every short name.
+        assert!(closest("XY", ["AB", "CD"]).is_empty());
+    }
+}
