@@ -10,7 +10,8 @@ use crate::error::{Error, Result};
 use crate::lang::{self, Env, Host, Source};
 use crate::ops::{self, OpContext, TestOutcome, Units};
 use crate::store::Store;
-use crate::value::{CommandCall, ConceptRef, Value};
+use crate::table::Cell;
+use crate::value::{CommandCall, ConceptRef, Keyword, TableValue, Value};
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -23,6 +24,9 @@ pub struct RunOptions {
     pub units: Units,
     /// Draw progress bars (only when stderr is a terminal).
     pub progress: bool,
+    /// `--tole-machine X`: every real non-regression tolerance (VALE_CALC) is at least X,
+    /// for files whose VALE_CALC another code computed. None: Code_Aster's semantics.
+    pub tole_machine: Option<f64>,
 }
 
 /// What a run did, for the FIN summary and the exit code.
@@ -51,22 +55,68 @@ impl RunSummary {
 }
 
 /// DEBUT/POURSUITE keywords accepted for compatibility with Code_Aster files that have no
-/// effect in aster-nl; the run says so when a file gives them.
+/// effect in aster-nl; the run says so when a file gives them. IGNORE_ALARM and
+/// ERREUR/ALARME have an effect and are not listed.
 const DEBUT_NO_EFFECT: &[&str] = &[
     "CODE",
     "DEBUG",
     "PAR_LOT",
     "MEMOIRE",
     "RESERVE_CPU",
+    "RESERVE_MEMOIRE",
     "LANG",
     "IMPR_MACRO",
     "ERREUR",
     "FORMAT_HDF",
     "BASE",
+    "CATALOGUE",
     "MESURE_TEMPS",
     "HDF",
     "INFO",
 ];
+
+/// `KEY` for a simple keyword, `KEY/SUB` for each keyword given inside a factor
+/// (`CODE='OUI'`, the plain-value form of a factor, is `CODE`), of the keywords in `names`
+/// that the call gives, in the call's order. ERREUR/ALARME is left out: it has an effect.
+fn given_no_effect(call: &CommandCall, names: &[&str]) -> Vec<String> {
+    fn occurrences(v: &Value) -> Vec<&[Keyword]> {
+        match v {
+            Value::Fact(k) => vec![k.as_slice()],
+            Value::Seq(items) => items.iter().flat_map(occurrences).collect(),
+            _ => Vec::new(),
+        }
+    }
+    let mut out: Vec<String> = Vec::new();
+    for a in call
+        .args
+        .iter()
+        .filter(|a| names.contains(&a.name.as_str()))
+    {
+        let occ = occurrences(&a.value);
+        if occ.is_empty() {
+            out.push(a.name.clone());
+            continue;
+        }
+        for k in occ.into_iter().flatten() {
+            if a.name == "ERREUR" && k.name == "ALARME" {
+                continue;
+            }
+            let key = format!("{}/{}", a.name, k.name);
+            if !out.contains(&key) {
+                out.push(key);
+            }
+        }
+    }
+    out
+}
+
+/// The line printed at the start of a run and in the FIN summary under `--tole-machine`.
+fn tole_machine_note(t: f64) -> String {
+    format!(
+        "--tole-machine {t:e}: every real non-regression tolerance (VALE_CALC) is at least {t:e} \
+         (files whose VALE_CALC another code computed); references (VALE_REFE) keep their PRECISION"
+    )
+}
 
 struct Runner<'o> {
     file: String,
@@ -75,6 +125,8 @@ struct Runner<'o> {
     progress: bool,
     store: Option<Store>,
     ignored_alarms: Vec<String>,
+    alarms_are_errors: bool,
+    tole_machine: Option<f64>,
     summary: RunSummary,
     out: &'o mut dyn Write,
 }
@@ -114,14 +166,18 @@ impl Runner<'_> {
         if let Some(alarms) = args.texts("IGNORE_ALARM") {
             self.ignored_alarms = alarms;
         }
-        let no_effect: Vec<&str> = args
-            .simple
-            .iter()
-            .map(|(k, _, _)| k.as_str())
-            .chain(args.factor.iter().map(|(k, _, _)| k.as_str()))
-            .filter(|k| DEBUT_NO_EFFECT.contains(k))
-            .filter(|k| call.args.iter().any(|a| a.name == *k))
-            .collect();
+        self.alarms_are_errors = args
+            .fact("ERREUR")
+            .and_then(|e| e.text("ALARME"))
+            .is_some_and(|a| a == "EXCEPTION");
+        if self.alarms_are_errors {
+            writeln!(
+                self.out,
+                "{}: ERREUR/ALARME='EXCEPTION': an alarm not silenced by IGNORE_ALARM stops the run as an error",
+                call.op
+            )?;
+        }
+        let no_effect = given_no_effect(call, DEBUT_NO_EFFECT);
         if !no_effect.is_empty() {
             writeln!(
                 self.out,
@@ -147,6 +203,9 @@ impl Runner<'_> {
             s.ok_count(),
             s.nook_count()
         ));
+        if let Some(t) = self.tole_machine {
+            text.push_str(&format!("{}\n", tole_machine_note(t)));
+        }
         text.push_str("time per operator:\n");
         let mut per_op: BTreeMap<&str, (usize, Duration)> = BTreeMap::new();
         for (op, _, t) in &s.timings {
@@ -194,6 +253,8 @@ impl Runner<'_> {
         ctx.line = call.span.line;
         ctx.info = info;
         ctx.ignored_alarms = &self.ignored_alarms;
+        ctx.alarms_are_errors = self.alarms_are_errors;
+        ctx.tole_machine = self.tole_machine;
         ctx.progress = self.progress;
         let outcome = op_fn(&mut ctx, args);
         let created = std::mem::take(&mut ctx.created);
@@ -264,6 +325,10 @@ impl Host for Runner<'_> {
             .collect()
     }
 
+    fn unsupported_operator(&self, name: &str) -> Option<String> {
+        catalog::unsupported(name).map(str::to_string)
+    }
+
     fn lookup_concept(&self, name: &str) -> Option<ConceptRef> {
         let store = self.store.as_ref()?;
         let ty = store.concept_type(name).ok().flatten()?;
@@ -271,6 +336,29 @@ impl Host for Runner<'_> {
             name: name.to_string(),
             ty,
         })
+    }
+
+    fn table_contents(&mut self, table: &ConceptRef) -> Result<Value> {
+        let t = crate::store::table::load_table(self.store()?, &table.name)?;
+        let rows = t
+            .rows
+            .iter()
+            .map(|r| {
+                r.iter()
+                    .map(|c| match c {
+                        Cell::Null => Value::None,
+                        Cell::R(x) => Value::Real(*x),
+                        Cell::I(i) => Value::Int(*i),
+                        Cell::K(s) => Value::Str(s.clone()),
+                    })
+                    .collect()
+            })
+            .collect();
+        Ok(Value::Table(std::sync::Arc::new(TableValue {
+            name: table.name.clone(),
+            columns: t.columns.iter().map(|c| c.name.clone()).collect(),
+            rows,
+        })))
     }
 
     fn call(&mut self, call: CommandCall) -> Result<Value> {
@@ -339,7 +427,14 @@ pub fn run_file(path: &Path, opts: RunOptions, out: &mut dyn Write) -> Result<Ru
     units
         .protected
         .push((path.to_path_buf(), "the command file of the run".into()));
-    run_source(&src, default_db, units, opts.progress, out)
+    run_source(
+        &src,
+        default_db,
+        units,
+        opts.progress,
+        opts.tole_machine,
+        out,
+    )
 }
 
 /// Run source text (the file name in `src` is used in messages and in the `concepts` table).
@@ -348,6 +443,7 @@ pub fn run_source(
     db: PathBuf,
     units: Units,
     progress: bool,
+    tole_machine: Option<f64>,
     out: &mut dyn Write,
 ) -> Result<RunSummary> {
     let program = match lang::parse(src) {
@@ -379,9 +475,14 @@ pub fn run_source(
         progress,
         store: None,
         ignored_alarms: Vec::new(),
+        alarms_are_errors: false,
+        tole_machine,
         summary: RunSummary::default(),
         out,
     };
+    if let Some(t) = tole_machine {
+        let _ = writeln!(runner.out, "{}", tole_machine_note(t));
+    }
     let mut env = Env::default();
     if let Err(e) = lang::execute(&program, src, &mut env, &mut runner) {
         runner.summary.error = Some(e);
@@ -392,12 +493,174 @@ pub fn run_source(
     Ok(runner.summary)
 }
 
+/// How to check a file.
+#[derive(Default)]
+pub struct CheckOptions {
+    /// Database a POURSUITE file continues (default: `<case>.db` beside the file).
+    pub db: Option<PathBuf>,
+    /// Logical units, to check the mesh files LIRE_MAILLAGE would read.
+    pub units: Units,
+}
+
 /// A host for `check`: validates every call, runs nothing, collects all errors.
 struct Checker {
     file: String,
     errors: Vec<Error>,
-    /// Concepts the file would create: name -> type.
+    /// Concepts the file would create, or that the continued database holds: name -> type.
     concepts: BTreeMap<String, String>,
+    /// The database a POURSUITE continues (opened read-only in effect: only queried).
+    store: Option<Store>,
+    /// Concepts that come from `store` (not created by this file).
+    from_db: Vec<String>,
+    /// POURSUITE without a database: names no statement binds are taken as concepts of an
+    /// unknown type (one error says so) rather than reported one by one.
+    names_unknown: bool,
+    default_db: PathBuf,
+    explicit_db: Option<PathBuf>,
+    units: Units,
+}
+
+impl Checker {
+    fn start(&mut self, call: &CommandCall) {
+        if call.op != "POURSUITE" {
+            return;
+        }
+        let path = self
+            .explicit_db
+            .clone()
+            .unwrap_or_else(|| self.default_db.clone());
+        match Store::open(&path) {
+            Ok(store) => match store.concepts() {
+                Ok(list) => {
+                    for c in list {
+                        self.from_db.push(c.name.clone());
+                        self.concepts.insert(c.name, c.ty);
+                    }
+                    self.store = Some(store);
+                }
+                Err(e) => self.errors.push(e.at(&self.file, call.op_span)),
+            },
+            Err(_) => {
+                self.names_unknown = true;
+                self.errors.push(
+                    Error::validation(format!(
+                        "no database to continue at {}: the concepts this file takes from an \
+                         earlier run cannot be checked",
+                        path.display()
+                    ))
+                    .at(&self.file, call.op_span)
+                    .keyword("POURSUITE")
+                    .hint("give the database: aster-nl check FILE --db STUDY.db"),
+                );
+            }
+        }
+    }
+
+    /// Problems a run would meet that the file and the database show without running:
+    /// a mesh file that is missing or of the wrong kind, a restart row that the stored
+    /// table does not have.
+    fn static_checks(&mut self, call: &CommandCall, args: &Args) {
+        let at = |e: Error| e.at(&self.file, call.op_span);
+        match call.op.as_str() {
+            "LIRE_MAILLAGE" => {
+                let format = args
+                    .text("FORMAT")
+                    .and_then(crate::mesh::MeshFormat::from_keyword)
+                    .unwrap_or(crate::mesh::MeshFormat::Aster);
+                let unit = args.int("UNITE").unwrap_or(20);
+                match ops::lire_maillage::resolve_file(&self.units, unit, format) {
+                    Ok((path, _)) => {
+                        if let Some(e) = mesh_file_problem(&path, format) {
+                            self.errors
+                                .push(at(e.keyword(format!("{}/FORMAT", call.op))));
+                        }
+                    }
+                    Err(e) => self
+                        .errors
+                        .push(at(e.keyword(format!("{}/UNITE", call.op)))),
+                }
+            }
+            "MODE_NON_LINE" | "REST_MODE_NONL" | "CALC_STABILITE" => {
+                let (table, rows, key) = match call.op.as_str() {
+                    "MODE_NON_LINE" => {
+                        let Some(etat) = args.fact("ETAT_INIT") else {
+                            return;
+                        };
+                        (
+                            etat.concept("MODE_NON_LINE").map(|c| c.name.clone()),
+                            etat.int("NUME_ORDRE").into_iter().collect::<Vec<_>>(),
+                            "ETAT_INIT/NUME_ORDRE",
+                        )
+                    }
+                    "REST_MODE_NONL" => (
+                        args.concept("MODE_NON_LINE").map(|c| c.name.clone()),
+                        args.int("NUME_ORDRE").into_iter().collect(),
+                        "NUME_ORDRE",
+                    ),
+                    _ => (
+                        args.concept("MODE_NON_LINE").map(|c| c.name.clone()),
+                        args.fact("FILTRE")
+                            .and_then(|f| f.ints("NUME_ORDRE"))
+                            .unwrap_or_default(),
+                        "FILTRE/NUME_ORDRE",
+                    ),
+                };
+                let (Some(table), Some(store)) = (table, self.store.as_ref()) else {
+                    return;
+                };
+                if !self.from_db.contains(&table) || rows.is_empty() {
+                    return;
+                }
+                let Ok(t) = crate::store::table::load_table(store, &table) else {
+                    return;
+                };
+                let Ok(col) = t.req_col("NUME_ORDRE") else {
+                    return;
+                };
+                let present: Vec<i64> = t
+                    .rows
+                    .iter()
+                    .filter_map(|r| r.get(col).and_then(|c| c.as_f64()))
+                    .map(|x| x as i64)
+                    .collect();
+                for n in rows.iter().filter(|n| !present.contains(n)) {
+                    let (lo, hi) = (
+                        present.iter().min().copied().unwrap_or(0),
+                        present.iter().max().copied().unwrap_or(0),
+                    );
+                    self.errors.push(at(Error::validation(format!(
+                        "NUME_ORDRE {n} is not a row of table {table} in the database (rows {lo}..{hi})"
+                    ))
+                    .keyword(format!("{}/{key}", call.op))));
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+/// Why a mesh file cannot be read in `format`, as far as its first bytes show.
+fn mesh_file_problem(path: &Path, format: crate::mesh::MeshFormat) -> Option<Error> {
+    use std::io::Read;
+    let mut head = [0u8; 8];
+    let n = std::fs::File::open(path)
+        .and_then(|mut f| f.read(&mut head))
+        .ok()?;
+    let hdf5 = n == 8 && head == *b"\x89HDF\r\n\x1a\n";
+    match format {
+        crate::mesh::MeshFormat::Med if !hdf5 => Some(
+            Error::input(format!(
+                "{} is not a MED file (MED files are HDF5 files)",
+                path.display()
+            ))
+            .hint("FORMAT='ASTER' reads .mail files, FORMAT='GMSH' .msh files"),
+        ),
+        crate::mesh::MeshFormat::Aster | crate::mesh::MeshFormat::Gmsh if hdf5 => Some(
+            Error::input(format!("{} is a MED (HDF5) file", path.display()))
+                .hint("read it with FORMAT='MED'"),
+        ),
+        _ => None,
+    }
 }
 
 impl Host for Checker {
@@ -410,15 +673,32 @@ impl Host for Checker {
             .map(str::to_string)
             .collect()
     }
+
+    fn unsupported_operator(&self, name: &str) -> Option<String> {
+        catalog::unsupported(name).map(str::to_string)
+    }
     fn lookup_concept(&self, name: &str) -> Option<ConceptRef> {
-        self.concepts.get(name).map(|ty| ConceptRef {
-            name: name.to_string(),
-            ty: ty.clone(),
-        })
+        match self.concepts.get(name) {
+            Some(ty) => Some(ConceptRef {
+                name: name.to_string(),
+                ty: ty.clone(),
+            }),
+            None if self.names_unknown => Some(ConceptRef {
+                name: name.to_string(),
+                ty: catalog::UNKNOWN_CONCEPT_TYPE.to_string(),
+            }),
+            None => None,
+        }
+    }
+    fn table_contents(&mut self, _table: &ConceptRef) -> Result<Value> {
+        // Nothing runs: the rows are known only when the file runs.
+        Ok(Value::Unknown)
     }
     fn call(&mut self, call: CommandCall) -> Result<Value> {
+        self.start(&call);
         match catalog::validate(&call, &self.file) {
             Ok(args) => {
+                self.static_checks(&call, &args);
                 for (name, ty) in co_outputs(&args) {
                     self.concepts.insert(name, ty);
                 }
@@ -426,6 +706,7 @@ impl Host for Checker {
                 match (&call.result, ty) {
                     (Some(name), Some(ty)) if !matches!(ty.as_str(), "R" | "I" | "TXM") => {
                         self.concepts.insert(name.clone(), ty.clone());
+                        self.from_db.retain(|n| n != name);
                         Ok(Value::Concept(ConceptRef {
                             name: name.clone(),
                             ty,
@@ -456,16 +737,28 @@ impl Host for Checker {
     }
 }
 
-/// Check a file without running it: every syntax and validation error, all together.
-pub fn check_source(src: &Source) -> Vec<Error> {
+/// Check a file without running it: every syntax and validation error, all together,
+/// and what the file and the continued database show statically (mesh files, restart
+/// rows).
+pub fn check_source(src: &Source, opts: CheckOptions) -> Vec<Error> {
     let program = match lang::parse(src) {
         Ok(p) => p,
         Err(e) => return vec![e],
     };
+    let mut units = opts.units;
+    units
+        .comm_file
+        .get_or_insert_with(|| PathBuf::from(&src.name));
     let mut checker = Checker {
         file: src.name.clone(),
         errors: Vec::new(),
         concepts: BTreeMap::new(),
+        store: None,
+        from_db: Vec::new(),
+        names_unknown: false,
+        default_db: Path::new(&src.name).with_extension("db"),
+        explicit_db: opts.db,
+        units,
     };
     let mut env = Env::default();
     if let Err(e) = lang::execute(&program, src, &mut env, &mut checker) {

@@ -37,9 +37,24 @@ enum Command {
         /// Map a logical unit to a file, e.g. --unit 20=mesh.mail (repeatable).
         #[arg(long = "unit", value_name = "N=PATH")]
         units: Vec<String>,
+        /// Raise every real non-regression tolerance (VALE_CALC) to at least X, for files
+        /// whose VALE_CALC another code computed (e.g. 1e-4). Default: Code_Aster's
+        /// semantics (TOLE_MACHINE, 1e-6 unless the file says otherwise).
+        #[arg(long = "tole-machine", value_name = "X", value_parser = parse_tole)]
+        tole_machine: Option<f64>,
     },
-    /// Check a command file against the catalogs without running it; reports every error.
-    Check { file: PathBuf },
+    /// Check a command file (or a .export) against the catalogs without running it;
+    /// reports every error, including the mesh files it reads and, for a POURSUITE file,
+    /// the concepts and rows of the database it continues.
+    Check {
+        file: PathBuf,
+        /// Database a POURSUITE file continues (default: <case>.db beside the file).
+        #[arg(long)]
+        db: Option<PathBuf>,
+        /// Map a logical unit to a file, e.g. --unit 20=mesh.mail (repeatable).
+        #[arg(long = "unit", value_name = "N=PATH")]
+        units: Vec<String>,
+    },
     /// Print an operator's keywords (or the list of operators).
     Catalog { operator: Option<String> },
     /// List the concepts and SQL tables of a database.
@@ -118,8 +133,13 @@ enum CaseArg {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
-        Command::Run { file, db, units } => run(&file, db, &units),
-        Command::Check { file } => check(&file),
+        Command::Run {
+            file,
+            db,
+            units,
+            tole_machine,
+        } => run(&file, db, &units, tole_machine),
+        Command::Check { file, db, units } => check(&file, db, &units),
         Command::Catalog { operator } => print_catalog(operator.as_deref()),
         Command::Tables { db } => tables(&db),
         Command::Study { grid, out, case } => study(grid, &out, case),
@@ -194,7 +214,20 @@ fn parse_units(specs: &[String], base: &Path) -> Result<Units, Error> {
     Ok(units)
 }
 
-fn run(file: &Path, db: Option<PathBuf>, unit_specs: &[String]) -> ExitCode {
+/// A tolerance: a finite positive real.
+fn parse_tole(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+        _ => Err(format!("'{s}' is not a positive real (e.g. 1e-4)")),
+    }
+}
+
+fn run(
+    file: &Path,
+    db: Option<PathBuf>,
+    unit_specs: &[String],
+    tole_machine: Option<f64>,
+) -> ExitCode {
     let cwd = PathBuf::from(".");
     let mut units = match parse_units(unit_specs, &cwd) {
         Ok(u) => u,
@@ -225,6 +258,7 @@ fn run(file: &Path, db: Option<PathBuf>, unit_specs: &[String]) -> ExitCode {
         db,
         units,
         progress: std::io::stderr().is_terminal(),
+        tole_machine,
     };
     let mut stdout = std::io::stdout();
     let summary = match interp::run_file(&comm, opts, &mut stdout) {
@@ -252,8 +286,25 @@ fn run(file: &Path, db: Option<PathBuf>, unit_specs: &[String]) -> ExitCode {
     ExitCode::SUCCESS
 }
 
-fn check(file: &Path) -> ExitCode {
-    let text = match std::fs::read_to_string(file) {
+fn check(file: &Path, db: Option<PathBuf>, unit_specs: &[String]) -> ExitCode {
+    let mut units = match parse_units(unit_specs, &PathBuf::from(".")) {
+        Ok(u) => u,
+        Err(e) => return fail(&e, None),
+    };
+    let file = if file.extension().is_some_and(|e| e == "export") {
+        match export::read_export(file) {
+            Ok(exp) => {
+                for (n, p) in exp.units {
+                    units.map.entry(n).or_insert(p);
+                }
+                exp.comm
+            }
+            Err(e) => return fail(&e, None),
+        }
+    } else {
+        file.to_path_buf()
+    };
+    let text = match std::fs::read_to_string(&file) {
         Ok(t) => t,
         Err(e) => {
             return fail(
@@ -269,7 +320,8 @@ fn check(file: &Path) -> ExitCode {
         name: file.display().to_string(),
         text,
     };
-    let errors = interp::check_source(&src);
+    units.comm_file = Some(file.clone());
+    let errors = interp::check_source(&src, interp::CheckOptions { db, units });
     if errors.is_empty() {
         println!("{}: OK", file.display());
         return ExitCode::SUCCESS;

@@ -53,6 +53,32 @@ pub enum Value {
     /// and the like return there). Arithmetic on it gives `Unknown`; the catalog accepts
     /// it wherever a simple value is expected.
     Unknown,
+    /// The contents of a table concept, as `T.EXTR_TABLE()` returns them: `tab.PARA` is
+    /// the column (a list, `None` in an empty cell), `len(tab)` the number of rows.
+    Table(std::sync::Arc<TableValue>),
+}
+
+/// A table's contents in the command language (`T.EXTR_TABLE()`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TableValue {
+    /// The concept it was extracted from (for messages).
+    pub name: String,
+    pub columns: Vec<String>,
+    /// One value per column in each row; `Value::None` for an empty cell.
+    pub rows: Vec<Vec<Value>>,
+}
+
+impl TableValue {
+    /// The values of column `name` in row order, `None` if the table has no such column.
+    pub fn column(&self, name: &str) -> Option<Vec<Value>> {
+        let j = self.columns.iter().position(|c| c == name)?;
+        Some(
+            self.rows
+                .iter()
+                .map(|r| r.get(j).cloned().unwrap_or(Value::None))
+                .collect(),
+        )
+    }
 }
 
 impl Value {
@@ -69,6 +95,7 @@ impl Value {
             Value::Concept(_) => "a concept",
             Value::Co(_) => "CO(...)",
             Value::Unknown => "a value known only when the file runs",
+            Value::Table(_) => "a table (EXTR_TABLE())",
         }
     }
 
@@ -115,6 +142,13 @@ impl fmt::Display for Value {
             Value::Concept(c) => write!(f, "{}", c.name),
             Value::Co(n) => write!(f, "CO('{n}')"),
             Value::Unknown => write!(f, "<known when run>"),
+            Value::Table(t) => write!(
+                f,
+                "<table {} of {} row(s): {}>",
+                t.name,
+                t.rows.len(),
+                t.columns.join(", ")
+            ),
         }
     }
 }

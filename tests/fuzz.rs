@@ -525,7 +525,8 @@ fn mutated_inputs_never_panic_in_process() {
         let seen = errors_seen.clone();
         let e = in_process(
             move || {
-                let errors = aster_nl::interp::check_source(&src);
+                let errors =
+                    aster_nl::interp::check_source(&src, aster_nl::interp::CheckOptions::default());
                 for e in &errors {
                     // Rendering is where the column-65,536 panic lived (issue 11, item 5).
                     let shown = render_plain(e, Some(&src));

@@ -164,24 +164,31 @@ fn aster_solid3d_matches_hand_expectation() {
     assert_eq!(compare("solid3d.mail", MeshFormat::Aster), 5);
 }
 
-#[cfg(feature = "med")]
 #[test]
 fn med_2d_with_families_matches_meshio() {
     assert_eq!(compare("plate_med.med", MeshFormat::Med), 6);
 }
 
-#[cfg(feature = "med")]
 #[test]
 fn med_3d_matches_meshio() {
     assert_eq!(compare("solid_med.med", MeshFormat::Med), 3);
 }
 
-/// Without the `med` feature, MED files are refused with a clear message.
-#[cfg(not(feature = "med"))]
+/// The layout of the MED library (SALOME, Code_Aster): version 2 superblock, groups that
+/// track creation order, 32-bit integers (see make_med.py).
 #[test]
-fn med_without_feature_is_refused() {
-    let e = mesh::read_file(&dir().join("plate_med.med"), MeshFormat::Med, None).unwrap_err();
-    assert!(e.to_string().contains("built without MED support"), "{e}");
+fn med_written_like_the_med_library_matches_meshio() {
+    assert_eq!(compare("plate_med4.med", MeshFormat::Med), 6);
+}
+
+/// More families than a compact group holds: the links are in dense storage (fractal heap
+/// and B-tree) in the MED-library layout.
+#[test]
+fn med_with_many_families_matches_meshio() {
+    assert_eq!(compare("line_med.med", MeshFormat::Med), 14);
+    assert_eq!(compare("line_med4.med", MeshFormat::Med), 14);
+    let m = mesh::read_file(&dir().join("line_med4.med"), MeshFormat::Med, None).unwrap();
+    assert_eq!((m.cell_groups.len(), m.node_groups.len()), (16, 13));
 }
 
 /// Every mesh file in the directory has an expected file and is covered above.

@@ -272,6 +272,53 @@ fn crea_maillage_adds_poi1_cells_and_group() {
     );
 }
 
+/// sdnd123a's pattern: a POI1 group of all the masses plus one group per node. Each node
+/// gets one cell, which both groups hold (Code_Aster does the same), so a model on the
+/// group of all and characteristics on a per-node group meet on the same cell.
+#[test]
+fn crea_poi1_shares_one_cell_per_node_between_occurrences() {
+    let st = Store::in_memory().unwrap();
+    lire(&st, "MAIL", &units_with(20, "plate2d.mail"), "ASTER").unwrap();
+    let all = args(
+        "CREA_MAILLAGE/CREA_POI1",
+        &[("NOM_GROUP_MA", s("MASSES")), ("GROUP_NO", s("LEFT"))],
+    );
+    let one = args(
+        "CREA_MAILLAGE/CREA_POI1",
+        &[("NOM_GROUP_MA", s("A4")), ("NOEUD", s("A4"))],
+    );
+    // MAILLE (the 13.x spelling) gives the nodes of cell S1: A1 (shared) and A2 (new).
+    let by_cell = args(
+        "CREA_MAILLAGE/CREA_POI1",
+        &[("NOM_GROUP_MA", s("S1P")), ("MAILLE", s("S1"))],
+    );
+    let a = with_facts(
+        args("CREA_MAILLAGE", &[("MAILLAGE", mesh_ref("MAIL"))]),
+        "CREA_POI1",
+        vec![all, one, by_cell],
+    );
+    let out = run(&st, "CREA_MAILLAGE", "MAIL2", None, &Units::default(), &a).unwrap();
+    assert!(
+        out.contains("0 POI1 cell(s) created in GROUP_MA A4, 1 shared with an earlier occurrence"),
+        "{out}"
+    );
+    let m = load_mesh(&st, "MAIL2").unwrap();
+    let before = load_mesh(&st, "MAIL").unwrap();
+    assert_eq!(m.cells.len(), before.cells.len() + 3, "one POI1 per node");
+    let masses = &m.cell_group("MASSES").unwrap().members;
+    let a4 = &m.cell_group("A4").unwrap().members;
+    assert_eq!(a4.len(), 1);
+    assert!(
+        masses.contains(&a4[0]),
+        "the per-node group holds the shared cell"
+    );
+    assert_eq!(m.cells[a4[0]].nodes, vec![3]);
+    let s1p = &m.cell_group("S1P").unwrap().members;
+    assert_eq!(s1p.len(), 2);
+    assert_eq!(s1p[0], masses[0], "A1's cell is shared");
+    assert_eq!(m.cells[s1p[1]].nodes, vec![1]);
+}
+
 #[test]
 fn crea_maillage_existing_group_name_is_refused() {
     let st = Store::in_memory().unwrap();
@@ -429,7 +476,6 @@ fn defi_group_errors_roll_back() {
     assert_eq!(load_mesh(&st, "MAIL").unwrap(), before);
 }
 
-#[cfg(feature = "med")]
 #[test]
 fn lire_maillage_med_and_nom_med() {
     let st = Store::in_memory().unwrap();

@@ -41,6 +41,12 @@ pub fn check_consistency() -> Vec<String> {
     }
     for op in &cat.ops {
         check_op(op, &mut out);
+        if super::unsupported(&op.name).is_some() {
+            out.push(format!(
+                "{}: both implemented and listed as unsupported",
+                op.name
+            ));
+        }
     }
     out
 }
@@ -60,6 +66,24 @@ pub(crate) fn check_op(op: &OperatorDef, out: &mut Vec<String>) {
             if !["R", "I", "TXM"].contains(&t.as_str()) {
                 check_type(&op.name, t, out);
             }
+        }
+    }
+    if let Some(path) = &op.reuse_of {
+        if op.reuse == super::def::Reuse::No {
+            out.push(format!("{}: reuse_of without reuse", op.name));
+        }
+        let found = match path.split_once('/') {
+            Some((f, k)) => op
+                .fact
+                .iter()
+                .any(|d| d.name == f && d.simp.iter().any(|s| s.name == k)),
+            None => op.simp.iter().any(|s| s.name == *path),
+        };
+        if !found {
+            out.push(format!(
+                "{}: reuse_of names unknown keyword {path}",
+                op.name
+            ));
         }
     }
     check_level(&Level::of_op(op), out);

@@ -211,8 +211,18 @@ pub struct OperatorDef {
     pub result: Option<String>,
     #[serde(default)]
     pub result_from: Option<ResultFrom>,
+    /// The produced concept has the type of the concept given to this keyword (Code_Aster's
+    /// `sd_prod` returning `AsType(TABLE)`): CALC_TABLE of a `table_container` is one.
+    /// `result` is the type when the keyword's concept is not known.
+    #[serde(default)]
+    pub result_type_of: Option<String>,
     #[serde(default)]
     pub reuse: Reuse,
+    /// With `reuse=`, the keyword (path `FACT/SIMP` or `SIMP`) that must name the same
+    /// concept (Code_Aster's `reentrant='f:KEYWORD'`): `MODE_NON_LINE(reuse=MNL,
+    /// ETAT_INIT=_F(MODE_NON_LINE=MNL, ...))` extends the table it restarts from.
+    #[serde(default)]
+    pub reuse_of: Option<String>,
     #[serde(default)]
     pub doc: String,
     #[serde(default)]

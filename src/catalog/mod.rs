@@ -63,6 +63,52 @@ pub fn operator_names() -> Vec<&'static str> {
 }
 
 /// The catalog of one operator.
+/// Code_Aster operators that aster-nl does not implement, with what to do instead: a
+/// file using one gets a clear error naming it, not "unknown operator".
+const UNSUPPORTED: &[(&str, &str)] = &[
+    ("IMPR_RESU", "every result is in the SQLite database (`aster-nl tables DB`, docs/store.md); IMPR_TABLE prints tables"),
+    ("DEFI_FICHIER", "map logical units with --unit N=FILE or the F lines of a .export"),
+    ("INFO_MODE", "CALC_MODES prints the frequencies it finds"),
+    ("NORM_MODE", "CALC_MODES normalises with its NORM_MODE keyword"),
+    ("EXTR_MODE", "filter the modes with CALC_MODES's CALC_FREQ"),
+    ("MACRO_MATR_ASSE", "use ASSEMBLAGE, or CALC_MATR_ELEM + NUME_DDL + ASSE_MATRICE"),
+    ("COMB_MATR_ASSE", "assemble the combined stiffness directly"),
+    ("MODE_ITER_INV", "use CALC_MODES (OPTION='CENTRE' or 'BANDE')"),
+    ("CALC_MODAL", "use CALC_MODES"),
+    ("DYNA_VIBRA", "transient responses are not computed; REST_MODE_NONL gives a nonlinear mode's time history"),
+    ("DYNA_LINE_TRAN", "transient responses are not computed"),
+    ("DYNA_NON_LINE", "transient responses are not computed"),
+    ("DYNA_TRAN_MODAL", "transient responses are not computed"),
+    ("STAT_NON_LINE", "static analyses are not computed"),
+    ("MECA_STATIQUE", "static analyses are not computed"),
+    ("CALC_CHAMP", "fields are not post-processed"),
+    ("POST_ELEM", "post-processing of fields is not available"),
+    ("POST_RELEVE_T", "query the result tables of the database instead"),
+    ("CREA_CHAMP", "fields are not built by hand"),
+    ("CREA_RESU", "results come from CALC_MODES, MODE_NON_LINE and REST_MODE_NONL"),
+    ("PROJ_CHAMP", "fields are not projected"),
+    ("CALC_FONCTION", "RECU_FONCTION and DEFI_FONCTION build functions"),
+    ("DEFI_LIST_REEL", "write the values as a Python tuple"),
+    ("DEFI_CONSTANTE", "use a Python variable"),
+    ("FORMULE", "use a Python expression"),
+    ("DEFI_NAPPE", "functions of two parameters are not available"),
+    ("LIRE_TABLE", "build the table with CREA_TABLE"),
+    ("INCLUDE", "put the included commands in the file"),
+    ("IMPR_CO", "`aster-nl tables DB` lists the concepts"),
+    ("TEST_FICHIER", "test values with TEST_TABLE, TEST_FONCTION or TEST_RESU"),
+    ("MACR_LIGN_COUPE", "post-processing of fields is not available"),
+];
+
+/// What to do instead of `op`, if it is a Code_Aster operator that aster-nl does not
+/// implement.
+pub fn unsupported(op: &str) -> Option<&'static str> {
+    UNSUPPORTED.iter().find(|(n, _)| *n == op).map(|(_, h)| *h)
+}
+
+/// Type of a concept `aster-nl check` cannot know (a name of a POURSUITE file checked
+/// without its database): accepted wherever a concept is expected.
+pub const UNKNOWN_CONCEPT_TYPE: &str = "?";
+
 pub fn get(op: &str) -> Option<&'static OperatorDef> {
     catalog().ops.iter().find(|o| o.name == op)
 }
@@ -76,6 +122,11 @@ pub fn result_type(op: &str, args: &Args) -> Option<String> {
 
 /// [`result_type`] for a given catalog.
 pub fn result_type_with(def: &OperatorDef, args: &Args) -> Option<String> {
+    if let Some(c) = def.result_type_of.as_ref().and_then(|k| args.concept(k)) {
+        if c.ty != UNKNOWN_CONCEPT_TYPE {
+            return Some(c.ty.clone());
+        }
+    }
     if let Some(rf) = &def.result_from {
         if let Some(t) = args.text(&rf.keyword).and_then(|v| rf.map.get(v)) {
             return Some(t.clone());

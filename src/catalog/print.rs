@@ -71,10 +71,18 @@ pub(crate) fn result_label(op: &OperatorDef) -> String {
         }
         (None, None) => "nothing".into(),
     };
+    if let Some(k) = &op.result_type_of {
+        s = format!("the type of {k} ({s} when unknown)");
+    }
+    let of = op
+        .reuse_of
+        .as_ref()
+        .map(|k| format!(": the concept of {k}"))
+        .unwrap_or_default();
     match op.reuse {
         Reuse::No => {}
-        Reuse::Optional => s.push_str(" (reuse= allowed)"),
-        Reuse::Required => s.push_str(" (reuse= required)"),
+        Reuse::Optional => s.push_str(&format!(" (reuse= allowed{of})")),
+        Reuse::Required => s.push_str(&format!(" (reuse= required{of})")),
     }
     s
 }

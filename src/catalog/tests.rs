@@ -352,6 +352,30 @@ fn restart_from_a_table_and_reuse() {
         e.message,
         "expected reuse= a concept of type table_container, got MODES of type mode_meca"
     );
+
+    // reuse= must be the table the restart starts from (reuse_of in the catalog)...
+    c.reuse = Some(ConceptRef {
+        name: "OTHER".into(),
+        ty: "table_container".into(),
+    });
+    let e = single_error(&c, "MODE_NON_LINE/reuse", 1);
+    assert!(
+        e.message
+            .starts_with("reuse=OTHER but ETAT_INIT/MODE_NON_LINE=MNL"),
+        "{e}"
+    );
+    // ... and a first run (from a linear mode) cannot extend a table.
+    let mut first = mnl(vec![]);
+    first.reuse = Some(ConceptRef {
+        name: "MNL".into(),
+        ty: "table_container".into(),
+    });
+    let e = single_error(&first, "MODE_NON_LINE/reuse", 1);
+    assert!(
+        e.message
+            .starts_with("reuse=MNL needs ETAT_INIT/MODE_NON_LINE=MNL"),
+        "{e}"
+    );
 }
 
 // ---------------------------------------------------------------- error kinds
@@ -1388,7 +1412,7 @@ fn real_file_keywords_accepted() {
 fn describe_and_summary() {
     let d = describe("MODE_NON_LINE").expect("known operator");
     assert!(
-        d.starts_with("MODE_NON_LINE -> table_container (reuse= allowed)"),
+        d.starts_with("MODE_NON_LINE -> table_container (reuse= allowed: the concept of ETAT_INIT/MODE_NON_LINE)"),
         "{d}"
     );
     for want in [

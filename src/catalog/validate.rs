@@ -102,7 +102,7 @@ fn check_reuse(
         ),
         (Reuse::Optional | Reuse::Required, Some(c)) => {
             if let Some(ty) = super::result_type_with(op, args) {
-                if ty != c.ty && is_concept_type(&ty) {
+                if ty != c.ty && is_concept_type(&ty) && c.ty != super::UNKNOWN_CONCEPT_TYPE {
                     errors.push(
                         Error::validation(format!(
                             "expected reuse= a concept of type {ty}, got {} of type {}",
@@ -111,7 +111,39 @@ fn check_reuse(
                         .at(file, call.span)
                         .keyword(key),
                     );
+                    return;
                 }
+            }
+            let Some(path) = &op.reuse_of else {
+                return;
+            };
+            let given = match path.split_once('/') {
+                Some((f, k)) => args.fact(f).and_then(|occ| occ.concept(k)),
+                None => args.concept(path),
+            };
+            match given {
+                Some(g) if g.name == c.name => {}
+                Some(g) => errors.push(
+                    Error::validation(format!(
+                        "reuse={} but {path}={}: a reused concept is the one the call extends",
+                        c.name, g.name
+                    ))
+                    .at(file, call.span)
+                    .keyword(key)
+                    .hint(format!(
+                        "give {path}={} to extend {}, or drop reuse= and assign a new name",
+                        c.name, c.name
+                    )),
+                ),
+                None => errors.push(
+                    Error::validation(format!(
+                        "reuse={} needs {path}={}: {} extends the concept it starts from",
+                        c.name, c.name, op.name
+                    ))
+                    .at(file, call.span)
+                    .keyword(key)
+                    .hint("drop reuse= and assign the result to a new name"),
+                ),
             }
         }
         _ => {}
@@ -482,7 +514,9 @@ fn type_ok(types: &[String], v: &Value) -> bool {
         ("C", v) => v.as_f64().is_some() || is_complex_tuple(v),
         ("CO", Value::Co(_)) => true,
         ("assd", Value::Concept(_)) => true,
-        (t, Value::Concept(c)) => is_concept_type(t) && c.ty == t,
+        (t, Value::Concept(c)) => {
+            is_concept_type(t) && (c.ty == t || c.ty == super::UNKNOWN_CONCEPT_TYPE)
+        }
         _ => false,
     })
 }

@@ -93,6 +93,75 @@ impl Prol {
     }
 }
 
+/// How points given in any order were put in increasing order of abscissa.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reorder {
+    /// Already strictly increasing.
+    None,
+    /// Strictly decreasing: reversed.
+    Reversed,
+    /// Neither: sorted (stable, so equal abscissas keep their order).
+    Sorted,
+}
+
+/// What [`order_points`] did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ordering {
+    pub reorder: Reorder,
+    /// Points dropped because their abscissa was already present (the first in the given
+    /// order is kept).
+    pub dropped: usize,
+    /// Largest |y| difference between a dropped point and the point kept at its abscissa
+    /// (0 when the dropped points were exact copies).
+    pub max_dropped_dy: f64,
+}
+
+/// Put points given in any order (the rows of a table) in strictly increasing order of
+/// abscissa, as Code_Aster's RECU_FONCTION does with a table whose abscissa is not
+/// monotone (a branch that turns back, a table extended by a restart). Points whose
+/// abscissa equals one already kept are dropped: a function has one value per abscissa.
+pub fn order_points(x: &mut Vec<f64>, y: &mut Vec<f64>) -> Ordering {
+    let n = x.len().min(y.len());
+    x.truncate(n);
+    y.truncate(n);
+    let increasing = x.windows(2).all(|w| w[0] < w[1]);
+    let reorder = if increasing {
+        Reorder::None
+    } else if x.windows(2).all(|w| w[0] > w[1]) {
+        x.reverse();
+        y.reverse();
+        Reorder::Reversed
+    } else {
+        let mut idx: Vec<usize> = (0..n).collect();
+        idx.sort_by(|&a, &b| x[a].total_cmp(&x[b]));
+        *x = idx.iter().map(|&i| x[i]).collect();
+        *y = idx.iter().map(|&i| y[i]).collect();
+        Reorder::Sorted
+    };
+    let mut dropped = 0;
+    let mut max_dropped_dy: f64 = 0.0;
+    let (mut kx, mut ky): (Vec<f64>, Vec<f64>) = (Vec::with_capacity(n), Vec::with_capacity(n));
+    for (&a, &b) in x.iter().zip(y.iter()) {
+        match (kx.last(), ky.last()) {
+            (Some(&la), Some(&lb)) if la == a => {
+                dropped += 1;
+                max_dropped_dy = max_dropped_dy.max((b - lb).abs());
+            }
+            _ => {
+                kx.push(a);
+                ky.push(b);
+            }
+        }
+    }
+    *x = kx;
+    *y = ky;
+    Ordering {
+        reorder,
+        dropped,
+        max_dropped_dy,
+    }
+}
+
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Function {
     /// Concept name, for messages (set when built or loaded).
@@ -287,6 +356,40 @@ impl Function {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn points_in_any_order_are_sorted_and_duplicates_dropped() {
+        // A branch that turns back: 1, 3, 2 (and a repeat of 3 with another value).
+        let (mut x, mut y) = (vec![1.0, 3.0, 2.0, 3.0, 0.5], vec![10., 30., 20., 31., 5.]);
+        let o = order_points(&mut x, &mut y);
+        assert_eq!(o.reorder, Reorder::Sorted);
+        assert_eq!(x, vec![0.5, 1.0, 2.0, 3.0]);
+        assert_eq!(
+            y,
+            vec![5., 10., 20., 30.],
+            "the first row of an abscissa is kept"
+        );
+        assert_eq!(o.dropped, 1);
+        assert_eq!(o.max_dropped_dy, 1.0);
+
+        let (mut x, mut y) = (vec![3.0, 2.0, 1.0], vec![1., 2., 3.]);
+        let o = order_points(&mut x, &mut y);
+        assert_eq!((o.reorder, o.dropped), (Reorder::Reversed, 0));
+        assert_eq!((x, y), (vec![1.0, 2.0, 3.0], vec![3., 2., 1.]));
+
+        let (mut x, mut y) = (vec![1.0, 2.0], vec![1., 2.]);
+        assert_eq!(order_points(&mut x, &mut y).reorder, Reorder::None);
+
+        // Increasing with an exact copy of a point (a restart that stores its start row):
+        // sorted, one copy kept, nothing lost.
+        let (mut x, mut y) = (vec![1.0, 2.0, 2.0, 3.0], vec![1., 4., 4., 9.]);
+        let o = order_points(&mut x, &mut y);
+        assert_eq!(
+            (o.reorder, o.dropped, o.max_dropped_dy),
+            (Reorder::Sorted, 1, 0.0)
+        );
+        assert_eq!(x, vec![1.0, 2.0, 3.0]);
+    }
 
     /// y = x² sampled at 1, 2, 4.
     fn square(interpol: (Interp, Interp)) -> Function {

@@ -253,6 +253,8 @@ pub fn call_builtin(f: &str, args: &[Value]) -> R {
                 Value::Seq(items) => Ok(Value::Int(items.len() as i64)),
                 Value::Str(s) => Ok(Value::Int(s.chars().count() as i64)),
                 Value::Fact(k) => Ok(Value::Int(k.len() as i64)),
+                Value::Table(t) => Ok(Value::Int(t.rows.len() as i64)),
+                Value::Unknown => Ok(Value::Unknown),
                 v => Err(format!("len() of {}", v.kind_name())),
             }
         }

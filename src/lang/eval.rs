@@ -7,7 +7,7 @@ use super::builtins::{self, BUILTINS, MATH_FUNCS};
 use super::diag::{did_you_mean, suggestions};
 use super::{Env, Host, Source};
 use crate::error::{Error, Result};
-use crate::value::{CommandCall, Keyword, Span, Value};
+use crate::value::{CommandCall, ConceptRef, Keyword, Span, Value};
 
 const IMPORT_HINT: &str = "add `from math import *` at the top of the file";
 
@@ -42,6 +42,12 @@ enum Site<'n> {
     Statement(Span),
     /// The whole right-hand side of `NAME = ...` (target, statement span).
     Assign(&'n Name, Span),
+}
+
+/// Concept types whose contents `EXTR_TABLE()` and `T['PARA', i]` read.
+/// `?` is a concept `aster-nl check` could not type (its contents are unknown anyway).
+fn is_table_type(ty: &str) -> bool {
+    ty.starts_with("table") || ty == crate::catalog::UNKNOWN_CONCEPT_TYPE
 }
 
 fn is_upper_name(n: &str) -> bool {
@@ -270,6 +276,11 @@ impl Evaluator<'_> {
             ExprKind::Index(base, idx) => {
                 let b = self.eval(base)?;
                 let i = self.eval(idx)?;
+                if let Value::Concept(c) = &b {
+                    if is_table_type(&c.ty) {
+                        return self.table_cell(c, &i, e.span);
+                    }
+                }
                 index(&b, &i).map_err(|m| self.input(m, e.span))
             }
             ExprKind::Attr(base, attr) => match &base.kind {
@@ -288,10 +299,17 @@ impl Evaluator<'_> {
                         )),
                     }
                 }
-                _ => {
-                    self.eval(base)?;
-                    Err(self.syntax("attributes (x.name) are not supported", attr.span))
-                }
+                _ => match self.eval(base)? {
+                    Value::Table(t) => t.column(&attr.text).map(Value::Seq).ok_or_else(|| {
+                        self.input(
+                            format!("table {} has no column '{}'", t.name, attr.text),
+                            attr.span,
+                        )
+                        .hint(format!("its columns: {}", t.columns.join(", ")))
+                    }),
+                    Value::Unknown => Ok(Value::Unknown),
+                    _ => Err(self.syntax("attributes (x.name) are not supported", attr.span)),
+                },
             },
         }
     }
@@ -384,6 +402,14 @@ impl Evaluator<'_> {
         if self.host.is_operator(name) {
             return self.operator(name, func.span, args, site);
         }
+        if let Some(instead) = self.host.unsupported_operator(name) {
+            return Err(self
+                .input(
+                    format!("{name} is a Code_Aster operator that aster-nl does not support"),
+                    func.span,
+                )
+                .hint(instead));
+        }
         if is_upper_name(name) {
             let mut err = self.input(format!("unknown operator '{name}'"), func.span);
             if let Some(h) = did_you_mean(&suggestions(name, &self.host.operator_names())) {
@@ -421,7 +447,22 @@ impl Evaluator<'_> {
                 let vals = self.positional(&attr.text, args)?;
                 return builtins::call_math(&attr.text, &vals).map_err(|m| self.input(m, span));
             }
-            if !self.env.vars.contains_key(m) {
+            if !self.env.vars.contains_key(m) && self.host.lookup_concept(m).is_none() {
+                if m == "code_aster" {
+                    return Err(self
+                        .input(
+                            format!(
+                                "code_aster.{}(): the Python API of Code_Aster (code_aster.init(), \
+                                 code_aster.Mesh(), TestCase...) is not supported",
+                                attr.text
+                            ),
+                            span,
+                        )
+                        .hint(
+                            "write the study as a command file: DEBUT(), LIRE_MAILLAGE(...) and \
+                             the other operators, FIN()",
+                        ));
+                }
                 let mut err = self.input(format!("name '{m}' is not defined"), base.span);
                 if m == "math" {
                     err = err.hint("add `import math` at the top of the file");
@@ -429,12 +470,88 @@ impl Evaluator<'_> {
                 return Err(err);
             }
         }
+        if attr.text == "EXTR_TABLE" {
+            if let Value::Concept(c) = self.eval(base)? {
+                if is_table_type(&c.ty) {
+                    let (pos, kws) = self.args(args)?;
+                    if let Some(s) = pos.first().map(|p| p.1).or(kws.first().map(|k| k.span)) {
+                        return Err(self.syntax("EXTR_TABLE() takes no argument", s));
+                    }
+                    return self
+                        .host
+                        .table_contents(&c)
+                        .map_err(|e| e.at(self.file, span));
+                }
+                return Err(self.input(
+                    format!(
+                        "{} is a {}: EXTR_TABLE() is a method of tables",
+                        c.name, c.ty
+                    ),
+                    base.span,
+                ));
+            }
+        }
         Err(self
             .syntax(
                 format!("calling methods (.{}(...)) is not supported", attr.text),
                 attr.span,
             )
-            .hint("only operators, math functions and a few builtins can be called"))
+            .hint(
+                "only operators, math functions, a few builtins and T.EXTR_TABLE() on a \
+                 table can be called",
+            ))
+    }
+
+    /// `T['PARA', i]` on a table concept: the cell of column PARA in row i, counted from 1
+    /// as Code_Aster's tables do.
+    fn table_cell(&mut self, table: &ConceptRef, key: &Value, span: Span) -> Result<Value> {
+        let (para, row) = match key {
+            Value::Seq(k) => match k.as_slice() {
+                [Value::Str(p), Value::Int(i)] => (p.clone(), *i),
+                _ => (String::new(), 0),
+            },
+            _ => (String::new(), 0),
+        };
+        if para.is_empty() {
+            return Err(self
+                .input(
+                    format!(
+                        "a table is indexed by ('PARA', row), got {}",
+                        key.kind_name()
+                    ),
+                    span,
+                )
+                .hint(format!(
+                    "write {}['FREQUENCE', 1] (rows count from 1)",
+                    table.name
+                )));
+        }
+        let t = match self
+            .host
+            .table_contents(table)
+            .map_err(|e| e.at(self.file, span))?
+        {
+            Value::Table(t) => t,
+            other => return Ok(other),
+        };
+        let col = t.column(&para).ok_or_else(|| {
+            self.input(format!("table {} has no column '{para}'", t.name), span)
+                .hint(format!("its columns: {}", t.columns.join(", ")))
+        })?;
+        usize::try_from(row)
+            .ok()
+            .and_then(|r| r.checked_sub(1))
+            .and_then(|r| col.get(r).cloned())
+            .ok_or_else(|| {
+                self.input(
+                    format!(
+                        "table {} has no row {row}: rows count from 1 to {}",
+                        t.name,
+                        col.len()
+                    ),
+                    span,
+                )
+            })
     }
 
     fn operator(&mut self, op: &str, op_span: Span, args: &[Arg], site: Site) -> Result<Value> {

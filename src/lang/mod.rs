@@ -150,11 +150,25 @@ pub trait Host {
         Vec::new()
     }
 
+    /// For a Code_Aster operator the host does not implement: what to do instead.
+    fn unsupported_operator(&self, _name: &str) -> Option<String> {
+        None
+    }
+
     /// The concept named `name` if it exists: after a call, every `CO('NAME')` of its
     /// keywords that the host reports here becomes a Python name, and a name no statement
     /// bound is looked up here (concepts of an earlier run continued by POURSUITE).
     fn lookup_concept(&self, _name: &str) -> Option<ConceptRef> {
         None
+    }
+
+    /// The contents of the table concept `table` (`T.EXTR_TABLE()`, `T['PARA', i]`):
+    /// `Value::Table`, or `Value::Unknown` when nothing runs (`aster-nl check`).
+    fn table_contents(&mut self, table: &ConceptRef) -> Result<Value> {
+        Err(crate::error::Error::input(format!(
+            "the contents of table {} are not available here",
+            table.name
+        )))
     }
 
     /// Output of `print(...)` in the command file.

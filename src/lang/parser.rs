@@ -466,11 +466,27 @@ impl LineParser<'_> {
                     };
                 }
                 Rule::index => {
-                    let i = t
-                        .into_inner()
-                        .next()
-                        .ok_or_else(|| self.err("missing index", tspan))?;
-                    let i = self.expr(i, off)?;
+                    let mut items = Vec::new();
+                    let mut comma = false;
+                    for q in t.into_inner() {
+                        match q.as_rule() {
+                            Rule::comma => comma = true,
+                            Rule::rbrack => {}
+                            _ => items.push(self.expr(q, off)?),
+                        }
+                    }
+                    let i = if items.len() == 1 && !comma {
+                        items
+                            .pop()
+                            .ok_or_else(|| self.err("missing index", tspan))?
+                    } else {
+                        let refs: Vec<&Expr> = items.iter().collect();
+                        let probe = self.mk(ExprKind::None, tspan, &refs)?;
+                        Expr {
+                            kind: ExprKind::Tuple(items),
+                            ..probe
+                        }
+                    };
                     let probe = self.mk(ExprKind::None, sp, &[&acc, &i])?;
                     acc = Expr {
                         kind: ExprKind::Index(Box::new(acc), Box::new(i)),

@@ -863,3 +863,109 @@ fn names_no_statement_bound_are_asked_to_the_host() {
     let e = run(&src, &mut Env::new(), &mut Continued(Vec::new())).unwrap_err();
     assert_eq!(e.message, "name 'MODE' is not defined");
 }
+
+/// `T.EXTR_TABLE()`, `tab.PARA[i]`, `len(tab)` and `T['PARA', i]` as Code_Aster's tables
+/// define them: columns indexed from 0 like Python lists, cells of the concept from 1.
+#[test]
+fn table_contents_in_python() {
+    struct Tables(Vec<CommandCall>);
+    impl Host for Tables {
+        fn is_operator(&self, name: &str) -> bool {
+            name == "TEST"
+        }
+        fn call(&mut self, call: CommandCall) -> crate::error::Result<Value> {
+            self.0.push(call);
+            Ok(Value::None)
+        }
+        fn lookup_concept(&self, name: &str) -> Option<ConceptRef> {
+            let ty = match name {
+                "T" => "table_container",
+                "M" => "maillage_sdaster",
+                _ => return None,
+            };
+            Some(ConceptRef {
+                name: name.into(),
+                ty: ty.into(),
+            })
+        }
+        fn table_contents(&mut self, table: &ConceptRef) -> crate::error::Result<Value> {
+            Ok(Value::Table(std::sync::Arc::new(
+                crate::value::TableValue {
+                    name: table.name.clone(),
+                    columns: vec!["E".into(), "F".into()],
+                    rows: vec![
+                        vec![Value::Real(1.5), Value::Real(10.0)],
+                        vec![Value::Real(2.5), Value::None],
+                    ],
+                },
+            )))
+        }
+    }
+    let src = Source::new(
+        "t.comm",
+        "tab = T.EXTR_TABLE()\nTEST(A=tab.E[0], B=tab.F[-1], N=len(tab), C=T['E', 2], \
+         L=tab.F)\n",
+    );
+    let mut host = Tables(Vec::new());
+    run(&src, &mut Env::new(), &mut host).unwrap();
+    let args = &host.0[0].args;
+    assert_eq!(args[0].value, Value::Real(1.5));
+    assert_eq!(args[1].value, Value::None);
+    assert_eq!(args[2].value, Value::Int(2));
+    assert_eq!(args[3].value, Value::Real(2.5));
+    assert_eq!(
+        args[4].value,
+        Value::Seq(vec![Value::Real(10.0), Value::None])
+    );
+
+    for (text, col, msg) in [
+        (
+            "tab = T.EXTR_TABLE()\nx = tab.G[0]\n",
+            9,
+            "table T has no column 'G'",
+        ),
+        (
+            "x = T['E', 0]\n",
+            5,
+            "table T has no row 0: rows count from 1 to 2",
+        ),
+        (
+            "x = T[0]\n",
+            5,
+            "a table is indexed by ('PARA', row), got an integer",
+        ),
+        (
+            "x = M.EXTR_TABLE()\n",
+            5,
+            "M is a maillage_sdaster: EXTR_TABLE() is a method of tables",
+        ),
+        (
+            "x = T.EXTR_TABLE(1)\n",
+            18,
+            "EXTR_TABLE() takes no argument",
+        ),
+    ] {
+        let src = Source::new("t.comm", text);
+        let e = run(&src, &mut Env::new(), &mut Tables(Vec::new())).unwrap_err();
+        assert_eq!(e.message, msg, "{text}");
+        let line = text.lines().count();
+        assert_eq!(
+            e.location.map(|l| (l.span.line, l.span.col)),
+            Some((line, col)),
+            "{text}"
+        );
+    }
+}
+
+#[test]
+fn the_code_aster_python_api_is_named_as_unsupported() {
+    let src = Source::new("t.py", "import code_aster\ncode_aster.init()\n");
+    let e = run(&src, &mut Env::new(), &mut Recorder::default()).unwrap_err();
+    assert!(
+        e.message
+            .starts_with("code_aster.init(): the Python API of Code_Aster"),
+        "{}",
+        e.message
+    );
+    assert!(e.hint.unwrap_or_default().contains("DEBUT()"));
+}

@@ -1,17 +1,19 @@
-//! Reader of MED meshes (HDF5, MED 3.x/4.x layout), behind the cargo feature `med`.
+//! Reader of MED meshes (HDF5, MED 3.x/4.x layout), with a pure-Rust HDF5 decoder
+//! (`hdf5-pure`): nothing to install, every build reads MED.
 //!
 //! Layout used: `ENS_MAA/<mesh>/<time step>/NOE/COO` (coordinates, all x then all y...),
 //! `NOE/FAM` (family of each node), `MAI/<type>/NOD` (1-based connectivity, first nodes
 //! of all cells, then second nodes...), `MAI/<type>/FAM`, and `FAS/<mesh>/{NOEUD,ELEME}/
 //! <family>` with attribute `NUM` and `GRO/NOM` (80-character group names). Groups are
-//! made of every node/cell whose family lists them.
+//! made of every node/cell whose family lists them. Integers are read whatever their
+//! stored width (MED writes 32- or 64-bit `med_int`).
 //!
 //! Names: the optional `NOM` datasets (16 characters), else `N<k>` for the k-th node and
 //! `M<k>` for the k-th cell, cells numbered type after type in Code_Aster's type order.
 
 use super::{Cell, CellKind, Group, Mesh, Node};
 use crate::error::{Error, Result};
-use hdf5_metno as h5;
+use hdf5_pure as h5;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -30,82 +32,197 @@ const TYPES: [(&str, CellKind); 11] = [
     ("PY5", CellKind::Pyram5),
 ];
 
-/// Read mesh `name` (or the first mesh) of the MED file at `path`.
-pub fn read_file(path: &Path, name: Option<&str>) -> Result<Mesh> {
-    let file = path.display().to_string();
-    let bad = |what: String| {
-        Error::input(format!("{file}: {what}")).hint(
+/// Errors of one file, each naming the file and what was being read.
+struct Reader {
+    file: String,
+}
+
+impl Reader {
+    fn bad(&self, what: impl std::fmt::Display) -> Error {
+        Error::input(format!("{}: {what}", self.file)).hint(
             "the file should be a MED mesh file (written by SALOME, Code_Aster, gmsh or meshio)",
         )
+    }
+
+    /// Maps an HDF5 error to ours, naming what was being read.
+    fn h5(&self, what: &str) -> impl Fn(h5::Error) -> Error + '_ {
+        let what = what.to_string();
+        move |e| Error::input(format!("{}: cannot read {what}: {e}", self.file))
+    }
+
+    fn group(&self, g: &h5::Group, name: &str, what: &str) -> Result<h5::Group> {
+        g.group(name).map_err(self.h5(what))
+    }
+
+    fn subgroups(&self, g: &h5::Group, what: &str) -> Result<Vec<String>> {
+        let mut v = g.groups().map_err(self.h5(what))?;
+        v.sort();
+        Ok(v)
+    }
+
+    fn has_group(&self, g: &h5::Group, name: &str, what: &str) -> Result<bool> {
+        Ok(g.groups().map_err(self.h5(what))?.iter().any(|n| n == name))
+    }
+
+    fn has_dataset(&self, g: &h5::Group, name: &str, what: &str) -> Result<bool> {
+        Ok(g.datasets()
+            .map_err(self.h5(what))?
+            .iter()
+            .any(|n| n == name))
+    }
+
+    /// An integer attribute, whatever its stored width.
+    fn int_attr(&self, g: &h5::Group, name: &str, what: &str) -> Result<i64> {
+        use h5::AttrValue as A;
+        let attrs = g.attrs().map_err(self.h5(what))?;
+        match attrs.get(name) {
+            Some(A::I64(v)) => Ok(*v),
+            Some(A::I32(v)) => Ok(i64::from(*v)),
+            Some(A::I16(v)) => Ok(i64::from(*v)),
+            Some(A::I8(v)) => Ok(i64::from(*v)),
+            Some(A::U32(v)) => Ok(i64::from(*v)),
+            Some(A::U16(v)) => Ok(i64::from(*v)),
+            Some(A::U8(v)) => Ok(i64::from(*v)),
+            Some(other) => Err(self.bad(format!(
+                "{what}: attribute {name} is {other:?}, not an integer"
+            ))),
+            None => Err(self.bad(format!("{what}: attribute {name} is missing"))),
+        }
+    }
+
+    /// Family numbers of `count` entities (0, no family, when the dataset is absent).
+    fn fam(&self, g: &h5::Group, count: usize, what: &str) -> Result<Vec<i64>> {
+        if !self.has_dataset(g, "FAM", what)? {
+            return Ok(vec![0; count]);
+        }
+        let v = g
+            .dataset("FAM")
+            .and_then(|d| d.read_i64())
+            .map_err(self.h5(&format!("{what}/FAM")))?;
+        if v.len() != count {
+            return Err(self.bad(format!(
+                "{what}/FAM has {} family numbers for {count} entities",
+                v.len()
+            )));
+        }
+        Ok(v)
+    }
+
+    /// Fixed-width names (`NOM` dataset), if present: `count` names of `width` characters.
+    fn names(
+        &self,
+        g: &h5::Group,
+        width: usize,
+        count: usize,
+        what: &str,
+    ) -> Result<Option<Vec<String>>> {
+        if !self.has_dataset(g, "NOM", what)? {
+            return Ok(None);
+        }
+        let chars = self.chars(g, "NOM", &format!("{what}/NOM"))?;
+        if chars.len() != width * count {
+            return Err(self.bad(format!(
+                "{what}/NOM has {} characters for {count} names of {width}",
+                chars.len()
+            )));
+        }
+        Ok(Some(chars.chunks(width).map(text).collect()))
+    }
+
+    /// The bytes of a character dataset, stored as arrays of 80 (or 16) bytes or as a
+    /// plain table of bytes: the raw record bytes are the characters in both cases.
+    fn chars(&self, g: &h5::Group, name: &str, what: &str) -> Result<Vec<u8>> {
+        g.dataset(name)
+            .and_then(|d| d.read_raw())
+            .map_err(self.h5(what))
+    }
+
+    /// `family number -> group names` of one FAS branch (NOEUD or ELEME).
+    fn families(&self, g: &h5::Group, what: &str) -> Result<BTreeMap<i64, Vec<String>>> {
+        let mut out = BTreeMap::new();
+        for fam in self.subgroups(g, what)? {
+            let fw = format!("{what}/{fam}");
+            let fg = self.group(g, &fam, &fw)?;
+            let num = self.int_attr(&fg, "NUM", &fw)?;
+            let names = if self.has_group(&fg, "GRO", &fw)? {
+                let gro = self.group(&fg, "GRO", &fw)?;
+                self.chars(&gro, "NOM", &format!("{fw}/GRO/NOM"))?
+                    .chunks(80)
+                    .map(text)
+                    .filter(|s| !s.is_empty())
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            out.insert(num, names);
+        }
+        Ok(out)
+    }
+}
+
+/// Read mesh `name` (or the first mesh) of the MED file at `path`.
+pub fn read_file(path: &Path, name: Option<&str>) -> Result<Mesh> {
+    let r = Reader {
+        file: path.display().to_string(),
     };
-    let h5e = |ctx: &str| {
-        let file = file.clone();
-        let ctx = ctx.to_string();
-        move |e: h5::Error| Error::input(format!("{file}: cannot read {ctx}: {e}"))
-    };
-    let f = h5::File::open(path).map_err(h5e("the file as HDF5"))?;
+    let f = h5::File::open(path).map_err(r.h5("the file as HDF5"))?;
     let ens = f
         .group("ENS_MAA")
-        .map_err(h5e("ENS_MAA (the list of meshes)"))?;
-    let mut meshes = ens.member_names().map_err(h5e("ENS_MAA"))?;
-    meshes.sort();
+        .map_err(r.h5("ENS_MAA (the list of meshes)"))?;
+    let meshes = r.subgroups(&ens, "ENS_MAA")?;
     let mesh_name = match name {
         Some(n) => meshes
             .iter()
             .find(|m| m.trim_end() == n)
             .cloned()
             .ok_or_else(|| {
-                Error::input(format!("{file}: no mesh named '{n}' (NOM_MED)"))
+                Error::input(format!("{}: no mesh named '{n}' (NOM_MED)", r.file))
                     .keyword("LIRE_MAILLAGE/NOM_MED")
                     .hint(format!("the file holds: {}", meshes.join(", ")))
             })?,
         None => meshes
             .first()
             .cloned()
-            .ok_or_else(|| bad("the file holds no mesh".into()))?,
+            .ok_or_else(|| r.bad("the file holds no mesh"))?,
     };
-    let mesh_group = ens.group(&mesh_name).map_err(h5e(&mesh_name))?;
-    let space_dim: i64 = mesh_group
-        .attr("ESP")
-        .and_then(|a| a.read_scalar())
-        .map_err(h5e("the space dimension (ESP)"))?;
+    let mesh_group = r.group(&ens, &mesh_name, &mesh_name)?;
+    let space_dim = r.int_attr(&mesh_group, "ESP", "the space dimension (ESP)")?;
     let dim = usize::try_from(space_dim)
         .ok()
         .filter(|d| (1..=3).contains(d))
-        .ok_or_else(|| bad(format!("space dimension {space_dim} is not 1, 2 or 3")))?;
+        .ok_or_else(|| r.bad(format!("space dimension {space_dim} is not 1, 2 or 3")))?;
     // MED 3 stores the mesh under a time-step group; older files have NOE directly.
-    let step = if mesh_group.link_exists("NOE") {
+    let step = if r.has_group(&mesh_group, "NOE", &mesh_name)? {
         mesh_group
     } else {
-        let mut steps = mesh_group.member_names().map_err(h5e(&mesh_name))?;
-        steps.sort();
+        let steps = r.subgroups(&mesh_group, &mesh_name)?;
         let s = steps
             .first()
-            .ok_or_else(|| bad(format!("mesh {mesh_name} has no nodes")))?;
-        mesh_group.group(s).map_err(h5e(s))?
+            .ok_or_else(|| r.bad(format!("mesh {mesh_name} has no nodes")))?;
+        r.group(&mesh_group, s, s)?
     };
 
     // Nodes
-    let noe = step.group("NOE").map_err(h5e("NOE (nodes)"))?;
-    let coo: Vec<f64> = noe
+    let noe = r.group(&step, "NOE", "NOE (nodes)")?;
+    let coo = noe
         .dataset("COO")
-        .and_then(|d| d.read_raw())
-        .map_err(h5e("NOE/COO (coordinates)"))?;
+        .and_then(|d| d.read_f64())
+        .map_err(r.h5("NOE/COO (coordinates)"))?;
     if !coo.len().is_multiple_of(dim) {
-        return Err(bad(format!(
+        return Err(r.bad(format!(
             "{} coordinates is not a multiple of the dimension {dim}",
             coo.len()
         )));
     }
     let n_nodes = coo.len() / dim;
     if let Some(i) = coo.iter().position(|c| !c.is_finite()) {
-        return Err(bad(format!(
+        return Err(r.bad(format!(
             "node {} has the coordinate {}: coordinates must be finite numbers",
             i % n_nodes.max(1) + 1,
             coo[i]
         )));
     }
-    let node_names = read_names(&noe, 16, n_nodes).map_err(h5e("NOE/NOM (node names)"))?;
+    let node_names = r.names(&noe, 16, n_nodes, "NOE")?;
     let nodes: Vec<Node> = (0..n_nodes)
         .map(|i| {
             let mut c = [0.0; 3];
@@ -121,13 +238,14 @@ pub fn read_file(path: &Path, name: Option<&str>) -> Result<Mesh> {
             }
         })
         .collect();
-    let node_fam = read_fam(&noe, n_nodes).map_err(h5e("NOE/FAM (node families)"))?;
+    let node_fam = r.fam(&noe, n_nodes, "NOE")?;
 
     // Cells
-    let mai = step.group("MAI").map_err(h5e("MAI (cells)"))?;
-    let present = mai.member_names().map_err(h5e("MAI"))?;
+    let mai = r.group(&step, "MAI", "MAI (cells)")?;
+    let present = r.subgroups(&mai, "MAI")?;
     if let Some(t) = present.iter().find(|t| !TYPES.iter().any(|(m, _)| m == t)) {
-        return Err(bad(format!("MED cell type {t} is not supported"))
+        return Err(r
+            .bad(format!("MED cell type {t} is not supported"))
             .hint("supported: PO1 SE2 SE3 TR3 TR6 QU4 QU8 TE4 HE8 PE6 PY5"));
     }
     let mut cells = Vec::new();
@@ -136,21 +254,22 @@ pub fn read_file(path: &Path, name: Option<&str>) -> Result<Mesh> {
         if !present.iter().any(|t| t == med) {
             continue;
         }
-        let g = mai.group(med).map_err(h5e(med))?;
-        let nod: Vec<i64> = g
+        let what = format!("MAI/{med}");
+        let g = r.group(&mai, med, &what)?;
+        let nod = g
             .dataset("NOD")
-            .and_then(|d| d.read_raw())
-            .map_err(h5e(&format!("MAI/{med}/NOD")))?;
+            .and_then(|d| d.read_i64())
+            .map_err(r.h5(&format!("{what}/NOD")))?;
         let nn = kind.node_count();
         if !nod.len().is_multiple_of(nn) {
-            return Err(bad(format!(
-                "MAI/{med}/NOD has {} entries, not a multiple of {nn}",
+            return Err(r.bad(format!(
+                "{what}/NOD has {} entries, not a multiple of {nn}",
                 nod.len()
             )));
         }
         let count = nod.len() / nn;
-        let names = read_names(&g, 16, count).map_err(h5e(&format!("MAI/{med}/NOM")))?;
-        cell_fam.extend(read_fam(&g, count).map_err(h5e(&format!("MAI/{med}/FAM")))?);
+        let names = r.names(&g, 16, count, &what)?;
+        cell_fam.extend(r.fam(&g, count, &what)?);
         for i in 0..count {
             let nodes = (0..nn)
                 .map(|k| {
@@ -159,7 +278,7 @@ pub fn read_file(path: &Path, name: Option<&str>) -> Result<Mesh> {
                         .ok()
                         .filter(|&j| j < n_nodes)
                         .ok_or_else(|| {
-                            bad(format!("a {med} cell uses node {n}, outside 1..{n_nodes}"))
+                            r.bad(format!("a {med} cell uses node {n}, outside 1..{n_nodes}"))
                         })
                 })
                 .collect::<Result<Vec<_>>>()?;
@@ -176,12 +295,15 @@ pub fn read_file(path: &Path, name: Option<&str>) -> Result<Mesh> {
     }
 
     // Families -> groups
-    let fas = f.group("FAS").and_then(|g| g.group(&mesh_name)).ok();
+    let fas_path = format!("FAS/{mesh_name}");
+    let fas = f.group(&fas_path).ok();
     let families = |kind: &str| -> Result<BTreeMap<i64, Vec<String>>> {
-        match fas.as_ref().filter(|g| g.link_exists(kind)) {
-            Some(g) => read_families(&g.group(kind).map_err(h5e(kind))?)
-                .map_err(h5e(&format!("FAS/{mesh_name}/{kind}"))),
-            None => Ok(BTreeMap::new()),
+        let what = format!("{fas_path}/{kind}");
+        match &fas {
+            Some(g) if r.has_group(g, kind, &fas_path)? => {
+                r.families(&r.group(g, kind, &what)?, &what)
+            }
+            _ => Ok(BTreeMap::new()),
         }
     };
     let node_groups = groups_of(&node_fam, &families("NOEUD")?);
@@ -195,74 +317,11 @@ pub fn read_file(path: &Path, name: Option<&str>) -> Result<Mesh> {
     })
 }
 
-/// Family numbers of `count` entities (0, no family, when the dataset is absent).
-fn read_fam(g: &h5::Group, count: usize) -> h5::Result<Vec<i64>> {
-    if !g.link_exists("FAM") {
-        return Ok(vec![0; count]);
-    }
-    let v: Vec<i64> = g.dataset("FAM")?.read_raw()?;
-    if v.len() != count {
-        return Err(h5::Error::from(format!(
-            "{} family numbers for {count} entities",
-            v.len()
-        )));
-    }
-    Ok(v)
-}
-
-/// Fixed-width names (`NOM` dataset), if present: `count` names of `width` characters.
-fn read_names(g: &h5::Group, width: usize, count: usize) -> h5::Result<Option<Vec<String>>> {
-    if !g.link_exists("NOM") {
-        return Ok(None);
-    }
-    let chars = read_chars(&g.dataset("NOM")?)?;
-    if chars.len() != width * count {
-        return Err(h5::Error::from(format!(
-            "{} characters for {count} names of {width}",
-            chars.len()
-        )));
-    }
-    Ok(Some(chars.chunks(width).map(text).collect()))
-}
-
-/// The bytes of a character dataset, whether stored as arrays of 80 (or 16) bytes or as a
-/// 2D byte table.
-fn read_chars(d: &h5::Dataset) -> h5::Result<Vec<u8>> {
-    if let Ok(v) = d.read_raw::<[u8; 80]>() {
-        return Ok(v.concat());
-    }
-    if let Ok(v) = d.read_raw::<[u8; 16]>() {
-        return Ok(v.concat());
-    }
-    d.read_raw::<u8>()
-}
-
 fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes)
         .trim_end_matches(['\0', ' '])
         .trim()
         .to_string()
-}
-
-/// `family number -> group names` of one FAS branch (NOEUD or ELEME).
-fn read_families(g: &h5::Group) -> h5::Result<BTreeMap<i64, Vec<String>>> {
-    let mut out = BTreeMap::new();
-    for fam in g.member_names()? {
-        let fg = g.group(&fam)?;
-        let num: i64 = fg.attr("NUM")?.read_scalar()?;
-        let names = if fg.link_exists("GRO") {
-            let chars = read_chars(&fg.group("GRO")?.dataset("NOM")?)?;
-            chars
-                .chunks(80)
-                .map(text)
-                .filter(|s| !s.is_empty())
-                .collect()
-        } else {
-            Vec::new()
-        };
-        out.insert(num, names);
-    }
-    Ok(out)
 }
 
 /// Groups from family numbers: each group in order of first appearance over the

@@ -4,9 +4,9 @@ pub mod aster;
 pub mod check;
 pub mod edit;
 pub mod gmsh;
-#[cfg(feature = "med")]
 pub mod med;
 pub mod select;
+pub mod transform;
 
 use crate::error::Result;
 use serde::{Deserialize, Serialize};
@@ -203,6 +203,15 @@ impl MeshFormat {
             MeshFormat::Med => "med",
         }
     }
+    /// Every extension looked for beside the command file, the usual one first
+    /// (Code_Aster's own test cases name their MED meshes `.mmed`).
+    pub fn extensions(self) -> &'static [&'static str] {
+        match self {
+            MeshFormat::Aster => &["mail"],
+            MeshFormat::Gmsh => &["msh"],
+            MeshFormat::Med => &["med", "mmed"],
+        }
+    }
 }
 
 /// Read a mesh file of the given format. `med_name` picks a mesh in a MED file holding
@@ -211,20 +220,6 @@ pub fn read_file(path: &Path, format: MeshFormat, med_name: Option<&str>) -> Res
     match format {
         MeshFormat::Aster => aster::read_file(path),
         MeshFormat::Gmsh => gmsh::read_file(path),
-        MeshFormat::Med => read_med(path, med_name),
+        MeshFormat::Med => med::read_file(path, med_name),
     }
-}
-
-#[cfg(feature = "med")]
-fn read_med(path: &Path, med_name: Option<&str>) -> Result<Mesh> {
-    med::read_file(path, med_name)
-}
-
-#[cfg(not(feature = "med"))]
-fn read_med(path: &Path, _med_name: Option<&str>) -> Result<Mesh> {
-    Err(crate::error::Error::input(format!(
-        "cannot read {}: this aster-nl was built without MED support",
-        path.display()
-    ))
-    .hint("rebuild with `cargo build --features med`, or convert the mesh to GMSH or ASTER format"))
 }

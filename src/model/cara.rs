@@ -3,7 +3,7 @@
 
 use super::fe_model::{Model, Modelisation};
 use super::frame::Orientation;
-use super::select::{describe_cells, model_select_cells};
+use super::select::{describe_cells, model_point_cells, model_select_cells};
 use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::mesh::{CellKind, Mesh};
@@ -486,7 +486,13 @@ fn cells_of(
     allowed: &[Modelisation],
     key: &str,
 ) -> Result<Vec<usize>> {
-    let cells = model_select_cells(mesh, &model.mesh, occ)?;
+    let mut cells = model_select_cells(mesh, &model.mesh, occ)?;
+    // NOEUD / GROUP_NO (13.x): the point elements of the model on those nodes.
+    for c in model_point_cells(model, mesh, occ)? {
+        if !cells.contains(&c) {
+            cells.push(c);
+        }
+    }
     let bad: Vec<usize> = cells
         .iter()
         .copied()

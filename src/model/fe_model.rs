@@ -4,7 +4,7 @@ use super::dof::Cmp;
 use super::select::model_select_cells;
 use crate::args::Args;
 use crate::error::{Error, Result};
-use crate::mesh::{CellKind, Mesh};
+use crate::mesh::{Cell, CellKind, Mesh};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -87,6 +87,21 @@ pub struct Model {
     pub mesh: String,
     /// One element per modelled cell, sorted by cell index.
     pub elements: Vec<ModelElement>,
+    /// Point cells of the model itself, one per node given to AFFE_MODELE by GROUP_NO or
+    /// NOEUD (Code_Aster 13.x's "late" cells: how 13.x files put discrete elements on
+    /// nodes that have no POI1 cell). Point cell k is cell `mesh_cells + k` of the mesh
+    /// as [`Model::extend_mesh`] completes it.
+    #[serde(default)]
+    pub point_cells: Vec<usize>,
+    /// Number of cells of the mesh when the model was built.
+    #[serde(default)]
+    pub mesh_cells: usize,
+}
+
+/// Name given to the model's own point cell on `node` (for messages; no mesh cell can be
+/// named so, since mesh names have no parentheses).
+pub fn point_cell_name(node: &str) -> String {
+    format!("POI1({node})")
 }
 
 impl Model {
@@ -96,6 +111,7 @@ impl Model {
     /// but an occurrence that assigns no cell at all is an error.
     pub fn build(mesh_name: &str, mesh: &Mesh, affe: &[Args]) -> Result<Model> {
         let mut by_cell: BTreeMap<usize, Modelisation> = BTreeMap::new();
+        let mut point_cells: Vec<usize> = Vec::new();
         for occ in affe {
             let phen = occ.text("PHENOMENE").unwrap_or("MECANIQUE");
             if phen != "MECANIQUE" {
@@ -116,6 +132,36 @@ impl Model {
                         Modelisation::NAMES.join(", ")
                     ))
             })?;
+            if occ.has("GROUP_NO") || occ.has("NOEUD") {
+                // 13.x: elements on nodes, carried by point cells of the model.
+                let key = if occ.has("GROUP_NO") {
+                    "GROUP_NO"
+                } else {
+                    "NOEUD"
+                };
+                if !m.is_discrete() {
+                    return Err(Error::input(format!(
+                        "MODELISATION {name} cannot be assigned to nodes: only discrete elements (DIS_T, DIS_TR, 2D_DIS_T) live on nodes"
+                    ))
+                    .keyword(occ.key_path(key))
+                    .hint("assign beams and bars to cells with GROUP_MA, MAILLE or TOUT"));
+                }
+                let mut node_args = occ.clone();
+                node_args
+                    .simple
+                    .retain(|(k, _, _)| k == "GROUP_NO" || k == "NOEUD");
+                for n in crate::mesh::select::select_nodes(mesh, &node_args)? {
+                    let k = match point_cells.iter().position(|&p| p == n) {
+                        Some(k) => k,
+                        None => {
+                            point_cells.push(n);
+                            point_cells.len() - 1
+                        }
+                    };
+                    by_cell.insert(mesh.cells.len() + k, m);
+                }
+                continue;
+            }
             let cells = model_select_cells(mesh, mesh_name, occ)?;
             let mut assigned = 0;
             for c in cells {
@@ -142,7 +188,40 @@ impl Model {
                 .into_iter()
                 .map(|(cell, modelisation)| ModelElement { cell, modelisation })
                 .collect(),
+            point_cells,
+            mesh_cells: mesh.cells.len(),
         })
+    }
+
+    /// Add the model's own point cells (see [`Model::point_cells`]) to its mesh, so that
+    /// every element's cell index is a cell of `mesh`.
+    pub fn extend_mesh(&self, mesh: &mut Mesh) -> Result<()> {
+        if self.point_cells.is_empty() {
+            return Ok(());
+        }
+        if mesh.cells.len() != self.mesh_cells {
+            return Err(Error::internal(format!(
+                "mesh {} has {} cells, the model was built on {}",
+                self.mesh,
+                mesh.cells.len(),
+                self.mesh_cells
+            )));
+        }
+        for &n in &self.point_cells {
+            let node = mesh.nodes.get(n).ok_or_else(|| {
+                Error::internal(format!(
+                    "model point cell on node index {n}, not in mesh {}",
+                    self.mesh
+                ))
+            })?;
+            let name = point_cell_name(&node.name);
+            mesh.cells.push(Cell {
+                name,
+                kind: CellKind::Poi1,
+                nodes: vec![n],
+            });
+        }
+        Ok(())
     }
 
     pub fn element_of(&self, cell: usize) -> Option<&ModelElement> {

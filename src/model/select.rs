@@ -1,9 +1,10 @@
 //! Cell/node selection for the model operators (TOUT / GROUP_MA / MAILLE / GROUP_NO /
 //! NOEUD), over `mesh::select`, in mesh order.
 
+use super::fe_model::Model;
 use crate::args::Args;
-use crate::error::Result;
-use crate::mesh::Mesh;
+use crate::error::{Error, Result};
+use crate::mesh::{CellKind, Mesh};
 
 /// Cells chosen by TOUT='OUI', GROUP_MA or MAILLE in one factor keyword occurrence,
 /// sorted and without repeats (the model keeps its elements in mesh order).
@@ -19,6 +20,48 @@ pub fn model_select_nodes(mesh: &Mesh, _mesh_name: &str, args: &Args) -> Result<
     let mut nodes = crate::mesh::select::select_nodes(mesh, args)?;
     nodes.sort_unstable();
     Ok(nodes)
+}
+
+/// The POI1 cells carrying an element of `model` on the nodes chosen by GROUP_NO or NOEUD
+/// in `args` (Code_Aster 13.x: AFFE_CARA_ELEM/DISCRET on nodes), in node order. `mesh` is
+/// the model's mesh completed with its point cells. Every node must carry one.
+pub fn model_point_cells(model: &Model, mesh: &Mesh, args: &Args) -> Result<Vec<usize>> {
+    if !args.has("GROUP_NO") && !args.has("NOEUD") {
+        return Ok(Vec::new());
+    }
+    let mut node_args = args.clone();
+    node_args
+        .simple
+        .retain(|(k, _, _)| k == "GROUP_NO" || k == "NOEUD");
+    let key = if args.has("GROUP_NO") {
+        "GROUP_NO"
+    } else {
+        "NOEUD"
+    };
+    let nodes = crate::mesh::select::select_nodes(mesh, &node_args)?;
+    let mut out = Vec::new();
+    for n in nodes {
+        let on_node: Vec<usize> = model
+            .elements
+            .iter()
+            .map(|e| e.cell)
+            .filter(|&c| {
+                mesh.cells
+                    .get(c)
+                    .is_some_and(|cell| cell.kind == CellKind::Poi1 && cell.nodes == [n])
+            })
+            .collect();
+        if on_node.is_empty() {
+            let name = mesh.nodes.get(n).map_or("?", |x| x.name.as_str());
+            return Err(Error::input(format!(
+                "node {name} carries no point element in the model"
+            ))
+            .keyword(args.key_path(key))
+            .hint("give the node an element: AFFE_MODELE(AFFE=_F(NOEUD=... or GROUP_NO=..., MODELISATION='DIS_T')), or a POI1 cell with CREA_MAILLAGE/CREA_POI1 modelled through GROUP_MA"));
+        }
+        out.extend(on_node);
+    }
+    Ok(out)
 }
 
 /// Names of the cell groups containing `cell`, for messages.

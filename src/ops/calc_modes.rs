@@ -1,4 +1,6 @@
 //! CALC_MODES: real modes of K φ = ω² M φ (OPTION PLUS_PETITE / BANDE / CENTRE).
+//! MODE_ITER_SIMULT (the 13.x syntax: the option inside CALC_FREQ) runs the same
+//! computation through [`run_with_option`].
 
 use crate::args::Args;
 use crate::error::{Error, Result};
@@ -11,6 +13,14 @@ use crate::store::{matrix, modes as mode_store};
 use crate::table::print::format_e;
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    let option = args.text("OPTION").unwrap_or("PLUS_PETITE").to_string();
+    run_with_option(ctx, args, &option)
+}
+
+/// The modes `option` asks for (PLUS_PETITE, BANDE or CENTRE), the other settings read
+/// from `args` as CALC_MODES names them (CALC_FREQ, VERI_MODE, NORM_MODE...).
+pub fn run_with_option(ctx: &mut OpContext<'_>, args: &Args, option: &str) -> Result<()> {
+    let op = ctx.op.to_string();
     let name = ctx.result_name()?.to_string();
     let k_name = &args.req_concept("MATR_RIGI")?.name;
     let m_name = &args.req_concept("MATR_MASS")?.name;
@@ -20,25 +30,25 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         return Err(Error::input(format!(
             "{k_name} and {m_name} are not assembled on the same DOF numbering and boundary conditions"
         ))
-        .keyword("CALC_MODES/MATR_MASS")
+        .keyword(format!("{op}/MATR_MASS"))
         .hint("assemble both matrices with the same NUME_DDL and CHAR_CINE"));
     }
     let numbering_name = matrix::matrix_numbering_name(ctx.store, k_name)?;
-    let request = mode_request(args)?;
+    let request = mode_request(args, option, &op)?;
     let kr = k.reduced()?;
     let mr = m.reduced()?;
     let free = k.free_dofs();
     if free.is_empty() {
         return Err(
             Error::input("every DOF is blocked: there is no mode to compute")
-                .keyword("CALC_MODES/MATR_RIGI"),
+                .keyword(format!("{op}/MATR_RIGI")),
         );
     }
     check_definite(ctx, &kr, &mr, &k, k_name, m_name)?;
     let set = eigen::solve_modes(&kr, &mr, &request, &EigenOptions::default())?;
     if ctx.info >= 2 {
         ctx.say(&format!(
-            "CALC_MODES: {} DOFs ({} free), solver: {}",
+            "{op}: {} DOFs ({} free), solver: {}",
             k.size(),
             free.len(),
             set.method
@@ -48,10 +58,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let stop_band_empty = args.text("STOP_BANDE_VIDE") != Some("NON");
     if set.omega2.is_empty() && matches!(request, ModeRequest::Band { .. }) && stop_band_empty {
         return Err(Error::input("no mode in the requested band")
-            .keyword("CALC_MODES/CALC_FREQ/FREQ")
+            .keyword(format!("{op}/CALC_FREQ/FREQ"))
             .hint("widen FREQ, or set STOP_BANDE_VIDE='NON' to accept an empty result"));
     }
-    let norm = mode_norm(args, &k.numbering.dofs, &free)?;
+    let norm = mode_norm(args, &k.numbering.dofs, &free, &op)?;
     let (seuil, stop_on_error) = match args.fact("VERI_MODE") {
         Some(v) => (
             v.real("SEUIL").unwrap_or(1e-6),
@@ -62,7 +72,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let seuil_freq = calc_freq.and_then(|c| c.real("SEUIL_FREQ")).unwrap_or(1e-2);
     let mut modes = Vec::with_capacity(set.omega2.len());
     ctx.say(&format!(
-        "CALC_MODES {name}: {} mode(s)\n  NUME_ORDRE  FREQUENCE (HZ)   ERREUR",
+        "{op} {name}: {} mode(s)\n  NUME_ORDRE  FREQUENCE (HZ)   ERREUR",
         set.omega2.len()
     ))?;
     for (i, (omega2, vector)) in set.omega2.iter().zip(&set.vectors).enumerate() {
@@ -76,7 +86,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 i + 1
             );
             if stop_on_error {
-                return Err(Error::numerical(msg).keyword("CALC_MODES/VERI_MODE"));
+                return Err(Error::numerical(msg).keyword(format!("{op}/VERI_MODE")));
             }
             ctx.alarm("CALC_MODES_1", &msg)?;
         }
@@ -114,8 +124,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     mode_store::save_modes(ctx.store, &name, &result)
 }
 
-fn mode_request(args: &Args) -> Result<ModeRequest> {
-    let option = args.text("OPTION").unwrap_or("PLUS_PETITE");
+fn mode_request(args: &Args, option: &str, op: &str) -> Result<ModeRequest> {
     let cf = args.fact("CALC_FREQ");
     let freqs = cf.and_then(|c| c.reals("FREQ")).unwrap_or_default();
     // At least 1: the catalog's bound.
@@ -134,18 +143,18 @@ fn mode_request(args: &Args) -> Result<ModeRequest> {
             _ => Err(Error::validation(format!(
                 "OPTION='BANDE' needs FREQ=(f_min, f_max) with f_min < f_max, got {freqs:?}"
             ))
-            .keyword("CALC_MODES/CALC_FREQ/FREQ")),
+            .keyword(format!("{op}/CALC_FREQ/FREQ"))),
         },
         "CENTRE" => match freqs.as_slice() {
             [f] => Ok(ModeRequest::Centre { f: *f, n }),
             _ => Err(Error::validation(format!(
                 "OPTION='CENTRE' needs one centre frequency FREQ=f, got {freqs:?}"
             ))
-            .keyword("CALC_MODES/CALC_FREQ/FREQ")),
+            .keyword(format!("{op}/CALC_FREQ/FREQ"))),
         },
         other => Err(
             Error::validation(format!("OPTION='{other}' is not supported"))
-                .keyword("CALC_MODES/OPTION"),
+                .keyword(format!("{op}/OPTION")),
         ),
     }
 }
@@ -155,6 +164,7 @@ fn mode_norm(
     args: &Args,
     dofs: &[crate::model::numbering::NumberedDof],
     free: &[usize],
+    op: &str,
 ) -> Result<ModeNorm> {
     let norme = args
         .fact("NORM_MODE")
@@ -177,7 +187,7 @@ fn mode_norm(
         other => {
             return Err(
                 Error::validation(format!("NORME='{other}' is not supported"))
-                    .keyword("CALC_MODES/NORM_MODE/NORME"),
+                    .keyword(format!("{op}/NORM_MODE/NORME")),
             )
         }
     })

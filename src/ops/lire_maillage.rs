@@ -56,7 +56,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
 }
 
 /// The file of logical unit `unit`: the mapped file, or else the file beside the command
-/// file with the format's extension. The flag says whether the latter was used.
+/// file with one of the format's extensions. The flag says whether the latter was used.
 pub fn resolve_file(units: &Units, unit: i64, format: MeshFormat) -> Result<(PathBuf, bool)> {
     if let Some(p) = units.map.get(&unit) {
         if p.is_file() {
@@ -68,12 +68,21 @@ pub fn resolve_file(units: &Units, unit: i64, format: MeshFormat) -> Result<(Pat
         ))
         .hint("check the path given with --unit or in the .export file"));
     }
-    let beside = units
+    let candidates: Vec<PathBuf> = units
         .comm_file
         .as_ref()
-        .map(|c| c.with_extension(format.extension()));
-    match beside {
-        Some(p) if p.is_file() => Ok((p, true)),
+        .map(|c| {
+            format
+                .extensions()
+                .iter()
+                .map(|e| c.with_extension(e))
+                .collect()
+        })
+        .unwrap_or_default();
+    if let Some(p) = candidates.iter().find(|p| p.is_file()) {
+        return Ok((p.clone(), true));
+    }
+    match candidates.first().cloned() {
         Some(p) => Err(Error::input(format!(
             "no mesh file for unit {unit}: the unit is not mapped and {} does not exist",
             p.display()

@@ -31,7 +31,9 @@ pub mod lire_maillage;
 pub mod mnl_common;
 pub mod mnl_restart;
 pub mod mnl_start;
+pub mod mode_iter_simult;
 pub mod mode_non_line;
+pub mod modi_maillage;
 pub mod nume_ddl;
 #[cfg(test)]
 mod op_tests;
@@ -97,6 +99,12 @@ pub struct OpContext<'a> {
     pub units: &'a Units,
     /// Alarms the user silenced in DEBUT(IGNORE_ALARM=...).
     pub ignored_alarms: &'a [String],
+    /// DEBUT(ERREUR=_F(ALARME='EXCEPTION')): an alarm that is not silenced stops the
+    /// operator as an error, as in Code_Aster.
+    pub alarms_are_errors: bool,
+    /// `aster-nl run --tole-machine X`: every real non-regression tolerance (VALE_CALC)
+    /// is at least X.
+    pub tole_machine: Option<f64>,
     /// Tests run by TEST_* operators, in order.
     pub tests: &'a mut Vec<TestOutcome>,
     /// Concepts created by this call: (name, type). Filled by [`OpContext::create`].
@@ -132,6 +140,8 @@ impl<'a> OpContext<'a> {
             out,
             units,
             ignored_alarms: &[],
+            alarms_are_errors: false,
+            tole_machine: None,
             tests,
             created: Vec::new(),
             progress: false,
@@ -158,11 +168,31 @@ impl<'a> OpContext<'a> {
         Ok(())
     }
 
-    /// Print an alarm (warning) unless the user silenced its id in DEBUT(IGNORE_ALARM=...).
+    /// Print an alarm (warning) unless the user silenced its id in DEBUT(IGNORE_ALARM=...);
+    /// with DEBUT(ERREUR=_F(ALARME='EXCEPTION')) an alarm Code_Aster raises in the same
+    /// situation ([`CODE_ASTER_ALARMS`]) is an error instead. aster-nl's own alarms stay
+    /// alarms there: a file written for Code_Aster asks for Code_Aster's alarms to stop
+    /// it, and must not be stopped by a diagnostic Code_Aster does not make.
     pub fn alarm(&mut self, id: &str, message: &str) -> Result<()> {
-        if !self.ignored_alarms.iter().any(|a| a == id) {
-            writeln!(self.out, "<A> <{id}> {message}")?;
+        if self.ignored_alarms.iter().any(|a| a == id) {
+            return Ok(());
         }
+        if self.alarms_are_errors && !CODE_ASTER_ALARMS.contains(&id) {
+            writeln!(
+                self.out,
+                "<A> <{id}> {message} (aster-nl's own alarm: ERREUR/ALARME='EXCEPTION' applies to Code_Aster's alarms only)"
+            )?;
+            return Ok(());
+        }
+        if self.alarms_are_errors {
+            return Err(
+                Error::input(format!("alarm <{id}> raised as an error: {message}")).hint(format!(
+                    "DEBUT(ERREUR=_F(ALARME='EXCEPTION')) turns alarms into errors; \
+                     silence this one with IGNORE_ALARM='{id}', or drop ALARME='EXCEPTION'"
+                )),
+            );
+        }
+        writeln!(self.out, "<A> <{id}> {message}")?;
         Ok(())
     }
 
@@ -171,6 +201,17 @@ impl<'a> OpContext<'a> {
         Ok(())
     }
 }
+
+/// Alarms Code_Aster raises in the same situation: RECU_FONCTION reordering the abscissas
+/// (FONCT0_62, the id Code_Aster's files silence) and LIRE_MAILLAGE's checks of the mesh
+/// (orphan, coincident nodes, degenerate cells: Code_Aster's VERI_MAIL, on by default).
+/// Only these become errors under DEBUT(ERREUR=_F(ALARME='EXCEPTION')).
+pub const CODE_ASTER_ALARMS: &[&str] = &[
+    "FONCT0_62",
+    "MAILLAGE_ORPHAN_NODES",
+    "MAILLAGE_COINCIDENT_NODES",
+    "MAILLAGE_DEGENERATE_CELLS",
+];
 
 /// Signature of every operator.
 pub type OpFn = fn(&mut OpContext<'_>, &Args) -> Result<()>;
@@ -199,6 +240,7 @@ pub fn lookup(name: &str) -> Option<OpFn> {
         "CALC_MATR_ELEM" => calc_matr_elem::run,
         "NUME_DDL" => nume_ddl::run,
         "CALC_MODES" => calc_modes::run,
+        "MODE_ITER_SIMULT" => mode_iter_simult::run,
         "CALC_STABILITE" => calc_stabilite::run,
         "MODE_NON_LINE" => mode_non_line::run,
         "REST_MODE_NONL" => rest_mode_nonl::run,
@@ -208,6 +250,7 @@ pub fn lookup(name: &str) -> Option<OpFn> {
         "LIRE_MAILLAGE" => lire_maillage::run,
         "CREA_MAILLAGE" => crea_maillage::run,
         "DEFI_GROUP" => defi_group::run,
+        "MODI_MAILLAGE" => modi_maillage::run,
         _ => return None,
     };
     Some(f)

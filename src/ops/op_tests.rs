@@ -431,9 +431,9 @@ fn recu_fonction_then_test_fonction() {
         ],
         vec![],
     );
-    let err = h.run("RECU_FONCTION", Some("F"), None, &recu).unwrap_err();
-    assert!(err.message.contains("1 comes after 2"), "{err}");
-    assert!(err.hint.unwrap().contains("OPERATION='TRI'"));
+    // INST 0, 2, 1 is not increasing: sorted, with Code_Aster's alarm.
+    h.run("RECU_FONCTION", Some("F"), None, &recu).unwrap();
+    assert!(h.output().contains("FONCT0_62"), "{}", h.output());
     let tri = args(
         "CALC_TABLE",
         vec![("TABLE", table("H"))],

@@ -1,13 +1,14 @@
 //! RECU_FONCTION (from a table): the function PARA_Y(PARA_X) built from two columns of a
-//! table after FILTRE, taking the rows in table order (abscissas must increase strictly,
-//! as DEFI_FONCTION requires; sort the table with CALC_TABLE TRI otherwise).
+//! table after FILTRE. As in Code_Aster, rows whose abscissa is not increasing (a branch
+//! that turns back, a table extended by a `reuse=` restart) are sorted by abscissa with
+//! alarm FONCT0_62; rows repeating an abscissa already taken are dropped, with a note.
 
 use super::defi_fonction::apply_options;
 use super::table_args::{filters, load_table_arg};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
-use crate::function::{Function, Interp, Prol};
+use crate::function::{order_points, Function, Interp, Prol, Reorder};
 use crate::store::function::save_function;
 use crate::table::filter::apply_all;
 use crate::table::{Cell, Table};
@@ -70,17 +71,34 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let t = apply_all(&t, &filters(args, "FILTRE")?)?;
     let px = args.req_text("PARA_X")?;
     let py = args.req_text("PARA_Y")?;
-    let (x, y) = points(&t, &c.name, px, py)?;
-    if let Some(w) = x.windows(2).find(|w| w[1] <= w[0]) {
-        return Err(Error::input(format!(
-            "table {}: {px} must increase strictly along the rows, but {} comes after {}",
-            c.name, w[1], w[0]
-        ))
-        .keyword("RECU_FONCTION/PARA_X")
-        .hint(format!(
-            "sort the table first: CALC_TABLE(TABLE={}, ACTION=_F(OPERATION='TRI', NOM_PARA='{px}'))",
-            c.name
-        )));
+    let (mut x, mut y) = points(&t, &c.name, px, py)?;
+    let order = order_points(&mut x, &mut y);
+    if order.reorder != Reorder::None {
+        let how = match order.reorder {
+            Reorder::Reversed => "decrease along the rows: the points were reversed",
+            _ => "do not increase along the rows: the points were sorted by increasing abscissa",
+        };
+        ctx.alarm(
+            "FONCT0_62",
+            &format!(
+                "function {name}: the abscissas ({px} of table {}) {how}",
+                c.name
+            ),
+        )?;
+    }
+    if order.dropped > 0 {
+        let values = if order.max_dropped_dy == 0.0 {
+            "exact copies of kept points".to_string()
+        } else {
+            format!(
+                "their {py} differs from the kept one by up to {:e}",
+                order.max_dropped_dy
+            )
+        };
+        ctx.say(&format!(
+            "RECU_FONCTION: function {name}: {} row(s) of table {} repeat an abscissa ({px}) already taken and were dropped, keeping the first row of each ({values})",
+            order.dropped, c.name
+        ))?;
     }
     let mut f = Function {
         name: name.clone(),

@@ -1,7 +1,7 @@
 //! TEST_FONCTION: VALEUR=_F(FONCTION, NOM_PARA, VALE_PARA, VALE_CALC / VALE_REFE...),
 //! repeatable: the function evaluated at VALE_PARA, checked by `ops::testing`.
 
-use super::testing::{checks_from_args, header_line, TestValue};
+use super::testing::{checks_with_floor, header_line, TestValue};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
@@ -26,7 +26,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         }
         let x = v.req_real("VALE_PARA")?;
         let y = f.eval(x).map_err(|e| e.keyword(v.key_path("VALE_PARA")))?;
-        let outcomes = checks_from_args(v, &TestValue::R(y))?;
+        let outcomes = checks_with_floor(v, &TestValue::R(y), ctx.tole_machine)?;
         ctx.say(&format!(" ---- FONCTION {}  {}={x}", f.name, f.nom_para))?;
         ctx.say(&header_line())?;
         for o in outcomes {

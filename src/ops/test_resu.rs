@@ -7,7 +7,7 @@
 
 use crate::args::Args;
 use crate::error::{Error, Result};
-use crate::ops::testing::{checks_from_args, TestValue};
+use crate::ops::testing::{checks_with_floor, TestValue};
 use crate::ops::OpContext;
 use crate::store::{mesh as mesh_store, modes as mode_store, table as table_store};
 use crate::table::Cell;
@@ -26,7 +26,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 .keyword(kw("RESULTAT")))
             }
         };
-        for outcome in checks_from_args(resu, &TestValue::R(computed))? {
+        for outcome in checks_with_floor(resu, &TestValue::R(computed), ctx.tole_machine)? {
             ctx.say(&outcome.line)?;
             ctx.tests.push(outcome);
         }

@@ -3,7 +3,7 @@
 
 use super::extr_table::single_cell;
 use super::table_args::{filters, load_table_arg};
-use super::testing::{checks_from_args, header_line, TestValue};
+use super::testing::{checks_with_floor, header_line, TestValue};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
@@ -49,7 +49,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             }
         },
     };
-    let outcomes = checks_from_args(args, &computed)?;
+    let outcomes = checks_with_floor(args, &computed, ctx.tole_machine)?;
     let sel: Vec<String> = fl.iter().map(|f| f.describe()).collect();
     let what = args
         .text("TYPE_TEST")

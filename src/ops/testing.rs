@@ -11,6 +11,9 @@
 //!   Code_Aster we then compare absolutely, with the tolerance times `ORDRE_GRANDEUR`
 //!   (default 1), and the printed line says so.
 //! - Integers (`VALE_CALC_I`, `VALE_REFE_I`) and texts (`_K`) must be equal exactly.
+//! - `aster-nl run --tole-machine X` (beyond Code_Aster) raises every real non-regression
+//!   tolerance to at least X, for files whose VALE_CALC were computed by another code:
+//!   the line then says `--tole-machine`. References (VALE_REFE) keep their PRECISION.
 //!
 //! Each check gives a [`TestOutcome`] whose line reads like Code_Aster's:
 //! ` OK   ANALYTIQUE      0.646693927     0.646700000   9.39E-04%      0.1%`.
@@ -216,6 +219,16 @@ fn given(args: &Args, prefix: &str) -> Result<Option<TestValue>> {
 /// VALE_ABS) on the
 /// computed value: one outcome for VALE_CALC, one for VALE_REFE.
 pub fn checks_from_args(args: &Args, computed: &TestValue) -> Result<Vec<TestOutcome>> {
+    checks_with_floor(args, computed, None)
+}
+
+/// [`checks_from_args`] with the real non-regression tolerance raised to at least
+/// `tole_machine_floor` (the `--tole-machine` option of `aster-nl run`).
+pub fn checks_with_floor(
+    args: &Args,
+    computed: &TestValue,
+    tole_machine_floor: Option<f64>,
+) -> Result<Vec<TestOutcome>> {
     let critere = match args.text("CRITERE") {
         None => Critere::Relatif,
         Some(s) => Critere::parse(s).ok_or_else(|| {
@@ -251,12 +264,23 @@ pub fn checks_from_args(args: &Args, computed: &TestValue) -> Result<Vec<TestOut
     };
     let mut out = Vec::new();
     if let Some(calc) = given(args, "VALE_CALC")? {
+        let file_tol = positive("TOLE_MACHINE", TOLE_MACHINE)?;
+        let widened = matches!(calc, TestValue::R(_))
+            && tole_machine_floor.is_some_and(|floor| floor > file_tol);
         let tol = Tolerance {
             critere,
-            precision: positive("TOLE_MACHINE", TOLE_MACHINE)?,
+            precision: if widened {
+                tole_machine_floor.unwrap_or(file_tol)
+            } else {
+                file_tol
+            },
             ordre_grandeur,
         };
-        out.push(check(computed, &calc, "NON_REGRESSION", tol));
+        let mut outcome = check(computed, &calc, "NON_REGRESSION", tol);
+        if widened {
+            outcome.line.push_str("  (--tole-machine)");
+        }
+        out.push(outcome);
     }
     let refe = given(args, "VALE_REFE")?;
     match (refe, args.text("REFERENCE")) {

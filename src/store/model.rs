@@ -24,10 +24,11 @@ pub fn save_model(store: &Store, name: &str, m: &Model) -> Result<()> {
 pub fn load_model(store: &Store, name: &str) -> Result<Model> {
     store.get_json(name, KEY_MODEL)
 }
-/// A model and its mesh.
+/// A model and its mesh, completed with the model's own point cells.
 pub fn load_model_and_mesh(store: &Store, name: &str) -> Result<(Model, Mesh)> {
     let model = load_model(store, name)?;
-    let mesh = load_mesh(store, &model.mesh)?;
+    let mut mesh = load_mesh(store, &model.mesh)?;
+    model.extend_mesh(&mut mesh)?;
     Ok((model, mesh))
 }
 

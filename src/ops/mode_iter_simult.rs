@@ -1,0 +1,16 @@
+//! MODE_ITER_SIMULT: the Code_Aster 13.x spelling of CALC_MODES (the option inside
+//! CALC_FREQ, METHODE at the top level). The modes are CALC_MODES's, normalised to a
+//! largest component of 1 as Code_Aster's MODE_ITER_SIMULT normalises them.
+
+use super::{calc_modes, OpContext};
+use crate::args::Args;
+use crate::error::Result;
+
+pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    let option = args
+        .fact("CALC_FREQ")
+        .and_then(|c| c.text("OPTION"))
+        .unwrap_or("PLUS_PETITE")
+        .to_string();
+    calc_modes::run_with_option(ctx, args, &option)
+}
