@@ -414,7 +414,7 @@ pub fn prepare(case: &Case, dir: &Path) -> Result<Prepared> {
         text: format!("{}FIN()\n", case.prefix),
     };
     let mut sink = std::io::sink();
-    let summary = interp::run_source(&src, db.clone(), units, false, &mut sink)?;
+    let summary = interp::run_source(&src, db.clone(), units, false, None, &mut sink)?;
     if let Some(e) = summary.error {
         return Err(e);
     }
