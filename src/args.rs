@@ -185,8 +185,166 @@ impl Args {
         self.concept(key)
             .ok_or_else(|| self.missing(key, "a concept"))
     }
+    /// The keyword an error names, found in this call: its path in one style,
+    /// `OP/FACT/KEY` (`OP/FACT[i]/KEY`, 1-based, when the factor has several occurrences),
+    /// and the span of what the user wrote there (for a defaulted keyword, the factor or
+    /// call it was filled into). `path` may name the operator or not, and name an
+    /// occurrence or not (`CHOC/JEU`, `MODE_NON_LINE/CHOC[2]/JEU`, `JEU` all resolve when
+    /// unambiguous). What does not resolve keeps its text, under the operator's name, and
+    /// the deepest span found.
+    pub fn locate(&self, path: &str) -> (String, Option<Span>) {
+        let op = self.path.as_str();
+        if path != op && path.starts_with(op) && !path[op.len()..].starts_with('/') {
+            // Not a keyword path ("CALC_STABILITE (row NUME_ORDRE=3)"): leave it.
+            return (path.to_string(), None);
+        }
+        let rest = path
+            .strip_prefix(op)
+            .map_or(path, |r| r.trim_start_matches('/'));
+        let mut canon = op.to_string();
+        let mut span = None;
+        let mut level = self;
+        let mut segs = rest.split('/').filter(|s| !s.is_empty()).peekable();
+        while let Some(seg) = segs.next() {
+            let (name, occurrence) = split_occurrence(seg);
+            if let Some((_, occs, fspan)) = level.factor.iter().find(|(k, _, _)| k == name) {
+                span = Some(*fspan);
+                let index = match occurrence {
+                    Some(i) if (1..=occs.len()).contains(&i) => Some(i - 1),
+                    None if occs.len() == 1 => Some(0),
+                    _ => None,
+                };
+                match (index, occurrence) {
+                    (Some(i), _) if occs.len() > 1 => {
+                        canon.push_str(&format!("/{name}[{}]", i + 1))
+                    }
+                    (None, Some(i)) => canon.push_str(&format!("/{name}[{i}]")),
+                    _ => canon.push_str(&format!("/{name}")),
+                }
+                let Some(i) = index else {
+                    // Several occurrences and none named: the factor is all we can point at.
+                    segs.for_each(|s| canon.push_str(&format!("/{s}")));
+                    break;
+                };
+                level = &occs[i];
+                if segs.peek().is_none() {
+                    span = level.first_given_span(*fspan).or(span);
+                }
+            } else if let Some((_, _, s)) = level.simple.iter().find(|(k, _, _)| k == name) {
+                span = Some(*s);
+                canon.push_str(&format!("/{seg}"));
+                segs.for_each(|s| canon.push_str(&format!("/{s}")));
+                break;
+            } else {
+                canon.push_str(&format!("/{seg}"));
+                segs.for_each(|s| canon.push_str(&format!("/{s}")));
+                break;
+            }
+        }
+        (canon, span)
+    }
+
+    /// The earliest span of a keyword written in this occurrence (not a default, which
+    /// carries the span of the factor it was filled into).
+    fn first_given_span(&self, factor_span: Span) -> Option<Span> {
+        self.simple
+            .iter()
+            .map(|(_, _, s)| *s)
+            .chain(self.factor.iter().map(|(_, _, s)| *s))
+            .filter(|s| *s != factor_span)
+            .min_by_key(|s| s.start)
+    }
+
     pub fn req_fact(&self, key: &str) -> Result<&Args> {
         self.fact(key)
             .ok_or_else(|| self.missing(key, "a factor keyword _F(...)"))
+    }
+}
+
+/// `CHOC[2]` → (`CHOC`, Some(2)); `CHOC` → (`CHOC`, None).
+fn split_occurrence(seg: &str) -> (&str, Option<usize>) {
+    match seg.strip_suffix(']').and_then(|s| s.split_once('[')) {
+        Some((name, i)) => match i.parse() {
+            Ok(i) => (name, Some(i)),
+            Err(_) => (seg, None),
+        },
+        None => (seg, None),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn span(start: usize, line: usize) -> Span {
+        Span {
+            start,
+            end: start + 1,
+            line,
+            col: 1,
+        }
+    }
+
+    /// MODE_NON_LINE(CHOC=(_F(JEU=...), _F(JEU=...)), RESOLUTION=_F(NB_HARM_NONL=...)),
+    /// with ITER_NEWTON_MAXI defaulted into RESOLUTION.
+    fn call() -> Args {
+        let occ = |line| {
+            let mut a = Args::new("MODE_NON_LINE/CHOC");
+            a.simple
+                .push(("JEU".into(), Value::Real(0.1), span(10 * line, line)));
+            a
+        };
+        let mut res = Args::new("MODE_NON_LINE/RESOLUTION");
+        res.simple
+            .push(("NB_HARM_NONL".into(), Value::Int(20), span(50, 5)));
+        res.simple
+            .push(("ITER_NEWTON_MAXI".into(), Value::Int(15), span(40, 4)));
+        let mut a = Args::new("MODE_NON_LINE");
+        a.factor
+            .push(("CHOC".into(), vec![occ(2), occ(3)], span(15, 1)));
+        a.factor.push(("RESOLUTION".into(), vec![res], span(40, 4)));
+        a
+    }
+
+    #[test]
+    fn every_style_of_path_resolves_to_one_style_and_the_written_span() {
+        let a = call();
+        let (k, s) = a.locate("CHOC[2]/JEU");
+        assert_eq!(k, "MODE_NON_LINE/CHOC[2]/JEU");
+        assert_eq!(s.map(|s| s.line), Some(3));
+        let (k, s) = a.locate("MODE_NON_LINE/RESOLUTION/NB_HARM_NONL");
+        assert_eq!(k, "MODE_NON_LINE/RESOLUTION/NB_HARM_NONL");
+        assert_eq!(s.map(|s| s.line), Some(5));
+        let (k, s) = a.locate("RESOLUTION/NB_HARM_NONL");
+        assert_eq!(k, "MODE_NON_LINE/RESOLUTION/NB_HARM_NONL");
+        assert_eq!(s.map(|s| s.line), Some(5));
+    }
+
+    #[test]
+    fn a_defaulted_keyword_points_at_its_factor_and_an_occurrence_at_its_first_keyword() {
+        let a = call();
+        let (k, s) = a.locate("RESOLUTION/ITER_NEWTON_MAXI");
+        assert_eq!(k, "MODE_NON_LINE/RESOLUTION/ITER_NEWTON_MAXI");
+        assert_eq!(s.map(|s| s.line), Some(4));
+        let (k, s) = a.locate("MODE_NON_LINE/CHOC[1]");
+        assert_eq!(k, "MODE_NON_LINE/CHOC[1]");
+        assert_eq!(s.map(|s| s.line), Some(2));
+    }
+
+    #[test]
+    fn an_ambiguous_or_unknown_path_keeps_its_text_and_the_deepest_span() {
+        let a = call();
+        // Two CHOC occurrences, none named: the factor keyword.
+        let (k, s) = a.locate("CHOC/JEU");
+        assert_eq!(k, "MODE_NON_LINE/CHOC/JEU");
+        assert_eq!(s.map(|s| s.line), Some(1));
+        let (k, s) = a.locate("ETAT_INIT/NUME_ORDRE");
+        assert_eq!(k, "MODE_NON_LINE/ETAT_INIT/NUME_ORDRE");
+        assert_eq!(s, None);
+        let (k, s) = a.locate("MODE_NON_LINE (row 3)");
+        assert_eq!(k, "MODE_NON_LINE (row 3)");
+        assert_eq!(s, None);
+        let (k, _) = a.locate("CHOC[7]/JEU");
+        assert_eq!(k, "MODE_NON_LINE/CHOC[7]/JEU");
     }
 }

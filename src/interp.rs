@@ -11,7 +11,7 @@ use crate::lang::{self, Env, Host, Source};
 use crate::ops::{self, OpContext, TestOutcome, Units};
 use crate::store::Store;
 use crate::table::Cell;
-use crate::value::{CommandCall, ConceptRef, Keyword, TableValue, Value};
+use crate::value::{CommandCall, ConceptRef, Keyword, Span, TableValue, Value};
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -392,11 +392,21 @@ impl Host for Runner<'_> {
                 self.run_operator(&call, &args)
             }
         };
-        result.map_err(|e| {
-            let e = e.keyword(call.op.clone());
-            e.at(&self.file, call.op_span)
-        })
+        result.map_err(|e| at_keyword(e, &args, &self.file, call.op_span))
     }
+}
+
+/// An operator's error, located: the keyword it names (in whatever style the operator or the
+/// engine wrote it) in one style, `OP/FACT[i]/KEY`, at the span where the user wrote that
+/// keyword; an error naming no keyword, or one not in the call, falls back to the
+/// operator's name. A location the operator set itself (a mesh file's line) is kept.
+fn at_keyword(mut e: Error, args: &Args, file: &str, op_span: Span) -> Error {
+    let (keyword, span) = match e.keyword.take() {
+        Some(k) => args.locate(&k),
+        None => (args.path.clone(), None),
+    };
+    e.keyword = Some(keyword);
+    e.at(file, span.unwrap_or(op_span))
 }
 
 /// Now, as seconds since the Unix epoch (what the lock file records; no time zone needed).

@@ -474,7 +474,9 @@ fn hard_failed_correction_stops_with_the_reason_and_keeps_the_rows() {
         "raise ITER_NEWTON_MAXI",
         "lower PREC_MAN",
         "the rows computed before the failure are stored",
-        "failed_correction.comm:29",
+        // Located at the keyword the error names (ITER_NEWTON_MAXI, line 34), not at
+        // MODE_NON_LINE's name (line 29).
+        "failed_correction.comm:34",
     ] {
         assert!(out.contains(want), "{want} missing:\n{out}");
     }

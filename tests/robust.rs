@@ -578,3 +578,35 @@ fn a_negative_or_zero_mass_is_named_not_an_empty_band() {
         );
     }
 }
+
+// ---- item 10: runtime errors point at the keyword ----
+
+#[test]
+fn a_runtime_error_points_at_the_keyword_it_names() {
+    // ITER_NEWTON_MAXI=1 cannot converge the third branch: the engine's error names
+    // RESOLUTION/ITER_NEWTON_MAXI, and the report must point where the user wrote it (line
+    // and column of the keyword), not at MODE_NON_LINE's name.
+    let dir = tempfile::tempdir().unwrap();
+    for ext in ["comm", "mail"] {
+        let name = format!("failed_correction.{ext}");
+        std::fs::copy(case("hard").join(&name), dir.path().join(&name)).unwrap();
+    }
+    let comm = dir.path().join("failed_correction.comm");
+    let src = std::fs::read_to_string(&comm).unwrap();
+    let (line, col) = src
+        .lines()
+        .enumerate()
+        .find_map(|(i, l)| l.find("ITER_NEWTON_MAXI=").map(|c| (i + 1, c + 1)))
+        .expect("the case sets ITER_NEWTON_MAXI");
+    let o = run_with_db(&comm, &dir.path().join("s.db"), &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(
+        out.contains("MODE_NON_LINE/RESOLUTION/ITER_NEWTON_MAXI:"),
+        "{out}"
+    );
+    assert!(
+        out.contains(&format!("failed_correction.comm:{line}:{col}]")),
+        "expected {line}:{col}: {out}"
+    );
+}

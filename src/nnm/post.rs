@@ -44,8 +44,7 @@ impl Unknowns {
                 x.len(),
                 self.lay.n_unk
             ))
-            .keyword("ETAT_INIT")
-            .hint("restart with the harmonics and shocks of the run that produced the point"));
+            .hint("the point was stored by a run with other NB_HARM_LINE/NB_HARM_NONL or shocks: use the settings of that run"));
         }
         Ok(())
     }
@@ -244,7 +243,9 @@ mod tests {
         let post = PostProcessor::new(&p, &s).unwrap();
         let n = Layout::of(&p, &s).0.n_unk;
         let e = post.row(&vec![0.0; n - 1]).unwrap_err();
-        assert_eq!(e.keyword.as_deref(), Some("ETAT_INIT"));
+        // The engine does not know which keyword chose the point: the operator names it.
+        assert_eq!(e.kind, crate::error::ErrorKind::Input);
+        assert_eq!(e.keyword, None);
         let mut x = vec![0.0; n];
         x[3] = f64::NAN;
         assert!(post.row(&x).is_err());

@@ -6,7 +6,7 @@
 //! displacement Fourier coefficients.
 
 use crate::args::Args;
-use crate::error::{Error, Result};
+use crate::error::{Error, ErrorKind, Result};
 use crate::nnm::{self, Point, Problem, Settings, StartState};
 use crate::ops::mnl_common::{engine_shock, row_of, shocks_from_cara_choc};
 use crate::ops::mnl_restart;
@@ -118,7 +118,14 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 Error::input(format!("{src} has no row NUME_ORDRE={nume_ordre}"))
                     .keyword("MODE_NON_LINE/ETAT_INIT/NUME_ORDRE")
             })?;
-            let st = nnm::start_from_point(&problem, &settings, &x)?;
+            // A stored point that does not fit these settings is the start row's fault.
+            let st = nnm::start_from_point(&problem, &settings, &x).map_err(|e| {
+                if e.kind == ErrorKind::Input {
+                    e.keyword("ETAT_INIT/NUME_ORDRE")
+                } else {
+                    e
+                }
+            })?;
             restart_direction(ctx, src, nume_ordre, settings.direction, st)?
         }
         None => mnl_start::from_linear_modes(ctx, etat, &problem, &settings, &k, &k_name)?,

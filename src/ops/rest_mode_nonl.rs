@@ -3,7 +3,7 @@
 //! (TYPE_RESU='MODE_MECA').
 
 use crate::args::Args;
-use crate::error::{Error, Result};
+use crate::error::{Error, ErrorKind, Result};
 use crate::model::modes::{Mode, ModeMeca};
 use crate::nnm;
 use crate::ops::mnl_common::{engine_problem, row_of};
@@ -29,7 +29,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let (problem, settings, free) = engine_problem(&setup, &k, &m)?;
     match args.text("TYPE_RESU").unwrap_or("DYNA_TRANS") {
         "MODE_MECA" => {
-            let coefs = nnm::displacement_coefficients(&problem, &settings, &x)?;
+            let coefs =
+                nnm::displacement_coefficients(&problem, &settings, &x).map_err(stored_point)?;
             let ncoef = 2 * settings.h_lin + 1;
             let modes = (0..ncoef)
                 .map(|j| {
@@ -69,7 +70,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 &format!("the time history of {n} DOF(s) at {n_inst} instants"),
                 nnm::budget::time_history_bytes(n, n_inst),
             )?;
-            let th = nnm::time_history(&problem, &settings, &x, n_inst)?;
+            let th = nnm::time_history(&problem, &settings, &x, n_inst).map_err(stored_point)?;
             let mut t = Table::new(format!("REST_MODE_NONL {src} NUME_ORDRE={order}"));
             for (c, kind) in [
                 ("NUME_ORDRE", ColKind::I),
@@ -140,5 +141,14 @@ fn coef_label(j: usize, h: usize) -> String {
         0 => "FOURIER_0".to_string(),
         j if j <= h => format!("FOURIER_C{j}"),
         j => format!("FOURIER_S{}", j - h),
+    }
+}
+
+/// An input error of the engine about the point itself names the row that chose it.
+fn stored_point(e: Error) -> Error {
+    if e.kind == ErrorKind::Input {
+        e.keyword("NUME_ORDRE")
+    } else {
+        e
     }
 }
