@@ -68,6 +68,35 @@ pub fn energy_ca(sys: &System, x: &[f64]) -> f64 {
     e
 }
 
+/// ENERGIE's formula averaged over one period (column ENERGIE_MOYENNE, beyond Code_Aster):
+/// the mean of ½uᵀKu + ½vᵀMv (Parseval, exact) plus the mean over the contact sampler's
+/// instants of each shock's penalty energy, with the same penalty as [`energy_ca`]. On an
+/// exact periodic orbit of the nonsmooth system the total energy is constant and this is
+/// ENERGIE; on a truncated harmonic balance the energy at the one instant π/2 carries the
+/// truncation's ripple, which the mean averages out (docs/mode_non_line.md, "Outputs").
+pub fn energy_mean_ca(sys: &System, x: &[f64]) -> f64 {
+    let l = sys.lay;
+    let smp = sys.sampler();
+    let ns = smp.n();
+    let mut e = mean_quadratic_energy(sys, x);
+    let mut u = vec![vec![0.0; ns]; 2];
+    for sh in &sys.shocks {
+        for (c, &d) in sh.dofs.iter().enumerate().take(2) {
+            smp.synth(&x[l.u(d)..l.u(d) + l.nl], l.hl, &mut u[c]);
+        }
+        let pen = |d: f64| if d > 0.0 { 0.5 * sh.alpha * d * d } else { 0.0 };
+        let total: f64 = (0..ns)
+            .map(|j| match sh.law {
+                ScaledLaw::Plan => pen(u[0][j] - sh.s),
+                ScaledLaw::BiPlan => pen(u[0][j].abs() - sh.s),
+                ScaledLaw::Cercle { ex, ey } => pen((u[0][j] - ex).hypot(u[1][j] - ey) - sh.s),
+            })
+            .sum();
+        e += total / ns as f64;
+    }
+    e
+}
+
 /// Samples over one period (θ_j = 2πj/N) of the total energy of the regularised system.
 ///
 /// ½uᵀKu + ½vᵀMv is a trigonometric polynomial of degree 2H_l: its coefficients are

@@ -133,6 +133,8 @@ pub struct Point {
     pub gamma: f64,
     /// Relative spread of the total energy over one period sampled in time.
     pub energy_spread: f64,
+    /// ENERGIE's formula averaged over one period (J; `energy::energy_mean_ca`).
+    pub energy_mean: f64,
     pub bifurcation: bool,
     pub branch: usize,
     pub harm_max: usize,
@@ -364,6 +366,7 @@ fn make_point(sys: &System, x: &[f64], residual: f64, branch: usize, bifurcation
         residual,
         gamma: x[l.gamma()] * sc.w,
         energy_spread: energy::energy_spread(sys, x, energy),
+        energy_mean: energy::energy_mean_ca(sys, x) * e_scale,
         bifurcation,
         branch,
         harm_max: energy::harm_max(sys, x),

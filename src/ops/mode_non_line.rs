@@ -43,6 +43,9 @@ const COLUMNS: &[(&str, ColKind)] = &[
     // Retries of the row's branch with a halved series step before its correction
     // converged (on the branch's corrected end row).
     ("NB_REPRISE_PAS", ColKind::I),
+    // ENERGIE's formula averaged over the period instead of taken at one instant: closer
+    // to the orbit's energy on a truncated harmonic balance (docs/mode_non_line.md).
+    ("ENERGIE_MOYENNE", ColKind::R),
 ];
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
@@ -660,6 +663,7 @@ fn row(
         Cell::R(law_defect),
         Cell::I(p.branch as i64),
         Cell::I(p.step_retries as i64),
+        Cell::R(p.energy_mean),
     ]
 }
 
