@@ -148,13 +148,13 @@ fn unknown<'a>(
             "the mesh has a cell named '{name}' but no GROUP_MA of that name: files written \
              for Code_Aster 16 or later name a cell by a group of the same name, which their \
              meshes carry; give MAILLE='{name}' (13.x spelling) or a mesh with that group \
-             (DEFI_GROUP(CREA_GROUP_MA=_F(NOM='{name}', MAILLE='{name}')))"
+             (MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_MA=_F(NOM='{name}', MAILLE='{name}')))"
         ),
         Some(Namesake::Node) => format!(
             "the mesh has a node named '{name}' but no GROUP_NO of that name: files written \
              for Code_Aster 16 or later name a node by a group of the same name, which their \
              meshes carry; give NOEUD='{name}' (13.x spelling) or a mesh with that group \
-             (DEFI_GROUP(CREA_GROUP_NO=_F(NOM='{name}', NOEUD='{name}')))"
+             (MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_NO=_F(NOM='{name}', NOEUD='{name}')))"
         ),
         Some(Namesake::CellGroup) => {
             format!("the mesh has a GROUP_MA named '{name}': give GROUP_MA='{name}'")
@@ -220,10 +220,17 @@ mod tests {
         assert!(e.contains("GROUP_MA 'P2' is not in the mesh"), "{e}");
         assert!(e.contains("a cell named 'P2' but no GROUP_MA"), "{e}");
         assert!(e.contains("MAILLE='P2'"), "{e}");
+        assert!(
+            e.contains(
+                "DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_MA=_F(NOM='P2', MAILLE='P2'))"
+            ),
+            "{e}"
+        );
         let e = nodes_err("GROUP_NO", "N1");
         assert!(e.contains("GROUP_NO 'N1' is not in the mesh"), "{e}");
         assert!(e.contains("a node named 'N1' but no GROUP_NO"), "{e}");
         assert!(e.contains("NOEUD='N1'"), "{e}");
+        assert!(e.contains("CREA_GROUP_NO=_F(NOM='N1', NOEUD='N1')"), "{e}");
         // The same through GROUP_MA on nodes (select_nodes takes the cells' nodes).
         let e = nodes_err("GROUP_MA", "M1");
         assert!(e.contains("a cell named 'M1'"), "{e}");
