@@ -22,6 +22,7 @@ pub fn select_cells(mesh: &Mesh, args: &Args) -> Result<Vec<usize>> {
                 &g,
                 "GROUP_MA",
                 mesh.cell_groups.iter().map(|g| g.name.as_str()),
+                mesh.cell_index(&g).map(|_| Namesake::Cell),
             )
         })?;
         out.extend(group.members.iter().copied());
@@ -34,6 +35,7 @@ pub fn select_cells(mesh: &Mesh, args: &Args) -> Result<Vec<usize>> {
                 &m,
                 "cell",
                 mesh.cells.iter().map(|c| c.name.as_str()),
+                mesh.cell_group(&m).map(|_| Namesake::CellGroup),
             )
         })?;
         out.extend([i]);
@@ -66,6 +68,7 @@ pub fn select_nodes(mesh: &Mesh, args: &Args) -> Result<Vec<usize>> {
                 &g,
                 "GROUP_NO",
                 mesh.node_groups.iter().map(|g| g.name.as_str()),
+                mesh.node_index(&g).map(|_| Namesake::Node),
             )
         })?;
         out.extend(group.members.iter().copied());
@@ -78,6 +81,7 @@ pub fn select_nodes(mesh: &Mesh, args: &Args) -> Result<Vec<usize>> {
                 &n,
                 "node",
                 mesh.nodes.iter().map(|n| n.name.as_str()),
+                mesh.node_group(&n).map(|_| Namesake::NodeGroup),
             )
         })?;
         out.extend([i]);
@@ -118,27 +122,135 @@ impl Picker {
     }
 }
 
-/// "GROUP_MA 'X' is not in the mesh", naming a few names that exist.
+/// What else in the mesh bears the name that was not found: Code_Aster 16 and later
+/// removed `MAILLE`/`NOEUD` and name one cell or node by a group of the same name, which
+/// their meshes carry; a 13.x mesh has the cell or node but not the group.
+#[derive(Clone, Copy)]
+enum Namesake {
+    Cell,
+    Node,
+    CellGroup,
+    NodeGroup,
+}
+
+/// "GROUP_MA 'X' is not in the mesh", naming a few names that exist, or the cell, node
+/// or group of that name when there is one.
 fn unknown<'a>(
     args: &Args,
     key: &str,
     name: &str,
     what: &str,
     existing: impl Iterator<Item = &'a str>,
+    namesake: Option<Namesake>,
 ) -> Error {
-    let all: Vec<&str> = existing.collect();
-    let shown: Vec<&str> = all.iter().take(8).copied().collect();
-    let hint = if all.is_empty() {
-        format!("the mesh has no {what}")
-    } else {
-        format!(
-            "the mesh has {} {what}(s): {}{}",
-            all.len(),
-            shown.join(", "),
-            if all.len() > shown.len() { ", ..." } else { "" }
-        )
+    let hint = match namesake {
+        Some(Namesake::Cell) => format!(
+            "the mesh has a cell named '{name}' but no GROUP_MA of that name: files written \
+             for Code_Aster 16 or later name a cell by a group of the same name, which their \
+             meshes carry; give MAILLE='{name}' (13.x spelling) or a mesh with that group \
+             (MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_MA=_F(NOM='{name}', MAILLE='{name}')))"
+        ),
+        Some(Namesake::Node) => format!(
+            "the mesh has a node named '{name}' but no GROUP_NO of that name: files written \
+             for Code_Aster 16 or later name a node by a group of the same name, which their \
+             meshes carry; give NOEUD='{name}' (13.x spelling) or a mesh with that group \
+             (MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_NO=_F(NOM='{name}', NOEUD='{name}')))"
+        ),
+        Some(Namesake::CellGroup) => {
+            format!("the mesh has a GROUP_MA named '{name}': give GROUP_MA='{name}'")
+        }
+        Some(Namesake::NodeGroup) => {
+            format!("the mesh has a GROUP_NO named '{name}': give GROUP_NO='{name}'")
+        }
+        None => {
+            let all: Vec<&str> = existing.collect();
+            let shown: Vec<&str> = all.iter().take(8).copied().collect();
+            if all.is_empty() {
+                format!("the mesh has no {what}")
+            } else {
+                format!(
+                    "the mesh has {} {what}(s): {}{}",
+                    all.len(),
+                    shown.join(", "),
+                    if all.len() > shown.len() { ", ..." } else { "" }
+                )
+            }
+        }
     };
     Error::validation(format!("{what} '{name}' is not in the mesh"))
         .keyword(args.key_path(key))
         .hint(hint)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::value::{Span, Value};
+
+    /// A 13.x-style mesh: cells and nodes by name, one group of its own.
+    const MESH: &str = "COOR_3D\n N1 0 0 0\n N2 1 0 0\nFINSF\nPOI1\n P2 N2\nFINSF\n\
+                        SEG2\n M1 N1 N2\nFINSF\nGROUP_MA\n LIAI\n M1\nFINSF\n\
+                        GROUP_NO\n MASSES\n N2\nFINSF\nFIN\n";
+
+    fn args(key: &str, name: &str) -> Args {
+        let mut a = Args::new("AFFE_MODELE/AFFE");
+        a.simple
+            .push((key.to_string(), Value::Str(name.into()), Span::default()));
+        a
+    }
+
+    fn cells_err(key: &str, name: &str) -> String {
+        let mesh = crate::mesh::aster::parse(MESH, "t.mail").unwrap();
+        select_cells(&mesh, &args(key, name))
+            .unwrap_err()
+            .to_string()
+    }
+
+    fn nodes_err(key: &str, name: &str) -> String {
+        let mesh = crate::mesh::aster::parse(MESH, "t.mail").unwrap();
+        select_nodes(&mesh, &args(key, name))
+            .unwrap_err()
+            .to_string()
+    }
+
+    #[test]
+    fn a_group_named_after_a_cell_or_node_points_to_the_13x_spelling() {
+        // Code_Aster 16+ spelling GROUP_MA='M1' on a mesh that has cell M1, no group M1.
+        let e = cells_err("GROUP_MA", "P2");
+        assert!(e.contains("GROUP_MA 'P2' is not in the mesh"), "{e}");
+        assert!(e.contains("a cell named 'P2' but no GROUP_MA"), "{e}");
+        assert!(e.contains("MAILLE='P2'"), "{e}");
+        assert!(
+            e.contains(
+                "DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_MA=_F(NOM='P2', MAILLE='P2'))"
+            ),
+            "{e}"
+        );
+        let e = nodes_err("GROUP_NO", "N1");
+        assert!(e.contains("GROUP_NO 'N1' is not in the mesh"), "{e}");
+        assert!(e.contains("a node named 'N1' but no GROUP_NO"), "{e}");
+        assert!(e.contains("NOEUD='N1'"), "{e}");
+        assert!(e.contains("CREA_GROUP_NO=_F(NOM='N1', NOEUD='N1')"), "{e}");
+        // The same through GROUP_MA on nodes (select_nodes takes the cells' nodes).
+        let e = nodes_err("GROUP_MA", "M1");
+        assert!(e.contains("a cell named 'M1'"), "{e}");
+    }
+
+    #[test]
+    fn a_cell_or_node_named_after_a_group_points_to_the_group() {
+        let e = cells_err("MAILLE", "LIAI");
+        assert!(e.contains("cell 'LIAI' is not in the mesh"), "{e}");
+        assert!(e.contains("give GROUP_MA='LIAI'"), "{e}");
+        let e = nodes_err("NOEUD", "MASSES");
+        assert!(e.contains("node 'MASSES' is not in the mesh"), "{e}");
+        assert!(e.contains("give GROUP_NO='MASSES'"), "{e}");
+    }
+
+    #[test]
+    fn an_unknown_name_lists_what_exists() {
+        let e = cells_err("GROUP_MA", "NOPE");
+        assert!(e.contains("the mesh has 1 GROUP_MA(s): LIAI"), "{e}");
+        let e = nodes_err("NOEUD", "N9");
+        assert!(e.contains("the mesh has 2 node(s): N1, N2"), "{e}");
+    }
 }
