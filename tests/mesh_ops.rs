@@ -1,3 +1,4 @@
+// Large `Error` on purpose: the reason is given once, at the top of src/lib.rs.
 #![allow(clippy::result_large_err)]
 //! LIRE_MAILLAGE, CREA_MAILLAGE, DEFI_GROUP and the mesh-location helper, run on an
 //! in-memory store with hand-built contexts and arguments.
