@@ -6,8 +6,8 @@
 use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::nnm::stability::{FloquetAnalyser, Integrator};
-use crate::ops::mnl_common::{engine_problem, row_of};
-use crate::ops::{progress::Progress, OpContext};
+use crate::ops::common::mnl_problem::{engine_problem, row_of};
+use crate::ops::{common::progress::Progress, OpContext};
 use crate::store::{matrix, mnl as mnl_store, table as table_store};
 use crate::table::print::format_e;
 use crate::table::{Cell, Table};
@@ -49,12 +49,12 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let order_col = table.req_col("NUME_ORDRE")?;
     // Built once: what every row's analysis shares (layout, dense K and M, laws).
     let n = problem.k.nrows();
-    crate::ops::resources::check_memory(
+    crate::ops::common::resources::check_memory(
         "CALC_STABILITE/SCHEMA_TEMPS/NB_INST",
         &format!("the monodromy matrix of {n} DOF(s)"),
         crate::nnm::budget::floquet_bytes(n),
     )?;
-    crate::ops::resources::warn_long_work(
+    crate::ops::common::resources::warn_long_work(
         ctx,
         "CALC_STABILITE/SCHEMA_TEMPS/NB_INST",
         &format!(

@@ -3,6 +3,13 @@
 //! calling the typed `store` API.
 //!
 //! The interpreter calls [`run`] inside one store transaction per call.
+//!
+//! Every file of this folder beside `mod.rs` is one operator, named after it; what several
+//! operators share is in [`common`], the tests of the operators in `tests/`.
+
+pub mod common;
+#[cfg(test)]
+mod tests;
 
 pub mod affe_cara_elem;
 pub mod affe_char_cine;
@@ -22,34 +29,18 @@ pub mod defi_group;
 pub mod defi_materiau;
 pub mod detruire;
 pub mod extr_table;
-#[cfg(test)]
-#[cfg(test)]
-pub mod harness;
 pub mod impr_fonction;
 pub mod impr_table;
 pub mod lire_maillage;
-pub mod mnl_common;
-pub mod mnl_restart;
-pub mod mnl_start;
 pub mod mode_iter_simult;
 pub mod mode_non_line;
 pub mod modi_maillage;
 pub mod nume_ddl;
-#[cfg(test)]
-mod op_tests;
-pub mod output;
-pub mod plot_args;
-#[cfg(test)]
-mod plot_op_tests;
-pub mod progress;
 pub mod recu_fonction;
-pub mod resources;
 pub mod rest_mode_nonl;
-pub mod table_args;
 pub mod test_fonction;
 pub mod test_resu;
 pub mod test_table;
-pub mod testing;
 
 use crate::args::Args;
 use crate::error::{Error, Result};

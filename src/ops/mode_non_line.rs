@@ -8,10 +8,10 @@
 use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::nnm::{self, Point, Problem, Settings, StartState};
-use crate::ops::mnl_common::{engine_shock, row_of, shocks_from_cara_choc};
-use crate::ops::mnl_restart;
-use crate::ops::mnl_start;
-use crate::ops::{progress::Progress, OpContext};
+use crate::ops::common::mnl_problem::{engine_shock, row_of, shocks_from_cara_choc};
+use crate::ops::common::mnl_restart;
+use crate::ops::common::mnl_start;
+use crate::ops::{common::progress::Progress, OpContext};
 use crate::store::mnl::{self as mnl_store, MnlSetup, StoredShock};
 use crate::store::{matrix, mesh as mesh_store, table as table_store};
 use crate::table::{Cell, ColKind, Table};
@@ -379,7 +379,7 @@ fn check_budget(
     shocks: &[StoredShock],
 ) -> Result<()> {
     use crate::nnm::budget;
-    use crate::ops::resources;
+    use crate::ops::common::resources;
     // Own unknowns and displacement components per law (laws.rs).
     let shocks = shocks
         .iter()

@@ -6,7 +6,7 @@ use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::model::modes::{Mode, ModeMeca};
 use crate::nnm;
-use crate::ops::mnl_common::{engine_problem, row_of};
+use crate::ops::common::mnl_problem::{engine_problem, row_of};
 use crate::ops::OpContext;
 use crate::store::{matrix, mnl as mnl_store, modes as mode_store, table as table_store};
 use crate::table::{Cell, ColKind, Table};
@@ -64,7 +64,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             // At least 2 (the catalog's bound).
             let n_inst = args.count("NB_INST")?.unwrap_or(512);
             let n = problem.k.nrows();
-            crate::ops::resources::check_memory(
+            crate::ops::common::resources::check_memory(
                 "REST_MODE_NONL/NB_INST",
                 &format!("the time history of {n} DOF(s) at {n_inst} instants"),
                 nnm::budget::time_history_bytes(n, n_inst),

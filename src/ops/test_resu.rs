@@ -7,7 +7,7 @@
 
 use crate::args::Args;
 use crate::error::{Error, Result};
-use crate::ops::testing::{checks_with_floor, TestValue};
+use crate::ops::common::testing::{checks_with_floor, TestValue};
 use crate::ops::OpContext;
 use crate::store::{mesh as mesh_store, modes as mode_store, table as table_store};
 use crate::table::Cell;

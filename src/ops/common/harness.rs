@@ -1,8 +1,8 @@
 //! Test support: run operators on an in-memory store with hand-built `Args`.
 
-use super::{lookup, OpContext, TestOutcome, Units};
 use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::ops::{lookup, OpContext, TestOutcome, Units};
 use crate::store::Store;
 use crate::value::{ConceptRef, Span, Value};
 
