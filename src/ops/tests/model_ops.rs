@@ -318,3 +318,29 @@ fn catalogs_parse_and_cover_the_operators() {
         assert!(lookup(op).is_some(), "{op} not registered");
     }
 }
+
+#[test]
+fn the_catalog_names_exactly_the_registered_operators() {
+    use crate::ops::{INTERPRETER_COMMANDS, OPERATORS};
+    use std::collections::BTreeSet;
+    let catalog: BTreeSet<&str> = crate::catalog::operator_names().into_iter().collect();
+    let registered: BTreeSet<&str> = OPERATORS.iter().map(|(n, _)| *n).collect();
+    assert_eq!(
+        registered.len(),
+        OPERATORS.len(),
+        "an operator is registered twice"
+    );
+    let interpreter: BTreeSet<&str> = INTERPRETER_COMMANDS.iter().copied().collect();
+    assert!(registered.is_disjoint(&interpreter));
+    let all: BTreeSet<&str> = registered.union(&interpreter).copied().collect();
+    let missing: Vec<&str> = catalog.difference(&all).copied().collect();
+    assert!(
+        missing.is_empty(),
+        "in commands/ but not registered: {missing:?}"
+    );
+    let extra: Vec<&str> = all.difference(&catalog).copied().collect();
+    assert!(
+        extra.is_empty(),
+        "registered but without a catalog: {extra:?}"
+    );
+}
