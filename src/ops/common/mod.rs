@@ -11,6 +11,8 @@ pub mod mnl_start;
 // Stored shocks and matrices back to the engine's problem (MODE_NON_LINE, REST_MODE_NONL,
 // CALC_STABILITE).
 pub mod mnl_problem;
+// The node of NOEUD= or of a one-node GROUP_NO= (TEST_RESU, MODE_NON_LINE's CHOC).
+pub mod nodes;
 // Writing to logical units (UNITE); the files a run never writes over.
 pub mod output;
 // The picture keywords of IMPR_FONCTION and IMPR_TABLE.
