@@ -61,14 +61,7 @@ fn run(
     ctx.file = "t.comm";
     ctx.line = 1;
     ctx.info = a.int("INFO").unwrap_or(1);
-    store.begin_op()?;
-    match f(&mut ctx, a) {
-        Ok(()) => store.commit_op()?,
-        Err(e) => {
-            store.rollback_op();
-            return Err(e);
-        }
-    }
+    ops::run_in_transaction(f, &mut ctx, a)?;
     Ok(String::from_utf8(out).unwrap())
 }
 

@@ -207,6 +207,18 @@ pub const CODE_ASTER_ALARMS: &[&str] = &[
 /// Signature of every operator.
 pub type OpFn = fn(&mut OpContext<'_>, &Args) -> Result<()>;
 
+/// Run operator `f` in one store transaction: committed when it succeeds, rolled back
+/// (the database left as it was) when it or the commit fails. The interpreter, the test
+/// harness and the integration tests all run operators through this.
+pub fn run_in_transaction(f: OpFn, ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    ctx.store.begin_op()?;
+    let outcome = f(ctx, args).and_then(|()| ctx.store.commit_op());
+    if outcome.is_err() {
+        ctx.store.rollback_op();
+    }
+    outcome
+}
+
 /// Commands the interpreter runs itself (they open, continue and close the study): in the
 /// catalog, not in [`OPERATORS`].
 pub const INTERPRETER_COMMANDS: &[&str] = &["DEBUT", "POURSUITE", "FIN"];

@@ -32,7 +32,7 @@ fn run(
         ctx.result = result;
         ctx.file = "t.comm";
         ctx.line = 1;
-        f(&mut ctx, args)?;
+        crate::ops::run_in_transaction(f, &mut ctx, args)?;
         ctx.created
     };
     Ok((created, String::from_utf8(out).unwrap()))
