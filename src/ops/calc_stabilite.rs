@@ -23,17 +23,14 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let k = matrix::load_matrix(ctx.store, &setup.matr_rigi)?;
     let m = matrix::load_matrix(ctx.store, &setup.matr_mass)?;
     let (problem, settings, _) = engine_problem(&setup, &k, &m)?;
-    let tolerance = args.real("TOLERANCE").unwrap_or(1e-2);
-    let schema = args.fact("SCHEMA_TEMPS");
-    let integrator = match schema.and_then(|s| s.text("SCHEMA")).unwrap_or("NEWMARK") {
+    // Defaults are the catalog's (commands/CALC_STABILITE.toml), filled by the validation.
+    let tolerance = args.req_real("TOLERANCE")?;
+    let schema = args.req_fact("SCHEMA_TEMPS")?;
+    let integrator = match schema.req_text("SCHEMA")? {
         "RUNGE_KUTTA_4" => Integrator::Rk4,
         _ => Integrator::Newmark,
     };
-    let n_inst = match schema {
-        Some(s) => s.count("NB_INST")?,
-        None => None,
-    }
-    .unwrap_or(1000);
+    let n_inst = schema.req_count("NB_INST")?;
     let rows = selected_rows(&table, args.req_fact("FILTRE")?)?;
     if rows.is_empty() {
         return Err(Error::validation("FILTRE selects no row of the table")
@@ -149,7 +146,7 @@ fn selected_rows(t: &Table, filtre: &Args) -> Result<Vec<usize>> {
             .collect();
     }
     let (lo, hi) = (filtre.req_real("FREQ_MIN")?, filtre.req_real("FREQ_MAX")?);
-    let prec = filtre.real("PRECISION").unwrap_or(1e-3);
+    let prec = filtre.req_real("PRECISION")?;
     let (lo, hi) = (lo * (1.0 - prec), hi * (1.0 + prec));
     Ok((0..t.nrows())
         .filter(|&r| {

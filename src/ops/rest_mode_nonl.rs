@@ -27,7 +27,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let k = matrix::load_matrix(ctx.store, &setup.matr_rigi)?;
     let m = matrix::load_matrix(ctx.store, &setup.matr_mass)?;
     let (problem, settings, free) = engine_problem(&setup, &k, &m)?;
-    match args.text("TYPE_RESU").unwrap_or("DYNA_TRANS") {
+    // Defaults are the catalog's (commands/REST_MODE_NONL.toml), filled by the validation.
+    match args.req_text("TYPE_RESU")? {
         "MODE_MECA" => {
             let coefs = nnm::displacement_coefficients(&problem, &settings, &x)?;
             let ncoef = 2 * settings.h_lin + 1;
@@ -62,7 +63,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         }
         _ => {
             // At least 2 (the catalog's bound).
-            let n_inst = args.count("NB_INST")?.unwrap_or(512);
+            let n_inst = args.req_count("NB_INST")?;
             let n = problem.k.nrows();
             crate::ops::common::resources::check_memory(
                 "REST_MODE_NONL/NB_INST",
