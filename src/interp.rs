@@ -244,7 +244,6 @@ impl Runner<'_> {
         for used in concept_arguments(args) {
             store.check_dependencies(&used)?;
         }
-        store.begin_op()?;
         let started = Instant::now();
         let mut ctx = OpContext::new(store, &call.op, &mut *self.out, &self.units, &mut tests);
         ctx.result = call.result.as_deref();
@@ -256,18 +255,14 @@ impl Runner<'_> {
         ctx.alarms_are_errors = self.alarms_are_errors;
         ctx.tole_machine = self.tole_machine;
         ctx.progress = self.progress;
-        let outcome = op_fn(&mut ctx, args);
+        let outcome = ops::run_in_transaction(op_fn, &mut ctx, args);
         let created = std::mem::take(&mut ctx.created);
         let value = ctx.value.take();
         let deferred = ctx.deferred_error.take();
-        let outcome = outcome.and_then(|()| store.commit_op());
         let elapsed = started.elapsed();
         // TEST_* lines are printed by the operators; keep the score even if it failed later.
         self.summary.tests.extend(tests);
-        if let Err(e) = outcome {
-            store.rollback_op();
-            return Err(e);
-        }
+        outcome?;
         self.summary.timings.push((
             call.op.clone(),
             call.result.clone().unwrap_or_default(),

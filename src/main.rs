@@ -1,4 +1,5 @@
 //! The `aster-nl` command: a thin layer over the library.
+// Large `Error` on purpose: the reason is given once, at the top of src/lib.rs.
 #![allow(clippy::result_large_err)]
 
 use aster_nl::error::{Error, ErrorKind};

@@ -1,3 +1,4 @@
+// Large `Error` on purpose: the reason is given once, at the top of src/lib.rs.
 #![allow(clippy::result_large_err)]
 //! LIRE_MAILLAGE, CREA_MAILLAGE, DEFI_GROUP and the mesh-location helper, run on an
 //! in-memory store with hand-built contexts and arguments.
@@ -60,14 +61,7 @@ fn run(
     ctx.file = "t.comm";
     ctx.line = 1;
     ctx.info = a.int("INFO").unwrap_or(1);
-    store.begin_op()?;
-    match f(&mut ctx, a) {
-        Ok(()) => store.commit_op()?,
-        Err(e) => {
-            store.rollback_op();
-            return Err(e);
-        }
-    }
+    ops::run_in_transaction(f, &mut ctx, a)?;
     Ok(String::from_utf8(out).unwrap())
 }
 

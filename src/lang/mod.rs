@@ -20,10 +20,6 @@
 //! `grammar/comm.pest` -> `ast`) -> `blocks` (`for` bodies by indentation) -> `eval`
 //! (with `arith` and `builtins`); `diag` renders errors.
 
-// `error::Error` (the shared contract) is large; every fallible function here returns it.
-// Boxing it is the integrator's call, so the lint is silenced for this module only.
-#![allow(clippy::result_large_err)]
-
 mod arith;
 pub mod ast;
 mod blocks;

@@ -4,8 +4,8 @@
 
 use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::linalg::eigen::norm::ModeNorm;
 use crate::linalg::eigen::{self, EigenOptions, ModeRequest};
-use crate::linalg::eigen_norm::ModeNorm;
 use crate::model::dof::Cmp;
 use crate::model::modes::{Mode, ModeMeca};
 use crate::ops::OpContext;

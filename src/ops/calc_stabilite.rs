@@ -6,8 +6,8 @@
 use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::nnm::stability::{FloquetAnalyser, Integrator};
-use crate::ops::mnl_common::{engine_problem, row_of};
-use crate::ops::{progress::Progress, OpContext};
+use crate::ops::common::mnl_problem::{engine_problem, row_of};
+use crate::ops::{common::progress::Progress, OpContext};
 use crate::store::{matrix, mnl as mnl_store, table as table_store};
 use crate::table::print::format_e;
 use crate::table::{Cell, Table};
@@ -23,17 +23,14 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let k = matrix::load_matrix(ctx.store, &setup.matr_rigi)?;
     let m = matrix::load_matrix(ctx.store, &setup.matr_mass)?;
     let (problem, settings, _) = engine_problem(&setup, &k, &m)?;
-    let tolerance = args.real("TOLERANCE").unwrap_or(1e-2);
-    let schema = args.fact("SCHEMA_TEMPS");
-    let integrator = match schema.and_then(|s| s.text("SCHEMA")).unwrap_or("NEWMARK") {
+    // Defaults are the catalog's (commands/CALC_STABILITE.toml), filled by the validation.
+    let tolerance = args.req_real("TOLERANCE")?;
+    let schema = args.req_fact("SCHEMA_TEMPS")?;
+    let integrator = match schema.req_text("SCHEMA")? {
         "RUNGE_KUTTA_4" => Integrator::Rk4,
         _ => Integrator::Newmark,
     };
-    let n_inst = match schema {
-        Some(s) => s.count("NB_INST")?,
-        None => None,
-    }
-    .unwrap_or(1000);
+    let n_inst = schema.req_count("NB_INST")?;
     let rows = selected_rows(&table, args.req_fact("FILTRE")?)?;
     if rows.is_empty() {
         return Err(Error::validation("FILTRE selects no row of the table")
@@ -49,12 +46,12 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let order_col = table.req_col("NUME_ORDRE")?;
     // Built once: what every row's analysis shares (layout, dense K and M, laws).
     let n = problem.k.nrows();
-    crate::ops::resources::check_memory(
+    crate::ops::common::resources::check_memory(
         "CALC_STABILITE/SCHEMA_TEMPS/NB_INST",
         &format!("the monodromy matrix of {n} DOF(s)"),
         crate::nnm::budget::floquet_bytes(n),
     )?;
-    crate::ops::resources::warn_long_work(
+    crate::ops::common::resources::warn_long_work(
         ctx,
         "CALC_STABILITE/SCHEMA_TEMPS/NB_INST",
         &format!(
@@ -149,7 +146,7 @@ fn selected_rows(t: &Table, filtre: &Args) -> Result<Vec<usize>> {
             .collect();
     }
     let (lo, hi) = (filtre.req_real("FREQ_MIN")?, filtre.req_real("FREQ_MAX")?);
-    let prec = filtre.real("PRECISION").unwrap_or(1e-3);
+    let prec = filtre.req_real("PRECISION")?;
     let (lo, hi) = (lo * (1.0 - prec), hi * (1.0 + prec));
     Ok((0..t.nrows())
         .filter(|&r| {

@@ -1,6 +1,6 @@
 //! CALC_TABLE: apply ACTION occurrences in order (FILTRE, TRI, EXTR, RENOMME) to a table.
 
-use super::table_args::{apply_tri, create_table, filter_from, load_table_arg, titre};
+use super::common::table_args::{apply_tri, create_table, filter_from, load_table_arg, titre};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};

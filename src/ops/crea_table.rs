@@ -1,6 +1,6 @@
 //! CREA_TABLE: a table from lists, LISTE=_F(PARA, LISTE_R | LISTE_I | LISTE_K), TITRE.
 
-use super::table_args::{create_table, titre};
+use super::common::table_args::{create_table, titre};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};

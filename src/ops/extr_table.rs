@@ -3,7 +3,7 @@
 //! (`ctx.value`); 'TABLE_SDASTER' (or 'TABLE_CONTAINER', 'FONCTION_SDASTER') copies the
 //! concept the cell names (a per-row object) into the result.
 
-use super::table_args::{create_table, filters, load_table_arg};
+use super::common::table_args::{create_table, filters, load_table_arg};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};

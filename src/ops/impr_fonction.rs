@@ -2,8 +2,8 @@
 //! (FORMAT='PNG' | 'SVG', aster-nl). A curve is a function (COURBE=_F(FONCTION=...)) or
 //! lists of points (COURBE=_F(ABSCISSE=..., ORDONNEE=...)).
 
-use super::output::write_unit;
-use super::plot_args::{picture, Picture};
+use super::common::output::write_unit;
+use super::common::plot_args::{picture, Picture};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};

@@ -2,9 +2,9 @@
 //! TITRE replaces the table's title in the TABLEAU header. FORMAT='PNG' | 'SVG' (aster-nl)
 //! draws it instead: see [`draw`].
 
-use super::output::write_unit;
-use super::plot_args::{picture, Picture};
-use super::table_args::{apply_tri, filters, load_table_arg, titre};
+use super::common::output::write_unit;
+use super::common::plot_args::{picture, Picture};
+use super::common::table_args::{apply_tri, filters, load_table_arg, titre};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};

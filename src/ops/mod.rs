@@ -3,6 +3,13 @@
 //! calling the typed `store` API.
 //!
 //! The interpreter calls [`run`] inside one store transaction per call.
+//!
+//! Every file of this folder beside `mod.rs` is one operator, named after it; what several
+//! operators share is in [`common`], the tests of the operators in `tests/`.
+
+pub mod common;
+#[cfg(test)]
+mod tests;
 
 pub mod affe_cara_elem;
 pub mod affe_char_cine;
@@ -22,34 +29,18 @@ pub mod defi_group;
 pub mod defi_materiau;
 pub mod detruire;
 pub mod extr_table;
-#[cfg(test)]
-#[cfg(test)]
-pub mod harness;
 pub mod impr_fonction;
 pub mod impr_table;
 pub mod lire_maillage;
-pub mod mnl_common;
-pub mod mnl_restart;
-pub mod mnl_start;
 pub mod mode_iter_simult;
 pub mod mode_non_line;
 pub mod modi_maillage;
 pub mod nume_ddl;
-#[cfg(test)]
-mod op_tests;
-pub mod output;
-pub mod plot_args;
-#[cfg(test)]
-mod plot_op_tests;
-pub mod progress;
 pub mod recu_fonction;
-pub mod resources;
 pub mod rest_mode_nonl;
-pub mod table_args;
 pub mod test_fonction;
 pub mod test_resu;
 pub mod test_table;
-pub mod testing;
 
 use crate::args::Args;
 use crate::error::{Error, Result};
@@ -216,42 +207,59 @@ pub const CODE_ASTER_ALARMS: &[&str] = &[
 /// Signature of every operator.
 pub type OpFn = fn(&mut OpContext<'_>, &Args) -> Result<()>;
 
+/// Run operator `f` in one store transaction: committed when it succeeds, rolled back
+/// (the database left as it was) when it or the commit fails. The interpreter, the test
+/// harness and the integration tests all run operators through this.
+pub fn run_in_transaction(f: OpFn, ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    ctx.store.begin_op()?;
+    let outcome = f(ctx, args).and_then(|()| ctx.store.commit_op());
+    if outcome.is_err() {
+        ctx.store.rollback_op();
+    }
+    outcome
+}
+
+/// Commands the interpreter runs itself (they open, continue and close the study): in the
+/// catalog, not in [`OPERATORS`].
+pub const INTERPRETER_COMMANDS: &[&str] = &["DEBUT", "POURSUITE", "FIN"];
+
+/// Every operator with a `run`, one line each: `("NAME", module::run)`. A test checks that
+/// these names and [`INTERPRETER_COMMANDS`] are exactly the catalog's operators.
+pub const OPERATORS: &[(&str, OpFn)] = &[
+    ("CALC_TABLE", calc_table::run),
+    ("CREA_TABLE", crea_table::run),
+    ("DEFI_FONCTION", defi_fonction::run),
+    ("DETRUIRE", detruire::run),
+    ("EXTR_TABLE", extr_table::run),
+    ("IMPR_FONCTION", impr_fonction::run),
+    ("IMPR_TABLE", impr_table::run),
+    ("RECU_FONCTION", recu_fonction::run),
+    ("TEST_FONCTION", test_fonction::run),
+    ("TEST_TABLE", test_table::run),
+    ("AFFE_MODELE", affe_modele::run),
+    ("DEFI_MATERIAU", defi_materiau::run),
+    ("AFFE_MATERIAU", affe_materiau::run),
+    ("AFFE_CARA_ELEM", affe_cara_elem::run),
+    ("AFFE_CHAR_CINE", affe_char_cine::run),
+    ("AFFE_CHAR_MECA", affe_char_meca::run),
+    ("CALC_MATR_ELEM", calc_matr_elem::run),
+    ("NUME_DDL", nume_ddl::run),
+    ("CALC_MODES", calc_modes::run),
+    ("MODE_ITER_SIMULT", mode_iter_simult::run),
+    ("CALC_STABILITE", calc_stabilite::run),
+    ("MODE_NON_LINE", mode_non_line::run),
+    ("REST_MODE_NONL", rest_mode_nonl::run),
+    ("TEST_RESU", test_resu::run),
+    ("ASSE_MATRICE", asse_matrice::run),
+    ("ASSEMBLAGE", assemblage::run),
+    ("LIRE_MAILLAGE", lire_maillage::run),
+    ("CREA_MAILLAGE", crea_maillage::run),
+    ("DEFI_GROUP", defi_group::run),
+    ("MODI_MAILLAGE", modi_maillage::run),
+];
+
 /// The operator that implements `name`, if we have one. Operators handled by the
-/// interpreter itself (DEBUT, POURSUITE, FIN) are not listed here.
+/// interpreter itself ([`INTERPRETER_COMMANDS`]) are not listed here.
 pub fn lookup(name: &str) -> Option<OpFn> {
-    // One line per operator: "NAME" => module::run,
-    let f: OpFn = match name {
-        "CALC_TABLE" => calc_table::run,
-        "CREA_TABLE" => crea_table::run,
-        "DEFI_FONCTION" => defi_fonction::run,
-        "DETRUIRE" => detruire::run,
-        "EXTR_TABLE" => extr_table::run,
-        "IMPR_FONCTION" => impr_fonction::run,
-        "IMPR_TABLE" => impr_table::run,
-        "RECU_FONCTION" => recu_fonction::run,
-        "TEST_FONCTION" => test_fonction::run,
-        "TEST_TABLE" => test_table::run,
-        "AFFE_MODELE" => affe_modele::run,
-        "DEFI_MATERIAU" => defi_materiau::run,
-        "AFFE_MATERIAU" => affe_materiau::run,
-        "AFFE_CARA_ELEM" => affe_cara_elem::run,
-        "AFFE_CHAR_CINE" => affe_char_cine::run,
-        "AFFE_CHAR_MECA" => affe_char_meca::run,
-        "CALC_MATR_ELEM" => calc_matr_elem::run,
-        "NUME_DDL" => nume_ddl::run,
-        "CALC_MODES" => calc_modes::run,
-        "MODE_ITER_SIMULT" => mode_iter_simult::run,
-        "CALC_STABILITE" => calc_stabilite::run,
-        "MODE_NON_LINE" => mode_non_line::run,
-        "REST_MODE_NONL" => rest_mode_nonl::run,
-        "TEST_RESU" => test_resu::run,
-        "ASSE_MATRICE" => asse_matrice::run,
-        "ASSEMBLAGE" => assemblage::run,
-        "LIRE_MAILLAGE" => lire_maillage::run,
-        "CREA_MAILLAGE" => crea_maillage::run,
-        "DEFI_GROUP" => defi_group::run,
-        "MODI_MAILLAGE" => modi_maillage::run,
-        _ => return None,
-    };
-    Some(f)
+    OPERATORS.iter().find(|(n, _)| *n == name).map(|(_, f)| *f)
 }

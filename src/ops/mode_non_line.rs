@@ -8,12 +8,13 @@
 use crate::args::Args;
 use crate::error::{Error, ErrorKind, Result};
 use crate::nnm::{self, Point, Problem, Settings, StartState};
-use crate::ops::mnl_common::{engine_shock, row_of, shocks_from_cara_choc};
-use crate::ops::mnl_restart;
-use crate::ops::mnl_start;
-use crate::ops::{progress::Progress, OpContext};
+use crate::ops::common::mnl_problem::{engine_shock, row_of, shocks_from_cara_choc};
+use crate::ops::common::mnl_restart;
+use crate::ops::common::mnl_start;
+use crate::ops::common::nodes::{one_node_of_group, OneNode};
+use crate::ops::{common::progress::Progress, OpContext};
 use crate::store::mnl::{self as mnl_store, MnlSetup, StoredShock};
-use crate::store::{matrix, mesh as mesh_store, table as table_store};
+use crate::store::{matrix, table as table_store};
 use crate::table::{Cell, ColKind, Table};
 
 /// Columns of the result table: Code_Aster's, then ours (accuracy indicators).
@@ -389,7 +390,7 @@ fn check_budget(
     shocks: &[StoredShock],
 ) -> Result<()> {
     use crate::nnm::budget;
-    use crate::ops::resources;
+    use crate::ops::common::resources;
     // Own unknowns and displacement components per law (laws.rs).
     let shocks = shocks
         .iter()
@@ -606,24 +607,16 @@ fn choc_node(
     let group = c.req_text("GROUP_NO")?;
     let k_name = &args.req_concept("MATR_RIGI")?.name;
     let numbering = matrix::load_matrix(ctx.store, k_name)?.numbering;
-    let mesh = mesh_store::load_mesh(ctx.store, &numbering.mesh)?;
-    let g = mesh.node_group(group).ok_or_else(|| {
-        Error::validation(format!("mesh {} has no GROUP_NO '{group}'", numbering.mesh))
-            .keyword(kw("GROUP_NO"))
-    })?;
-    match g.members.as_slice() {
-        [one] => mesh
-            .nodes
-            .get(*one)
-            .map(|n| n.name.clone())
-            .ok_or_else(|| Error::internal(format!("GROUP_NO {group} names a missing node"))),
-        members => Err(Error::validation(format!(
-            "GROUP_NO '{group}' holds {} nodes; a shock acts on exactly one",
-            members.len()
-        ))
-        .keyword(kw("GROUP_NO"))
-        .hint("give the node with NOEUD=, or a GROUP_NO of one node")),
-    }
+    one_node_of_group(
+        ctx.store,
+        &numbering.mesh,
+        group,
+        OneNode {
+            reason: "a shock acts on exactly one",
+            hint: Some("give the node with NOEUD=, or a GROUP_NO of one node"),
+        },
+        kw("GROUP_NO"),
+    )
 }
 
 fn new_table() -> Table {

@@ -3,8 +3,8 @@
 //! that turns back, a table extended by a `reuse=` restart) are sorted by abscissa with
 //! alarm FONCT0_62; rows repeating an abscissa already taken are dropped, with a note.
 
+use super::common::table_args::{filters, load_table_arg};
 use super::defi_fonction::apply_options;
-use super::table_args::{filters, load_table_arg};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};

@@ -6,7 +6,7 @@ use crate::args::Args;
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::modes::{Mode, ModeMeca};
 use crate::nnm;
-use crate::ops::mnl_common::{engine_problem, row_of};
+use crate::ops::common::mnl_problem::{engine_problem, row_of};
 use crate::ops::OpContext;
 use crate::store::{matrix, mnl as mnl_store, modes as mode_store, table as table_store};
 use crate::table::{Cell, ColKind, Table};
@@ -27,7 +27,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let k = matrix::load_matrix(ctx.store, &setup.matr_rigi)?;
     let m = matrix::load_matrix(ctx.store, &setup.matr_mass)?;
     let (problem, settings, free) = engine_problem(&setup, &k, &m)?;
-    match args.text("TYPE_RESU").unwrap_or("DYNA_TRANS") {
+    // Defaults are the catalog's (commands/REST_MODE_NONL.toml), filled by the validation.
+    match args.req_text("TYPE_RESU")? {
         "MODE_MECA" => {
             let coefs =
                 nnm::displacement_coefficients(&problem, &settings, &x).map_err(stored_point)?;
@@ -63,9 +64,9 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         }
         _ => {
             // At least 2 (the catalog's bound).
-            let n_inst = args.count("NB_INST")?.unwrap_or(512);
+            let n_inst = args.req_count("NB_INST")?;
             let n = problem.k.nrows();
-            crate::ops::resources::check_memory(
+            crate::ops::common::resources::check_memory(
                 "REST_MODE_NONL/NB_INST",
                 &format!("the time history of {n} DOF(s) at {n_inst} instants"),
                 nnm::budget::time_history_bytes(n, n_inst),

@@ -1,7 +1,7 @@
 //! TEST_FONCTION: VALEUR=_F(FONCTION, NOM_PARA, VALE_PARA, VALE_CALC / VALE_REFE...),
-//! repeatable: the function evaluated at VALE_PARA, checked by `ops::testing`.
+//! repeatable: the function evaluated at VALE_PARA, checked by `ops::common::testing`.
 
-use super::testing::{checks_with_floor, header_line, TestValue};
+use super::common::testing::{checks_with_floor, header_line, TestValue};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};

@@ -7,9 +7,10 @@
 
 use crate::args::Args;
 use crate::error::{Error, Result};
-use crate::ops::testing::{checks_with_floor, TestValue};
+use crate::ops::common::nodes::{one_node_of_group, OneNode};
+use crate::ops::common::testing::{checks_with_floor, TestValue};
 use crate::ops::OpContext;
-use crate::store::{mesh as mesh_store, modes as mode_store, table as table_store};
+use crate::store::{modes as mode_store, table as table_store};
 use crate::table::Cell;
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
@@ -55,22 +56,16 @@ fn node_name(
     let group = resu
         .text("GROUP_NO")
         .ok_or_else(|| Error::validation("expected NOEUD or GROUP_NO").keyword(kw("NOEUD")))?;
-    let m = mesh_store::load_mesh(ctx.store, mesh)?;
-    let g = m.node_group(group).ok_or_else(|| {
-        Error::validation(format!("mesh {mesh} has no GROUP_NO '{group}'")).keyword(kw("GROUP_NO"))
-    })?;
-    match g.members.as_slice() {
-        [one] => Ok(m
-            .nodes
-            .get(*one)
-            .map(|n| n.name.clone())
-            .unwrap_or_default()),
-        other => Err(Error::validation(format!(
-            "GROUP_NO '{group}' holds {} nodes; TEST_RESU tests one value",
-            other.len()
-        ))
-        .keyword(kw("GROUP_NO"))),
-    }
+    one_node_of_group(
+        ctx.store,
+        mesh,
+        group,
+        OneNode {
+            reason: "TEST_RESU tests one value",
+            hint: None,
+        },
+        kw("GROUP_NO"),
+    )
 }
 
 fn mode_value(

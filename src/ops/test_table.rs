@@ -1,9 +1,9 @@
 //! TEST_TABLE: test one value of a table (exactly one row after FILTRE) or, with
 //! TYPE_TEST, the SOMM_ABS / SOMM / MAX / MIN of a column.
 
+use super::common::table_args::{filters, load_table_arg};
+use super::common::testing::{checks_with_floor, header_line, TestValue};
 use super::extr_table::single_cell;
-use super::table_args::{filters, load_table_arg};
-use super::testing::{checks_with_floor, header_line, TestValue};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};

@@ -7,14 +7,12 @@
 //! uncorrected intermediate series points alike, so no interpolation of the computed curve
 //! enters the error). The references:
 //! - `wall`: the one-DOF oscillator of sdnd122 against its exact nonsmooth f(E)
-//!   (`nnm::exact`, ehman.md §8);
+//!   (`nnm::exact`, docs/ehman.md §5);
 //! - `chain2`: two masses (wall–m1–m2 springs) with a BI_PLAN stop on m2, against the
 //!   branch computed at the finest settings (`cases::chain2_reference_config`).
 //!
 //! Pure numerics and files: no SQL. `run_case` measures, `pareto` ranks, `report` writes the
 //! table and CSV, `plot` draws error against time.
-
-#![allow(clippy::result_large_err)]
 
 pub mod cases;
 pub mod measure;

@@ -1,8 +1,8 @@
 //! Test support: run operators on an in-memory store with hand-built `Args`.
 
-use super::{lookup, OpContext, TestOutcome, Units};
 use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::ops::{lookup, run_in_transaction, OpContext, TestOutcome, Units};
 use crate::store::Store;
 use crate::value::{ConceptRef, Span, Value};
 
@@ -39,24 +39,13 @@ impl Harness {
         args: &Args,
     ) -> Result<Option<Value>> {
         let f = lookup(op).ok_or_else(|| Error::internal(format!("no operator {op}")))?;
-        self.store.begin_op()?;
         let mut ctx = OpContext::new(&self.store, op, &mut self.out, &self.units, &mut self.tests);
         ctx.result = result;
         ctx.reuse = reuse;
         ctx.file = "test.comm";
         ctx.line = 1;
-        let r = f(&mut ctx, args);
-        let value = ctx.value.take();
-        match r {
-            Ok(()) => {
-                self.store.commit_op()?;
-                Ok(value)
-            }
-            Err(e) => {
-                self.store.rollback_op();
-                Err(e)
-            }
-        }
+        run_in_transaction(f, &mut ctx, args)?;
+        Ok(ctx.value.take())
     }
 
     pub fn output(&self) -> String {

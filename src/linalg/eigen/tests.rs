@@ -380,7 +380,7 @@ fn upper_triangle_storage_is_accepted() {
 
 // Each user of the shared model builders needs only some of them.
 #[allow(dead_code)]
-#[path = "../../benches/common/models.rs"]
+#[path = "../../../benches/common/models.rs"]
 mod models;
 
 #[test]

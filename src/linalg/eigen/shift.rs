@@ -6,7 +6,7 @@
 //! ordering and no pivoting. Without pivoting an indefinite K − σM can in principle give
 //! an inaccurate factor; the callers therefore check the true residuals of the modes.
 
-use super::eigen_sym::SymSparse;
+use super::sym::SymSparse;
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;

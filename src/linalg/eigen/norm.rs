@@ -1,6 +1,6 @@
 //! Mode normalisation (Code_Aster NORM_MODE) and generalized mass/stiffness.
 
-use super::eigen_sym::SymSparse;
+use super::sym::SymSparse;
 use crate::error::{Error, Result};
 
 /// How to scale a mode shape.

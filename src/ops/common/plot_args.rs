@@ -3,9 +3,9 @@
 //! BORNE_X, BORNE_Y; and the report of where the picture went.
 
 use super::output::picture_path;
-use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::ops::OpContext;
 use crate::plot::{ImageFormat, PlotSummary, Scale, XyPlot};
 use std::path::PathBuf;
 

@@ -1,7 +1,7 @@
 //! Tests of the table and function operators, run through `lookup` on an in-memory store.
 
-use super::harness::*;
 use crate::args::Args;
+use crate::ops::common::harness::*;
 use crate::store::table::{links, load_table};
 use crate::value::Value;
 
@@ -458,7 +458,7 @@ fn recu_fonction_then_test_fonction() {
                 vec![
                     (
                         "FONCTION",
-                        crate::ops::harness::concept("F", "fonction_sdaster"),
+                        crate::ops::common::harness::concept("F", "fonction_sdaster"),
                     ),
                     ("VALE_PARA", r(1.5)),
                     ("VALE_CALC", r(5.0)),
@@ -483,7 +483,7 @@ fn recu_fonction_then_test_fonction() {
                 vec![
                     (
                         "FONCTION",
-                        crate::ops::harness::concept("F", "fonction_sdaster"),
+                        crate::ops::common::harness::concept("F", "fonction_sdaster"),
                     ),
                     ("NOM_PARA", k("FREQ")),
                     ("VALE_PARA", r(1.5)),
@@ -518,7 +518,7 @@ fn defi_fonction_log_and_impr() {
         vec![],
     );
     h.run("DEFI_FONCTION", Some("F"), None, &a).unwrap();
-    let f = crate::ops::harness::concept("F", "fonction_sdaster");
+    let f = crate::ops::common::harness::concept("F", "fonction_sdaster");
     let val = |x: f64, y: f64| {
         fact(
             "TEST_FONCTION/VALEUR",

@@ -1,9 +1,9 @@
 //! Reading the table keywords shared by several operators (FILTRE, TRI, TABLE) from
 //! `Args`, and loading/saving the table concepts they name.
 
-use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::ops::OpContext;
 use crate::store::table::{load_table, save_table};
 use crate::table::filter::{CritComp, Critere, Filter, DEFAULT_PRECISION};
 use crate::table::sort::{sort, Ordre};

@@ -2,8 +2,8 @@
 //! work a call needs from its keywords and the model size (`nnm::budget`) before anything
 //! is allocated, and this module compares it with the machine's memory.
 
-use super::OpContext;
 use crate::error::{Error, Result};
+use crate::ops::OpContext;
 
 /// Memory this process may still use, in bytes: `MemAvailable` of `/proc/meminfo`
 /// (`MemTotal` on kernels without it); `None` where the file cannot be read.

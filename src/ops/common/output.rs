@@ -2,8 +2,8 @@
 //! unit the file mapped in `ctx.units`, else `fort.N` beside the command file. Successive
 //! prints to one unit append, as Code_Aster's do.
 
-use super::{OpContext, Units};
 use crate::error::{Error, Result};
+use crate::ops::{OpContext, Units};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 

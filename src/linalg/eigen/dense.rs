@@ -7,7 +7,7 @@
 //! accuracy however badly K is conditioned.
 //! Direct form (K indefinite, M definite): M = LLᵀ, C = L⁻¹KL⁻ᵀ, C y = ω² y, φ = L⁻ᵀy.
 
-use super::eigen_sym::SymSparse;
+use super::sym::SymSparse;
 use crate::error::{Error, Result};
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,

@@ -5,22 +5,27 @@
 //! when some DOFs carry no mass: those give infinite frequencies, never returned).
 //!
 //! Two solvers, chosen by size (see [`DENSE_MAX_DOFS`]) unless [`EigenOptions::force`]:
-//! - dense ([`super::eigen_dense`]): Cholesky reduction and a full symmetric eigensolve,
+//! - dense ([`dense`]): Cholesky reduction and a full symmetric eigensolve,
 //!   O(n²) memory, every mode at once;
-//! - shift-invert Lanczos ([`super::eigen_lanczos`]) on (K − σM)⁻¹M with one sparse LDLᵀ
-//!   of K − σM ([`super::eigen_shift`]), O(nnz(L) + n·ncv) memory.
+//! - shift-invert Lanczos ([`lanczos`]) on (K − σM)⁻¹M with one sparse LDLᵀ
+//!   of K − σM ([`shift`]), O(nnz(L) + n·ncv) memory.
 //!
 //! The sparse path never trusts Lanczos alone to have found every mode (a single Krylov
 //! sequence misses copies of multiple eigenvalues): Sylvester's inertia counts the modes in
 //! the interval the answer spans, and missing ones are sought by further deflated passes.
 
-use super::eigen_dense::solve_dense;
-use super::eigen_lanczos::{lanczos, LanczosParams};
-use super::eigen_norm;
-pub use super::eigen_norm::{largest_component_scale, ModeNorm, Normalized};
-pub use super::eigen_shift::FactorKind;
-use super::eigen_shift::ShiftedFactor;
-use super::eigen_sym::{norm2, SymSparse};
+pub mod dense;
+pub mod lanczos;
+pub mod norm;
+pub mod shift;
+pub mod sym;
+
+use self::dense::solve_dense;
+use self::lanczos::{lanczos, LanczosParams};
+pub use self::norm::{largest_component_scale, ModeNorm, Normalized};
+pub use self::shift::FactorKind;
+use self::shift::ShiftedFactor;
+use self::sym::{norm2, SymSparse};
 use crate::error::{Error, Result};
 use faer::sparse::SparseColMat;
 use std::f64::consts::PI;
@@ -288,12 +293,12 @@ fn m_orthonormalize(vectors: &mut [Vec<f64>], m: &SymSparse) {
         let mut w = vec![0.0; v.len()];
         for _pass in 0..2 {
             for (u, mu) in done.iter().zip(&mv) {
-                let c = super::eigen_sym::dot(mu, v);
+                let c = sym::dot(mu, v);
                 v.iter_mut().zip(u).for_each(|(a, b)| *a -= c * b);
             }
         }
         m.mul(v, &mut w);
-        let nrm = super::eigen_sym::dot(v, &w).max(0.0).sqrt();
+        let nrm = sym::dot(v, &w).max(0.0).sqrt();
         if nrm > 0.0 {
             v.iter_mut().for_each(|a| *a /= nrm);
             w.iter_mut().for_each(|a| *a /= nrm);
@@ -590,9 +595,8 @@ pub fn normalize(
 ) -> Result<Normalized> {
     let ks = SymSparse::from_faer(k, "stiffness")?;
     let ms = SymSparse::from_faer(m, "mass")?;
-    eigen_norm::normalize(phi, &ks, &ms, norm)
+    norm::normalize(phi, &ks, &ms, norm)
 }
 
 #[cfg(test)]
-#[path = "eigen_tests.rs"]
 mod tests;

@@ -1,8 +1,8 @@
 //! IMPR_TABLE and IMPR_FONCTION with FORMAT='PNG' | 'SVG', run through `lookup` on an
 //! in-memory store; the pictures go to a temporary directory holding the "command file".
 
-use super::harness::*;
 use crate::args::Args;
+use crate::ops::common::harness::*;
 use crate::plot::tests::{has_texts, png_size, svg_texts};
 use crate::value::Value;
 use std::path::PathBuf;

@@ -7,7 +7,7 @@
 //! how a second copy of a multiple eigenvalue gets found). Memory: (ncv + 1) vectors of
 //! length n plus small ncv × ncv matrices.
 
-use super::eigen_sym::{dot, SymSparse};
+use super::sym::{dot, SymSparse};
 use crate::error::{Error, Result};
 use faer::{Mat, Side};
 

@@ -18,9 +18,9 @@
 //! Each check gives a [`TestOutcome`] whose line reads like Code_Aster's:
 //! ` OK   ANALYTIQUE      0.646693927     0.646700000   9.39E-04%      0.1%`.
 
-use super::TestOutcome;
 use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::ops::TestOutcome;
 use crate::table::filter::Critere;
 use crate::table::print::format_e;
 use crate::value::Value;

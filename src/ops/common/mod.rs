@@ -1,0 +1,27 @@
+//! What several operators share (the operators themselves are the other files of
+//! `src/ops/`, one each).
+
+// Test support: operators run on an in-memory store with hand-built `Args`.
+#[cfg(test)]
+pub mod harness;
+// MODE_NON_LINE restarts: the stored direction of travel.
+pub mod mnl_restart;
+// MODE_NON_LINE's start from linear modes (ETAT_INIT).
+pub mod mnl_start;
+// Stored shocks and matrices back to the engine's problem (MODE_NON_LINE, REST_MODE_NONL,
+// CALC_STABILITE).
+pub mod mnl_problem;
+// The node of NOEUD= or of a one-node GROUP_NO= (TEST_RESU, MODE_NON_LINE's CHOC).
+pub mod nodes;
+// Writing to logical units (UNITE); the files a run never writes over.
+pub mod output;
+// The picture keywords of IMPR_FONCTION and IMPR_TABLE.
+pub mod plot_args;
+// Progress bars (on a terminal only).
+pub mod progress;
+// Whether a call fits the machine (memory, long work).
+pub mod resources;
+// The table keywords (FILTRE, TRI, TABLE) shared by the table operators.
+pub mod table_args;
+// The comparison behind every TEST_* operator.
+pub mod testing;
