@@ -5,9 +5,9 @@
 //! right-hand side (0, 1), X_1 = ±y/‖y‖; order p solves for z with (−Σ Q(X_r, X_{p−r}), 0)
 //! and adds the multiple of y that makes X_p·X_1 = 0 (y spans the kernel of L_t).
 //! Step length: Code_Aster's, a_max = (PREC_MAN/‖R_{N+1}‖)^{1/(N+1)} with R_{N+1} the
-//! residual of the first neglected order (not ehman.md's (ε‖X_1‖/‖X_N‖)^{1/(N−1)}): with it
+//! residual of the first neglected order (not the classic estimate (ε‖X_1‖/‖X_N‖)^{1/(N−1)}, docs/ehman.md §4): with it
 //! the NB_BRANCHE of Code_Aster's command files covers the same energy range (sdnd122a:
-//! 105 branches reach past ENERGIE = 6.5e-3, which ehman.md's estimate does not).
+//! 105 branches reach past ENERGIE = 6.5e-3, which the classic estimate does not).
 
 use super::linear_solver::TangentSolver;
 use super::system::System;

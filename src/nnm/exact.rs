@@ -1,4 +1,4 @@
-//! Exact periods of the nonsmooth one-DOF systems of ehman.md §8 (η → 0, H_nl → ∞): the
+//! Exact periods of the nonsmooth one-DOF systems of docs/ehman.md §5 (η → 0, H_nl → ∞): the
 //! references of the engine tests and of the accuracy study (`crate::study`).
 //! m, k: the oscillator; g: the gap; alpha: the stop stiffness.
 

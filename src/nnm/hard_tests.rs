@@ -111,7 +111,7 @@ fn chain_mode(n: usize, k: f64) -> (Vec<f64>, f64) {
 fn hard_stiff_wall_one_dof_rigi_nor_1_to_1e8() {
     // RIGI_NOR/k = 1 … 1e8 on the sdnd122 oscillator (k = 10). The frequency at E = 1e-3
     // lies between the linear one and the rigid-impact limit (α → ∞), grows with α, and
-    // for α = k it matches the exact period of ehman.md §8 (the contact is soft: H_nl = 60
+    // for α = k it matches the exact period of docs/ehman.md §5 (the contact is soft: H_nl = 60
     // resolves it; 1e-5 relative covers PARA_REGUL = 1e-5 and the truncation, measured
     // 4.9e-7).
     let w0 = 10f64.sqrt();
@@ -182,7 +182,7 @@ fn hard_stiff_stop_on_a_20_dof_chain() {
 #[test]
 fn hard_tiny_regularisation_down_to_1e_7() {
     // PARA_REGUL = 1e-5 and 1e-7 with NB_HARM_NONL raised (100, 200). The error against
-    // the exact nonsmooth period (ehman.md §8) over E ∈ [1e-3, 3e-3] stays below 5e-4
+    // the exact nonsmooth period (docs/ehman.md §5) over E ∈ [1e-3, 3e-3] stays below 5e-4
     // (measured 2.9e-4 for both: the truncation of the displacement at H_l = 7 dominates,
     // not η), every branch end converges and the frequency rises with the energy.
     // Smaller η shortens the steps near first contact: 60 branches reach E ≈ 7e-3.

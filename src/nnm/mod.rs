@@ -1,5 +1,5 @@
 //! EHMAN: branches of nonlinear normal modes of M Ü + K U + Pᵀ F = 0 with localised shocks,
-//! by harmonic balance and the asymptotic numerical method (design: ehman.md). Pure
+//! by harmonic balance and the asymptotic numerical method (design: docs/ehman.md). Pure
 //! numerics: physical units in and out, no SQL, no keywords parsing.
 //!
 //! Conventions the operator glue relies on:

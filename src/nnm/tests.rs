@@ -179,7 +179,7 @@ fn sdnd122a_matches_code_aster() {
         f / exact - 1.0
     );
     assert!((f / 0.64669392749957 - 1.0).abs() < 1e-5);
-    // And both lie above the exact nonsmooth frequency by about 1e-4 (ehman.md §8).
+    // And both lie above the exact nonsmooth frequency by about 1e-4 (docs/ehman.md §5).
     assert!(f > exact && f / exact - 1.0 < 2e-4);
     assert!(pts.iter().all(|q| q.residual <= s.prec_newton));
 }
