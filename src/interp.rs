@@ -704,7 +704,10 @@ impl Host for Checker {
         match catalog::validate(&call, &self.file) {
             Ok(args) => {
                 self.static_checks(&call, &args);
-                for (name, ty) in co_outputs(&args) {
+                let outputs = catalog::get(&call.op)
+                    .map(|def| co_outputs(&def.simp, &def.fact, &args))
+                    .unwrap_or_default();
+                for (name, ty) in outputs {
                     self.concepts.insert(name, ty);
                 }
                 let ty = catalog::result_type(&call.op, &args);
@@ -801,23 +804,30 @@ fn ctx_reuse_name(call: &CommandCall) -> Option<String> {
 }
 
 /// Concepts a macro command creates through `CO('NAME')` keywords, with their types (for
-/// `check`, which runs nothing). The type follows from the keyword, as in Code_Aster's
-/// ASSEMBLAGE: NUME_DDL gives a numbering, MATR_ASSE/MATRICE an assembled matrix.
-fn co_outputs(args: &Args) -> Vec<(String, String)> {
+/// `check`, which runs nothing): the catalog's `co_type` of the keyword (ASSEMBLAGE:
+/// NUME_DDL gives a numbering, MATR_ASSE/MATRICE an assembled matrix).
+fn co_outputs(
+    simp: &[catalog::SimpDef],
+    fact: &[catalog::FactDef],
+    args: &Args,
+) -> Vec<(String, String)> {
     let mut out = Vec::new();
     for (key, value, _) in &args.simple {
         if let Value::Co(name) = value {
-            let ty = match key.as_str() {
-                "NUME_DDL" => "nume_ddl_sdaster",
-                "MATRICE" => "matr_asse_depl_r",
-                _ => "unknown",
-            };
+            let ty = simp
+                .iter()
+                .find(|s| s.name == *key)
+                .and_then(|s| s.co_type.as_deref())
+                .unwrap_or("unknown");
             out.push((name.clone(), ty.to_string()));
         }
     }
-    for (_, occurrences, _) in &args.factor {
+    for (key, occurrences, _) in &args.factor {
+        let Some(def) = fact.iter().find(|f| f.name == *key) else {
+            continue;
+        };
         for occ in occurrences {
-            out.extend(co_outputs(occ));
+            out.extend(co_outputs(&def.simp, &def.fact, occ));
         }
     }
     out

@@ -176,6 +176,12 @@ fn check_level(level: &Level, out: &mut Vec<String>) {
         if let Some(w) = &s.when {
             check_when(level, &s.name, w, out);
         }
+        match (&s.co_type, s.types.iter().any(|t| t == "CO")) {
+            (Some(t), true) => check_type(&sp, t, out),
+            (Some(_), false) => out.push(format!("{sp}: co_type without type \"CO\"")),
+            (None, true) => out.push(format!("{sp}: type \"CO\" needs co_type")),
+            (None, false) => {}
+        }
         if s.max.is_some_and(|m| m < s.min.max(1)) {
             out.push(format!("{sp}: max below min"));
         }

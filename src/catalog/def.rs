@@ -124,6 +124,10 @@ pub struct SimpDef {
     pub doc: String,
     #[serde(default)]
     pub when: Option<When>,
+    /// The type of the concept a `CO('NAME')` given to this keyword creates (keywords whose
+    /// `type` includes "CO"): what `check` knows of it without running the operator.
+    #[serde(default)]
+    pub co_type: Option<String>,
 }
 
 impl SimpDef {
@@ -188,6 +192,7 @@ impl FactDef {
             val_max_excluded: false,
             doc: String::new(),
             when: None,
+            co_type: None,
         })
     }
 }

@@ -1570,3 +1570,29 @@ mod fuzz {
         }
     }
 }
+
+#[test]
+fn a_co_keyword_declares_the_type_it_creates() {
+    let op = |co_type: &str| {
+        let text = format!(
+            "name = \"MACRO\"\n[[simp]]\nname = \"OUT\"\ntype = \"CO\"\n{co_type}statut = \"o\"\n"
+        );
+        let def = super::parse("MACRO.toml", &text).expect("parses");
+        let mut out = Vec::new();
+        super::check::check_op(&def, &mut out);
+        out
+    };
+    assert!(op("co_type = \"matr_asse_depl_r\"\n").is_empty());
+    assert_eq!(
+        op(""),
+        vec!["MACRO/OUT: type \"CO\" needs co_type".to_string()]
+    );
+    assert_eq!(
+        op("co_type = \"matr_asse_dpl_r\"\n"),
+        vec!["MACRO/OUT: unknown type matr_asse_dpl_r".to_string()]
+    );
+    // check knows ASSEMBLAGE's outputs from the catalog, not from code.
+    let asse = super::get("ASSEMBLAGE").expect("ASSEMBLAGE");
+    let nume = asse.simp.iter().find(|s| s.name == "NUME_DDL").unwrap();
+    assert_eq!(nume.co_type.as_deref(), Some("nume_ddl_sdaster"));
+}
