@@ -157,8 +157,9 @@ pub fn equations(law: ScaledLaw, s: f64, alpha: f64, eta: f64) -> LawEqs {
     }
 }
 
-/// Positive root of f²/α − f d − c = 0 (c > 0), without cancellation.
-fn plan_force(d: f64, alpha: f64, c: f64) -> f64 {
+/// Positive root of f²/α − f d − c = 0 (c > 0), without cancellation. Also CALC_STABILITE's
+/// pointwise law (`stability/laws.rs`): one root for both.
+pub(crate) fn plan_force(d: f64, alpha: f64, c: f64) -> f64 {
     let q = (d * d + 4.0 * c / alpha).sqrt();
     if d > 0.0 {
         0.5 * alpha * (d + q)
@@ -171,8 +172,8 @@ fn plan_force(d: f64, alpha: f64, c: f64) -> f64 {
 
 /// Root of f(1 − (f/α − u)²/s²) = η u on the branch that is α(u ∓ s) in contact and
 /// η u/(1 − u²/s²) inside the gap: for u > 0 it lies in (max(0, α(u−s)), α u), where the
-/// function goes from negative to positive; the law is odd in u.
-fn biplan_force(u: f64, s: f64, alpha: f64, eta: f64) -> f64 {
+/// function goes from negative to positive; the law is odd in u. Also CALC_STABILITE's.
+pub(crate) fn biplan_force(u: f64, s: f64, alpha: f64, eta: f64) -> f64 {
     if u == 0.0 {
         return 0.0;
     }

@@ -44,14 +44,10 @@ pub struct PointLaw {
 }
 
 /// PLAN force and df/du at penetration d = u − g, without cancellation on either side.
+/// The root is the engine's (`nnm::laws::plan_force`, c = η).
 fn plan(d: f64, alpha: f64, eta: f64) -> (f64, f64) {
     let q = (alpha * alpha * d * d + 4.0 * alpha * eta).sqrt();
-    let f = if d > 0.0 {
-        0.5 * (alpha * d + q)
-    } else {
-        // f·(q − αd)/2 = αη: the product of the two roots.
-        2.0 * alpha * eta / (q - alpha * d)
-    };
+    let f = crate::nnm::laws::plan_force(d, alpha, eta);
     (f, alpha * f / q)
 }
 
@@ -68,23 +64,8 @@ fn biplan(u: f64, alpha: f64, g: f64, eta: f64) -> Result<(f64, f64)> {
         .keyword("CHOC/PARA_REGUL"));
     }
     let (sign, ua) = if u < 0.0 { (-1.0, -u) } else { (1.0, u) };
-    let psi = |f: f64| f * (1.0 - ((f - alpha * ua) / ag).powi(2)) - ep * ua;
-    let mut f = 0.0;
-    if ua > 0.0 {
-        let (mut lo, mut hi) = ((alpha * (ua - g)).max(0.0), alpha * ua);
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if psi(mid) < 0.0 {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-            if hi - lo <= 1e-15 * hi {
-                break;
-            }
-        }
-        f = 0.5 * (lo + hi);
-    }
+    // The root is the engine's bisection (`nnm::laws::biplan_force`, whose η is η/g²).
+    let f = crate::nnm::laws::biplan_force(ua, g, alpha, ep);
     // Implicit derivative of ψ(f, u) = 0 (the same in u and −u since the law is odd).
     let w = (f - alpha * ua) / ag;
     let psi_f = 1.0 - w * w - 2.0 * f * w / ag;
