@@ -510,3 +510,61 @@ fn hard_ring_through_its_centre_next_to_another_shock() {
         "{e0} -> {top}, reach {reach}"
     );
 }
+
+/// Issue 12: PREC_MAN 1e-6 with H_l/H_nl 10/30 and PARA_REGUL 1e-6 on sdnd122's wall,
+/// started at the grazing amplitude, follows a family of converged harmonic-balance
+/// solutions that is not a motion of the system: the energy falls against DIR_EVOLUTION
+/// and the frequency drops below the linear one (impossible for a stiffening stop), every
+/// residual within PREC_NEWTON, and only the contact law checked in time shows it (its
+/// defect grows from 3e-3 to O(1) over ten branches, measured). Without the check the run
+/// ends normally on it; with it (StepControl::law_defect_max, ECART_LOI_CHOC_MAXI = 0.5 as
+/// in the catalog) the run retries with shorter steps, then stops with the error naming the
+/// keyword, the rows before it kept.
+#[test]
+fn hard_non_physical_family_stops_on_the_law_check() {
+    let problem = one_dof(ShockLaw::Plan, 1e-6);
+    let mut s = settings(10, 30, 40, 1);
+    s.prec_man = 1e-6;
+    s.prec_newton = 1e-8;
+    let f_lin = 10f64.sqrt() / (2.0 * std::f64::consts::PI);
+    let go = |law_defect_max: Option<f64>| {
+        let start = start_from_mode(&problem, &s, &[1.0], 1.0, 10f64.sqrt()).unwrap();
+        let control = StepControl {
+            retries_max: 4,
+            stall_branches: 50,
+            law_defect_max,
+            spread_max: None,
+        };
+        continue_controlled(&problem, &s, control, start, &mut |_, _| true)
+    };
+    let free = go(None);
+    assert!(free.error.is_none());
+    let last = free.points.last().unwrap();
+    // The unchecked run ends on the wrong family: well below the linear frequency.
+    assert!(last.frequency < 0.9 * f_lin, "{}", last.frequency);
+    let guarded = go(Some(0.5));
+    let e = guarded.error.expect("the law check stops the run");
+    assert_eq!(e.keyword.as_deref(), Some("RESOLUTION/ECART_LOI_CHOC_MAXI"));
+    assert!(
+        e.message.contains("left the physical root") && e.message.contains("halved 4 times"),
+        "{}",
+        e.message
+    );
+    // Every row kept satisfies the check (relative defect ≤ 0.5).
+    let post = PostProcessor::new(&problem, &s).unwrap();
+    assert!(!guarded.points.is_empty());
+    for p in &guarded.points {
+        assert!(p.residual <= s.prec_newton);
+    }
+    let ends: Vec<&Point> = guarded.points.iter().collect();
+    let worst = ends
+        .iter()
+        .map(|p| post.relative_law_defect(&p.x).unwrap())
+        .fold(0.0f64, f64::max);
+    assert!(worst <= 0.5, "{worst}");
+    println!(
+        "non-physical family: {} rows kept, worst defect {worst:.3e}, stopped: {}",
+        guarded.points.len(),
+        e.message
+    );
+}
