@@ -171,6 +171,14 @@ pub struct StepControl {
     /// Stop with an error when the branch ends of this many consecutive branches stay
     /// within [`STALL_ENERGY`] in energy and [`STALL_FREQUENCY`] in frequency (0: never).
     pub stall_branches: usize,
+    /// A branch whose corrected end violates its contact law in time by more than this is
+    /// retried like a failed correction, then stops the run (None: not checked). The
+    /// defect is ECART_LOI_CHOC ([`contact_law_defect`], in units of RIGI_NOR·JEU) divided
+    /// by max(1, the largest law force in those units): the same as ECART_LOI_CHOC up to
+    /// the first-contact regime, relative to the force far into a stop.
+    pub law_defect_max: Option<f64>,
+    /// Likewise for the energy spread over the period (ECART_ENERGIE) of the corrected end.
+    pub spread_max: Option<f64>,
 }
 
 /// Relative spread of ENERGIE over the window of [`StepControl::stall_branches`] below which
@@ -185,6 +193,8 @@ impl StepControl {
         StepControl {
             retries_max: 0,
             stall_branches: 0,
+            law_defect_max: None,
+            spread_max: None,
         }
     }
 }
@@ -623,6 +633,11 @@ fn run(
     // looks for the sign change (the main one holds the next branch's tangent then); made
     // when first needed.
     let mut probe: Option<Box<dyn TangentSolver>> = None;
+    // The contact law checked in time at every branch end, when asked for (StepControl).
+    let law_check = match control.law_defect_max {
+        Some(_) if !problem.shocks.is_empty() => Some(PostProcessor::new(problem, settings)?),
+        _ => None,
+    };
     let mut x0 = st.x;
     let border = st.border;
     solver
@@ -685,7 +700,15 @@ fn run(
         // is more accurate closer to its origin), at most `control.retries_max` times.
         let mut step_retries = 0;
         let (mut branch_points, x_end, newton_iterations, tangent) = loop {
-            match branch_points_of(&sys, solver.as_mut(), settings, &ser, &x0, b)? {
+            let attempt = branch_points_of(&sys, solver.as_mut(), settings, &ser, &x0, b)?
+                .and_then(|done| {
+                    match done.0.last() {
+                        Some(end) => off_the_law(&control, law_check.as_ref(), end)?,
+                        None => None,
+                    }
+                    .map_or(Ok(done), Err)
+                });
+            match attempt {
                 Ok(done) => break done,
                 Err(_) if step_retries < control.retries_max => {
                     step_retries += 1;
@@ -788,6 +811,56 @@ fn run(
         prev_tangent = Some(tangent);
     }
     Ok(())
+}
+
+/// Why a corrected branch end is not a point of the physical family although its residual
+/// converged, if it is not (StepControl::law_defect_max, spread_max): the error a retry
+/// with a shorter step may cure, else the one that stops the run.
+fn off_the_law(
+    control: &StepControl,
+    law_check: Option<&PostProcessor>,
+    end: &Point,
+) -> Result<Option<Error>> {
+    if let (Some(max), Some(check)) = (control.law_defect_max, law_check) {
+        let defect = check.relative_law_defect(&end.x)?;
+        if defect.is_nan() || defect > max {
+            return Ok(Some(
+                Error::numerical(format!(
+                    "the branch end satisfies its contact law in time only to {defect:.3e} x \
+                     max(RIGI_NOR*JEU, largest contact force) > ECART_LOI_CHOC_MAXI = {max:.3e} \
+                     (ENERGIE = {:.6e}, FREQUENCE = {:.6e} Hz): the branch has left the physical \
+                     root of the regularised law (a converged solution of the harmonic balance \
+                     that is not a motion of the system)",
+                    end.energy, end.frequency
+                ))
+                .keyword("RESOLUTION/ECART_LOI_CHOC_MAXI")
+                .hint(
+                    "lower PREC_MAN (1e-9 or below: shorter series steps do not jump across to \
+                     the other root of the law), raise PARA_REGUL, or raise NB_HARM_NONL",
+                ),
+            ));
+        }
+    }
+    if let Some(max) = control.spread_max {
+        let spread = end.energy_spread;
+        if spread.is_nan() || spread > max {
+            return Ok(Some(
+                Error::numerical(format!(
+                    "the energy of the branch end varies over the period by ECART_ENERGIE = \
+                     {spread:.3e} > ECART_ENERGIE_MAXI = {max:.3e} (ENERGIE = {:.6e}, FREQUENCE \
+                     = {:.6e} Hz): the point is not a periodic orbit of the system to that \
+                     accuracy",
+                    end.energy, end.frequency
+                ))
+                .keyword("RESOLUTION/ECART_ENERGIE_MAXI")
+                .hint(
+                    "raise NB_HARM_LINE (a stiff stop needs many harmonics of the displacement), \
+                     lower PREC_MAN, or raise PARA_REGUL",
+                ),
+            ));
+        }
+    }
+    Ok(None)
 }
 
 /// The window's (energy, frequency) when the last `window` + 1 branch ends all lie within

@@ -148,6 +148,15 @@ impl PostProcessor {
     pub fn law_defect(&self, x: &[f64]) -> Result<f64> {
         Ok(self.row(x)?.law_defect)
     }
+
+    /// The law defect relative to the force the law carries (`LawCheck::defects`): what
+    /// the run's guard (StepControl::law_defect_max) compares.
+    pub fn relative_law_defect(&self, x: &[f64]) -> Result<f64> {
+        self.unknowns.check(x)?;
+        let displacement = self.unknowns.displacement_unchecked(x);
+        let contact = self.unknowns.contact_unchecked(x);
+        Ok(self.check.defects(&displacement, &contact)?.1)
+    }
 }
 
 #[cfg(test)]
