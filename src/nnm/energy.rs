@@ -57,11 +57,11 @@ pub fn energy_ca(sys: &System, x: &[f64]) -> f64 {
     for sh in &sys.shocks {
         let pen = |d: f64| if d > 0.0 { 0.5 * sh.alpha * d * d } else { 0.0 };
         e += match sh.law {
-            ScaledLaw::Plan => pen(u[sh.dofs[0]] - sh.s),
-            ScaledLaw::BiPlan => pen(u[sh.dofs[0]].abs() - sh.s),
+            ScaledLaw::Plan => pen(u[sh.dofs[0]] - sh.gap),
+            ScaledLaw::BiPlan => pen(u[sh.dofs[0]].abs() - sh.gap),
             ScaledLaw::Cercle { ex, ey } => {
                 let r = ((u[sh.dofs[0]] - ex).powi(2) + (u[sh.dofs[1]] - ey).powi(2)).sqrt();
-                pen(r - sh.s)
+                pen(r - sh.gap)
             }
         };
     }
@@ -87,9 +87,9 @@ pub fn energy_mean_ca(sys: &System, x: &[f64]) -> f64 {
         let pen = |d: f64| if d > 0.0 { 0.5 * sh.alpha * d * d } else { 0.0 };
         let total: f64 = (0..ns)
             .map(|j| match sh.law {
-                ScaledLaw::Plan => pen(u[0][j] - sh.s),
-                ScaledLaw::BiPlan => pen(u[0][j].abs() - sh.s),
-                ScaledLaw::Cercle { ex, ey } => pen((u[0][j] - ex).hypot(u[1][j] - ey) - sh.s),
+                ScaledLaw::Plan => pen(u[0][j] - sh.gap),
+                ScaledLaw::BiPlan => pen(u[0][j].abs() - sh.gap),
+                ScaledLaw::Cercle { ex, ey } => pen((u[0][j] - ex).hypot(u[1][j] - ey) - sh.gap),
             })
             .sum();
         e += total / ns as f64;

@@ -296,20 +296,20 @@ pub struct TimeHistory {
 fn unit_factors(sys: &System) -> Vec<f64> {
     let l = sys.lay;
     let sc = sys.sc;
-    let force = sc.k * sc.g;
-    let mut f = vec![sc.g; l.n * l.nl];
-    f.extend(std::iter::repeat_n(sc.g * sc.w, l.n * l.nl));
+    let force = sc.stiffness * sc.length;
+    let mut f = vec![sc.length; l.n * l.nl];
+    f.extend(std::iter::repeat_n(sc.length * sc.omega, l.n * l.nl));
     for sh in &sys.shocks {
         let per: &[f64] = match sh.law {
             ScaledLaw::Plan => &[force],
             ScaledLaw::BiPlan => &[force, 1.0],
-            ScaledLaw::Cercle { .. } => &[force, force, sc.k, 1.0],
+            ScaledLaw::Cercle { .. } => &[force, force, sc.stiffness, 1.0],
         };
         for &u in per {
             f.extend(std::iter::repeat_n(u, l.nn));
         }
     }
-    f.extend([sc.w, sc.w]);
+    f.extend([sc.omega, sc.omega]);
     f
 }
 
@@ -337,7 +337,7 @@ fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
                 s
             })
             .collect();
-        let own = laws::own_from_u(sh.law, sh.s, sh.alpha, sh.eta, &u)?;
+        let own = laws::own_from_u(sh.law, sh.gap, sh.alpha, sh.eta, &u)?;
         for (v, mut s) in own.into_iter().enumerate() {
             let o = sh.offset + v * l.nn;
             smp.analyse(&mut s, l.hn, &mut x[o..o + l.nn]);
@@ -360,9 +360,9 @@ fn motion_border(sys: &System, x: &[f64]) -> Vec<f64> {
 fn make_point(sys: &System, x: &[f64], residual: f64, branch: usize, bifurcation: bool) -> Point {
     let l = sys.lay;
     let sc = sys.sc;
-    let e_scale = sc.k * sc.g * sc.g;
+    let e_scale = sc.stiffness * sc.length * sc.length;
     let energy = energy::energy_ca(sys, x);
-    let omega = x[l.omega()] * sc.w;
+    let omega = x[l.omega()] * sc.omega;
     let xp: Vec<f64> = x
         .iter()
         .zip(unit_factors(sys))
@@ -374,7 +374,7 @@ fn make_point(sys: &System, x: &[f64], residual: f64, branch: usize, bifurcation
         energy: energy * e_scale,
         x: xp,
         residual,
-        gamma: x[l.gamma()] * sc.w,
+        gamma: x[l.gamma()] * sc.omega,
         energy_spread: energy::energy_spread(sys, x, energy),
         energy_mean: energy::energy_mean_ca(sys, x) * e_scale,
         bifurcation,
@@ -527,11 +527,15 @@ pub fn start_from_mode_using(
     let sc = Scaling::new(problem, coef_ampl * mp, p)?;
     let sys = System::new(problem, settings, sc, phase_dof(mode))?;
     let l = sys.lay;
-    let phys_per_coef = if problem.shocks.is_empty() { 1.0 } else { sc.g };
-    let om = omega_lin / sc.w;
+    let phys_per_coef = if problem.shocks.is_empty() {
+        1.0
+    } else {
+        sc.length
+    };
+    let om = omega_lin / sc.omega;
     let mut x = vec![0.0; l.n_unk];
     for i in 0..n {
-        let u = coef_ampl * mode[i] * phys_per_coef / sc.g;
+        let u = coef_ampl * mode[i] * phys_per_coef / sc.length;
         x[l.u(i) + series::ic(1)] = u;
         x[l.v(i) + series::is(l.hl, 1)] = -om * u;
     }
@@ -998,7 +1002,7 @@ pub fn time_history(
     let xs = to_scaled(&sys, x);
     let l = sys.lay;
     let sc = sys.sc;
-    let omega = xs[l.omega()] * sc.w;
+    let omega = xs[l.omega()] * sc.omega;
     if !(omega.is_finite() && omega > 0.0) || n_inst < 2 {
         return Err(
             Error::input("a time history needs ω > 0 and at least 2 instants").keyword("NB_INST"),
@@ -1013,10 +1017,10 @@ pub fn time_history(
             .collect::<Vec<f64>>()
     };
     let displacement = (0..l.n)
-        .map(|i| samp(&xs[l.u(i)..l.u(i) + l.nl], l.hl, sc.g))
+        .map(|i| samp(&xs[l.u(i)..l.u(i) + l.nl], l.hl, sc.length))
         .collect();
     let velocity = (0..l.n)
-        .map(|i| samp(&xs[l.v(i)..l.v(i) + l.nl], l.hl, sc.g * sc.w))
+        .map(|i| samp(&xs[l.v(i)..l.v(i) + l.nl], l.hl, sc.length * sc.omega))
         .collect();
     let contact_force = sys
         .shocks
@@ -1029,7 +1033,7 @@ pub fn time_history(
                     samp(
                         &xs[sh.offset + v * l.nn..sh.offset + (v + 1) * l.nn],
                         l.hn,
-                        sc.k * sc.g,
+                        sc.stiffness * sc.length,
                     )
                 })
                 .collect()

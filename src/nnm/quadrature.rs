@@ -113,13 +113,17 @@ pub fn start_from_mode_pair(
     let sc = Scaling::new(problem, coef_ampl, p)?;
     let sys = System::new(problem, settings, sc, r)?;
     let l = sys.lay;
-    let phys_per_coef = if problem.shocks.is_empty() { 1.0 } else { sc.g };
-    let om = omega_lin / sc.w;
+    let phys_per_coef = if problem.shocks.is_empty() {
+        1.0
+    } else {
+        sc.length
+    };
+    let om = omega_lin / sc.omega;
     let mut x = vec![0.0; l.n_unk];
     for i in 0..n {
         let (uc, us) = (
-            coef_ampl * cos_terms[i] * phys_per_coef / sc.g,
-            coef_ampl * sin_terms[i] * phys_per_coef / sc.g,
+            coef_ampl * cos_terms[i] * phys_per_coef / sc.length,
+            coef_ampl * sin_terms[i] * phys_per_coef / sc.length,
         );
         // u = uc cos ωt + us sin ωt, so v = ω us cos ωt − ω uc sin ωt.
         x[l.u(i) + series::ic(1)] = uc;

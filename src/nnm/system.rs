@@ -15,11 +15,11 @@ use faer::sparse::{SparseColMat, Triplet};
 
 /// Compressed columns of a scaled matrix (our own copy, scaled once).
 #[derive(Clone, Debug)]
-pub struct Csc {
+pub struct ScaledEntries {
     pub entries: Vec<(usize, usize, f64)>,
 }
 
-impl Csc {
+impl ScaledEntries {
     fn from_faer(a: &SparseColMat<usize, f64>, scale: f64) -> Self {
         let sym = a.symbolic();
         let (cp, ri, v) = (sym.col_ptr(), sym.row_idx(), a.val());
@@ -29,7 +29,7 @@ impl Csc {
                 entries.push((ri[p], j, v[p] * scale));
             }
         }
-        Csc { entries }
+        ScaledEntries { entries }
     }
 
     /// out (DOF-major blocks of `nl`) += A · x.
@@ -42,13 +42,17 @@ impl Csc {
     }
 }
 
-/// Reference scales: lengths by `g`, stiffness by `k`, mass by `m`, pulsation by `w` = √(k/m).
+/// Reference scales of the scaled equations.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Scaling {
-    pub g: f64,
-    pub k: f64,
-    pub m: f64,
-    pub w: f64,
+    /// Lengths (m): the largest JEU.
+    pub length: f64,
+    /// Stiffness (N/m): k_ref.
+    pub stiffness: f64,
+    /// Mass (kg): m_ref.
+    pub mass: f64,
+    /// Pulsation (rad/s): √(stiffness/mass).
+    pub omega: f64,
 }
 
 /// (A⁻¹)_pp by one sparse solve, or None when A is singular.
@@ -62,7 +66,7 @@ fn inverse_diag(a: &SparseColMat<usize, f64>, p: usize) -> Option<f64> {
 }
 
 fn diag(a: &SparseColMat<usize, f64>, p: usize) -> f64 {
-    Csc::from_faer(a, 1.0)
+    ScaledEntries::from_faer(a, 1.0)
         .entries
         .iter()
         .filter(|e| e.0 == p && e.1 == p)
@@ -106,10 +110,10 @@ impl Scaling {
             )));
         }
         Ok(Scaling {
-            g,
-            k,
-            m,
-            w: (k / m).sqrt(),
+            length: g,
+            stiffness: k,
+            mass: m,
+            omega: (k / m).sqrt(),
         })
     }
 }
@@ -119,7 +123,8 @@ impl Scaling {
 pub struct ShockSys {
     pub law: ScaledLaw,
     pub dofs: Vec<usize>,
-    pub s: f64,
+    /// JEU in scaled units.
+    pub gap: f64,
     pub alpha: f64,
     pub eta: f64,
     pub eqs: LawEqs,
@@ -201,8 +206,8 @@ pub fn own_count(law: ShockLaw) -> usize {
 
 pub struct System {
     pub lay: Layout,
-    pub k: Csc,
-    pub m: Csc,
+    pub k: ScaledEntries,
+    pub m: ScaledEntries,
     pub shocks: Vec<ShockSys>,
     pub ref_dof: usize,
     pub sc: Scaling,
@@ -311,11 +316,11 @@ impl System {
                 ShockLaw::Plan => ScaledLaw::Plan,
                 ShockLaw::BiPlan => ScaledLaw::BiPlan,
                 ShockLaw::Cercle { origin } => ScaledLaw::Cercle {
-                    ex: origin[0] / sc.g,
-                    ey: origin[1] / sc.g,
+                    ex: origin[0] / sc.length,
+                    ey: origin[1] / sc.length,
                 },
             };
-            let (gs, alpha) = (s.gap / sc.g, s.stiffness / sc.k);
+            let (gs, alpha) = (s.gap / sc.length, s.stiffness / sc.stiffness);
             let eqs = laws::equations(law, gs, alpha, s.regul);
             let mut vars: Vec<Var> = Vec::new();
             for v in eqs.quad.iter().flat_map(|t| [t.a, t.b]) {
@@ -326,7 +331,7 @@ impl System {
             shocks.push(ShockSys {
                 law,
                 dofs: s.dofs.clone(),
-                s: gs,
+                gap: gs,
                 alpha,
                 eta: s.regul,
                 eqs,
@@ -337,8 +342,8 @@ impl System {
         let hn = lay.hn;
         Ok(System {
             lay,
-            k: Csc::from_faer(&problem.k, 1.0 / sc.k),
-            m: Csc::from_faer(&problem.m, 1.0 / sc.m),
+            k: ScaledEntries::from_faer(&problem.k, 1.0 / sc.stiffness),
+            m: ScaledEntries::from_faer(&problem.m, 1.0 / sc.mass),
             shocks,
             ref_dof,
             sc,

@@ -714,9 +714,13 @@ fn reference_stiffness_is_taken_where_code_aster_takes_it() {
         ],
     };
     let sc = Scaling::new(&p, 1.0, 0).unwrap();
-    assert_eq!(sc.g, 0.02);
-    assert!((sc.k / (171.0 / 20.0) - 1.0).abs() < 1e-14, "{}", sc.k);
-    assert!((sc.m / 2.0 - 1.0).abs() < 1e-14, "{}", sc.m);
+    assert_eq!(sc.length, 0.02);
+    assert!(
+        (sc.stiffness / (171.0 / 20.0) - 1.0).abs() < 1e-14,
+        "{}",
+        sc.stiffness
+    );
+    assert!((sc.mass / 2.0 - 1.0).abs() < 1e-14, "{}", sc.mass);
 }
 
 /// Sign and log₁₀|det| of a dense square matrix by Gaussian elimination with partial

@@ -30,7 +30,7 @@ pub(crate) fn eta_phys(problem: &Problem) -> Result<Vec<f64>> {
     Ok(problem
         .shocks
         .iter()
-        .map(|s| s.regul * sc.k * s.gap * s.gap)
+        .map(|s| s.regul * sc.stiffness * s.gap * s.gap)
         .collect())
 }
 

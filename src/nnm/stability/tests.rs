@@ -250,10 +250,10 @@ fn eta_phys_and_the_laws_match_the_engine_scaled_laws() {
         } else {
             ScaledLaw::BiPlan
         };
-        let u_s: Vec<f64> = us.iter().map(|u| u / sc.g).collect();
-        let own = own_from_u(scaled, 0.01 / sc.g, 50.0 / sc.k, 5e-5, &[u_s]).unwrap();
+        let u_s: Vec<f64> = us.iter().map(|u| u / sc.length).collect();
+        let own = own_from_u(scaled, 0.01 / sc.length, 50.0 / sc.stiffness, 5e-5, &[u_s]).unwrap();
         for (u, f_s) in us.iter().zip(&own[0]) {
-            let f_engine = f_s * sc.k * sc.g;
+            let f_engine = f_s * sc.stiffness * sc.length;
             let f = pl.eval(&[*u]).unwrap().0[0];
             // Two closed forms of the same root (bisection to 1e-15 for BI_PLAN).
             assert!(
