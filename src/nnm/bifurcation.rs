@@ -33,7 +33,7 @@ const COLUMNS_PER_SOLVE: usize = 256;
 /// computed, and the unknowns C (displacements, ω, γ) read from them.
 fn minor_indices(sys: &System) -> (Vec<usize>, Vec<usize>) {
     let l = sys.lay;
-    let block = l.n * l.nl;
+    let block = l.n * l.n_coef_lin;
     let rows = (l.v(0)..l.v(0) + block).chain([l.n_eq() - 1, l.n_eq()]);
     let cols = (l.u(0)..l.u(0) + block).chain([l.omega(), l.gamma()]);
     (rows.collect(), cols.collect())

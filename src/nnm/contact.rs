@@ -126,9 +126,9 @@ struct Pointwise {
     ns: usize,
     n_own: usize,
     n_comp: usize,
-    hn: usize,
-    hl: usize,
-    nn: usize,
+    h_nonl: usize,
+    h_lin: usize,
+    n_coef_nonl: usize,
     /// J(t) w.r.t. the own unknowns, sample-major: [t][e·n_own + k].
     jac: Vec<f64>,
     /// J(t) w.r.t. the displacement components: [t][e·n_comp + c].
@@ -156,9 +156,9 @@ impl Pointwise {
             ns,
             n_own,
             n_comp,
-            hn: lay.hn,
-            hl: lay.hl,
-            nn: lay.nn,
+            h_nonl: lay.h_nonl,
+            h_lin: lay.h_lin,
+            n_coef_nonl: lay.n_coef_nonl,
             jac: vec![0.0; ns * n_own * n_own],
             jac_u: vec![0.0; ns * n_own * n_comp],
             inv: vec![0.0; ns * n_own * n_own],
@@ -180,10 +180,10 @@ impl Pointwise {
         let (ns, no, nc) = (self.ns, self.n_own, self.n_comp);
         // Samples of every variable: own unknowns then components.
         for k in 0..no {
-            let o = sh.offset + k * lay.nn;
+            let o = sh.offset + k * lay.n_coef_nonl;
             self.sampler.synth_with(
-                &x0[o..o + lay.nn],
-                lay.hn,
+                &x0[o..o + lay.n_coef_nonl],
+                lay.h_nonl,
                 &mut self.xs[k * ns..(k + 1) * ns],
                 &mut self.ws,
             );
@@ -192,7 +192,7 @@ impl Pointwise {
             let o = lay.u(sh.dofs[c]);
             let dst = &mut self.xs[(no + c) * ns..(no + c + 1) * ns];
             self.sampler
-                .synth_with(&x0[o..o + lay.nl], lay.hl, dst, &mut self.ws);
+                .synth_with(&x0[o..o + lay.n_coef_lin], lay.h_lin, dst, &mut self.ws);
         }
         let slot = |v: Var| match v {
             Var::Own(k) => k,
@@ -248,7 +248,7 @@ impl Pointwise {
 
     /// y = Trunc(M(t)·x(t)), M = J or J⁻¹ (`use_inverse`); x, y: n_own series of H_nl.
     fn mul(&mut self, x: &[f64], y: &mut [f64]) {
-        let (ns, no, nn, hn) = (self.ns, self.n_own, self.nn, self.hn);
+        let (ns, no, nn, hn) = (self.ns, self.n_own, self.n_coef_nonl, self.h_nonl);
         for k in 0..no {
             self.sampler.synth_with(
                 &x[k * nn..(k + 1) * nn],
@@ -290,12 +290,12 @@ impl Pointwise {
 
     /// b = A_fu e_{c,j}: the law equations' response to harmonic j of component c.
     fn coupling_column(&mut self, c: usize, j: usize, b: &mut [f64]) {
-        let (ns, no, nc, nn) = (self.ns, self.n_own, self.n_comp, self.nn);
-        let nl = series::len(self.hl);
+        let (ns, no, nc, nn) = (self.ns, self.n_own, self.n_comp, self.n_coef_nonl);
+        let nl = series::len(self.h_lin);
         let mut e = vec![0.0; nl];
         e[j] = 1.0;
         let us = &mut self.xs[..ns];
-        self.sampler.synth_with(&e, self.hl, us, &mut self.ws);
+        self.sampler.synth_with(&e, self.h_lin, us, &mut self.ws);
         for q in 0..no {
             for t in 0..ns {
                 self.ys[q * ns + t] = self.jac_u[t * no * nc + q * nc + c] * self.xs[t];
@@ -304,7 +304,7 @@ impl Pointwise {
         for q in 0..no {
             self.sampler.analyse_with(
                 &mut self.ys[q * ns..(q + 1) * ns],
-                self.hn,
+                self.h_nonl,
                 &mut b[q * nn..(q + 1) * nn],
                 &mut self.ws,
             );
@@ -324,7 +324,7 @@ impl Pointwise {
             self.ys[t] = src[t * stride + idx];
         }
         self.sampler
-            .analyse_with(&mut self.ys[..ns], self.hn, out, &mut self.ws);
+            .analyse_with(&mut self.ys[..ns], self.h_nonl, out, &mut self.ws);
     }
 }
 
@@ -412,8 +412,8 @@ pub struct ContactBlock {
     active: Method,
     d: usize,
     m: usize,
-    nl: usize,
-    nn: usize,
+    n_coef_lin: usize,
+    n_coef_nonl: usize,
     pw: Pointwise,
     gmres: Gmres,
     dense: DenseLu,
@@ -436,26 +436,26 @@ impl ContactBlock {
         force: Option<Method>,
     ) -> Result<ContactBlock> {
         let (n_own, n_comp) = (sh.eqs.n_own, sh.dofs.len());
-        let d = n_own * lay.nn;
-        let m = n_comp * lay.nl;
+        let d = n_own * lay.n_coef_nonl;
+        let m = n_comp * lay.n_coef_lin;
         // Exact truncated products need N > 3H_nl (and > 2H_nl + H_l, implied).
-        let ns = series::fft_size_smooth(3 * lay.hn);
-        let method = force.unwrap_or_else(|| choose(n_own, lay.nn, ns, solves + m));
+        let ns = series::fft_size_smooth(3 * lay.h_nonl);
+        let method = force.unwrap_or_else(|| choose(n_own, lay.n_coef_nonl, ns, solves + m));
         Ok(ContactBlock {
             shock,
             method,
             active: method,
             d,
             m,
-            nl: lay.nl,
-            nn: lay.nn,
+            n_coef_lin: lay.n_coef_lin,
+            n_coef_nonl: lay.n_coef_nonl,
             pw: Pointwise::new(sh, lay, ns),
             gmres: Gmres::new(d, KRYLOV_CYCLE, KRYLOV_CYCLES),
             dense: DenseLu::default(),
             w: try_zeroed(d * m, "the contact coupling W")?,
             b: vec![0.0; d],
             x: vec![0.0; d],
-            series: vec![0.0; lay.nn],
+            series: vec![0.0; lay.n_coef_nonl],
             counters: Counters::default(),
         })
     }
@@ -504,7 +504,7 @@ impl ContactBlock {
     }
 
     fn krylov_w(&mut self) -> Result<()> {
-        let (d, nl) = (self.d, self.nl);
+        let (d, nl) = (self.d, self.n_coef_lin);
         for col in 0..self.m {
             let (c, j) = (col / nl, col % nl);
             self.pw.coupling_column(c, j, &mut self.b);
@@ -536,7 +536,7 @@ impl ContactBlock {
 
     /// Assemble A_ff densely from the Fourier series of J and factorise it.
     fn dense_factor(&mut self) -> Result<()> {
-        let (d, nn, no, hn) = (self.d, self.nn, self.pw.n_own, self.pw.hn);
+        let (d, nn, no, hn) = (self.d, self.n_coef_nonl, self.pw.n_own, self.pw.h_nonl);
         let mut series = std::mem::take(&mut self.series);
         self.dense.storage(d)?.fill(0.0);
         for e in 0..no {
@@ -566,8 +566,8 @@ impl ContactBlock {
     /// The dense route: A_ff factorised, A_fu assembled (from the series of J_u), W solved.
     fn dense_w(&mut self) -> Result<()> {
         self.dense_factor()?;
-        let (d, nn, m) = (self.d, self.nn, self.m);
-        let (no, nc, hn, hl) = (self.pw.n_own, self.pw.n_comp, self.pw.hn, self.pw.hl);
+        let (d, nn, m) = (self.d, self.n_coef_nonl, self.m);
+        let (no, nc, hn, hl) = (self.pw.n_own, self.pw.n_comp, self.pw.h_nonl, self.pw.h_lin);
         let nl = series::len(hl);
         let mut series = std::mem::take(&mut self.series);
         self.w.fill(0.0);

@@ -18,7 +18,7 @@ use std::f64::consts::FRAC_PI_2;
 /// orients a start from linear modes (DIR_EVOLUTION).
 pub fn mean_quadratic_energy(sys: &System, x: &[f64]) -> f64 {
     let l = sys.lay;
-    let nl = l.nl;
+    let nl = l.n_coef_lin;
     let w = |j: usize| if j == 0 { 1.0 } else { 0.5 };
     let mut e = 0.0;
     for &(i, c, a) in &sys.k.entries {
@@ -42,10 +42,10 @@ fn quad_form(entries: &[(usize, usize, f64)], y: &[f64]) -> f64 {
 fn state_at(sys: &System, x: &[f64], theta: f64) -> (Vec<f64>, Vec<f64>) {
     let l = sys.lay;
     let u = (0..l.n)
-        .map(|i| series::eval(&x[l.u(i)..l.u(i) + l.nl], l.hl, theta))
+        .map(|i| series::eval(&x[l.u(i)..l.u(i) + l.n_coef_lin], l.h_lin, theta))
         .collect();
     let v = (0..l.n)
-        .map(|i| series::eval(&x[l.v(i)..l.v(i) + l.nl], l.hl, theta))
+        .map(|i| series::eval(&x[l.v(i)..l.v(i) + l.n_coef_lin], l.h_lin, theta))
         .collect();
     (u, v)
 }
@@ -82,7 +82,7 @@ pub fn energy_mean_ca(sys: &System, x: &[f64]) -> f64 {
     let mut u = vec![vec![0.0; ns]; 2];
     for sh in &sys.shocks {
         for (c, &d) in sh.dofs.iter().enumerate().take(2) {
-            smp.synth(&x[l.u(d)..l.u(d) + l.nl], l.hl, &mut u[c]);
+            smp.synth(&x[l.u(d)..l.u(d) + l.n_coef_lin], l.h_lin, &mut u[c]);
         }
         let pen = |d: f64| if d > 0.0 { 0.5 * sh.alpha * d * d } else { 0.0 };
         let total: f64 = (0..ns)
@@ -105,7 +105,7 @@ pub fn energy_mean_ca(sys: &System, x: &[f64]) -> f64 {
 /// O(N·nnz) was 0.7 s per point at 10⁴ DOFs).
 pub fn energy_samples(sys: &System, x: &[f64]) -> Vec<f64> {
     let l = sys.lay;
-    let (n, hl, hn, nl, nn) = (l.n, l.hl, l.hn, l.nl, l.nn);
+    let (n, hl, hn, nl, nn) = (l.n, l.h_lin, l.h_nonl, l.n_coef_lin, l.n_coef_nonl);
     let hw = hn + hl;
     let smp = Sampler::new(series::fft_size(2 * hw));
     let ns = smp.n();
@@ -162,17 +162,17 @@ pub fn energy_spread(sys: &System, x: &[f64], reference: f64) -> f64 {
 pub fn harm_max(sys: &System, x: &[f64]) -> usize {
     let l = sys.lay;
     let amp = |i: usize, k: usize| {
-        let u = &x[l.u(i)..l.u(i) + l.nl];
-        u[series::ic(k)].hypot(u[series::is(l.hl, k)])
+        let u = &x[l.u(i)..l.u(i) + l.n_coef_lin];
+        u[series::ic(k)].hypot(u[series::is(l.h_lin, k)])
     };
     let best_dof = (0..l.n)
         .max_by(|&a, &b| {
-            let sa: f64 = (1..=l.hl).map(|k| amp(a, k).powi(2)).sum();
-            let sb: f64 = (1..=l.hl).map(|k| amp(b, k).powi(2)).sum();
+            let sa: f64 = (1..=l.h_lin).map(|k| amp(a, k).powi(2)).sum();
+            let sb: f64 = (1..=l.h_lin).map(|k| amp(b, k).powi(2)).sum();
             sa.total_cmp(&sb)
         })
         .unwrap_or(0);
-    (1..=l.hl)
+    (1..=l.h_lin)
         .max_by(|&a, &b| amp(best_dof, a).total_cmp(&amp(best_dof, b)))
         .unwrap_or(1)
 }

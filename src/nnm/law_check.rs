@@ -35,8 +35,8 @@ pub(crate) struct LawCheck {
     /// 2(2H_nl+1) instants θ_j = 2πj/N of one period: twice as many as the force series
     /// has coefficients, so that a defect between the collocation instants shows too.
     sampler: Sampler,
-    hl: usize,
-    hn: usize,
+    h_lin: usize,
+    h_nonl: usize,
 }
 
 impl LawCheck {
@@ -63,9 +63,9 @@ impl LawCheck {
             .collect();
         Ok(LawCheck {
             shocks,
-            sampler: Sampler::new(2 * lay.nn),
-            hl: lay.hl,
-            hn: lay.hn,
+            sampler: Sampler::new(2 * lay.n_coef_nonl),
+            h_lin: lay.h_lin,
+            h_nonl: lay.h_nonl,
         })
     }
 
@@ -99,7 +99,7 @@ impl LawCheck {
                 .dofs
                 .iter()
                 .map(|&d| match u.get(d) {
-                    Some(s) => self.samples(s, self.hl),
+                    Some(s) => self.samples(s, self.h_lin),
                     None => vec![0.0; self.sampler.n()],
                 })
                 .collect();
@@ -107,7 +107,7 @@ impl LawCheck {
                 .get(shock.forces.clone())
                 .unwrap_or_default()
                 .iter()
-                .map(|s| self.samples(s, self.hn))
+                .map(|s| self.samples(s, self.h_nonl))
                 .collect();
             let mut uj = vec![0.0; ut.len()];
             for j in 0..self.sampler.n() {

@@ -70,7 +70,7 @@ impl StructuredSolver {
     /// `force`: impose the contact route of every shock (tests, bench).
     pub fn new(sys: &System, solves: usize, force: Option<Method>) -> Result<StructuredSolver> {
         let l = sys.lay;
-        let nnl = l.n * l.nl;
+        let nnl = l.n * l.n_coef_lin;
         let contacts = sys
             .shocks
             .iter()
@@ -80,12 +80,12 @@ impl StructuredSolver {
         let schur = sys
             .shocks
             .iter()
-            .map(|sh| vec![0.0; (sh.dofs.len() * l.nl).pow(2)])
+            .map(|sh| vec![0.0; (sh.dofs.len() * l.n_coef_lin).pow(2)])
             .collect();
         let q = sys
             .shocks
             .iter()
-            .map(|sh| vec![0.0; sh.eqs.n_own * l.nn])
+            .map(|sh| vec![0.0; sh.eqs.n_own * l.n_coef_nonl])
             .collect();
         Ok(StructuredSolver {
             reduced: ReducedSystem::new(sys)?,
@@ -110,7 +110,7 @@ impl StructuredSolver {
     /// Reduced border candidates: U entries and Ω, by decreasing |t|.
     fn border_candidates(&self, sys: &System) -> Vec<usize> {
         let l = sys.lay;
-        let nnl = l.n * l.nl;
+        let nnl = l.n * l.n_coef_lin;
         let mut best: Vec<(f64, usize)> = Vec::with_capacity(4);
         let mut consider = |mag: f64, j: usize| {
             if mag > 0.0 && mag.is_finite() {
@@ -130,7 +130,7 @@ impl StructuredSolver {
     /// into `z` (length n_unk). Needs `q` (A_ff⁻¹ r_f) when `r` is given.
     fn expand(&mut self, sys: &System, r: Option<&[f64]>, z: &mut [f64]) {
         let l = sys.lay;
-        let (n, nl, hl, nn) = (l.n, l.nl, l.hl, l.nn);
+        let (n, nl, hl, nn) = (l.n, l.n_coef_lin, l.h_lin, l.n_coef_nonl);
         let nnl = n * nl;
         let d_omega = self.red[nnl];
         // δV = Ω D δU + D U0 δΩ − r_U.
@@ -181,7 +181,7 @@ impl TangentSolver for StructuredSolver {
     fn factor(&mut self, sys: &System, x0: &[f64], border: &[f64]) -> Result<()> {
         self.factored = false;
         let l = sys.lay;
-        let (n, nl, hl, nn) = (l.n, l.nl, l.hl, l.nn);
+        let (n, nl, hl, nn) = (l.n, l.n_coef_lin, l.h_lin, l.n_coef_nonl);
         if x0.len() != l.n_unk || border.len() != l.n_unk {
             return Err(Error::internal("tangent point or border of the wrong size"));
         }
@@ -214,7 +214,7 @@ impl TangentSolver for StructuredSolver {
                 let wc = &w[col * d..(col + 1) * d];
                 for &(c, v) in &sh.eqs.forces {
                     for j in 0..nl {
-                        if let Some(p) = series::map_index(j, hl, l.hn) {
+                        if let Some(p) = series::map_index(j, hl, l.h_nonl) {
                             g[col * m + c * nl + j] += wc[v * nn + p];
                         }
                     }
@@ -262,7 +262,7 @@ impl TangentSolver for StructuredSolver {
 
     fn solve(&mut self, sys: &System, rhs: &mut [f64]) -> Result<()> {
         let l = sys.lay;
-        let (n, nl, hl, nn) = (l.n, l.nl, l.hl, l.nn);
+        let (n, nl, hl, nn) = (l.n, l.n_coef_lin, l.h_lin, l.n_coef_nonl);
         let nnl = n * nl;
         if !self.factored || rhs.len() != l.n_unk {
             return Err(Error::internal(
@@ -289,7 +289,7 @@ impl TangentSolver for StructuredSolver {
             for &(c, v) in &sh.eqs.forces {
                 let dof = sh.dofs[c];
                 for j in 0..nl {
-                    if let Some(p) = series::map_index(j, hl, l.hn) {
+                    if let Some(p) = series::map_index(j, hl, l.h_nonl) {
                         self.red[dof * nl + j] -= self.q[s][v * nn + p];
                     }
                 }

@@ -297,8 +297,11 @@ fn unit_factors(sys: &System) -> Vec<f64> {
     let l = sys.lay;
     let sc = sys.sc;
     let force = sc.stiffness * sc.length;
-    let mut f = vec![sc.length; l.n * l.nl];
-    f.extend(std::iter::repeat_n(sc.length * sc.omega, l.n * l.nl));
+    let mut f = vec![sc.length; l.n * l.n_coef_lin];
+    f.extend(std::iter::repeat_n(
+        sc.length * sc.omega,
+        l.n * l.n_coef_lin,
+    ));
     for sh in &sys.shocks {
         let per: &[f64] = match sh.law {
             ScaledLaw::Plan => &[force],
@@ -306,7 +309,7 @@ fn unit_factors(sys: &System) -> Vec<f64> {
             ScaledLaw::Cercle { .. } => &[force, force, sc.stiffness, 1.0],
         };
         for &u in per {
-            f.extend(std::iter::repeat_n(u, l.nn));
+            f.extend(std::iter::repeat_n(u, l.n_coef_nonl));
         }
     }
     f.extend([sc.omega, sc.omega]);
@@ -333,14 +336,14 @@ fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
             .iter()
             .map(|&d| {
                 let mut s = vec![0.0; ns];
-                smp.synth(&x[l.u(d)..l.u(d) + l.nl], l.hl, &mut s);
+                smp.synth(&x[l.u(d)..l.u(d) + l.n_coef_lin], l.h_lin, &mut s);
                 s
             })
             .collect();
         let own = laws::own_from_u(sh.law, sh.gap, sh.alpha, sh.eta, &u)?;
         for (v, mut s) in own.into_iter().enumerate() {
-            let o = sh.offset + v * l.nn;
-            smp.analyse(&mut s, l.hn, &mut x[o..o + l.nn]);
+            let o = sh.offset + v * l.n_coef_nonl;
+            smp.analyse(&mut s, l.h_nonl, &mut x[o..o + l.n_coef_nonl]);
         }
     }
     Ok(())
@@ -351,7 +354,7 @@ fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
 fn motion_border(sys: &System, x: &[f64]) -> Vec<f64> {
     let l = sys.lay;
     let mut b = vec![0.0; l.n_unk];
-    b[..2 * l.n * l.nl].copy_from_slice(&x[..2 * l.n * l.nl]);
+    b[..2 * l.n * l.n_coef_lin].copy_from_slice(&x[..2 * l.n * l.n_coef_lin]);
     let n = anm::norm(&b);
     b.iter_mut().for_each(|v| *v /= n);
     b
@@ -537,7 +540,7 @@ pub fn start_from_mode_using(
     for i in 0..n {
         let u = coef_ampl * mode[i] * phys_per_coef / sc.length;
         x[l.u(i) + series::ic(1)] = u;
-        x[l.v(i) + series::is(l.hl, 1)] = -om * u;
+        x[l.v(i) + series::is(l.h_lin, 1)] = -om * u;
     }
     x[l.omega()] = om;
     init_contact(&sys, &mut x)?;
@@ -1017,10 +1020,16 @@ pub fn time_history(
             .collect::<Vec<f64>>()
     };
     let displacement = (0..l.n)
-        .map(|i| samp(&xs[l.u(i)..l.u(i) + l.nl], l.hl, sc.length))
+        .map(|i| samp(&xs[l.u(i)..l.u(i) + l.n_coef_lin], l.h_lin, sc.length))
         .collect();
     let velocity = (0..l.n)
-        .map(|i| samp(&xs[l.v(i)..l.v(i) + l.nl], l.hl, sc.length * sc.omega))
+        .map(|i| {
+            samp(
+                &xs[l.v(i)..l.v(i) + l.n_coef_lin],
+                l.h_lin,
+                sc.length * sc.omega,
+            )
+        })
         .collect();
     let contact_force = sys
         .shocks
@@ -1031,8 +1040,8 @@ pub fn time_history(
                 .iter()
                 .map(|&(_, v)| {
                     samp(
-                        &xs[sh.offset + v * l.nn..sh.offset + (v + 1) * l.nn],
-                        l.hn,
+                        &xs[sh.offset + v * l.n_coef_nonl..sh.offset + (v + 1) * l.n_coef_nonl],
+                        l.h_nonl,
                         sc.stiffness * sc.length,
                     )
                 })

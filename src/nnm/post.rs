@@ -60,7 +60,7 @@ impl Unknowns {
         self.check(x)?;
         let l = &self.lay;
         Ok((0..l.n)
-            .map(|i| x[l.v(i)..l.v(i) + l.nl].to_vec())
+            .map(|i| x[l.v(i)..l.v(i) + l.n_coef_lin].to_vec())
             .collect())
     }
 
@@ -73,12 +73,12 @@ impl Unknowns {
     fn displacement_unchecked(&self, x: &[f64]) -> Vec<Vec<f64>> {
         let l = &self.lay;
         (0..l.n)
-            .map(|i| x[l.u(i)..l.u(i) + l.nl].to_vec())
+            .map(|i| x[l.u(i)..l.u(i) + l.n_coef_lin].to_vec())
             .collect()
     }
 
     fn contact_unchecked(&self, x: &[f64]) -> Vec<Vec<Vec<f64>>> {
-        let nn = self.lay.nn;
+        let nn = self.lay.n_coef_nonl;
         self.shocks
             .iter()
             .map(|&(offset, n_own)| {
@@ -205,8 +205,15 @@ mod tests {
             let (lay, offsets) = Layout::of(&p, &s);
             let l = sys.lay;
             assert_eq!(
-                (lay.n, lay.hl, lay.hn, lay.nl, lay.nn, lay.n_unk),
-                (l.n, l.hl, l.hn, l.nl, l.nn, l.n_unk)
+                (
+                    lay.n,
+                    lay.h_lin,
+                    lay.h_nonl,
+                    lay.n_coef_lin,
+                    lay.n_coef_nonl,
+                    lay.n_unk
+                ),
+                (l.n, l.h_lin, l.h_nonl, l.n_coef_lin, l.n_coef_nonl, l.n_unk)
             );
             let engine: Vec<(usize, usize)> = sys
                 .shocks
@@ -229,15 +236,15 @@ mod tests {
             for i in 0..l.n {
                 assert_eq!(u[i][0], l.u(i) as f64);
                 assert_eq!(v[i][0], l.v(i) as f64);
-                assert_eq!((u[i].len(), v[i].len()), (l.nl, l.nl));
+                assert_eq!((u[i].len(), v[i].len()), (l.n_coef_lin, l.n_coef_lin));
             }
             let c = unk.contact(&x).unwrap();
             assert_eq!(c.len(), sys.shocks.len());
             for (sh, series) in sys.shocks.iter().zip(&c) {
                 assert_eq!(series.len(), sh.eqs.n_own);
                 for (k, f) in series.iter().enumerate() {
-                    assert_eq!(f[0], (sh.offset + k * l.nn) as f64);
-                    assert_eq!(f.len(), l.nn);
+                    assert_eq!(f[0], (sh.offset + k * l.n_coef_nonl) as f64);
+                    assert_eq!(f.len(), l.n_coef_nonl);
                 }
             }
         }

@@ -127,9 +127,9 @@ pub fn start_from_mode_pair(
         );
         // u = uc cos ωt + us sin ωt, so v = ω us cos ωt − ω uc sin ωt.
         x[l.u(i) + series::ic(1)] = uc;
-        x[l.u(i) + series::is(l.hl, 1)] = us;
+        x[l.u(i) + series::is(l.h_lin, 1)] = us;
         x[l.v(i) + series::ic(1)] = om * us;
-        x[l.v(i) + series::is(l.hl, 1)] = -om * uc;
+        x[l.v(i) + series::is(l.h_lin, 1)] = -om * uc;
     }
     x[l.omega()] = om;
     init_contact(&sys, &mut x)?;

@@ -54,8 +54,8 @@ pub struct Linearisation<'a> {
 
 pub struct ReducedSystem {
     n: usize,
-    nl: usize,
-    hl: usize,
+    n_coef_lin: usize,
+    h_lin: usize,
     nr: usize,
     pairs: Vec<Pair>,
     /// DOFs whose mass row has entries (their velocity rows receive the Ω and γ columns).
@@ -127,7 +127,7 @@ fn lu_error(e: LuError, nr: usize, nnz: usize) -> Error {
 impl ReducedSystem {
     pub fn new(sys: &System) -> Result<ReducedSystem> {
         let l = sys.lay;
-        let (n, nl) = (l.n, l.nl);
+        let (n, nl) = (l.n, l.n_coef_lin);
         let nr = n * nl + 2;
         let mut union: BTreeMap<(usize, usize), Pair> = BTreeMap::new();
         for &(row, col, a) in &sys.k.entries {
@@ -161,8 +161,8 @@ impl ReducedSystem {
         let mass_rows = (0..n).filter(|&i| has_mass[i]).collect();
         let mut rs = ReducedSystem {
             n,
-            nl,
-            hl: l.hl,
+            n_coef_lin: nl,
+            h_lin: l.h_lin,
             nr,
             pairs,
             mass_rows,
@@ -203,7 +203,7 @@ impl ReducedSystem {
 
     /// Every entry of the matrix but the border, in a fixed order; `lin` None: pattern only.
     fn visit(&self, lin: Option<&Linearisation>, f: &mut dyn FnMut(usize, usize, f64)) {
-        let (nl, hl) = (self.nl, self.hl);
+        let (nl, hl) = (self.n_coef_lin, self.h_lin);
         let (om, ga) = lin.map_or((0.0, 0.0), |l| (l.omega, l.gamma));
         let u = |i: usize| i * nl;
         for p in &self.pairs {

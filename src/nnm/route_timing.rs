@@ -64,7 +64,7 @@ fn system_and_point(law: ShockLaw, h_nonl: usize) -> Result<(System, Vec<f64>)> 
     let l = sys.lay;
     let mut x = vec![0.0; l.n_unk];
     x[l.u(0) + series::ic(1)] = 1.3;
-    x[l.u(1) + series::is(l.hl, 1)] = 0.4;
+    x[l.u(1) + series::is(l.h_lin, 1)] = 0.4;
     x[l.omega()] = 1.0;
     init_contact(&sys, &mut x)?;
     Ok((sys, x))
@@ -86,7 +86,7 @@ pub fn contact_route_timings(h_values: &[usize], solves: usize) -> Result<Vec<Ro
             let (sys, x) = system_and_point(law, h)?;
             let l = sys.lay;
             let sh = &sys.shocks[0];
-            let rhs: Vec<f64> = (0..sh.eqs.n_own * l.nn)
+            let rhs: Vec<f64> = (0..sh.eqs.n_own * l.n_coef_nonl)
                 .map(|i| ((i * 7919) % 101) as f64 / 101.0 - 0.5)
                 .collect();
             let time = |m: Method| -> Result<(f64, f64)> {
@@ -119,9 +119,9 @@ pub fn contact_route_timings(h_values: &[usize], solves: usize) -> Result<Vec<Ro
                 krylov_iterations,
                 model_choice: contact::choose(
                     sh.eqs.n_own,
-                    l.nn,
+                    l.n_coef_nonl,
                     ns,
-                    solves + sh.dofs.len() * l.nl,
+                    solves + sh.dofs.len() * l.n_coef_lin,
                 ),
             });
         }

@@ -78,7 +78,7 @@ fn point(sys: &System, rng: &mut Lcg) -> Vec<f64> {
     let l = sys.lay;
     let mut x = vec![0.0; l.n_unk];
     for i in 0..l.n {
-        for j in 0..l.nl {
+        for j in 0..l.n_coef_lin {
             let a = if j == series::ic(1) { 1.2 } else { 0.15 };
             x[l.u(i) + j] = a * rng.next();
             x[l.v(i) + j] = a * rng.next();
@@ -179,7 +179,7 @@ fn determinant_signs_change_together_with_the_dense_references() {
         let mut full = bifurcation::dense_det_sign(&a).unwrap();
         // Π sign det A_ff from the dense tangent's law blocks.
         for sh in &sys.shocks {
-            let d = sh.eqs.n_own * sys.lay.nn;
+            let d = sh.eqs.n_own * sys.lay.n_coef_nonl;
             let blk = Mat::from_fn(d, d, |i, j| a[(sh.offset + i, sh.offset + j)]);
             full *= bifurcation::dense_det_sign(&blk).unwrap();
         }

@@ -137,21 +137,26 @@ pub struct ShockSys {
 pub type Samples = Vec<Vec<Vec<f64>>>;
 
 #[derive(Clone, Copy, Debug)]
+/// Where each unknown sits in X.
 pub struct Layout {
+    /// DOFs of the structure.
     pub n: usize,
-    pub hl: usize,
-    pub hn: usize,
-    pub nl: usize,
-    pub nn: usize,
+    /// Harmonics of the displacements (NB_HARM_LINE) and of the contact unknowns (NB_HARM_NONL).
+    pub h_lin: usize,
+    pub h_nonl: usize,
+    /// Fourier coefficients per series: 2·h_lin + 1 and 2·h_nonl + 1.
+    pub n_coef_lin: usize,
+    pub n_coef_nonl: usize,
+    /// Unknowns in all: U, V, the contact unknowns, ω, γ.
     pub n_unk: usize,
 }
 
 impl Layout {
     pub fn u(&self, i: usize) -> usize {
-        i * self.nl
+        i * self.n_coef_lin
     }
     pub fn v(&self, i: usize) -> usize {
-        (self.n + i) * self.nl
+        (self.n + i) * self.n_coef_lin
     }
     pub fn omega(&self) -> usize {
         self.n_unk - 2
@@ -184,10 +189,10 @@ impl Layout {
         }
         let lay = Layout {
             n,
-            hl,
-            hn,
-            nl,
-            nn,
+            h_lin: hl,
+            h_nonl: hn,
+            n_coef_lin: nl,
+            n_coef_nonl: nn,
             n_unk: offset + 2,
         };
         (lay, offsets)
@@ -339,7 +344,7 @@ impl System {
                 vars,
             });
         }
-        let hn = lay.hn;
+        let hn = lay.h_nonl;
         Ok(System {
             lay,
             k: ScaledEntries::from_faer(&problem.k, 1.0 / sc.stiffness),
@@ -359,10 +364,13 @@ impl System {
     fn var<'a>(&self, x: &'a [f64], sh: &ShockSys, v: Var) -> (&'a [f64], usize) {
         let l = &self.lay;
         match v {
-            Var::Own(k) => (&x[sh.offset + k * l.nn..sh.offset + (k + 1) * l.nn], l.hn),
+            Var::Own(k) => (
+                &x[sh.offset + k * l.n_coef_nonl..sh.offset + (k + 1) * l.n_coef_nonl],
+                l.h_nonl,
+            ),
             Var::U(c) => {
                 let d = sh.dofs[c];
-                (&x[l.u(d)..l.u(d) + l.nl], l.hl)
+                (&x[l.u(d)..l.u(d) + l.n_coef_lin], l.h_lin)
             }
         }
     }
@@ -400,7 +408,7 @@ impl System {
         out: &mut [f64],
     ) {
         let l = self.lay;
-        let (n, nl, hl) = (l.n, l.nl, l.hl);
+        let (n, nl, hl) = (l.n, l.n_coef_lin, l.h_lin);
         // Structural rows: Ω_a D U_b (rows of U) and M (Ω_a D V_b + γ_a V_b) (rows of V).
         let mut w = vec![0.0; n * nl];
         let mut d = vec![0.0; nl];
@@ -434,7 +442,7 @@ impl System {
             }
         };
         let ns = self.sampler.n();
-        let mut c = vec![0.0; l.nn];
+        let mut c = vec![0.0; l.n_coef_nonl];
         for (k, sh) in self.shocks.iter().enumerate() {
             let pos = |v: Var| sh.vars.iter().position(|&w| w == v).unwrap_or(0);
             let mut acc = vec![vec![0.0; ns]; sh.eqs.n_own];
@@ -447,9 +455,9 @@ impl System {
                 }
             }
             for (e, s) in acc.iter_mut().enumerate() {
-                self.sampler.analyse(s, l.hn, &mut c);
-                let o = sh.offset + e * l.nn;
-                for (y, v) in out[o..o + l.nn].iter_mut().zip(&c) {
+                self.sampler.analyse(s, l.h_nonl, &mut c);
+                let o = sh.offset + e * l.n_coef_nonl;
+                for (y, v) in out[o..o + l.n_coef_nonl].iter_mut().zip(&c) {
                     *y += v;
                 }
             }
@@ -460,7 +468,7 @@ impl System {
     /// componentwise absolute values, what bounds their round-off).
     pub fn stiffness_term_norm(&self, x: &[f64]) -> f64 {
         let l = self.lay;
-        let nl = l.nl;
+        let nl = l.n_coef_lin;
         let mut t = vec![0.0; l.n * nl];
         for &(i, c, a) in &self.k.entries {
             let a = a.abs();
@@ -474,7 +482,7 @@ impl System {
     /// R(X) = C + L(X) + Q(X, X), length n_eq.
     pub fn residual(&self, x: &[f64]) -> Vec<f64> {
         let l = self.lay;
-        let (n, nl, hl, hn, nn) = (l.n, l.nl, l.hl, l.hn, l.nn);
+        let (n, nl, hl, hn, nn) = (l.n, l.n_coef_lin, l.h_lin, l.h_nonl, l.n_coef_nonl);
         let mut r = vec![0.0; l.n_eq()];
         self.quad_sum(&[(x, x)], &mut r);
         for i in 0..n {
@@ -516,7 +524,7 @@ impl System {
     /// only on the layout (zeros are kept), so the symbolic factorisation can be reused.
     pub fn tangent(&self, x0: &[f64], border: &[f64]) -> Vec<Triplet<usize, usize, f64>> {
         let l = self.lay;
-        let (n, nl, hl, hn, nn) = (l.n, l.nl, l.hl, l.hn, l.nn);
+        let (n, nl, hl, hn, nn) = (l.n, l.n_coef_lin, l.h_lin, l.h_nonl, l.n_coef_nonl);
         let (om, ga) = (x0[l.omega()], x0[l.gamma()]);
         let mut t = Vec::new();
         let mut push = |r: usize, c: usize, v: f64| t.push(Triplet::new(r, c, v));

@@ -807,7 +807,7 @@ fn cercle_law_block_keeps_its_determinant_sign_along_branches() {
             let sys = system_for_point(p, &s, &q.x).unwrap();
             let x = to_scaled(&sys, &q.x);
             let sh = &sys.shocks[0];
-            let nn = sys.lay.nn;
+            let nn = sys.lay.n_coef_nonl;
             let d = sh.eqs.n_own * nn;
             let (o, e) = (sh.offset, sh.offset + d);
             let mut a = vec![0.0; d * d];
