@@ -419,6 +419,20 @@ fn points_past_their_timeout_are_stopped_and_listed() {
     // 2000 branches take seconds even in a release build: both points (two stiffnesses)
     // are stopped at half a second, and the sweep ends and lists them.
     let (dir, study) = setup(&[0.01], "timeout = 0.5\n");
+    // Far up the branch the steps collapse and the no-progress guard would end the run
+    // (about 0.5 s in, racing the timeout on a quiet machine): off, so that the point is
+    // long and only the timeout can stop it.
+    let comm = dir.path().join("wall.comm");
+    let template = std::fs::read_to_string(&comm).unwrap();
+    assert!(template.contains("NB_BRANCHE=NB_BRANCHE,"));
+    std::fs::write(
+        &comm,
+        template.replace(
+            "NB_BRANCHE=NB_BRANCHE,",
+            "NB_BRANCHE=NB_BRANCHE, NB_BRANCHE_SANS_PROGRES=0,",
+        ),
+    )
+    .unwrap();
     let s = std::fs::read_to_string(&study)
         .unwrap()
         .replace("[run]", "NB_BRANCHE = [2000]\n[run]");
