@@ -22,6 +22,7 @@
 //! hand and one dense LU of that size, independent of NB_HARM_NONL.
 
 use super::linear_solver::BorderedSolver;
+use super::reduced::permutation_sign;
 use super::system::System;
 use crate::error::{Error, Result};
 use faer::Mat;
@@ -80,29 +81,6 @@ pub fn dense_det_sign(a: &Mat<f64>) -> Result<f64> {
         sign *= d.signum();
     }
     Ok(sign)
-}
-
-/// (−1)^(m − number of cycles) of the permutation given by its forward array.
-fn permutation_sign(fwd: &[usize]) -> f64 {
-    let m = fwd.len();
-    let mut seen = vec![false; m];
-    let mut cycles = 0;
-    for start in 0..m {
-        if seen[start] {
-            continue;
-        }
-        cycles += 1;
-        let mut i = start;
-        while !seen[i] {
-            seen[i] = true;
-            i = fwd[i];
-        }
-    }
-    if (m - cycles).is_multiple_of(2) {
-        1.0
-    } else {
-        -1.0
-    }
 }
 
 #[cfg(test)]
