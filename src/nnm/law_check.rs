@@ -7,10 +7,10 @@
 //! the sampled displacement catches that: on a physical branch the gap is truncation error
 //! (measured ≤ 4e-3 of α·JEU on BI_PLAN, ≤ 2e-7 on PLAN), on a spurious root it is O(1).
 
+use super::point_law::{eta_phys, PointLaw};
 use super::series::Sampler;
-use super::stability::{eta_phys, PointLaw};
 use super::system::Layout;
-use super::{PostProcessor, Problem, Settings, ShockLaw};
+use super::{Problem, ShockLaw};
 use crate::error::Result;
 use std::ops::Range;
 
@@ -127,21 +127,13 @@ impl LawCheck {
     }
 }
 
-/// Largest |f_series(t) − f_law(u(t))| / (α·JEU) over the shocks and over 2(2H_nl+1)
-/// instants of one period; 0 without shocks. For many points of one problem, build a
-/// [`PostProcessor`] once instead.
-pub fn contact_law_defect(problem: &Problem, settings: &Settings, x: &[f64]) -> Result<f64> {
-    if problem.shocks.is_empty() {
-        return Ok(0.0);
-    }
-    PostProcessor::new(problem, settings)?.law_defect(x)
-}
-
 #[cfg(test)]
 mod tests {
     use super::super::series;
     use super::super::tests::{one_dof, settings};
-    use super::super::{continue_branches, start_from_mode};
+    use super::super::{
+        contact_law_defect, continue_branches, start_from_mode, PostProcessor, Settings,
+    };
     use super::*;
 
     /// On a physical PLAN branch the force series equals the law in time up to truncation;

@@ -26,7 +26,7 @@
 //!   where r(t) → 0. The two regularisations agree in contact and both vanish as η → 0.
 //!
 //! Pointwise Jacobian of each law with respect to its own unknowns on its physical root
-//! (what the determinant test of bifurcation.rs and a pointwise preconditioner rely on):
+//! (what the determinant test of condensed_det.rs and a pointwise preconditioner rely on):
 //! PLAN √((u−s)² + 4ηs²/α) > 0; BI_PLAN ψ_f = 1 − z − 2f(f/α − u)/(α s²) > 0; CERCLE
 //! (eliminating F = λ d, whose block is the identity) 1 − z − 2λ(λ/α − 1) r²/(α s²), which
 //! is BI_PLAN's ψ_f at the radial distance (f = φ = λ r): > 0, and 1 at the centre.
@@ -158,7 +158,7 @@ pub fn equations(law: ScaledLaw, s: f64, alpha: f64, eta: f64) -> LawEqs {
 }
 
 /// Positive root of f²/α − f d − c = 0 (c > 0), without cancellation. Also CALC_STABILITE's
-/// pointwise law (`stability/laws.rs`): one root for both.
+/// pointwise law (`point_law.rs`): one root for both.
 pub(crate) fn plan_force(d: f64, alpha: f64, c: f64) -> f64 {
     let q = (d * d + 4.0 * c / alpha).sqrt();
     if d > 0.0 {

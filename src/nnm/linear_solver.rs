@@ -11,9 +11,9 @@
 //!   along the border row with the same cofactors, and y is those cofactors over
 //!   det[R_X; e_jᵀ]), and det[R_X; e_jᵀ] = c·Π det A_ff·det S (block elimination, c a sign
 //!   fixed by the layout), so sign(det S)·sign(tᵀy) changes exactly where
-//!   det J·Π det A_ff does: where the minor of bifurcation.rs's reference test does.
+//!   det J·Π det A_ff does: where the minor of condensed_det.rs's reference test does.
 //! - [`ReferenceSolver`]: the whole tangent as triplets in one sparse LU ([`SparseLu`]),
-//!   the determinant sign from a minor of its inverse (bifurcation.rs): the dense reference
+//!   the determinant sign from a minor of its inverse (condensed_det.rs): the dense reference
 //!   the tests compare the structured solver with.
 
 use super::contact::{ContactBlock, Method};
@@ -459,7 +459,7 @@ impl TangentSolver for ReferenceSolver {
         BorderedSolver::solve(&self.lu, rhs)
     }
     fn det_sign(&mut self, sys: &System) -> Result<f64> {
-        super::bifurcation::condensed_det_sign(sys, &self.lu)
+        super::condensed_det::condensed_det_sign(sys, &|rhs, ncols| self.lu.solve_block(rhs, ncols))
     }
 }
 

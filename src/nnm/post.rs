@@ -8,8 +8,9 @@
 //! sampling (`PostProcessor`). A row then costs copies and a few FFTs.
 
 use super::law_check::LawCheck;
+use super::point::finite;
 use super::system::{self, Layout};
-use super::{finite, Problem, Settings};
+use super::{Problem, Settings};
 use crate::error::{Error, Result};
 
 /// Where each series of a stored point (a physical `Point::x`) sits.
@@ -157,6 +158,16 @@ impl PostProcessor {
         let contact = self.unknowns.contact_unchecked(x);
         Ok(self.check.defects(&displacement, &contact)?.1)
     }
+}
+
+/// Largest |f_series(t) − f_law(u(t))| / (α·JEU) over the shocks and over 2(2H_nl+1)
+/// instants of one period; 0 without shocks. For many points of one problem, build a
+/// [`PostProcessor`] once instead.
+pub fn contact_law_defect(problem: &Problem, settings: &Settings, x: &[f64]) -> Result<f64> {
+    if problem.shocks.is_empty() {
+        return Ok(0.0);
+    }
+    PostProcessor::new(problem, settings)?.law_defect(x)
 }
 
 #[cfg(test)]

@@ -4,8 +4,9 @@
 //! stiffness in two directions, an axisymmetric shaft) the pair in quadrature is a whirl,
 //! the orbit that rolls around a CERCLE ring instead of crossing its centre.
 
+use super::start::{init_contact, phase_dof, start};
 use super::system::{Scaling, System};
-use super::{init_contact, phase_dof, series, start, Problem, Settings, StartState};
+use super::{series, Problem, Settings, StartState};
 use crate::error::{Error, Result};
 use faer::sparse::SparseColMat;
 

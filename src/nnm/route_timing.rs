@@ -4,8 +4,9 @@
 
 use super::contact::{self, ContactBlock, Method};
 use super::linear_solver::solves_per_factorisation;
+use super::start::init_contact;
 use super::system::{Scaling, System};
-use super::{init_contact, series, Problem, Settings, Shock, ShockLaw};
+use super::{series, Problem, Settings, Shock, ShockLaw};
 use crate::error::Result;
 use faer::sparse::{SparseColMat, Triplet};
 use std::time::Instant;

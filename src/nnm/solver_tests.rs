@@ -3,6 +3,7 @@
 
 use super::contact::Method;
 use super::linear_solver::{ReferenceSolver, StructuredSolver, TangentSolver};
+use super::start::init_contact;
 use super::system::{Scaling, System};
 use super::tests::{settings, sparse};
 use super::*;
@@ -176,12 +177,12 @@ fn determinant_signs_change_together_with_the_dense_references() {
         let x = point(&sys, &mut rng);
         let t: Vec<f64> = (0..n).map(|_| rng.next()).collect();
         let a = dense_full(&sys, &x, &t);
-        let mut full = bifurcation::dense_det_sign(&a).unwrap();
+        let mut full = condensed_det::dense_det_sign(&a).unwrap();
         // Π sign det A_ff from the dense tangent's law blocks.
         for sh in &sys.shocks {
             let d = sh.eqs.n_own * sys.lay.n_coef_nonl;
             let blk = Mat::from_fn(d, d, |i, j| a[(sh.offset + i, sh.offset + j)]);
-            full *= bifurcation::dense_det_sign(&blk).unwrap();
+            full *= condensed_det::dense_det_sign(&blk).unwrap();
         }
         reference.factor(&sys, &x, &t).unwrap();
         let minor = reference.det_sign(&sys).unwrap();

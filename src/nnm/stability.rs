@@ -2,7 +2,7 @@
 //!
 //! The orbit U(t) is rebuilt from the stored Fourier coefficients of a branch point; the
 //! variational equation M δÜ + (K + Pᵀ J(t) P) δU = 0, with J = ∂F/∂u the tangent of the
-//! engine's regularised laws (`stability/laws.rs`), is integrated over one period T = 2π/ω
+//! engine's regularised laws (`point_law.rs`), is integrated over one period T = 2π/ω
 //! from the identity (2n columns: δU(0), δV(0)) to give the monodromy matrix Φ(T). Its
 //! eigenvalues are the Floquet multipliers.
 //!
@@ -29,17 +29,15 @@
 //! basis would be needed. M must be symmetric positive definite (a mass on every DOF).
 
 mod integrate;
-mod laws;
 
 #[cfg(test)]
 mod tests;
 
+use super::point_law::{eta_phys, PointLaw};
 use super::post::Unknowns;
 use super::{series, Problem, Settings};
 use crate::error::{Error, Result};
 use faer::{Mat, Side};
-pub(crate) use laws::eta_phys;
-pub(crate) use laws::PointLaw;
 
 /// Time integrator of the variational equation (SCHEMA_TEMPS/SCHEMA).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -625,3 +625,8 @@ impl System {
         t
     }
 }
+
+/// Number of unknowns of `x` for this problem and these settings.
+pub fn unknown_count(problem: &Problem, settings: &Settings) -> usize {
+    Layout::of(problem, settings).0.n_unk
+}

@@ -1,9 +1,12 @@
 //! Engine tests against closed forms (reference.rs) and internal consistency.
 
+use super::point::to_scaled;
 use super::reference::Oscillator;
+use super::start::system_for_point;
 use super::system::{Scaling, System};
 use super::*;
 use faer::prelude::Solve;
+use faer::sparse::SparseColMat;
 use faer::sparse::Triplet;
 
 pub fn sparse(n: usize, e: &[(usize, usize, f64)]) -> SparseColMat<usize, f64> {
@@ -756,7 +759,7 @@ fn det_sign_log10(mut a: Vec<f64>, n: usize) -> (f64, f64) {
 }
 
 /// The harmonic balance of the CERCLE law's derivative with respect to its own unknowns
-/// (A_ff, the block the determinant test of bifurcation.rs and a pointwise preconditioner
+/// (A_ff, the block the determinant test of condensed_det.rs and a pointwise preconditioner
 /// rely on) keeps the sign of its determinant along a branch through the ring centre, an
 /// off-centre one and a whirl, as BI_PLAN's does (run alongside); pointwise that
 /// determinant is ψ_f(r) > 0 (laws.rs). The test can fail: a three-unknown vector form

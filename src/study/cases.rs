@@ -1,9 +1,24 @@
 //! The studied systems, their energy ranges and the grids of settings.
 
-use super::measure::Config;
 use crate::nnm::exact::Oscillator;
 use crate::nnm::{Problem, Shock, ShockLaw};
 use faer::sparse::{SparseColMat, Triplet};
+
+/// The settings that vary in the study; the others are fixed (`settings`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Config {
+    /// Which sweep the setting belongs to ("base", "H_nl", "eta", "H_l", "PREC_MAN",
+    /// "diagonal", "reference").
+    pub sweep: &'static str,
+    /// NB_HARM_LINE.
+    pub h_lin: usize,
+    /// NB_HARM_NONL.
+    pub h_nonl: usize,
+    /// PARA_REGUL.
+    pub regul: f64,
+    /// PREC_MAN.
+    pub prec_man: f64,
+}
 
 /// sdnd122: m = 1, k = 10, PLAN stop at JEU = 0.01 with RIGI_NOR = 50.
 pub const WALL: Oscillator = Oscillator {

@@ -1,26 +1,10 @@
 //! One measurement: a timed branch over the case's energy range and its frequency error.
 
-use super::cases::StudyCase;
+use super::cases::{Config, StudyCase};
 use crate::error::{Error, Result};
 use crate::nnm::exact::Oscillator;
 use crate::nnm::{continue_while, start_from_mode, Point, Settings};
 use std::time::Instant;
-
-/// The settings that vary in the study; the others are fixed (`settings`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Config {
-    /// Which sweep the setting belongs to ("base", "H_nl", "eta", "H_l", "PREC_MAN",
-    /// "diagonal", "reference").
-    pub sweep: &'static str,
-    /// NB_HARM_LINE.
-    pub h_lin: usize,
-    /// NB_HARM_NONL.
-    pub h_nonl: usize,
-    /// PARA_REGUL.
-    pub regul: f64,
-    /// PREC_MAN.
-    pub prec_man: f64,
-}
 
 /// NB_ORDRE_MAN (Code_Aster's default).
 pub const ORDER: usize = 20;

@@ -23,8 +23,9 @@ pub mod report;
 #[cfg(test)]
 mod tests;
 
+pub use cases::Config;
 pub use cases::{det_test_grid, grid, CaseKind, GridSize, StudyCase};
-pub use measure::{measure, measure_with, Config, Measurement, Reference};
+pub use measure::{measure, measure_with, Measurement, Reference};
 pub use pareto::{pareto_front, recommend, Recommendation};
 
 use crate::error::Result;

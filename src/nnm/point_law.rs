@@ -1,7 +1,7 @@
 //! The regularised contact laws of the engine evaluated pointwise in physical units, with
 //! their derivatives: the tangent stiffness J(t) = ∂F/∂u that the variational equation needs.
 //!
-//! Same laws as `nnm::laws` (which works on Fourier series in scaled units); written out
+//! Same laws as `laws.rs` (which works on Fourier series in scaled units); written out
 //! here in closed form per sample. With α = RIGI_NOR, g = JEU and
 //! η = PARA_REGUL·k_ref·JEU² (`eta_phys`):
 //! - PLAN:    f² − α f (u − g) − α η = 0, positive root; df/du = α f / √(α²(u−g)² + 4αη).
@@ -14,8 +14,8 @@
 //! Sign: the force enters M Ü + K U + Pᵀ F = 0 with a plus sign (as in the engine's
 //! residual), so a compressed stop (u > g for PLAN) has f > 0 and J adds to K.
 
-use super::super::system::Scaling;
-use super::super::{Problem, ShockLaw};
+use super::system::Scaling;
+use super::{Problem, ShockLaw};
 use crate::error::{Error, Result};
 
 /// Physical regularisation η of each shock: PARA_REGUL·k_ref·JEU², with k_ref the engine's
@@ -47,7 +47,7 @@ pub struct PointLaw {
 /// The root is the engine's (`nnm::laws::plan_force`, c = η).
 fn plan(d: f64, alpha: f64, eta: f64) -> (f64, f64) {
     let q = (alpha * alpha * d * d + 4.0 * alpha * eta).sqrt();
-    let f = crate::nnm::laws::plan_force(d, alpha, eta);
+    let f = super::laws::plan_force(d, alpha, eta);
     (f, alpha * f / q)
 }
 
@@ -65,7 +65,7 @@ fn biplan(u: f64, alpha: f64, g: f64, eta: f64) -> Result<(f64, f64)> {
     }
     let (sign, ua) = if u < 0.0 { (-1.0, -u) } else { (1.0, u) };
     // The root is the engine's bisection (`nnm::laws::biplan_force`, whose η is η/g²).
-    let f = crate::nnm::laws::biplan_force(ua, g, alpha, ep);
+    let f = super::laws::biplan_force(ua, g, alpha, ep);
     // Implicit derivative of ψ(f, u) = 0 (the same in u and −u since the law is odd).
     let w = (f - alpha * ua) / ag;
     let psi_f = 1.0 - w * w - 2.0 * f * w / ag;

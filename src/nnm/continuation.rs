@@ -1,0 +1,175 @@
+//! The continuation driver: branch after branch, the EHMAN stages in order — the series
+//! step (series_step.rs), the correction of the branch end (correction.rs), the
+//! factorisation of the next branch's tangent and the determinant test (bifurcation.rs),
+//! the report (report.rs) — until NB_BRANCHE branches, the caller's bound, or an error.
+
+use super::anm::{self, AnmParams};
+use super::bifurcation::DeterminantWatch;
+use super::correction::{correct_branch, CorrectedBranch};
+use super::point::to_scaled;
+use super::report::{branch_report, in_branch, no_progress, stalled};
+use super::series_step::{series_step, Orientation};
+use super::solver_kind::make_solver;
+use super::system::System;
+use super::{BranchReport, Point, PostProcessor, Problem, Settings, StartState, StepControl};
+use crate::error::{Error, Result};
+
+pub struct Outcome {
+    pub points: Vec<Point>,
+    /// A failed correction (or any numerical failure) stops the run; the points computed
+    /// before it are kept.
+    pub error: Option<Error>,
+}
+
+/// Continue `settings.n_branches` branches from `start`; `on_branch` is called after each.
+pub fn continue_branches(
+    problem: &Problem,
+    settings: &Settings,
+    start: StartState,
+    on_branch: &mut dyn FnMut(&BranchReport, &[Point]),
+) -> Outcome {
+    continue_while(problem, settings, start, &mut |r, p| {
+        on_branch(r, p);
+        true
+    })
+}
+
+/// As [`continue_branches`], but stops after the first branch for which `on_branch` returns
+/// false (e.g. once the energy has passed a bound); at most `settings.n_branches` branches.
+pub fn continue_while(
+    problem: &Problem,
+    settings: &Settings,
+    start: StartState,
+    on_branch: &mut dyn FnMut(&BranchReport, &[Point]) -> bool,
+) -> Outcome {
+    continue_controlled(problem, settings, StepControl::none(), start, on_branch)
+}
+
+/// As [`continue_while`], with `control` deciding what happens to a branch that fails.
+pub fn continue_controlled(
+    problem: &Problem,
+    settings: &Settings,
+    control: StepControl,
+    start: StartState,
+    on_branch: &mut dyn FnMut(&BranchReport, &[Point]) -> bool,
+) -> Outcome {
+    let mut points = Vec::new();
+    let error = run(problem, settings, control, start, on_branch, &mut points).err();
+    Outcome { points, error }
+}
+
+fn run(
+    problem: &Problem,
+    settings: &Settings,
+    control: StepControl,
+    st: StartState,
+    on_branch: &mut dyn FnMut(&BranchReport, &[Point]) -> bool,
+    out: &mut Vec<Point>,
+) -> Result<()> {
+    let sys = System::new(problem, settings, st.scaling, st.ref_dof)?;
+    if st.x.len() != sys.lay.n_unk {
+        return Err(Error::internal("start state does not match the problem"));
+    }
+    let params = AnmParams {
+        order: settings.order,
+        prec: settings.prec_man,
+        bif_terms: settings.bif_terms,
+        bif_tol: settings.bif_tol,
+    };
+    let kind = st.solver;
+    let mut solver = make_solver(&sys, settings, kind)?;
+    // The contact law checked in time at every branch end, when asked for (StepControl).
+    let law_check = match control.law_defect_max {
+        Some(_) if !problem.shocks.is_empty() => Some(PostProcessor::new(problem, settings)?),
+        _ => None,
+    };
+    let mut x0 = st.x;
+    let border = st.border;
+    solver
+        .factor(&sys, &x0, &border)
+        .map_err(|e| in_branch(e, 1))?;
+    let mut det = DeterminantWatch::new(settings.det_test, &sys, solver.as_mut());
+    // DIR_EVOLUTION (module doc): −1 forward, +1 backward.
+    let travel = st.travel.map(|t: Vec<f64>| to_scaled(&sys, &t));
+    let mut orientation = Orientation::new(settings.direction < 0, travel);
+    // (energy, frequency) of every branch end, for the no-progress guard.
+    let mut ends: Vec<(f64, f64)> = Vec::new();
+    for b in 1..=settings.n_branches {
+        let mut ser = series_step(&sys, solver.as_mut(), &x0, &params, settings, &orientation)
+            .map_err(|e| in_branch(e, b))?;
+        if b == 1 && anm::dot(&ser.terms[0], &border) < 0.0 {
+            // The start was factorised with the motion as border, the branch leaves against
+            // it: det [R_X; bᵀ] = (b·t)·det [R_X; tᵀ], so the start's sign flips with it (or
+            // a backward start would be flagged as a bifurcation).
+            det.border_reversed();
+        }
+        let CorrectedBranch {
+            mut points,
+            x_end,
+            newton_iterations,
+            tangent,
+            step_retries,
+        } = correct_branch(
+            &sys,
+            solver.as_mut(),
+            settings,
+            &control,
+            law_check.as_ref(),
+            &mut ser,
+            &x0,
+            b,
+        )?;
+        let at_floor = points.last().is_some_and(|p| p.at_floor);
+        if let Some(p) = points.last() {
+            ends.push((p.energy, p.frequency));
+        }
+        let stall = no_progress(&ends, control.stall_branches);
+        // NB_PAS_MAN ≥ 1 (system::validate): the last point is the corrected end.
+        let x_start = std::mem::replace(&mut x0, x_end);
+        // The next branch starts from the corrected end point with this branch's end tangent
+        // as border: factor that tangent now, and compare the sign of its determinant with
+        // the one at the start of this branch. A failure belongs to the next branch: this
+        // one is reported first.
+        let last = b == settings.n_branches;
+        let end_factor = if last && !settings.det_test {
+            Ok(())
+        } else {
+            solver.factor(&sys, &x0, &tangent)
+        };
+        let end_sign = match end_factor {
+            Ok(()) => det.sign(&sys, solver.as_mut()),
+            Err(_) => None,
+        };
+        det.branch_ended(
+            &sys,
+            end_sign,
+            &ser,
+            &x_start,
+            settings.n_points_per_branch,
+            &mut points,
+            || make_solver(&sys, settings, kind),
+        )?;
+        let report = branch_report(
+            b,
+            &points,
+            ser.a_max,
+            newton_iterations,
+            step_retries,
+            at_floor,
+        );
+        let go_on = on_branch(&report, &points);
+        out.extend(points);
+        if !go_on || last {
+            break;
+        }
+        if let Some((e, f)) = stall {
+            return Err(in_branch(
+                stalled(control.stall_branches, e, f, ser.a_max),
+                b,
+            ));
+        }
+        end_factor.map_err(|e| in_branch(e, b + 1))?;
+        orientation.continue_along(tangent);
+    }
+    Ok(())
+}

@@ -1,0 +1,209 @@
+//! EHMAN stage 3, the correction: the points of one branch from its series, the branch end
+//! Newton-corrected (newton.rs), checked against its contact law in time, and retried from
+//! the same series with a shorter step when it fails (docs/nnm.md, "Failed corrections").
+
+use super::anm;
+use super::linear_solver::TangentSolver;
+use super::newton;
+use super::point::{finite, make_point};
+use super::report::in_branch;
+use super::system::System;
+use super::{Point, PostProcessor, Settings, StepControl};
+use crate::error::{Error, Result};
+
+/// Why a corrected branch end is not a point of the physical family although its residual
+/// converged, if it is not (StepControl::law_defect_max, spread_max): the error a retry
+/// with a shorter step may cure, else the one that stops the run.
+pub(super) fn off_the_law(
+    control: &StepControl,
+    law_check: Option<&PostProcessor>,
+    end: &Point,
+) -> Result<Option<Error>> {
+    if let (Some(max), Some(check)) = (control.law_defect_max, law_check) {
+        let defect = check.relative_law_defect(&end.x)?;
+        if defect.is_nan() || defect > max {
+            return Ok(Some(
+                Error::numerical(format!(
+                    "the branch end satisfies its contact law in time only to {defect:.3e} x \
+                     max(RIGI_NOR*JEU, largest contact force) > ECART_LOI_CHOC_MAXI = {max:.3e} \
+                     (ENERGIE = {:.6e}, FREQUENCE = {:.6e} Hz): the branch has left the physical \
+                     root of the regularised law (a converged solution of the harmonic balance \
+                     that is not a motion of the system)",
+                    end.energy, end.frequency
+                ))
+                .keyword("RESOLUTION/ECART_LOI_CHOC_MAXI")
+                .hint(
+                    "lower PREC_MAN (1e-9 or below: shorter series steps do not jump across to \
+                     the other root of the law), raise PARA_REGUL, or raise NB_HARM_NONL",
+                ),
+            ));
+        }
+    }
+    if let Some(max) = control.spread_max {
+        let spread = end.energy_spread;
+        if spread.is_nan() || spread > max {
+            return Ok(Some(
+                Error::numerical(format!(
+                    "the energy of the branch end varies over the period by ECART_ENERGIE = \
+                     {spread:.3e} > ECART_ENERGIE_MAXI = {max:.3e} (ENERGIE = {:.6e}, FREQUENCE \
+                     = {:.6e} Hz): the point is not a periodic orbit of the system to that \
+                     accuracy",
+                    end.energy, end.frequency
+                ))
+                .keyword("RESOLUTION/ECART_ENERGIE_MAXI")
+                .hint(
+                    "raise NB_HARM_LINE (a stiff stop needs many harmonics of the displacement), \
+                     lower PREC_MAN, or raise PARA_REGUL",
+                ),
+            ));
+        }
+    }
+    Ok(None)
+}
+
+/// The points of one branch: the series evaluated at a_max·i/np, the last one corrected.
+/// Ok(Err(e)): the correction failed (retryable with a shorter step); Err: anything else.
+/// Returns the points, the corrected end, the Newton iterations and the end tangent.
+type BranchPoints = (Vec<Point>, Vec<f64>, usize, Vec<f64>);
+
+pub(super) fn branch_points_of(
+    sys: &System,
+    solver: &mut dyn TangentSolver,
+    settings: &Settings,
+    ser: &anm::Series,
+    x0: &[f64],
+    b: usize,
+) -> Result<std::result::Result<BranchPoints, Error>> {
+    let np = settings.n_points_per_branch;
+    let mut branch_points = Vec::with_capacity(np);
+    let mut newton_iterations = 0;
+    let tangent = ser.unit_tangent(ser.a_max);
+    if !finite(&tangent) {
+        return Err(in_branch(
+            Error::numerical("the branch tangent is not finite"),
+            b,
+        ));
+    }
+    let series_bif = ser
+        .bifurcation
+        .map(|ab| (((ab / ser.a_max) * np as f64).round() as usize).clamp(1, np));
+    let mut x_end = Vec::new();
+    for i in 1..=np {
+        let a = ser.a_max * i as f64 / np as f64;
+        let mut x = ser.eval(x0, a);
+        if !finite(&x) {
+            return Err(in_branch(
+                Error::numerical(format!("the series diverged at a = {a:.3e} (point {i})")),
+                b,
+            ));
+        }
+        let mut res = newton::relative(&sys.residual(&x), &x);
+        let mut at_floor = false;
+        if i == np {
+            let corr = match newton::correct(
+                sys,
+                solver,
+                &mut x,
+                &tangent,
+                settings.prec_newton,
+                settings.iter_newton_max,
+            ) {
+                Ok(c) => c,
+                Err(e) => return Ok(Err(e)),
+            };
+            newton_iterations = corr.iterations;
+            res = corr.residual;
+            at_floor = corr.at_floor;
+            x_end = x.clone();
+        }
+        let mut p = make_point(sys, &x, res, b, series_bif == Some(i));
+        p.at_floor = at_floor;
+        if !(p.energy.is_finite() && p.omega.is_finite() && p.energy_spread.is_finite()) {
+            return Err(in_branch(
+                Error::numerical(format!("energy or frequency not finite at point {i}")),
+                b,
+            ));
+        }
+        if p.frequency <= 0.0 {
+            // Not a periodic orbit: the series has jumped off the family (a shorter step
+            // stays closer to its origin).
+            return Ok(Err(Error::numerical(format!(
+                "the frequency is not positive at point {i} ({:.6e} Hz): the branch has left the \
+                 family of periodic orbits",
+                p.frequency
+            ))
+            .keyword("RESOLUTION/PREC_MAN")
+            .hint(
+                "lower PREC_MAN (shorter, more accurate branches) or raise PARA_REGUL",
+            )));
+        }
+        branch_points.push(p);
+    }
+    Ok(Ok((branch_points, x_end, newton_iterations, tangent)))
+}
+
+/// One branch, corrected: its points (the last one the corrected end), the corrected end in
+/// scaled units, the Newton iterations of its correction, the end tangent, and how many
+/// times the step was halved before the correction held.
+pub(super) struct CorrectedBranch {
+    pub points: Vec<Point>,
+    pub x_end: Vec<f64>,
+    pub newton_iterations: usize,
+    pub tangent: Vec<f64>,
+    pub step_retries: usize,
+}
+
+/// The points of branch `b` from `ser` at `x0`. A failed correction, or a corrected end off
+/// its contact law ([`off_the_law`]), is retried from the same series with a_max halved (the
+/// series is more accurate closer to its origin), at most `control.retries_max` times; then
+/// the last failure stops the run, naming the retries.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn correct_branch(
+    sys: &System,
+    solver: &mut dyn TangentSolver,
+    settings: &Settings,
+    control: &StepControl,
+    law_check: Option<&PostProcessor>,
+    ser: &mut anm::Series,
+    x0: &[f64],
+    b: usize,
+) -> Result<CorrectedBranch> {
+    let mut step_retries = 0;
+    let (mut points, x_end, newton_iterations, tangent) = loop {
+        let attempt = branch_points_of(sys, solver, settings, ser, x0, b)?.and_then(|done| {
+            match done.0.last() {
+                Some(end) => off_the_law(control, law_check, end)?,
+                None => None,
+            }
+            .map_or(Ok(done), Err)
+        });
+        match attempt {
+            Ok(done) => break done,
+            Err(_) if step_retries < control.retries_max => {
+                step_retries += 1;
+                ser.a_max *= 0.5;
+            }
+            Err(e) if step_retries > 0 => {
+                let e = Error {
+                    message: format!(
+                        "{} (also with the series step halved {step_retries} times, a_max = {:.3e})",
+                        e.message, ser.a_max
+                    ),
+                    ..e
+                };
+                return Err(in_branch(e, b));
+            }
+            Err(e) => return Err(in_branch(e, b)),
+        }
+    };
+    if let Some(p) = points.last_mut() {
+        p.step_retries = step_retries;
+    }
+    Ok(CorrectedBranch {
+        points,
+        x_end,
+        newton_iterations,
+        tangent,
+        step_retries,
+    })
+}

@@ -1,0 +1,56 @@
+//! What the engine is asked to solve: the reduced structure, its shocks, and the EHMAN
+//! settings (the values MODE_NON_LINE's keywords give).
+
+use faer::sparse::SparseColMat;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ShockLaw {
+    Plan,
+    BiPlan,
+    Cercle { origin: [f64; 2] },
+}
+
+#[derive(Clone, Debug)]
+pub struct Shock {
+    pub law: ShockLaw,
+    /// 1 index into the reduced DOFs for PLAN/BI_PLAN (obstacle on the + side for PLAN),
+    /// 2 for CERCLE.
+    pub dofs: Vec<usize>,
+    /// JEU.
+    pub gap: f64,
+    /// RIGI_NOR.
+    pub stiffness: f64,
+    /// PARA_REGUL, dimensionless as in Code_Aster (η_phys = PARA_REGUL·k_ref·JEU²).
+    pub regul: f64,
+}
+
+#[derive(Clone, Debug)]
+pub struct Problem {
+    /// Stiffness and mass reduced to the free DOFs, n×n.
+    pub k: SparseColMat<usize, f64>,
+    pub m: SparseColMat<usize, f64>,
+    pub shocks: Vec<Shock>,
+}
+
+#[derive(Clone, Debug)]
+pub struct Settings {
+    pub h_lin: usize,
+    pub h_nonl: usize,
+    pub n_branches: usize,
+    /// NB_PAS_MAN.
+    pub n_points_per_branch: usize,
+    /// NB_ORDRE_MAN.
+    pub order: usize,
+    pub prec_man: f64,
+    pub prec_newton: f64,
+    pub iter_newton_max: usize,
+    /// CRIT_ORDR_BIFURCATION.
+    pub bif_terms: usize,
+    /// RESI_RELA_BIFURCATION.
+    pub bif_tol: f64,
+    /// TEST_BIFURCATION = 'SERIE_DETERMINANT': also test the sign of the bordered
+    /// tangent's determinant at every branch end (bifurcation.rs).
+    pub det_test: bool,
+    /// DIR_EVOLUTION: −1 forward, +1 backward (module doc).
+    pub direction: i32,
+}

@@ -1,0 +1,89 @@
+//! EHMAN stage 2, the series step: the ANM series of a branch at its start point (anm.rs),
+//! oriented the way the user asked (DIR_EVOLUTION, module doc of nnm), and its length a_max
+//! reduced until the series is credible at its end.
+
+use super::anm::{self, AnmParams, Series};
+use super::energy;
+use super::linear_solver::TangentSolver;
+use super::newton;
+use super::system::System;
+use super::Settings;
+use crate::error::Result;
+
+/// Which way a branch leaves its start point (the sign of the series' first term).
+pub(super) struct Orientation {
+    /// DIR_EVOLUTION = −1.
+    forward: bool,
+    /// From a stored point: the direction the stored branch travelled (scaled units).
+    travel: Option<Vec<f64>>,
+    /// The previous branch's end tangent, once there is one: the path goes on along it.
+    prev_tangent: Option<Vec<f64>>,
+}
+
+impl Orientation {
+    pub(super) fn new(forward: bool, travel: Option<Vec<f64>>) -> Orientation {
+        Orientation {
+            forward,
+            travel,
+            prev_tangent: None,
+        }
+    }
+
+    /// The next branch continues the path along `tangent` (this branch's end tangent).
+    pub(super) fn continue_along(&mut self, tangent: Vec<f64>) {
+        self.prev_tangent = Some(tangent);
+    }
+
+    /// ±1: the sign X_1 must take at `x0`.
+    fn sign(&self, sys: &System, x0: &[f64], x1: &[f64]) -> f64 {
+        let ahead = match (&self.prev_tangent, &self.travel) {
+            (Some(t), _) => return if anm::dot(x1, t) < 0.0 { -1.0 } else { 1.0 },
+            (None, Some(t)) => anm::dot(x1, t) > 0.0,
+            (None, None) => motion_grows(sys, x0, x1),
+        };
+        if ahead == self.forward {
+            1.0
+        } else {
+            -1.0
+        }
+    }
+}
+
+/// Forward (DIR_EVOLUTION = −1) from a linear mode: the motion grows along `x1`, measured
+/// by its time-averaged ½uᵀKu + ½vᵀMv (the energy norm of the orbit). Counting only the
+/// harmonic amplitudes, without the mean, is not enough: at first contact with a very
+/// stiff stop the harmonics can grow while the orbit's energy falls (the mean backs off the
+/// stop), which is not what "toward increasing amplitude" means to a user reading ENERGIE.
+pub(super) fn motion_grows(sys: &System, x0: &[f64], x1: &[f64]) -> bool {
+    // The measure is quadratic in X: the centred difference with step 1 is exact.
+    let plus: Vec<f64> = x0.iter().zip(x1).map(|(a, c)| a + c).collect();
+    let minus: Vec<f64> = x0.iter().zip(x1).map(|(a, c)| a - c).collect();
+    energy::mean_quadratic_energy(sys, &plus) > energy::mean_quadratic_energy(sys, &minus)
+}
+
+/// The series of the branch starting at `x0`, `solver` holding the factorised tangent there.
+pub(super) fn series_step(
+    sys: &System,
+    solver: &mut dyn TangentSolver,
+    x0: &[f64],
+    params: &AnmParams,
+    settings: &Settings,
+    orientation: &Orientation,
+) -> Result<Series> {
+    let mut ser = anm::compute(sys, solver, x0, params, &|x1: &[f64]| {
+        orientation.sign(sys, x0, x1)
+    })?;
+    // Safeguard: the step-length estimate assumes the series converges at a_max; where it
+    // does not (nearly homogeneous regimes far up a branch, where the estimate grows
+    // without bound), the end residual says so: halve the step until it is credible.
+    let credible = 1e3 * settings.prec_man.max(settings.prec_newton);
+    for _ in 0..40 {
+        let xe = ser.eval(x0, ser.a_max);
+        let r = newton::relative(&sys.residual(&xe), &xe);
+        if r.is_finite() && r <= credible.max(newton::roundoff_floor(sys, &xe)) {
+            break;
+        }
+        ser.a_max *= 0.5;
+    }
+    Ok(ser)
+}

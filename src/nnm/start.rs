@@ -1,0 +1,263 @@
+//! EHMAN stage 1, the start: a first point of the branch, from a linear mode scaled by
+//! COEF_AMPL or from a stored point (ETAT_INIT), Newton-corrected at fixed amplitude
+//! (docs/ehman.md §4). The start from a pair of modes in quadrature is quadrature.rs.
+
+use super::point::{finite, make_point, to_scaled};
+use super::solver_kind::{make_solver, SolverKind};
+use super::system::{self, Scaling, System};
+use super::{anm, laws, newton, post, series, Point, Problem, Settings};
+use crate::error::{Error, Result};
+
+/// A corrected point to continue from.
+#[derive(Clone, Debug)]
+pub struct StartState {
+    /// The direction the stored branch travelled at the start point (physical units, the
+    /// layout of `x`); None from linear modes.
+    pub(super) travel: Option<Vec<f64>>,
+    pub(super) x: Vec<f64>,
+    pub(super) scaling: Scaling,
+    pub(super) ref_dof: usize,
+    pub(super) border: Vec<f64>,
+    /// The corrected start point (physical units).
+    pub point: Point,
+    pub newton_iterations: usize,
+    /// The solver the continuation uses (and the start used).
+    pub solver: SolverKind,
+}
+
+impl StartState {
+    /// The same start, continued relative to `travel`: the direction (physical units, the
+    /// layout of `Point::x`) in which the stored branch was travelling at this point, e.g.
+    /// the chord to the next stored row. DIR_EVOLUTION = −1 then goes on that way, +1 turns
+    /// back. Only the sign of its projection on the new tangent is used.
+    pub fn travelling(mut self, travel: Vec<f64>) -> Result<StartState> {
+        if travel.len() != self.x.len() || !finite(&travel) || travel.iter().all(|&v| v == 0.0) {
+            return Err(Error::internal(format!(
+                "direction of travel: {} finite values, not all zero, expected {}",
+                travel.len(),
+                self.x.len()
+            )));
+        }
+        self.travel = Some(travel);
+        Ok(self)
+    }
+}
+
+/// Samples of the contact unknowns consistent with the displacements of `x` (scaled).
+pub(super) fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
+    let l = sys.lay;
+    let smp = sys.sampler();
+    let ns = smp.n();
+    for sh in &sys.shocks {
+        let u: Vec<Vec<f64>> = sh
+            .dofs
+            .iter()
+            .map(|&d| {
+                let mut s = vec![0.0; ns];
+                smp.synth(&x[l.u(d)..l.u(d) + l.n_coef_lin], l.h_lin, &mut s);
+                s
+            })
+            .collect();
+        let own = laws::own_from_u(sh.law, sh.gap, sh.alpha, sh.eta, &u)?;
+        for (v, mut s) in own.into_iter().enumerate() {
+            let o = sh.offset + v * l.n_coef_nonl;
+            smp.analyse(&mut s, l.h_nonl, &mut x[o..o + l.n_coef_nonl]);
+        }
+    }
+    Ok(())
+}
+
+/// The border guess at a start point: its displacement and velocity part (the branch
+/// leaves a point mostly by scaling its motion).
+pub(super) fn motion_border(sys: &System, x: &[f64]) -> Vec<f64> {
+    let l = sys.lay;
+    let mut b = vec![0.0; l.n_unk];
+    b[..2 * l.n * l.n_coef_lin].copy_from_slice(&x[..2 * l.n * l.n_coef_lin]);
+    let n = anm::norm(&b);
+    b.iter_mut().for_each(|v| *v /= n);
+    b
+}
+
+pub(super) fn start(
+    sys: System,
+    settings: &Settings,
+    mut x: Vec<f64>,
+    kind: SolverKind,
+) -> Result<StartState> {
+    if !finite(&x) {
+        return Err(Error::numerical("the start point is not finite"));
+    }
+    let border = motion_border(&sys, &x);
+    if !finite(&border) {
+        return Err(
+            Error::input("the start point has no motion (all displacements are zero)")
+                .keyword("ETAT_INIT"),
+        );
+    }
+    let mut solver = make_solver(&sys, settings, kind)?;
+    let corr = newton::correct(
+        &sys,
+        solver.as_mut(),
+        &mut x,
+        &border,
+        settings.prec_newton,
+        settings.iter_newton_max,
+    )
+    .map_err(|e| Error {
+        message: format!("start point: {}", e.message),
+        ..e
+    })?;
+    let it = corr.iterations;
+    let mut point = make_point(&sys, &x, corr.residual, 0, false);
+    point.at_floor = corr.at_floor;
+    Ok(StartState {
+        travel: None,
+        border: motion_border(&sys, &x),
+        x,
+        scaling: sys.sc,
+        ref_dof: sys.ref_dof,
+        point,
+        newton_iterations: it,
+        solver: kind,
+    })
+}
+
+/// The DOF whose velocity is zero at t = 0: the first free DOF as in Code_Aster (so that
+/// ENERGIE, taken at ωt = π/2, is evaluated at the same instant of the motion), unless it
+/// barely moves in the mode (the condition would then be degenerate): then the DOF that
+/// moves most.
+pub(super) fn phase_dof(amplitudes: &[f64]) -> usize {
+    let big = amplitudes.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    match amplitudes.first() {
+        Some(a) if a.abs() > 1e-3 * big => 0,
+        _ => (0..amplitudes.len())
+            .max_by(|&a, &b| amplitudes[a].abs().total_cmp(&amplitudes[b].abs()))
+            .unwrap_or(0),
+    }
+}
+
+/// The checks shared by every start from linear modes: problem and settings agree, each
+/// mode (with the keyword that chose it) has one finite value per DOF, COEF_AMPL and the
+/// linear pulsation are positive. Returns the number of DOFs.
+pub(crate) fn check_start(
+    problem: &Problem,
+    settings: &Settings,
+    modes: &[(&[f64], &str)],
+    coef_ampl: f64,
+    omega_lin: f64,
+) -> Result<usize> {
+    system::validate(problem, settings)?;
+    let n = problem.k.nrows();
+    for (v, key) in modes {
+        if v.len() != n || !finite(v) {
+            return Err(Error::input(format!(
+                "the linear mode has {} finite components, {n} expected",
+                v.len()
+            ))
+            .keyword(format!("ETAT_INIT/{key}")));
+        }
+    }
+    if !(coef_ampl.is_finite() && coef_ampl > 0.0) {
+        return Err(
+            Error::input(format!("COEF_AMPL must be positive, got {coef_ampl}"))
+                .keyword("ETAT_INIT/COEF_AMPL"),
+        );
+    }
+    if !(omega_lin.is_finite() && omega_lin > 0.0) {
+        return Err(Error::input(format!(
+            "the linear pulsation must be positive, got {omega_lin}"
+        ))
+        .keyword("ETAT_INIT/NUME_ORDRE"));
+    }
+    Ok(n)
+}
+
+/// Start from a linear mode (largest component 1) scaled by `coef_ampl` as Code_Aster does:
+/// with shocks the scaled displacement is coef_ampl·mode, so COEF_AMPL = 1 gives an
+/// amplitude equal to the largest JEU; without shocks the physical amplitude is
+/// coef_ampl·mode. The contact unknowns follow from their laws; the point is then
+/// Newton-corrected at fixed amplitude.
+pub fn start_from_mode(
+    problem: &Problem,
+    settings: &Settings,
+    mode: &[f64],
+    coef_ampl: f64,
+    omega_lin: f64,
+) -> Result<StartState> {
+    start_from_mode_using(
+        problem,
+        settings,
+        mode,
+        coef_ampl,
+        omega_lin,
+        SolverKind::default(),
+    )
+}
+
+/// [`start_from_mode`] with the tangent solved by `kind` (continued with it too).
+pub fn start_from_mode_using(
+    problem: &Problem,
+    settings: &Settings,
+    mode: &[f64],
+    coef_ampl: f64,
+    omega_lin: f64,
+    kind: SolverKind,
+) -> Result<StartState> {
+    let n = check_start(
+        problem,
+        settings,
+        &[(mode, "NUME_ORDRE")],
+        coef_ampl,
+        omega_lin,
+    )?;
+    let p = (0..n)
+        .max_by(|&a, &b| mode[a].abs().total_cmp(&mode[b].abs()))
+        .unwrap_or(0);
+    let mp = mode[p].abs();
+    if mp == 0.0 {
+        return Err(Error::input("the linear mode is zero").keyword("ETAT_INIT/NUME_ORDRE"));
+    }
+    let sc = Scaling::new(problem, coef_ampl * mp, p)?;
+    let sys = System::new(problem, settings, sc, phase_dof(mode))?;
+    let l = sys.lay;
+    let phys_per_coef = if problem.shocks.is_empty() {
+        1.0
+    } else {
+        sc.length
+    };
+    let om = omega_lin / sc.omega;
+    let mut x = vec![0.0; l.n_unk];
+    for i in 0..n {
+        let u = coef_ampl * mode[i] * phys_per_coef / sc.length;
+        x[l.u(i) + series::ic(1)] = u;
+        x[l.v(i) + series::is(l.h_lin, 1)] = -om * u;
+    }
+    x[l.omega()] = om;
+    init_contact(&sys, &mut x)?;
+    start(sys, settings, x, kind)
+}
+
+/// Scaling and reference DOF for a stored physical point.
+pub(super) fn system_for_point(
+    problem: &Problem,
+    settings: &Settings,
+    x: &[f64],
+) -> Result<System> {
+    post::Unknowns::new(problem, settings)?.check(x)?;
+    let n = problem.k.nrows();
+    let nl = series::len(settings.h_lin);
+    let amp = |i: usize| x[i * nl + series::ic(1)].hypot(x[i * nl + series::is(settings.h_lin, 1)]);
+    let p = (0..n)
+        .max_by(|&a, &b| amp(a).total_cmp(&amp(b)))
+        .unwrap_or(0);
+    let sc = Scaling::new(problem, amp(p), p)?;
+    let amps: Vec<f64> = (0..n).map(amp).collect();
+    System::new(problem, settings, sc, phase_dof(&amps))
+}
+
+/// Restart from a stored point (physical `Point::x`), Newton-corrected.
+pub fn start_from_point(problem: &Problem, settings: &Settings, x: &[f64]) -> Result<StartState> {
+    let sys = system_for_point(problem, settings, x)?;
+    let xs = to_scaled(&sys, x);
+    start(sys, settings, xs, SolverKind::default())
+}

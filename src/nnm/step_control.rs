@@ -1,0 +1,40 @@
+//! How a run reacts to a branch that goes wrong (retries, the law and energy checks, the
+//! no-progress guard): the values come from the catalog (RESOLUTION).
+
+/// How the run reacts to a branch that goes wrong; the engine's own callers use
+/// [`StepControl::none`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct StepControl {
+    /// A failed correction is retried from the same series with a_max halved, at most
+    /// this many times per branch, before the run stops.
+    pub retries_max: usize,
+    /// Stop with an error when the branch ends of this many consecutive branches stay
+    /// within [`STALL_ENERGY`] in energy and [`STALL_FREQUENCY`] in frequency (0: never).
+    pub stall_branches: usize,
+    /// A branch whose corrected end violates its contact law in time by more than this is
+    /// retried like a failed correction, then stops the run (None: not checked). The
+    /// defect is ECART_LOI_CHOC ([`contact_law_defect`](super::contact_law_defect), in units of RIGI_NOR·JEU) divided
+    /// by max(1, the largest law force in those units): the same as ECART_LOI_CHOC up to
+    /// the first-contact regime, relative to the force far into a stop.
+    pub law_defect_max: Option<f64>,
+    /// Likewise for the energy spread over the period (ECART_ENERGIE) of the corrected end.
+    pub spread_max: Option<f64>,
+}
+
+/// Relative spread of ENERGIE over the window of [`StepControl::stall_branches`] below which
+/// a run counts as making no progress.
+pub const STALL_ENERGY: f64 = 1.0e-2;
+/// Relative spread of FREQUENCE over that window, likewise.
+pub const STALL_FREQUENCY: f64 = 1.0e-3;
+
+impl StepControl {
+    /// No retry: a failed correction stops the run.
+    pub fn none() -> StepControl {
+        StepControl {
+            retries_max: 0,
+            stall_branches: 0,
+            law_defect_max: None,
+            spread_max: None,
+        }
+    }
+}
