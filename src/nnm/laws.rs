@@ -87,10 +87,10 @@ pub struct LawEqs {
     pub forces: Vec<(usize, usize)>,
 }
 
-fn t(eq: usize, coef: f64, a: Var, b: Var) -> Term {
+fn quad_term(eq: usize, coef: f64, a: Var, b: Var) -> Term {
     Term { eq, coef, a, b }
 }
-fn l(eq: usize, coef: f64, var: Var) -> Lin {
+fn lin_term(eq: usize, coef: f64, var: Var) -> Lin {
     Lin { eq, coef, var }
 }
 
@@ -100,8 +100,11 @@ pub fn equations(law: ScaledLaw, s: f64, alpha: f64, eta: f64) -> LawEqs {
     match law {
         ScaledLaw::Plan => LawEqs {
             n_own: 1,
-            quad: vec![t(0, 1.0 / alpha, Own(0), Own(0)), t(0, -1.0, Own(0), U(0))],
-            lin: vec![l(0, s, Own(0))],
+            quad: vec![
+                quad_term(0, 1.0 / alpha, Own(0), Own(0)),
+                quad_term(0, -1.0, Own(0), U(0)),
+            ],
+            lin: vec![lin_term(0, s, Own(0))],
             cst: vec![(0, -eta * s * s)],
             forces: vec![(0, 0)],
         },
@@ -110,12 +113,16 @@ pub fn equations(law: ScaledLaw, s: f64, alpha: f64, eta: f64) -> LawEqs {
             LawEqs {
                 n_own: 2,
                 quad: vec![
-                    t(0, -1.0, Own(0), Own(1)),
-                    t(1, -c / (alpha * alpha), Own(0), Own(0)),
-                    t(1, 2.0 * c / alpha, Own(0), U(0)),
-                    t(1, -c, U(0), U(0)),
+                    quad_term(0, -1.0, Own(0), Own(1)),
+                    quad_term(1, -c / (alpha * alpha), Own(0), Own(0)),
+                    quad_term(1, 2.0 * c / alpha, Own(0), U(0)),
+                    quad_term(1, -c, U(0), U(0)),
                 ],
-                lin: vec![l(0, 1.0, Own(0)), l(0, -eta, U(0)), l(1, 1.0, Own(1))],
+                lin: vec![
+                    lin_term(0, 1.0, Own(0)),
+                    lin_term(0, -eta, U(0)),
+                    lin_term(1, 1.0, Own(1)),
+                ],
                 cst: vec![],
                 forces: vec![(0, 0)],
             }
@@ -129,21 +136,21 @@ pub fn equations(law: ScaledLaw, s: f64, alpha: f64, eta: f64) -> LawEqs {
             let mut cst = vec![(2, -eta), (3, 0.0)];
             for (comp, e) in [(0usize, ex), (1, ey)] {
                 // F_c − λ d_c = 0.
-                lin.push(l(comp, 1.0, Own(comp)));
-                quad.push(t(comp, -1.0, Own(2), U(comp)));
-                lin.push(l(comp, e, Own(2)));
+                lin.push(lin_term(comp, 1.0, Own(comp)));
+                quad.push(quad_term(comp, -1.0, Own(2), U(comp)));
+                lin.push(lin_term(comp, e, Own(2)));
                 // −(F_c/α − u_c + e_c)²/s², expanded, in the equation of z.
-                quad.push(t(3, -c / (alpha * alpha), Own(comp), Own(comp)));
-                quad.push(t(3, 2.0 * c / alpha, Own(comp), U(comp)));
-                quad.push(t(3, -c, U(comp), U(comp)));
-                lin.push(l(3, -2.0 * c * e / alpha, Own(comp)));
-                lin.push(l(3, 2.0 * c * e, U(comp)));
+                quad.push(quad_term(3, -c / (alpha * alpha), Own(comp), Own(comp)));
+                quad.push(quad_term(3, 2.0 * c / alpha, Own(comp), U(comp)));
+                quad.push(quad_term(3, -c, U(comp), U(comp)));
+                lin.push(lin_term(3, -2.0 * c * e / alpha, Own(comp)));
+                lin.push(lin_term(3, 2.0 * c * e, U(comp)));
                 cst[1].1 -= c * e * e;
             }
             // λ − η − λ z = 0.
-            lin.push(l(2, 1.0, Own(2)));
-            quad.push(t(2, -1.0, Own(2), Own(3)));
-            lin.push(l(3, 1.0, Own(3)));
+            lin.push(lin_term(2, 1.0, Own(2)));
+            quad.push(quad_term(2, -1.0, Own(2), Own(3)));
+            lin.push(lin_term(3, 1.0, Own(3)));
             cst.retain(|&(_, v)| v != 0.0);
             lin.retain(|v| v.coef != 0.0);
             LawEqs {
