@@ -28,6 +28,7 @@ pub mod budget;
 mod contact;
 mod dense_lu;
 mod energy;
+pub mod exact_law;
 pub mod exact;
 mod gmres;
 mod law_check;
