@@ -63,7 +63,7 @@ pub struct ExactLawSettings {
 }
 
 /// Default samples per Fourier coefficient of a displacement (N ≥ this·(2H_l+1)).
-pub const DEFAULT_SAMPLES_PER_COEF: usize = 16;
+pub const DEFAULT_SAMPLES_PER_COEF: usize = 64;
 
 /// Largest dense system (n·(2H_l+1) + 2) the correction accepts.
 pub const MAX_DENSE: usize = 4000;
