@@ -38,6 +38,7 @@ mod correction;
 mod dense_lu;
 mod energy;
 pub mod exact;
+pub mod exact_law;
 mod gmres;
 mod law_check;
 mod laws;

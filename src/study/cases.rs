@@ -18,6 +18,10 @@ pub struct Config {
     pub regul: f64,
     /// PREC_MAN.
     pub prec_man: f64,
+    /// Every computed point in the range corrected on the exact (unregularised) law
+    /// (`nnm::exact_law`) with this many time samples per displacement coefficient; 0: not
+    /// corrected (EHMAN's own points are measured).
+    pub exact_law: usize,
 }
 
 /// sdnd122: m = 1, k = 10, PLAN stop at JEU = 0.01 with RIGI_NOR = 50.
@@ -147,6 +151,7 @@ pub const BASE: Config = Config {
     h_nonl: 100,
     regul: 1e-5,
     prec_man: 1e-9,
+    exact_law: 0,
 };
 
 /// sdnd122's own settings (Code_Aster's validation case), measured as they are.
@@ -156,6 +161,7 @@ pub const SDND122: Config = Config {
     h_nonl: 200,
     regul: 5e-5,
     prec_man: 1e-14,
+    exact_law: 0,
 };
 
 fn with(sweep: &'static str, h_lin: usize, h_nonl: usize, regul: f64, prec_man: f64) -> Config {
@@ -165,6 +171,15 @@ fn with(sweep: &'static str, h_lin: usize, h_nonl: usize, regul: f64, prec_man: 
         h_nonl,
         regul,
         prec_man,
+        exact_law: 0,
+    }
+}
+
+/// A setting whose points are corrected on the exact law (`Config::exact_law`).
+fn exact(h_lin: usize, h_nonl: usize, regul: f64, prec_man: f64, per_coef: usize) -> Config {
+    Config {
+        exact_law: per_coef,
+        ..with("exact", h_lin, h_nonl, regul, prec_man)
     }
 }
 
@@ -188,6 +203,7 @@ pub fn grid(kind: CaseKind, size: GridSize) -> Vec<Config> {
             for eta in [1e-3, 1e-4] {
                 v.push(with("eta", 10, 80, eta, 1e-6));
             }
+            v.push(exact(10, 20, 1e-3, 1e-6, 16));
         }
         (GridSize::Full, CaseKind::Wall) => {
             v.push(b);
@@ -229,6 +245,16 @@ pub fn grid(kind: CaseKind, size: GridSize) -> Vec<Config> {
             ] {
                 v.push(with("fine", hl, hn, eta, 1e-9));
             }
+            // EHMAN at coarse settings (η 1e-3, H_nl = max(H_l, 20)), every point then
+            // corrected on the exact law; the samples per coefficient at two H_l.
+            for hl in [5, 10, 15, 20, 30, 40, 60] {
+                v.push(exact(hl, hl.max(20), 1e-3, 1e-6, 64));
+            }
+            for hl in [10, 40] {
+                for spc in [4, 16] {
+                    v.push(exact(hl, hl.max(20), 1e-3, 1e-6, spc));
+                }
+            }
         }
         (GridSize::Full, CaseKind::Chain2) => {
             // Two impacts per period on the end mass of a chain: NB_HARM_LINE limits the
@@ -259,6 +285,12 @@ pub fn grid(kind: CaseKind, size: GridSize) -> Vec<Config> {
             }
             for hl in [30, 40] {
                 v.push(with("fine", hl, 120, 1e-6, 1e-9));
+            }
+            for hl in [5, 10, 15, 20, 30, 40] {
+                v.push(exact(hl, hl.max(20), 1e-3, 1e-6, 64));
+            }
+            for spc in [4, 16] {
+                v.push(exact(20, 20, 1e-3, 1e-6, spc));
             }
         }
     }

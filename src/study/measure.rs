@@ -3,7 +3,8 @@
 use super::cases::{Config, StudyCase};
 use crate::error::{Error, Result};
 use crate::nnm::exact::Oscillator;
-use crate::nnm::{continue_while, start_from_mode, Point, Settings};
+use crate::nnm::exact_law::{self, ExactLawSettings, HeldEnergy};
+use crate::nnm::{continue_while, start_from_mode, Point, Problem, Settings};
 use std::time::Instant;
 
 /// NB_ORDRE_MAN (Code_Aster's default).
@@ -223,14 +224,44 @@ pub fn measure_with(
     let (lo, hi) = case.range();
     let mut err: f64 = 0.0;
     let mut in_range = 0;
-    for p in points.iter().filter(|p| p.energy >= lo && p.energy <= hi) {
-        match reference.frequency(p.energy) {
+    let mut seconds = seconds;
+    let mut cpu_seconds = cpu_seconds;
+    // (energy, frequency) of each point compared: EHMAN's (ENERGIE, FREQUENCE), or the
+    // exact-law orbit's with ENERGIE_MOYENNE held.
+    let mut compared: Vec<(f64, f64)> = Vec::new();
+    let inside: Vec<&Point> = points
+        .iter()
+        .filter(|p| p.energy >= lo && p.energy <= hi)
+        .collect();
+    if cfg.exact_law > 0 && failure.is_none() {
+        let c0 = thread_cpu_seconds();
+        let t0 = Instant::now();
+        let problem = case.problem_with(cfg.regul);
+        for p in &inside {
+            match correct_point(&problem, cfg, p) {
+                Ok(ef) => compared.push(ef),
+                Err(e) => {
+                    failure = Some(e.message);
+                    break;
+                }
+            }
+        }
+        seconds += t0.elapsed().as_secs_f64();
+        cpu_seconds += match (c0, thread_cpu_seconds()) {
+            (Some(a), Some(b)) => b - a,
+            _ => f64::NAN,
+        };
+    } else {
+        compared = inside.iter().map(|p| (p.energy, p.frequency)).collect();
+    }
+    for &(energy, frequency) in &compared {
+        match reference.frequency(energy) {
             Some(f) => {
-                err = err.max((p.frequency / f - 1.0).abs());
+                err = err.max((frequency / f - 1.0).abs());
                 in_range += 1;
             }
             None => {
-                failure.get_or_insert(format!("no reference at E = {:.3e}", p.energy));
+                failure.get_or_insert(format!("no reference at E = {energy:.3e}"));
             }
         }
     }
@@ -249,12 +280,43 @@ pub fn measure_with(
     }
 }
 
+/// A point corrected on the exact law with its ENERGIE_MOYENNE held (measured: holding
+/// ENERGIE instead leaves its one-instant truncation ripple in the curve, docs/accuracy.md):
+/// (ENERGIE_MOYENNE, frequency of the exact-law orbit).
+pub fn correct_point(problem: &Problem, cfg: &Config, p: &Point) -> Result<(f64, f64)> {
+    let set = ExactLawSettings {
+        h_lin: cfg.h_lin,
+        samples: exact_law_samples(cfg),
+        prec: PREC_NEWTON,
+        iter_max: 15,
+        held: HeldEnergy::Mean,
+    };
+    let n = problem.k.nrows() * (2 * cfg.h_lin + 1);
+    let c = exact_law::correct(problem, &set, &p.x[..n], p.omega, p.energy_mean)?;
+    Ok((p.energy_mean, c.frequency))
+}
+
+/// Samples per period of the exact-law correction of `cfg`.
+pub fn exact_law_samples(cfg: &Config) -> usize {
+    crate::nnm::exact_law::samples_for(cfg.h_lin, cfg.exact_law)
+}
+
+/// Samples per coefficient of the exact-law correction of a reference run.
+pub const EXACT_REFERENCE_SAMPLES: usize = 64;
+
 /// NB_PAS_MAN of a reference run: a dense curve for the interpolation.
 pub const REFERENCE_POINTS_PER_BRANCH: usize = 10;
 
 /// Computes a reference curve (a branch slightly past the range so that interpolation never
 /// needs to extrapolate); the measurement records its cost, its error is not known (NaN).
-pub fn reference_curve(case: &StudyCase, cfg: &Config) -> Result<(Reference, Measurement)> {
+///
+/// Also returns the reference of the exact-law variant: the same points corrected on the
+/// exact law (`correct_point`, with `EXACT_REFERENCE_SAMPLES` per coefficient), as
+/// (ENERGIE_MOYENNE, frequency).
+pub fn reference_curve(
+    case: &StudyCase,
+    cfg: &Config,
+) -> Result<(Reference, Reference, Measurement)> {
     let Run {
         points,
         branches,
@@ -280,6 +342,19 @@ pub fn reference_curve(case: &StudyCase, cfg: &Config) -> Result<(Reference, Mea
                 case.kind.name()
             ))
         })?;
+    let exact_cfg = Config {
+        exact_law: EXACT_REFERENCE_SAMPLES,
+        ..*cfg
+    };
+    let problem = case.problem_with(cfg.regul);
+    let mut corrected = Vec::with_capacity(points.len());
+    for p in &points {
+        let (e, f) = correct_point(&problem, &exact_cfg, p)?;
+        corrected.push((e.ln(), f.ln()));
+    }
+    corrected.sort_by(|a, b| a.0.total_cmp(&b.0));
+    corrected.dedup_by(|a, b| a.0 == b.0);
+    let exact = Reference::Curve(corrected);
     let m = Measurement {
         config: *cfg,
         max_rel_error: f64::NAN,
@@ -293,5 +368,5 @@ pub fn reference_curve(case: &StudyCase, cfg: &Config) -> Result<(Reference, Mea
             .count(),
         failure: None,
     };
-    Ok((reference, m))
+    Ok((reference, exact, m))
 }

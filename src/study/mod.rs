@@ -64,18 +64,29 @@ pub fn run_case(
     // Single-threaded for repeatable timings on a shared machine.
     faer::set_global_parallelism(faer::Par::Seq);
     let case = StudyCase::new(kind);
-    let (reference, ref_run) = match kind {
-        CaseKind::Wall => (Reference::exact_plan(cases::WALL), None),
+    // The reference of EHMAN's points (FREQUENCE at ENERGIE) and that of the points
+    // corrected on the exact law (at ENERGIE_MOYENNE): the same closed form for the wall.
+    let (reference, exact_reference, ref_run) = match kind {
+        CaseKind::Wall => (
+            Reference::exact_plan(cases::WALL),
+            Reference::exact_plan(cases::WALL),
+            None,
+        ),
         CaseKind::Chain2 => {
             let cfg = cases::chain2_reference_config(size);
-            let (curve, m) = measure::reference_curve(&case, &cfg)?;
+            let (curve, exact, m) = measure::reference_curve(&case, &cfg)?;
             progress(&m);
-            (curve, Some(m))
+            (curve, exact, Some(m))
         }
     };
     let mut measurements = Vec::new();
     for cfg in grid(kind, size) {
-        let m = measure(&case, &cfg, &reference);
+        let r = if cfg.exact_law > 0 {
+            &exact_reference
+        } else {
+            &reference
+        };
+        let m = measure(&case, &cfg, r);
         progress(&m);
         measurements.push(m);
     }

@@ -20,7 +20,7 @@ fn io(what: &Path, e: impl std::fmt::Display) -> Error {
     )
 }
 
-const SWEEPS: [(&str, RGBColor); 10] = [
+const SWEEPS: [(&str, RGBColor); 11] = [
     ("base", RGBColor(0, 0, 0)),
     ("sdnd122", RGBColor(140, 86, 75)),
     ("H_nl", RGBColor(31, 119, 180)),
@@ -31,6 +31,7 @@ const SWEEPS: [(&str, RGBColor); 10] = [
     ("coarse", RGBColor(188, 189, 34)),
     ("fine", RGBColor(23, 190, 207)),
     ("reference", RGBColor(127, 127, 127)),
+    ("exact", RGBColor(227, 119, 194)),
 ];
 
 /// Decade bounds around the finite values, with a little margin.

@@ -20,8 +20,21 @@ fn settings_cells(m: &Measurement) -> String {
     let c = &m.config;
     format!(
         "{} | {} | {} | {:e} | {:e}",
-        c.sweep, c.h_lin, c.h_nonl, c.regul, c.prec_man
+        sweep_label(c),
+        c.h_lin,
+        c.h_nonl,
+        c.regul,
+        c.prec_man
     )
+}
+
+/// The sweep's name, with the samples per coefficient of an exact-law correction.
+fn sweep_label(c: &super::cases::Config) -> String {
+    if c.exact_law > 0 {
+        format!("{} ({} samples/coef.)", c.sweep, c.exact_law)
+    } else {
+        c.sweep.to_string()
+    }
 }
 
 fn error_cell(m: &Measurement) -> String {
@@ -184,7 +197,7 @@ pub fn csv(r: &CaseResult) -> String {
             s,
             "{},{},{},{},{:e},{:e},{ORDER},{POINTS_PER_BRANCH},{},{:.3},{:.3},{},{},{},{},\"{}\"",
             r.case.kind.name(),
-            c.sweep,
+            sweep_label(c),
             c.h_lin,
             c.h_nonl,
             c.regul,

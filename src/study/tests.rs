@@ -75,6 +75,7 @@ fn prec_man_changes_the_cost_not_the_error() {
         h_nonl: 20,
         regul: 1e-5,
         prec_man: 1e-6,
+        exact_law: 0,
     };
     let e = wall_errors(&[
         base,
