@@ -31,7 +31,7 @@ pub fn from_linear_modes(
     let nume_ordre = etat.req_int("NUME_ORDRE")?;
     let (shape, omega) = pick(&modes, modes_name, nume_ordre, &free)
         .map_err(|e| e.keyword(etat.key_path("NUME_ORDRE")))?;
-    let coef = etat.real("COEF_AMPL").unwrap_or(1.0);
+    let coef = etat.req_real("COEF_AMPL")?;
     let Some(quad_order) = etat.int("NUME_ORDRE_QUAD") else {
         return nnm::start_from_mode(problem, settings, &shape, coef, omega);
     };
