@@ -101,10 +101,7 @@ pub fn run_with_option(ctx: &mut OpContext<'_>, args: &Args, option: &str) -> Re
             format_e(freq, 6),
             format_e(residual, 2)
         ))?;
-        let mut shape = vec![0.0; k.size()];
-        for (&full, v) in free.iter().zip(&phi) {
-            shape[full] = *v;
-        }
+        let shape = k.expand(&phi)?;
         modes.push(Mode {
             nume_ordre: i + 1,
             freq,

@@ -104,7 +104,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let shocks = stored_shocks
         .iter()
         .enumerate()
-        .map(|(i, s)| engine_shock(s, i, &k, &free))
+        .map(|(i, s)| engine_shock(s, i, &k))
         .collect::<Result<Vec<_>>>()?;
     let problem = Problem {
         k: k.reduced()?,
