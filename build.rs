@@ -6,7 +6,11 @@ use std::path::Path;
 
 fn main() {
     println!("cargo:rerun-if-changed=commands");
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("commands");
+    // The manifest directory of this build, read when the script runs (not `env!`, fixed
+    // when the script was compiled: a target directory copied from another checkout would
+    // then embed that checkout's catalogs).
+    let manifest = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_else(|_| ".".into());
+    let dir = Path::new(&manifest).join("commands");
     let mut files: Vec<_> = fs::read_dir(&dir)
         .map(|rd| {
             rd.filter_map(|e| e.ok())

@@ -421,18 +421,19 @@ pub fn prepare(case: &Case, dir: &Path) -> Result<Prepared> {
     let store = Store::open(&db)?;
     let k = matrix::load_matrix(&store, "RIGIDITE")?;
     let m = matrix::load_matrix(&store, "MASSE")?;
-    let free = k.free_dofs();
     let shocks = case
         .shocks
         .iter()
         .enumerate()
-        .map(|(i, s)| engine_shock(s, i, &k, &free))
+        .map(|(i, s)| engine_shock(s, i, &k))
         .collect::<Result<Vec<_>>>()?;
     let modes = mode_store::load_modes(&store, "MODES")?;
     let mode1 = modes
         .mode(1)
         .ok_or_else(|| Error::internal("bench: no linear mode"))?;
-    let mode: Vec<f64> = free.iter().map(|&i| mode1.shape[i]).collect();
+    let mode = k
+        .restrict(&mode1.shape)
+        .ok_or_else(|| Error::internal("bench: a mode shorter than its numbering"))?;
     let omega = mode1.omega2.max(0.0).sqrt();
     let problem = Problem {
         k: k.reduced()?,

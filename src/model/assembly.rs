@@ -35,11 +35,24 @@ impl AssembledMatrix {
 
     /// Reduced index of the DOF (node, component), if it exists and is free.
     pub fn reduced_index_of(&self, node: &str, cmp: super::Cmp) -> Option<usize> {
-        let full = self.numbering.index_of(node, cmp)?;
-        if self.eliminated.get(full).copied().unwrap_or(false) {
+        self.reduced_index(self.numbering.index_of(node, cmp)?)
+    }
+
+    /// Reduced index of the DOF of full index `full`, if it exists and is free.
+    pub fn reduced_index(&self, full: usize) -> Option<usize> {
+        if full >= self.size() || self.eliminated.get(full).copied().unwrap_or(false) {
             return None;
         }
-        Some(self.eliminated[..full].iter().filter(|e| !**e).count())
+        Some(self.eliminated.iter().take(full).filter(|e| !**e).count())
+    }
+
+    /// The values of a full-numbering vector (e.g. a stored mode shape) on the free DOFs,
+    /// in reduced order; `None` if it is shorter than the numbering.
+    pub fn restrict(&self, full: &[f64]) -> Option<Vec<f64>> {
+        self.free_dofs()
+            .iter()
+            .map(|&i| full.get(i).copied())
+            .collect()
     }
 
     /// A vector on the free DOFs (e.g. a mode shape) written in the full numbering, zero on

@@ -355,6 +355,15 @@ fn numbering_is_node_then_component_order() {
     assert_eq!((full[3], full[6]), (1.5, -2.0));
     assert_eq!(full.iter().filter(|v| **v != 0.0).count(), 2);
     assert!(kk.expand(&[1.0]).is_err());
+    // Full index -> reduced index, and back through restrict: N2:DX (full 3) is reduced 0,
+    // N3:DX (full 6) reduced 1; the blocked N1:DX (full 0) and an index past the numbering
+    // have none.
+    assert_eq!(kk.reduced_index(3), Some(0));
+    assert_eq!(kk.reduced_index(6), Some(1));
+    assert_eq!(kk.reduced_index(0), None);
+    assert_eq!(kk.reduced_index(12), None);
+    assert_eq!(kk.restrict(&full), Some(vec![1.5, -2.0]));
+    assert_eq!(kk.restrict(&full[..5]), None);
 }
 
 // ---------- beams ----------

@@ -12,8 +12,10 @@ use crate::ops::OpContext;
 use crate::store::{matrix, modes as mode_store};
 use crate::table::print::format_e;
 
+// Defaults are the catalog's (commands/CALC_MODES.toml, MODE_ITER_SIMULT.toml), filled by
+// the validation: the operator reads them with `req_*`.
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
-    let option = args.text("OPTION").unwrap_or("PLUS_PETITE").to_string();
+    let option = args.req_text("OPTION")?.to_string();
     run_with_option(ctx, args, &option)
 }
 
@@ -54,22 +56,20 @@ pub fn run_with_option(ctx: &mut OpContext<'_>, args: &Args, option: &str) -> Re
             set.method
         ))?;
     }
-    let calc_freq = args.fact("CALC_FREQ");
-    let stop_band_empty = args.text("STOP_BANDE_VIDE") != Some("NON");
+    let calc_freq = args.req_fact("CALC_FREQ")?;
+    let stop_band_empty = args.req_text("STOP_BANDE_VIDE")? != "NON";
     if set.omega2.is_empty() && matches!(request, ModeRequest::Band { .. }) && stop_band_empty {
         return Err(Error::input("no mode in the requested band")
             .keyword(format!("{op}/CALC_FREQ/FREQ"))
             .hint("widen FREQ, or set STOP_BANDE_VIDE='NON' to accept an empty result"));
     }
     let norm = mode_norm(args, &k.numbering.dofs, &free, &op)?;
-    let (seuil, stop_on_error) = match args.fact("VERI_MODE") {
-        Some(v) => (
-            v.real("SEUIL").unwrap_or(1e-6),
-            v.text("STOP_ERREUR") != Some("NON"),
-        ),
-        None => (1e-6, true),
-    };
-    let seuil_freq = calc_freq.and_then(|c| c.real("SEUIL_FREQ")).unwrap_or(1e-2);
+    let veri_mode = args.req_fact("VERI_MODE")?;
+    let (seuil, stop_on_error) = (
+        veri_mode.req_real("SEUIL")?,
+        veri_mode.req_text("STOP_ERREUR")? != "NON",
+    );
+    let seuil_freq = calc_freq.req_real("SEUIL_FREQ")?;
     let mut modes = Vec::with_capacity(set.omega2.len());
     ctx.say(&format!(
         "{op} {name}: {} mode(s)\n  NUME_ORDRE  FREQUENCE (HZ)   ERREUR",
@@ -101,10 +101,7 @@ pub fn run_with_option(ctx: &mut OpContext<'_>, args: &Args, option: &str) -> Re
             format_e(freq, 6),
             format_e(residual, 2)
         ))?;
-        let mut shape = vec![0.0; k.size()];
-        for (&full, v) in free.iter().zip(&phi) {
-            shape[full] = *v;
-        }
+        let shape = k.expand(&phi)?;
         modes.push(Mode {
             nume_ordre: i + 1,
             freq,
@@ -125,14 +122,11 @@ pub fn run_with_option(ctx: &mut OpContext<'_>, args: &Args, option: &str) -> Re
 }
 
 fn mode_request(args: &Args, option: &str, op: &str) -> Result<ModeRequest> {
-    let cf = args.fact("CALC_FREQ");
-    let freqs = cf.and_then(|c| c.reals("FREQ")).unwrap_or_default();
+    let cf = args.req_fact("CALC_FREQ")?;
+    // FREQ has no default: absent, it is an empty list (refused below for BANDE, CENTRE).
+    let freqs = cf.reals("FREQ").unwrap_or_default();
     // At least 1: the catalog's bound.
-    let n = match cf {
-        Some(c) => c.count("NMAX_FREQ")?,
-        None => None,
-    }
-    .unwrap_or(10);
+    let n = cf.req_count("NMAX_FREQ")?;
     match option {
         "PLUS_PETITE" => Ok(ModeRequest::Smallest { n }),
         "BANDE" => match freqs.as_slice() {
@@ -166,10 +160,12 @@ fn mode_norm(
     free: &[usize],
     op: &str,
 ) -> Result<ModeNorm> {
-    let norme = args
-        .fact("NORM_MODE")
-        .and_then(|n| n.text("NORME"))
-        .unwrap_or("TRAN_ROTA");
+    // MODE_ITER_SIMULT has no NORM_MODE keyword: its modes are normalised as CALC_MODES's
+    // are by default (not a default of a keyword it has; CALC_MODES reads its catalog's).
+    let norme = match args.fact("NORM_MODE") {
+        Some(n) => n.req_text("NORME")?,
+        None => "TRAN_ROTA",
+    };
     let mask = |keep: fn(Cmp) -> bool| -> Vec<bool> {
         free.iter()
             .map(|&i| dofs.get(i).is_some_and(|d| keep(d.cmp)))

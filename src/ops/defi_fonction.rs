@@ -1,5 +1,5 @@
 //! DEFI_FONCTION: a function of one parameter from points (VALE = x1, y1, x2, y2, ...,
-//! VALE_PARA + VALE_FONC, or ABSCISSE + ORDONNEE), with INTERPOL, PROL_GAUCHE,
+//! or VALE_PARA + VALE_FONC), with INTERPOL, PROL_GAUCHE,
 //! PROL_DROITE and VERIF ('CROISSANT': increasing abscissas required; 'NON': sorted).
 
 use super::OpContext;
@@ -58,16 +58,12 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         v.chunks_exact(2).map(|p| (p[0], p[1])).unzip()
     } else if args.has("VALE_PARA") {
         (reals(args, "VALE_PARA")?, reals(args, "VALE_FONC")?)
-    } else if args.has("ABSCISSE") {
-        (reals(args, "ABSCISSE")?, reals(args, "ORDONNEE")?)
     } else {
-        return Err(Error::validation(
-            "give VALE, VALE_PARA with VALE_FONC, or ABSCISSE with ORDONNEE",
-        )
-        .keyword("DEFI_FONCTION/VALE"));
+        return Err(Error::validation("give VALE, or VALE_PARA with VALE_FONC")
+            .keyword("DEFI_FONCTION/VALE"));
     };
     // VERIF='NON': Code_Aster sorts the points by abscissa instead of refusing them.
-    let (x, y) = match args.text("VERIF").unwrap_or("CROISSANT") {
+    let (x, y) = match args.req_text("VERIF")? {
         "CROISSANT" => (x, y),
         "NON" => sort_points(x, y),
         other => {
@@ -79,7 +75,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let mut f = Function {
         name: name.clone(),
         nom_para: args.req_text("NOM_PARA")?.to_string(),
-        nom_resu: args.text("NOM_RESU").unwrap_or("TOUTRESU").to_string(),
+        nom_resu: args.req_text("NOM_RESU")?.to_string(),
         x,
         y,
         interpol: (Interp::Lin, Interp::Lin),

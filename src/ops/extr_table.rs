@@ -1,5 +1,5 @@
 //! EXTR_TABLE: one value of a table, after FILTRE (exactly one row must remain).
-//! TYPE_RESU 'REEL' (or 'R'), 'ENTIER' (or 'I'), 'K' hands back a plain value
+//! TYPE_RESU 'R', 'I', 'K' hands back a plain value
 //! (`ctx.value`); 'TABLE_SDASTER' (or 'TABLE_CONTAINER', 'FONCTION_SDASTER') copies the
 //! concept the cell names (a per-row object) into the result.
 
@@ -38,10 +38,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             .keyword("EXTR_TABLE/TYPE_RESU")
     };
     match type_resu {
-        "R" | "REEL" => {
-            ctx.value = Some(Value::Real(cell.as_f64().ok_or_else(|| wrong("a number"))?))
-        }
-        "I" | "ENTIER" => match cell {
+        "R" => ctx.value = Some(Value::Real(cell.as_f64().ok_or_else(|| wrong("a number"))?)),
+        "I" => match cell {
             Cell::I(i) => ctx.value = Some(Value::Int(i)),
             _ => return Err(wrong("an integer")),
         },

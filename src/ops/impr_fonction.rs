@@ -146,6 +146,7 @@ fn series(c: &Args, mut cv: Curve) -> Series {
     if let Some(tri) = c.text("TRI") {
         sort_points(&mut cv.x, &mut cv.y, tri);
     }
+    // Not a catalog default: without LEGENDE a curve is labelled with its function's name.
     let label = c.text("LEGENDE").unwrap_or(&cv.name);
     let mut s = Series::new(label, cv.x, cv.y);
     if let Some(n) = c.int("STYLE") {
@@ -183,7 +184,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     if let Some(pic) = picture(ctx, args)? {
         return draw(ctx, args, &pic);
     }
-    let format = args.text("FORMAT").unwrap_or("TABLEAU");
+    // Defaults are the catalog's (commands/IMPR_FONCTION.toml), filled by the validation.
+    let format = args.req_text("FORMAT")?;
     if format != "TABLEAU" {
         return Err(
             Error::validation(format!("FORMAT '{format}' is not supported"))
@@ -191,7 +193,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 .hint("use 'TABLEAU', or 'PNG' / 'SVG' for a picture"),
         );
     }
-    let fmt = FormatR::parse(args.text("FORMAT_R").unwrap_or("E12.5"))?;
+    // IMPR_FONCTION has no FORMAT_R keyword: the values print as IMPR_TABLE's default.
+    let fmt = FormatR::parse("E12.5")?;
     let mut text = String::new();
     for (k, c) in args.facts_or_empty("COURBE").iter().enumerate() {
         let cv = curve(ctx, c)?;
@@ -203,6 +206,6 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         let t = points_table(&title, &cv.para, &cv.resu, &cv.x, &cv.y)?;
         text.push_str(&tableau(&t, &t.title, fmt, " "));
     }
-    let unite = args.int("UNITE").unwrap_or(8);
+    let unite = args.req_int("UNITE")?;
     write_unit(ctx, unite, &text)
 }

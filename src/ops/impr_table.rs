@@ -34,8 +34,11 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             .extract(&names)
             .map_err(|e| e.keyword("IMPR_TABLE/NOM_PARA"))?;
     }
-    let fmt = FormatR::parse(args.text("FORMAT_R").unwrap_or("E12.5"))?;
-    let format = args.text("FORMAT").unwrap_or("TABLEAU");
+    // Defaults are the catalog's (commands/IMPR_TABLE.toml), filled by the validation
+    // (SEPARATEUR too: ' ' for CSV as for TABLEAU, as Code_Aster).
+    let fmt = FormatR::parse(args.req_text("FORMAT_R")?)?;
+    let format = args.req_text("FORMAT")?;
+    let separateur = args.req_text("SEPARATEUR")?;
     let text = match format {
         "TABLEAU" => {
             let title = if let Some(titre) = titre(args) {
@@ -45,9 +48,9 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             } else {
                 t.title.clone()
             };
-            tableau(&t, &title, fmt, args.text("SEPARATEUR").unwrap_or(" "))
+            tableau(&t, &title, fmt, separateur)
         }
-        "CSV" => csv(&t, fmt, args.text("SEPARATEUR").unwrap_or(",")),
+        "CSV" => csv(&t, fmt, separateur),
         other => {
             return Err(
                 Error::validation(format!("FORMAT '{other}' is not supported"))
@@ -56,7 +59,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             )
         }
     };
-    let unite = args.int("UNITE").unwrap_or(8);
+    let unite = args.req_int("UNITE")?;
     write_unit(ctx, unite, &text)
 }
 

@@ -9,13 +9,14 @@ use std::path::PathBuf;
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let name = ctx.result_name()?.to_string();
-    let fmt_kw = args.text("FORMAT").unwrap_or("ASTER");
+    // Defaults are the catalog's (commands/LIRE_MAILLAGE.toml), filled by the validation.
+    let fmt_kw = args.req_text("FORMAT")?;
     let format = MeshFormat::from_keyword(fmt_kw).ok_or_else(|| {
         Error::validation(format!("unknown mesh format '{fmt_kw}'"))
             .keyword(args.key_path("FORMAT"))
             .hint("ASTER, GMSH or MED")
     })?;
-    let unit = args.int("UNITE").unwrap_or(20);
+    let unit = args.req_int("UNITE")?;
     let (path, beside) =
         resolve_file(ctx.units, unit, format).map_err(|e| e.keyword(args.key_path("UNITE")))?;
     if beside {
@@ -27,11 +28,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     ctx.units.read.borrow_mut().push(path.clone());
     let mesh = mesh::read_file(&path, format, args.text("NOM_MED"))?;
 
-    if let Some(v) = args.fact("VERI_MAIL") {
-        if v.text("VERIF").unwrap_or("OUI") == "OUI" {
-            for f in check::verify(&mesh, v.real("APLAT").unwrap_or(1e-3)) {
-                ctx.alarm(f.id, &f.message)?;
-            }
+    let v = args.req_fact("VERI_MAIL")?;
+    if v.req_text("VERIF")? == "OUI" {
+        for f in check::verify(&mesh, v.req_real("APLAT")?) {
+            ctx.alarm(f.id, &f.message)?;
         }
     }
     ctx.say(&format!("{name}: {}", mesh.summary()))?;

@@ -7,10 +7,7 @@ use crate::args::Args;
 use crate::error::Result;
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
-    let option = args
-        .fact("CALC_FREQ")
-        .and_then(|c| c.text("OPTION"))
-        .unwrap_or("PLUS_PETITE")
-        .to_string();
+    // The catalog's default (commands/MODE_ITER_SIMULT.toml), filled by the validation.
+    let option = args.req_fact("CALC_FREQ")?.req_text("OPTION")?.to_string();
     calc_modes::run_with_option(ctx, args, &option)
 }

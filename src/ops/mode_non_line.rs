@@ -104,7 +104,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let shocks = stored_shocks
         .iter()
         .enumerate()
-        .map(|(i, s)| engine_shock(s, i, &k, &free))
+        .map(|(i, s)| engine_shock(s, i, &k))
         .collect::<Result<Vec<_>>>()?;
     let problem = Problem {
         k: k.reduced()?,
@@ -438,10 +438,7 @@ fn settings(args: &Args) -> Result<Settings> {
         .keyword("MODE_NON_LINE/RESOLUTION/NB_HARM_NONL")
         .hint("the contact forces need at least as many harmonics as the displacements"));
     }
-    let direction = args
-        .req_fact("ETAT_INIT")?
-        .int("DIR_EVOLUTION")
-        .unwrap_or(-1);
+    let direction = args.req_fact("ETAT_INIT")?.req_int("DIR_EVOLUTION")?;
     Ok(Settings {
         h_lin,
         h_nonl,

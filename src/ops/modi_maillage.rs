@@ -13,7 +13,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let mut mesh = load_mesh(ctx.store, &source)?;
 
     if let Some(def) = args.fact("DEFORME") {
-        let alea = def.real("ALEA").unwrap_or(0.0);
+        let alea = def.req_real("ALEA")?;
         let largest = transform::perturb(&mut mesh, alea, &mut SplitMix64::new(PERTURBATION_SEED));
         ctx.say(&format!(
             "{name}: DEFORME/ALEA={alea:e}: {} node(s) moved at random, by at most {largest:.3e} along a coordinate",

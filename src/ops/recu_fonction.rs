@@ -102,8 +102,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     }
     let mut f = Function {
         name: name.clone(),
-        nom_para: args.text("NOM_PARA").unwrap_or(px).to_string(),
-        nom_resu: args.text("NOM_RESU").unwrap_or(py).to_string(),
+        // RECU_FONCTION has no NOM_PARA / NOM_RESU keywords: the function is named after
+        // the table's columns.
+        nom_para: px.to_string(),
+        nom_resu: py.to_string(),
         x,
         y,
         interpol: (Interp::Lin, Interp::Lin),

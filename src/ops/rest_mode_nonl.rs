@@ -35,21 +35,23 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             let ncoef = 2 * settings.h_lin + 1;
             let modes = (0..ncoef)
                 .map(|j| {
-                    let mut shape = vec![0.0; k.size()];
-                    for (&full, c) in free.iter().zip(&coefs) {
-                        shape[full] = c.get(j).copied().unwrap_or(0.0);
-                    }
-                    Mode {
+                    // Coefficient j of every free DOF (each has 2 h_lin + 1; not a keyword
+                    // default: a missing coefficient is a zero one).
+                    let reduced: Vec<f64> = coefs
+                        .iter()
+                        .map(|c| c.get(j).copied().unwrap_or(0.0))
+                        .collect();
+                    Ok(Mode {
                         nume_ordre: j + 1,
                         freq,
                         omega2: (2.0 * std::f64::consts::PI * freq).powi(2),
                         mass_gene: 0.0,
                         rigi_gene: 0.0,
-                        shape,
                         label: coef_label(j, settings.h_lin),
-                    }
+                        shape: k.expand(&reduced)?,
+                    })
                 })
-                .collect();
+                .collect::<Result<Vec<_>>>()?;
             let numbering_name = matrix::matrix_numbering_name(ctx.store, &setup.matr_rigi)?;
             ctx.create(&name, "mode_meca")?;
             mode_store::save_modes(

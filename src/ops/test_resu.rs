@@ -133,6 +133,8 @@ fn dyna_value(
                 .hint("give the node by name for a time history"))
         }
     };
+    // Not a catalog default: NOM_CHAM is optional because giving it is what asks for a
+    // field value (NOEUD, NOM_CMP); a time history without it reads the displacement.
     let field = match resu.text("NOM_CHAM").unwrap_or("DEPL") {
         "DEPL" => "DEPL",
         "VITE" => "VITE",

@@ -1,10 +1,12 @@
-//! Test support: run operators on an in-memory store with hand-built `Args`.
+//! Test support: run operators on an in-memory store with hand-built `Args`. Every call
+//! goes through the catalog's validation first ([`validated`]), as a user's call does, so
+//! the operators see the defaults the catalog fills, never an `Args` without them.
 
 use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::ops::{lookup, run_in_transaction, OpContext, TestOutcome, Units};
 use crate::store::Store;
-use crate::value::{ConceptRef, Span, Value};
+use crate::value::{CommandCall, ConceptRef, Keyword, Span, Value};
 
 pub struct Harness {
     pub store: Store,
@@ -39,6 +41,7 @@ impl Harness {
         args: &Args,
     ) -> Result<Option<Value>> {
         let f = lookup(op).ok_or_else(|| Error::internal(format!("no operator {op}")))?;
+        let args = &validated(op, args, reuse)?;
         let mut ctx = OpContext::new(&self.store, op, &mut self.out, &self.units, &mut self.tests);
         ctx.result = result;
         ctx.reuse = reuse;
@@ -51,6 +54,40 @@ impl Harness {
     pub fn output(&self) -> String {
         String::from_utf8_lossy(&self.out).into_owned()
     }
+}
+
+/// The call `args` of `op` (with `reuse=` of the concept named, if any) validated against
+/// the embedded catalog, as the interpreter validates a user's call: defaults filled,
+/// bounds and rules checked. The first error is returned as the call's error.
+pub fn validated(op: &str, args: &Args, reuse: Option<&str>) -> Result<Args> {
+    let call = CommandCall {
+        op: op.to_string(),
+        result: None,
+        reuse: reuse.map(|name| ConceptRef {
+            name: name.to_string(),
+            ty: crate::catalog::UNKNOWN_CONCEPT_TYPE.to_string(),
+        }),
+        args: keywords(args),
+        span: Span::default(),
+        op_span: Span::default(),
+    };
+    crate::catalog::validate(&call, "test.comm").map_err(|mut errors| errors.remove(0))
+}
+
+/// Hand-built `Args` back to the keywords of a call (a factor keyword becomes a tuple of
+/// `_F(...)`).
+fn keywords(args: &Args) -> Vec<Keyword> {
+    let simple = args.simple.iter().map(|(name, value, span)| Keyword {
+        name: name.clone(),
+        value: value.clone(),
+        span: *span,
+    });
+    let factor = args.factor.iter().map(|(name, occs, span)| Keyword {
+        name: name.clone(),
+        value: Value::Seq(occs.iter().map(|o| Value::Fact(keywords(o))).collect()),
+        span: *span,
+    });
+    simple.chain(factor).collect()
 }
 
 /// Build `Args` by hand: simple keywords and factor keywords.

@@ -8,13 +8,9 @@ use crate::nnm::{Problem, Settings, Shock, ShockLaw};
 use crate::store::mnl::{MnlSetup, StoredShock};
 use crate::table::{Cell, Table};
 
-/// Translate a stored shock into the engine's reduced-DOF form.
-pub fn engine_shock(
-    s: &StoredShock,
-    i: usize,
-    k: &AssembledMatrix,
-    free: &[usize],
-) -> Result<Shock> {
+/// Translate a stored shock into the engine's reduced-DOF form (the DOFs left free by the
+/// boundary conditions of `k`).
+pub fn engine_shock(s: &StoredShock, i: usize, k: &AssembledMatrix) -> Result<Shock> {
     let kw = |key: &str| format!("MODE_NON_LINE/CHOC[{}]/{key}", i + 1);
     let mut dofs = Vec::new();
     for c in &s.cmps {
@@ -32,7 +28,7 @@ pub fn engine_shock(
             .keyword(kw("NOEUD"))
             .hint("the node must carry this component in the model (and exist in the mesh)")
         })?;
-        let reduced = free.iter().position(|&f| f == full).ok_or_else(|| {
+        let reduced = k.reduced_index(full).ok_or_else(|| {
             Error::validation(format!(
                 "DOF {c} of node {} is blocked by a boundary condition: a shock cannot act on it",
                 s.node
@@ -82,7 +78,7 @@ pub fn engine_problem(
         .shocks
         .iter()
         .enumerate()
-        .map(|(i, s)| engine_shock(s, i, k, &free))
+        .map(|(i, s)| engine_shock(s, i, k))
         .collect::<Result<Vec<_>>>()?;
     let problem = Problem {
         k: k.reduced()?,

@@ -19,7 +19,6 @@ pub fn from_linear_modes(
     k: &AssembledMatrix,
     k_name: &str,
 ) -> Result<StartState> {
-    let free = k.free_dofs();
     let modes_name = &etat.req_concept("MODE_LINE")?.name;
     let modes = mode_store::load_modes(ctx.store, modes_name)?;
     if modes.numbering.dofs != k.numbering.dofs {
@@ -29,9 +28,9 @@ pub fn from_linear_modes(
         .keyword(etat.key_path("MODE_LINE")));
     }
     let nume_ordre = etat.req_int("NUME_ORDRE")?;
-    let (shape, omega) = pick(&modes, modes_name, nume_ordre, &free)
+    let (shape, omega) = pick(&modes, modes_name, nume_ordre, k)
         .map_err(|e| e.keyword(etat.key_path("NUME_ORDRE")))?;
-    let coef = etat.real("COEF_AMPL").unwrap_or(1.0);
+    let coef = etat.req_real("COEF_AMPL")?;
     let Some(quad_order) = etat.int("NUME_ORDRE_QUAD") else {
         return nnm::start_from_mode(problem, settings, &shape, coef, omega);
     };
@@ -44,7 +43,7 @@ pub fn from_linear_modes(
         .hint("give the other mode of the degenerate pair, e.g. NUME_ORDRE=1, NUME_ORDRE_QUAD=2"));
     }
     let (quad, omega_quad) =
-        pick(&modes, modes_name, quad_order, &free).map_err(|e| e.keyword(quad_kw.clone()))?;
+        pick(&modes, modes_name, quad_order, k).map_err(|e| e.keyword(quad_kw.clone()))?;
     nnm::check_degenerate_pair(omega, omega_quad).map_err(|e| Error {
         message: format!(
             "NUME_ORDRE_QUAD={quad_order} and NUME_ORDRE={nume_ordre}: {}",
@@ -57,7 +56,7 @@ pub fn from_linear_modes(
 }
 
 /// Shape on the free DOFs and pulsation of mode `order` of `modes`.
-fn pick(modes: &ModeMeca, name: &str, order: i64, free: &[usize]) -> Result<(Vec<f64>, f64)> {
+fn pick(modes: &ModeMeca, name: &str, order: i64, k: &AssembledMatrix) -> Result<(Vec<f64>, f64)> {
     let mode = usize::try_from(order)
         .ok()
         .and_then(|n| modes.mode(n))
@@ -67,14 +66,10 @@ fn pick(modes: &ModeMeca, name: &str, order: i64, free: &[usize]) -> Result<(Vec
                 modes.available()
             ))
         })?;
-    let shape = free
-        .iter()
-        .map(|&i| mode.shape.get(i).copied())
-        .collect::<Option<Vec<f64>>>()
-        .ok_or_else(|| {
-            Error::store(format!(
-                "mode {order} of {name} is shorter than its numbering"
-            ))
-        })?;
+    let shape = k.restrict(&mode.shape).ok_or_else(|| {
+        Error::store(format!(
+            "mode {order} of {name} is shorter than its numbering"
+        ))
+    })?;
     Ok((shape, mode.omega2.max(0.0).sqrt()))
 }

@@ -52,7 +52,7 @@ pub fn picture(ctx: &OpContext<'_>, args: &Args) -> Result<Option<Picture>> {
     let Some(format) = args.text("FORMAT").and_then(ImageFormat::parse) else {
         return Ok(None);
     };
-    let unite = args.int("UNITE").unwrap_or(8);
+    let unite = args.req_int("UNITE")?;
     if unite <= 0 {
         return Err(
             Error::validation(format!("UNITE={unite} is not a logical unit"))

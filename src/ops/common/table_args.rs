@@ -5,7 +5,7 @@ use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::ops::OpContext;
 use crate::store::table::{load_table, save_table};
-use crate::table::filter::{CritComp, Critere, Filter, DEFAULT_PRECISION};
+use crate::table::filter::{CritComp, Critere, Filter};
 use crate::table::sort::{sort, Ordre};
 use crate::table::{Cell, Table};
 use crate::value::{ConceptRef, Value};
@@ -25,7 +25,7 @@ fn items(v: Option<&Value>) -> Vec<&Value> {
 /// VALE | VALE_I | VALE_K, CRITERE (default RELATIF), PRECISION (default 1e-3).
 pub fn filter_from(a: &Args) -> Result<Filter> {
     let nom_para = a.req_text("NOM_PARA")?;
-    let crit_s = a.text("CRIT_COMP").unwrap_or("EQ");
+    let crit_s = a.req_text("CRIT_COMP")?;
     let crit = CritComp::parse(crit_s).ok_or_else(|| {
         Error::validation(format!("unknown CRIT_COMP '{crit_s}'"))
             .keyword(a.key_path("CRIT_COMP"))
@@ -48,15 +48,13 @@ pub fn filter_from(a: &Args) -> Result<Filter> {
             });
         }
     }
-    let critere = match a.text("CRITERE") {
-        None => Critere::Relatif,
-        Some(s) => Critere::parse(s).ok_or_else(|| {
-            Error::validation(format!("unknown CRITERE '{s}'"))
-                .keyword(a.key_path("CRITERE"))
-                .hint("use 'RELATIF' or 'ABSOLU'")
-        })?,
-    };
-    let precision = a.real("PRECISION").unwrap_or(DEFAULT_PRECISION);
+    let s = a.req_text("CRITERE")?;
+    let critere = Critere::parse(s).ok_or_else(|| {
+        Error::validation(format!("unknown CRITERE '{s}'"))
+            .keyword(a.key_path("CRITERE"))
+            .hint("use 'RELATIF' or 'ABSOLU'")
+    })?;
+    let precision = a.req_real("PRECISION")?;
     Ok(Filter {
         nom_para: nom_para.to_string(),
         crit,
@@ -73,7 +71,7 @@ pub fn filters(args: &Args, key: &str) -> Result<Vec<Filter>> {
 
 /// ORDRE (default CROISSANT).
 pub fn ordre(a: &Args) -> Result<Ordre> {
-    let s = a.text("ORDRE").unwrap_or("CROISSANT");
+    let s = a.req_text("ORDRE")?;
     Ordre::parse(s).ok_or_else(|| {
         Error::validation(format!("unknown ORDRE '{s}'"))
             .keyword(a.key_path("ORDRE"))

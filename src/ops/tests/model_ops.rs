@@ -27,6 +27,7 @@ fn run(
     let mut out: Vec<u8> = Vec::new();
     let mut tests = Vec::new();
     let f = lookup(op).expect("operator registered");
+    let args = &crate::ops::common::harness::validated(op, args, None)?;
     let created = {
         let mut ctx = OpContext::new(store, op, &mut out, &units, &mut tests);
         ctx.result = result;

@@ -315,7 +315,7 @@ fn extr_table_sub_table_and_values() {
         "EXTR_TABLE",
         vec![
             ("TABLE", table("TAB")),
-            ("TYPE_RESU", k("REEL")),
+            ("TYPE_RESU", k("R")),
             ("NOM_PARA", k("FREQ")),
         ],
         vec![("FILTRE", vec![filtre("NUME_ORDRE", i(3))])],
@@ -341,7 +341,7 @@ fn extr_table_sub_table_and_values() {
         "EXTR_TABLE",
         vec![
             ("TABLE", table("TAB")),
-            ("TYPE_RESU", k("ENTIER")),
+            ("TYPE_RESU", k("I")),
             ("NOM_PARA", k("NUME_ORDRE")),
         ],
         vec![("FILTRE", vec![filtre("NUME_ORDRE", i(2))])],
@@ -608,8 +608,8 @@ fn defi_fonction_log_and_impr() {
         "DEFI_FONCTION",
         vec![
             ("NOM_PARA", k("X")),
-            ("ABSCISSE", seq(vec![r(1.0), r(0.0)])),
-            ("ORDONNEE", seq(vec![r(2.0), r(3.0)])),
+            ("VALE_PARA", seq(vec![r(1.0), r(0.0)])),
+            ("VALE_FONC", seq(vec![r(2.0), r(3.0)])),
             ("VERIF", k("NON")),
         ],
         vec![],
