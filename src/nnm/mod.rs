@@ -42,6 +42,7 @@ mod route_timing;
 mod series;
 pub mod stability;
 mod system;
+mod toeplitz;
 
 #[cfg(test)]
 mod hard_tests;
