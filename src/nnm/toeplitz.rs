@@ -67,7 +67,6 @@ pub struct GsInverse {
     b: Vec<C>,
     u1: Vec<C>,
     u2: Vec<C>,
-    ready: bool,
 }
 
 impl GsInverse {
@@ -97,7 +96,6 @@ impl GsInverse {
             b: z(),
             u1: z(),
             u2: z(),
-            ready: false,
         }
     }
 
@@ -109,7 +107,6 @@ impl GsInverse {
     /// Set ξ = T⁻¹e₀ (length 2H+1); false when ξ₀ vanishes or ξ is not finite (no
     /// representation: the caller takes another route).
     pub fn set_generator(&mut self, xi: &[C]) -> bool {
-        self.ready = false;
         let (n, nf) = (self.n, self.nfft);
         let x0 = xi[0];
         if !(x0.norm() > 0.0) || xi.iter().any(|v| !(v.re.is_finite() && v.im.is_finite())) {
@@ -145,7 +142,6 @@ impl GsInverse {
         ] {
             self.fwd.process_with_scratch(buf, &mut self.scratch);
         }
-        self.ready = true;
         true
     }
 
@@ -154,7 +150,8 @@ impl GsInverse {
         let (n, zero) = (self.n, C::new(0.0, 0.0));
         self.b[..n].copy_from_slice(b);
         self.b[n..].fill(zero);
-        self.fwd.process_with_scratch(&mut self.b, &mut self.scratch);
+        self.fwd
+            .process_with_scratch(&mut self.b, &mut self.scratch);
         for ((u1, u2), (bb, (c1, c2))) in self
             .u1
             .iter_mut()
@@ -164,12 +161,16 @@ impl GsInverse {
             *u1 = bb * c1;
             *u2 = bb * c2;
         }
-        self.inv.process_with_scratch(&mut self.u1, &mut self.scratch);
-        self.inv.process_with_scratch(&mut self.u2, &mut self.scratch);
+        self.inv
+            .process_with_scratch(&mut self.u1, &mut self.scratch);
+        self.inv
+            .process_with_scratch(&mut self.u2, &mut self.scratch);
         self.u1[n..].fill(zero);
         self.u2[n..].fill(zero);
-        self.fwd.process_with_scratch(&mut self.u1, &mut self.scratch);
-        self.fwd.process_with_scratch(&mut self.u2, &mut self.scratch);
+        self.fwd
+            .process_with_scratch(&mut self.u1, &mut self.scratch);
+        self.fwd
+            .process_with_scratch(&mut self.u2, &mut self.scratch);
         for (o, ((u1, u2), (c1, c2))) in self.b.iter_mut().zip(
             self.u1
                 .iter()
@@ -178,12 +179,9 @@ impl GsInverse {
         ) {
             *o = u1 * c1 - u2 * c2;
         }
-        self.inv.process_with_scratch(&mut self.b, &mut self.scratch);
+        self.inv
+            .process_with_scratch(&mut self.b, &mut self.scratch);
         b.copy_from_slice(&self.b[..n]);
-    }
-
-    pub fn is_ready(&self) -> bool {
-        self.ready
     }
 }
 
