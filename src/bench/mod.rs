@@ -67,9 +67,10 @@ pub fn parse_solver(s: &str) -> Result<SolverKind> {
         "auto" => Ok(SolverKind::Structured),
         "dense" => Ok(SolverKind::StructuredWith(ContactMethod::Dense)),
         "krylov" => Ok(SolverKind::StructuredWith(ContactMethod::Krylov)),
+        "toeplitz" => Ok(SolverKind::StructuredWith(ContactMethod::Toeplitz)),
         "reference" => Ok(SolverKind::Reference),
         _ => Err(io(format!(
-            "unknown solver '{s}' (auto, dense, krylov, reference)"
+            "unknown solver '{s}' (auto, dense, krylov, toeplitz, reference)"
         ))),
     }
 }

@@ -10,7 +10,7 @@
 //! 105 branches reach past ENERGIE = 6.5e-3, which the classic estimate does not).
 
 use super::linear_solver::TangentSolver;
-use super::system::System;
+use super::system::{Samples, System};
 use crate::error::{Error, Result};
 
 pub struct Series {
@@ -122,7 +122,7 @@ pub fn compute(
         terms.push(rhs);
     }
     let last = terms.len();
-    let mut a_max = step_length(sys, &terms, p.prec);
+    let mut a_max = step_length(sys, &terms, Some(&samples), p.prec);
     let mut bifurcation = None;
     if let Some(r) = geometric_ratio(&terms, p.bif_terms, p.bif_tol) {
         // Cochelin & Medale (2013): the tail is X_p ≈ X_N r^{p−N}; remove it from every
@@ -137,7 +137,7 @@ pub fn compute(
                 }
             }
             terms.pop();
-            let a_reg = step_length(sys, &terms, p.prec);
+            let a_reg = step_length(sys, &terms, None, p.prec);
             if a_reg.is_finite() && a_reg >= a_b {
                 a_max = a_reg;
                 bifurcation = Some(a_b);
@@ -175,13 +175,20 @@ pub fn compute(
 
 /// a_max = (PREC_MAN/‖R_{N+1}‖)^{1/(N+1)}, R_{N+1} = Σ_{r=1..N} Q(X_r, X_{N+1−r}) the
 /// residual of the first neglected order, so that ‖R(X(a_max))‖ ≈ PREC_MAN.
-fn step_length(sys: &System, terms: &[Vec<f64>], prec: f64) -> f64 {
+/// `samples`: the terms' time samples (`System::samples`), when the caller has them.
+fn step_length(sys: &System, terms: &[Vec<f64>], samples: Option<&[Samples]>, prec: f64) -> f64 {
     let last = terms.len();
     let mut r = vec![0.0; sys.lay.n_eq()];
     let pairs: Vec<(&[f64], &[f64])> = (1..=last)
         .map(|k| (terms[k - 1].as_slice(), terms[last - k].as_slice()))
         .collect();
-    sys.quad_sum(&pairs, &mut r);
+    match samples {
+        Some(s) => {
+            let cache: Vec<_> = (1..=last).map(|k| (&s[k - 1], &s[last - k])).collect();
+            sys.quad_sum_cached(&pairs, Some(&cache), &mut r);
+        }
+        None => sys.quad_sum(&pairs, &mut r),
+    }
     (prec / norm(&r).max(f64::MIN_POSITIVE)).powf(1.0 / (last + 1) as f64)
 }
 

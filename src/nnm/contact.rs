@@ -7,7 +7,7 @@
 //! zero-padded). Everything is derived from the generic law description (`LawEqs`: constant,
 //! linear and quadratic terms), never from the law's name.
 //!
-//! Two ways to solve with A_ff, chosen once per shock from a cost model:
+//! Three ways to solve with A_ff, chosen once per shock from a cost model:
 //! - **Dense**: A_ff assembled ((n_own·(2H_nl+1))², from the Fourier series of J) and
 //!   factorised by LU: cheap when the block is small.
 //! - **Krylov**: GMRES on A_ff applied by FFT (N > 3H_nl samples make the truncated product
@@ -17,6 +17,12 @@
 //!   real FFTs: O(H_nl log H_nl) per solve instead of O(H_nl²), and no O(H_nl³)
 //!   factorisation. If a Krylov solve stagnates (J(t) singular somewhere, off the physical
 //!   root of a law) the block falls back to the dense route when that fits in memory.
+//! - **Toeplitz** (laws with one own unknown, e.g. PLAN): A_ff is then a Toeplitz matrix
+//!   in complex coefficients, and its inverse is the Gohberg–Semencul product of
+//!   triangular Toeplitz factors built from one column of the inverse (toeplitz.rs). That
+//!   column comes from two Krylov solves per factorisation; every further solve (W's
+//!   columns, the right-hand sides) is then six complex FFTs, exact to round-off, checked
+//!   by its residual (refined, or handed to GMRES, if the check fails).
 //!
 //! The structure sees the block only through W = A_ff⁻¹ A_fu (m = n_comp·(2H_l+1)
 //! columns: one solve each per factorisation) and one solve A_ff⁻¹ r_f per right-hand side.
@@ -26,6 +32,7 @@ use super::gmres::{self, Gmres, Preconditioned};
 use super::laws::Var;
 use super::series::{self, FftScratch, Sampler};
 use super::system::{Layout, ShockSys};
+use super::toeplitz::RealGs;
 use crate::error::{Error, Result};
 
 /// How a shock's block is solved.
@@ -33,6 +40,7 @@ use crate::error::{Error, Result};
 pub enum Method {
     Dense,
     Krylov,
+    Toeplitz,
 }
 
 /// Relative residual asked of each Krylov solve: the dense LU's accuracy, so that results
@@ -56,17 +64,22 @@ const ITER_GUESS: f64 = 10.0;
 const FFT_FLOPS: f64 = 2.5;
 pub const KRYLOV_PENALTY: f64 = 4.0;
 
+/// Toeplitz: two Krylov solves, then per solve six complex FFTs of N' ≥ 2nn − 1 (twice a
+/// real one's flops) and one operator application (the residual check).
 pub fn cost(method: Method, n_own: usize, nn: usize, ns: usize, solves: usize) -> f64 {
     let d = (n_own * nn) as f64;
     let s = solves as f64;
+    let nsf = ns as f64;
+    let apply =
+        2.0 * n_own as f64 * FFT_FLOPS * nsf * nsf.log2() + 2.0 * (n_own * n_own) as f64 * nsf;
+    let per_iter = 2.0 * apply + 4.0 * ITER_GUESS * d;
     match method {
         Method::Dense => 2.0 / 3.0 * d * d * d + 2.0 * d * d * s,
-        Method::Krylov => {
-            let nsf = ns as f64;
-            let apply = 2.0 * n_own as f64 * FFT_FLOPS * nsf * nsf.log2()
-                + 2.0 * (n_own * n_own) as f64 * nsf;
-            let per_iter = 2.0 * apply + 4.0 * ITER_GUESS * d;
-            KRYLOV_PENALTY * s * ITER_GUESS * per_iter
+        Method::Krylov => KRYLOV_PENALTY * s * ITER_GUESS * per_iter,
+        Method::Toeplitz => {
+            let nf = series::fft_size_smooth(2 * nn) as f64;
+            let gs = 6.0 * 2.0 * FFT_FLOPS * nf * nf.log2() + 16.0 * nf;
+            KRYLOV_PENALTY * (2.0 * ITER_GUESS * per_iter + s * (gs + apply))
         }
     }
 }
@@ -74,13 +87,17 @@ pub fn cost(method: Method, n_own: usize, nn: usize, ns: usize, solves: usize) -
 /// The route the cost model picks for a block, given the solves made per factorisation.
 pub fn choose(n_own: usize, nn: usize, ns: usize, solves: usize) -> Method {
     let d = n_own * nn;
-    if d <= DENSE_MAX_DIM
-        && cost(Method::Dense, n_own, nn, ns, solves) <= cost(Method::Krylov, n_own, nn, ns, solves)
-    {
-        Method::Dense
-    } else {
-        Method::Krylov
+    let mut best = (Method::Krylov, cost(Method::Krylov, n_own, nn, ns, solves));
+    if n_own == 1 {
+        let c = cost(Method::Toeplitz, n_own, nn, ns, solves);
+        if c < best.1 {
+            best = (Method::Toeplitz, c);
+        }
     }
+    if d <= DENSE_MAX_DIM && cost(Method::Dense, n_own, nn, ns, solves) <= best.1 {
+        return Method::Dense;
+    }
+    best.0
 }
 
 /// Reals held by one shock's block (route chosen or fallback), from its sizes alone, in
@@ -100,7 +117,14 @@ pub fn block_reals(n_own: f64, n_comp: f64, nn: f64, nl: f64) -> f64 {
     } else {
         0.0
     };
-    krylov + d * m + samples + dense + 3.0 * d
+    // The Toeplitz route (one own unknown): seven complex vectors of N' ≈ 2nn, the two
+    // generator solves and the residual.
+    let toeplitz = if n_own == 1.0 {
+        28.0 * nn + 4.0 * d
+    } else {
+        0.0
+    };
+    krylov + d * m + samples + dense + 3.0 * d + toeplitz
 }
 
 /// Flops of W and `solves` further solves of one block whose size is given in `f64`
@@ -110,11 +134,19 @@ pub fn solve_flops(n_own: f64, nn: f64, solves: f64) -> f64 {
     let dense = 2.0 / 3.0 * d * d * d + 2.0 * d * d * solves;
     let ns = 1.5 * nn + 8.0;
     let apply = 2.0 * n_own * FFT_FLOPS * ns * ns.log2() + 2.0 * n_own * n_own * ns;
-    let krylov = KRYLOV_PENALTY * solves * ITER_GUESS * (2.0 * apply + 4.0 * ITER_GUESS * d);
-    if d <= DENSE_MAX_DIM as f64 {
-        dense.min(krylov)
+    let per_iter = 2.0 * apply + 4.0 * ITER_GUESS * d;
+    let krylov = KRYLOV_PENALTY * solves * ITER_GUESS * per_iter;
+    let fast = if n_own == 1.0 {
+        let nf = 2.0 * nn;
+        let gs = 12.0 * FFT_FLOPS * nf * nf.log2() + 16.0 * nf;
+        krylov.min(KRYLOV_PENALTY * (2.0 * ITER_GUESS * per_iter + solves * (gs + apply)))
     } else {
         krylov
+    };
+    if d <= DENSE_MAX_DIM as f64 {
+        dense.min(fast)
+    } else {
+        fast
     }
 }
 
@@ -401,6 +433,8 @@ pub struct Counters {
     pub solves: usize,
     pub krylov_iterations: usize,
     pub dense_fallbacks: usize,
+    /// Toeplitz-route solves refined once more (their first residual check failed).
+    pub refinements: usize,
 }
 
 /// The contact block of one shock, linearised at one X0.
@@ -417,6 +451,11 @@ pub struct ContactBlock {
     pw: Pointwise,
     gmres: Gmres,
     dense: DenseLu,
+    /// The Toeplitz route's inverse (laws with one own unknown), its two generator
+    /// solutions and the residual of a checked solve.
+    gs: Option<RealGs>,
+    xi: [Vec<f64>; 2],
+    res: Vec<f64>,
     /// W = A_ff⁻¹ A_fu, column-major d × m, columns ordered component-major (c·nl + j).
     w: Vec<f64>,
     b: Vec<f64>,
@@ -440,7 +479,11 @@ impl ContactBlock {
         let m = n_comp * lay.n_coef_lin;
         // Exact truncated products need N > 3H_nl (and > 2H_nl + H_l, implied).
         let ns = series::fft_size_smooth(3 * lay.h_nonl);
-        let method = force.unwrap_or_else(|| choose(n_own, lay.n_coef_nonl, ns, solves + m));
+        let mut method = force.unwrap_or_else(|| choose(n_own, lay.n_coef_nonl, ns, solves + m));
+        if method == Method::Toeplitz && n_own != 1 {
+            // Block Toeplitz (several own unknowns) has no scalar formula: Krylov.
+            method = Method::Krylov;
+        }
         Ok(ContactBlock {
             shock,
             method,
@@ -452,6 +495,13 @@ impl ContactBlock {
             pw: Pointwise::new(sh, lay, ns),
             gmres: Gmres::new(d, KRYLOV_CYCLE, KRYLOV_CYCLES),
             dense: DenseLu::default(),
+            gs: (n_own == 1 && method == Method::Toeplitz).then(|| RealGs::new(lay.h_nonl)),
+            xi: if method == Method::Toeplitz {
+                [vec![0.0; d], vec![0.0; d]]
+            } else {
+                [Vec::new(), Vec::new()]
+            },
+            res: vec![0.0; d],
             w: try_zeroed(d * m, "the contact coupling W")?,
             b: vec![0.0; d],
             x: vec![0.0; d],
@@ -481,7 +531,19 @@ impl ContactBlock {
         self.counters.factorisations += 1;
         let singular_at = self.pw.linearise(sh, lay, x0).err();
         self.active = self.method;
-        if self.method == Method::Krylov {
+        if self.method == Method::Toeplitz {
+            if singular_at.is_none() && self.toeplitz_w()? {
+                return Ok(());
+            }
+            // No representation: the dense route where it fits, else Krylov's handling.
+            if self.d <= DENSE_MAX_DIM {
+                self.counters.dense_fallbacks += 1;
+                self.active = Method::Dense;
+                return self.dense_w();
+            }
+            self.active = Method::Krylov;
+        }
+        if self.active == Method::Krylov {
             match singular_at {
                 None => match self.krylov_w() {
                     Ok(()) => return Ok(()),
@@ -520,6 +582,102 @@ impl ContactBlock {
             self.counters.krylov_iterations += st.iterations;
         }
         Ok(())
+    }
+
+    /// The Toeplitz route's factorisation: the generator from two Krylov solves, then W.
+    /// Ok(false): no representation (a Krylov solve failed or ξ₀ = 0), take the dense
+    /// route; an Err only when that cannot be taken either.
+    fn toeplitz_w(&mut self) -> Result<bool> {
+        let (d, nn, hn) = (self.d, self.n_coef_nonl, self.pw.h_nonl);
+        for (i, idx) in [series::ic(hn), series::is(hn, hn)].into_iter().enumerate() {
+            self.b.fill(0.0);
+            self.b[idx] = 2.0;
+            match self
+                .gmres
+                .solve(&mut self.pw, &self.b, &mut self.xi[i], KRYLOV_RTOL)
+            {
+                Ok(st) => self.counters.krylov_iterations += st.iterations,
+                Err(f) if self.d > DENSE_MAX_DIM => return Err(self.krylov_error(f)),
+                Err(_) => return Ok(false),
+            }
+        }
+        let Some(gs) = self.gs.as_mut() else {
+            return Ok(false);
+        };
+        if !gs.set_from_real(&self.xi[0], &self.xi[1]) {
+            return Ok(false);
+        }
+        debug_assert_eq!(d, nn);
+        let nl = self.n_coef_lin;
+        for col in 0..self.m {
+            let (c, j) = (col / nl, col % nl);
+            self.pw.coupling_column(c, j, &mut self.b);
+            let mut x = std::mem::take(&mut self.x);
+            let ok = self.toeplitz_solve(&mut x)?;
+            self.w[col * d..(col + 1) * d].copy_from_slice(&x);
+            self.x = x;
+            if !ok {
+                return Ok(false);
+            }
+        }
+        Ok(true)
+    }
+
+    /// x ← A_ff⁻¹ b (`self.b`) on the Toeplitz route, accepted by the Krylov solves'
+    /// residual test; refined twice by the same inverse, then by GMRES, if needed.
+    /// Ok(false): no accepted solution (the caller falls back to the dense route).
+    fn toeplitz_solve(&mut self, x: &mut [f64]) -> Result<bool> {
+        let Some(gs) = self.gs.as_mut() else {
+            return Ok(false);
+        };
+        x.copy_from_slice(&self.b);
+        gs.solve(x);
+        let nb = gmres::norm(&self.b);
+        let a_norm = self.pw.bound;
+        for refinement in 0..3 {
+            self.pw.use_inverse = false;
+            self.pw.mul(x, &mut self.res);
+            for (r, b) in self.res.iter_mut().zip(&self.b) {
+                *r = b - *r;
+            }
+            let nr = gmres::norm(&self.res);
+            if !nr.is_finite() {
+                return Ok(false);
+            }
+            if gmres::converged(nr, nb, a_norm, gmres::norm(x), KRYLOV_RTOL) {
+                return Ok(true);
+            }
+            if refinement < 2 {
+                self.counters.refinements += 1;
+                let Some(gs) = self.gs.as_mut() else {
+                    return Ok(false);
+                };
+                gs.solve(&mut self.res);
+                for (xi, r) in x.iter_mut().zip(&self.res) {
+                    *xi += r;
+                }
+            }
+        }
+        // GMRES (pointwise preconditioner) on the remaining residual.
+        let mut delta = std::mem::take(&mut self.xi[0]);
+        let r = self.res.clone();
+        let out = self.gmres.solve(&mut self.pw, &r, &mut delta, KRYLOV_RTOL);
+        let ok = match out {
+            Ok(st) => {
+                self.counters.krylov_iterations += st.iterations;
+                for (xi, dv) in x.iter_mut().zip(&delta) {
+                    *xi += dv;
+                }
+                true
+            }
+            Err(f) if self.d > DENSE_MAX_DIM => {
+                self.xi[0] = delta;
+                return Err(self.krylov_error(f));
+            }
+            Err(_) => false,
+        };
+        self.xi[0] = delta;
+        Ok(ok)
     }
 
     fn krylov_error(&self, f: gmres::Failure) -> Error {
@@ -597,6 +755,26 @@ impl ContactBlock {
         self.counters.solves += 1;
         match self.active {
             Method::Dense => self.dense.solve(r, 1),
+            Method::Toeplitz => {
+                self.b.copy_from_slice(r);
+                let mut x = std::mem::take(&mut self.x);
+                let ok = self.toeplitz_solve(&mut x);
+                self.x = x;
+                if ok? {
+                    r.copy_from_slice(&self.x);
+                    Ok(())
+                } else if self.d > DENSE_MAX_DIM {
+                    Err(self.err(
+                        "the contact block's Toeplitz solve did not reach its residual".into(),
+                    ))
+                } else {
+                    // As for Krylov below: the rest of this factorisation on the dense route.
+                    self.counters.dense_fallbacks += 1;
+                    self.active = Method::Dense;
+                    self.dense_factor()?;
+                    self.dense.solve(r, 1)
+                }
+            }
             Method::Krylov => {
                 self.b.copy_from_slice(r);
                 match self

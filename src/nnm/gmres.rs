@@ -43,6 +43,15 @@ pub enum Failure {
     NotFinite,
 }
 
+/// The acceptance test of a solve x of A x = b (module doc): residual norm `nr`, ‖b‖ = `nb`,
+/// ‖A‖ ≤ `a_norm`, ‖x‖ = `nx`. The backward-error floor covers the last digits only: a
+/// residual above FLOOR_CAP·‖b‖ is no solution whatever ‖x‖ (a singular A makes x explode).
+pub fn converged(nr: f64, nb: f64, a_norm: f64, nx: f64, rtol: f64) -> bool {
+    let target = rtol * nb;
+    let floor = target + BACKWARD * f64::EPSILON * a_norm * nx;
+    nr <= target || (nr <= floor && nr <= FLOOR_CAP * nb)
+}
+
 pub struct Gmres {
     n: usize,
     m: usize,
@@ -64,7 +73,7 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-fn norm(a: &[f64]) -> f64 {
+pub fn norm(a: &[f64]) -> f64 {
     dot(a, a).sqrt()
 }
 
@@ -137,10 +146,7 @@ impl Gmres {
             if !nr.is_finite() {
                 return Err(Failure::NotFinite);
             }
-            // The backward-error floor covers the last digits only: a residual above
-            // FLOOR_CAP·‖b‖ is no solution whatever ‖x‖ (a singular A makes x explode).
-            let floor = target + BACKWARD * f64::EPSILON * a_norm * norm(x);
-            if nr <= target || (nr <= floor && nr <= FLOOR_CAP * nb) {
+            if converged(nr, nb, a_norm, norm(x), rtol) {
                 return Ok(Stats {
                     iterations,
                     relative_residual: nr / nb,

@@ -61,6 +61,7 @@ pub mod stability;
 mod start;
 mod step_control;
 mod system;
+mod toeplitz;
 
 #[cfg(test)]
 mod hard_tests;

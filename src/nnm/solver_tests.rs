@@ -110,7 +110,7 @@ fn max_rel(a: &[f64], b: &[f64]) -> f64 {
 }
 
 fn solvers(sys: &System) -> Vec<(Method, StructuredSolver)> {
-    [Method::Dense, Method::Krylov]
+    [Method::Dense, Method::Krylov, Method::Toeplitz]
         .into_iter()
         .map(|m| (m, StructuredSolver::new(sys, 24, Some(m)).unwrap()))
         .collect()

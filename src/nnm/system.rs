@@ -378,6 +378,7 @@ impl System {
     /// Time samples of every law variable of `x` (for the sampled products).
     pub fn samples(&self, x: &[f64]) -> Samples {
         let ns = self.sampler.n();
+        let mut ws = self.sampler.scratch();
         self.shocks
             .iter()
             .map(|sh| {
@@ -386,7 +387,7 @@ impl System {
                     .map(|&v| {
                         let (s, h) = self.var(x, sh, v);
                         let mut o = vec![0.0; ns];
-                        self.sampler.synth(s, h, &mut o);
+                        self.sampler.synth_with(s, h, &mut o, &mut ws);
                         o
                     })
                     .collect()
@@ -443,6 +444,7 @@ impl System {
         };
         let ns = self.sampler.n();
         let mut c = vec![0.0; l.n_coef_nonl];
+        let mut ws = self.sampler.scratch();
         for (k, sh) in self.shocks.iter().enumerate() {
             let pos = |v: Var| sh.vars.iter().position(|&w| w == v).unwrap_or(0);
             let mut acc = vec![vec![0.0; ns]; sh.eqs.n_own];
@@ -455,7 +457,7 @@ impl System {
                 }
             }
             for (e, s) in acc.iter_mut().enumerate() {
-                self.sampler.analyse(s, l.h_nonl, &mut c);
+                self.sampler.analyse_with(s, l.h_nonl, &mut c, &mut ws);
                 let o = sh.offset + e * l.n_coef_nonl;
                 for (y, v) in out[o..o + l.n_coef_nonl].iter_mut().zip(&c) {
                     *y += v;
