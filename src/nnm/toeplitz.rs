@@ -109,7 +109,9 @@ impl GsInverse {
     pub fn set_generator(&mut self, xi: &[C]) -> bool {
         let (n, nf) = (self.n, self.nfft);
         let x0 = xi[0];
-        if !(x0.norm() > 0.0) || xi.iter().any(|v| !(v.re.is_finite() && v.im.is_finite())) {
+        if x0.norm().partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
+            || xi.iter().any(|v| !(v.re.is_finite() && v.im.is_finite()))
+        {
             return false;
         }
         let scale = 1.0 / nf as f64;
@@ -250,9 +252,9 @@ mod tests {
             for r in 0..n {
                 if r != c {
                     let f = a[r][c] / a[c][c];
-                    for k in c..n {
-                        let v = a[c][k];
-                        a[r][k] -= f * v;
+                    let pivot_row = a[c].clone();
+                    for (ark, v) in a[r][c..n].iter_mut().zip(&pivot_row[c..n]) {
+                        *ark -= f * v;
                     }
                     let v = x[c];
                     x[r] -= f * v;
