@@ -6,7 +6,8 @@
 //! row passes 5x the first-contact energy. Prints one line per branch (VERBOSE=1) and a
 //! summary: branches, retries, rows accepted at the round-off floor, the worst frequency error
 //! against the exact nonsmooth (penalty) period over the rows past 1.5x the first-contact
-//! energy, and the wall time.
+//! energy, and the wall time. Environment: DIR (DIR_EVOLUTION, default -1), START_PN
+//! (PREC_NEWTON of the start correction only), VERBOSE (also prints the start point).
 
 use aster_nl::nnm::exact::Oscillator;
 use aster_nl::nnm::{
@@ -57,7 +58,10 @@ fn main() {
         bif_terms: 3,
         bif_tol: 1e-4,
         det_test: true,
-        direction: -1,
+        direction: std::env::var("DIR")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(-1),
     };
     let osc = Oscillator {
         m: 1.0,
@@ -67,13 +71,26 @@ fn main() {
     };
     let e_c = osc.contact_energy();
     let t0 = Instant::now();
-    let start = match start_from_mode(&problem, &settings, &[1.0], coef, k.sqrt()) {
+    let mut start_settings = settings.clone();
+    if let Some(v) = std::env::var("START_PN").ok().and_then(|s| s.parse().ok()) {
+        start_settings.prec_newton = v;
+    }
+    let start = match start_from_mode(&problem, &start_settings, &[1.0], coef, k.sqrt()) {
         Ok(s) => s,
         Err(e) => {
             println!("start failed: {}", e.message);
             return;
         }
     };
+    if verbose {
+        let p = &start.point;
+        println!(
+            "start E/Ec {:.6} f {:.6} newton {}",
+            p.energy / e_c,
+            p.frequency,
+            start.newton_iterations
+        );
+    }
     let control = StepControl {
         retries_max: 4,
         stall_branches: 50,
