@@ -55,6 +55,8 @@ fn run(
     let mut out: Vec<u8> = Vec::new();
     let mut tests: Vec<TestOutcome> = Vec::new();
     let f = ops::lookup(op).expect("operator registered");
+    // Through the catalog, as a user's call goes: the operators read its defaults.
+    let a = &aster_nl::catalog::validate_args(op, a, reuse, "t.comm")?;
     let mut ctx = OpContext::new(store, op, &mut out, units, &mut tests);
     ctx.result = Some(result);
     ctx.reuse = reuse;

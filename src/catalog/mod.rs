@@ -8,6 +8,7 @@ mod docs;
 mod print;
 mod suggest;
 mod validate;
+mod validate_args;
 
 pub use check::check_consistency;
 pub use def::{FactDef, OperatorDef, Reuse, Rule, RuleKind, SimpDef, Statut, When};
@@ -15,6 +16,7 @@ pub use docs::markdown_reference;
 pub use print::{describe, summary};
 pub use suggest::closest;
 pub use validate::{validate, validate_with};
+pub use validate_args::validate_args;
 
 use crate::args::Args;
 use std::sync::OnceLock;

@@ -6,7 +6,7 @@ use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::ops::{lookup, run_in_transaction, OpContext, TestOutcome, Units};
 use crate::store::Store;
-use crate::value::{CommandCall, ConceptRef, Keyword, Span, Value};
+use crate::value::{Span, Value};
 
 pub struct Harness {
     pub store: Store,
@@ -56,38 +56,10 @@ impl Harness {
     }
 }
 
-/// The call `args` of `op` (with `reuse=` of the concept named, if any) validated against
-/// the embedded catalog, as the interpreter validates a user's call: defaults filled,
-/// bounds and rules checked. The first error is returned as the call's error.
+/// The call `args` of `op` validated against the embedded catalog, as a user's call is
+/// (see [`crate::catalog::validate_args`]).
 pub fn validated(op: &str, args: &Args, reuse: Option<&str>) -> Result<Args> {
-    let call = CommandCall {
-        op: op.to_string(),
-        result: None,
-        reuse: reuse.map(|name| ConceptRef {
-            name: name.to_string(),
-            ty: crate::catalog::UNKNOWN_CONCEPT_TYPE.to_string(),
-        }),
-        args: keywords(args),
-        span: Span::default(),
-        op_span: Span::default(),
-    };
-    crate::catalog::validate(&call, "test.comm").map_err(|mut errors| errors.remove(0))
-}
-
-/// Hand-built `Args` back to the keywords of a call (a factor keyword becomes a tuple of
-/// `_F(...)`).
-fn keywords(args: &Args) -> Vec<Keyword> {
-    let simple = args.simple.iter().map(|(name, value, span)| Keyword {
-        name: name.clone(),
-        value: value.clone(),
-        span: *span,
-    });
-    let factor = args.factor.iter().map(|(name, occs, span)| Keyword {
-        name: name.clone(),
-        value: Value::Seq(occs.iter().map(|o| Value::Fact(keywords(o))).collect()),
-        span: *span,
-    });
-    simple.chain(factor).collect()
+    crate::catalog::validate_args(op, args, reuse, "test.comm")
 }
 
 /// Build `Args` by hand: simple keywords and factor keywords.
