@@ -152,3 +152,29 @@ pub fn correct(
         it += 1;
     }
 }
+
+/// The polish of a start point (start.rs): Newton corrections beyond PREC_NEWTON, down to
+/// the round-off level ([`correct`] with a zero target ends there: stalled at the floor),
+/// within `max_iter` more iterations; when they do not get there the point is left as it
+/// was. A start from a linear mode at first contact with a stiff stop passes PREC_NEWTON
+/// after one iteration while still off the branch by more than the series' first steps
+/// forgive (docs/hard_cases.md, "The grazing start": the continuation then follows a
+/// non-physical family); the iterations left cost a few solves once per run. Returns the
+/// iterations kept and the final relative residual.
+pub fn polish(
+    sys: &System,
+    solver: &mut dyn TangentSolver,
+    x: &mut [f64],
+    border: &[f64],
+    max_iter: usize,
+) -> Result<(usize, f64)> {
+    let before = x.to_vec();
+    let residual = relative(&sys.residual(x), x);
+    match correct(sys, solver, x, border, 0.0, max_iter) {
+        Ok(c) if c.residual <= residual => Ok((c.iterations, c.residual)),
+        _ => {
+            x.copy_from_slice(&before);
+            Ok((0, residual))
+        }
+    }
+}

@@ -4,7 +4,7 @@
 //! stiffness in two directions, an axisymmetric shaft) the pair in quadrature is a whirl,
 //! the orbit that rolls around a CERCLE ring instead of crossing its centre.
 
-use super::start::{init_contact, phase_dof, start};
+use super::start::{init_contact, phase_dof, start, Guess};
 use super::system::{Scaling, System};
 use super::{series, Problem, Settings, StartState};
 use crate::error::{Error, Result};
@@ -134,7 +134,13 @@ pub fn start_from_mode_pair(
     }
     x[l.omega()] = om;
     init_contact(&sys, &mut x)?;
-    start(sys, settings, x, super::SolverKind::default())
+    start(
+        sys,
+        settings,
+        x,
+        super::SolverKind::default(),
+        Guess::LinearModes,
+    )
 }
 
 #[cfg(test)]

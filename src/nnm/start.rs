@@ -2,6 +2,7 @@
 //! COEF_AMPL or from a stored point (ETAT_INIT), Newton-corrected at fixed amplitude
 //! (docs/ehman.md §4). The start from a pair of modes in quadrature is quadrature.rs.
 
+use super::linear_solver::TangentSolver;
 use super::point::{finite, make_point, to_scaled};
 use super::solver_kind::{make_solver, SolverKind};
 use super::system::{self, Scaling, System};
@@ -78,11 +79,23 @@ pub(super) fn motion_border(sys: &System, x: &[f64]) -> Vec<f64> {
     b
 }
 
+/// Where a start point's guess comes from, which decides how far it is corrected.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Guess {
+    /// Built from linear modes: corrected to PREC_NEWTON, then polished while Newton still
+    /// converges quadratically ([`newton::polish`]).
+    LinearModes,
+    /// A stored, already corrected point: corrected to PREC_NEWTON only, so that a restart
+    /// continues from exactly the point the first run continued from.
+    StoredPoint,
+}
+
 pub(super) fn start(
     sys: System,
     settings: &Settings,
     mut x: Vec<f64>,
     kind: SolverKind,
+    guess: Guess,
 ) -> Result<StartState> {
     if !finite(&x) {
         return Err(Error::numerical("the start point is not finite"));
@@ -95,20 +108,42 @@ pub(super) fn start(
         );
     }
     let mut solver = make_solver(&sys, settings, kind)?;
-    let corr = newton::correct(
+    let guess_x = x.clone();
+    let corr = match newton::correct(
         &sys,
         solver.as_mut(),
         &mut x,
         &border,
         settings.prec_newton,
         settings.iter_newton_max,
-    )
-    .map_err(|e| Error {
-        message: format!("start point: {}", e.message),
-        ..e
-    })?;
-    let it = corr.iterations;
-    let mut point = make_point(&sys, &x, corr.residual, 0, false);
+    ) {
+        Ok(c) => c,
+        Err(e) => {
+            let approached = match guess {
+                Guess::LinearModes => {
+                    x.copy_from_slice(&guess_x);
+                    approach_in_amplitude(&sys, solver.as_mut(), settings, &mut x)
+                }
+                Guess::StoredPoint => None,
+            };
+            approached.ok_or_else(|| Error {
+                message: format!("start point: {}", e.message),
+                ..e
+            })?
+        }
+    };
+    let (polished, residual) = match guess {
+        Guess::LinearModes if !corr.at_floor => newton::polish(
+            &sys,
+            solver.as_mut(),
+            &mut x,
+            &border,
+            settings.iter_newton_max,
+        )?,
+        _ => (0, corr.residual),
+    };
+    let it = corr.iterations + polished;
+    let mut point = make_point(&sys, &x, residual, 0, false);
     point.at_floor = corr.at_floor;
     Ok(StartState {
         travel: None,
@@ -120,6 +155,74 @@ pub(super) fn start(
         newton_iterations: it,
         solver: kind,
     })
+}
+
+/// Sub-steps of [`approach_in_amplitude`], at most.
+const APPROACH_STEPS_MAX: usize = 24;
+
+/// The start at the amplitude of `x` (a linear-mode guess whose Newton correction failed:
+/// at or past first contact with a stiff or strongly regularised stop the linear mode can
+/// be too far from the orbit) approached from a smaller amplitude: the motion scaled by
+/// s = ½ (halved again while that fails), corrected, then s raised toward 1 with each
+/// corrected point scaled up as the next guess, the raise halved when a correction fails.
+/// The amplitude constraint is the border: each correction keeps the guess's amplitude.
+/// On success `x` is the start at the full amplitude; None when it cannot be reached
+/// within [`APPROACH_STEPS_MAX`] corrections (`x` is then unspecified).
+fn approach_in_amplitude(
+    sys: &System,
+    solver: &mut dyn TangentSolver,
+    settings: &Settings,
+    x: &mut [f64],
+) -> Option<newton::Correction> {
+    let motion = 2 * sys.lay.n * sys.lay.n_coef_lin;
+    let target = x.to_vec();
+    let at = |s: f64, from: &[f64], s_from: f64, x: &mut [f64]| -> Option<()> {
+        x.copy_from_slice(from);
+        x[..motion].iter_mut().for_each(|v| *v *= s / s_from);
+        init_contact(sys, x).ok()
+    };
+    let correct = |x: &mut [f64], solver: &mut dyn TangentSolver| {
+        let border = motion_border(sys, x);
+        newton::correct(
+            sys,
+            solver,
+            x,
+            &border,
+            settings.prec_newton,
+            settings.iter_newton_max,
+        )
+        .ok()
+    };
+    let mut s = 0.5;
+    let mut steps = 0;
+    // A corrected point below the target amplitude.
+    loop {
+        steps += 1;
+        at(s, &target, 1.0, x)?;
+        if correct(x, solver).is_some() {
+            break;
+        }
+        if steps >= APPROACH_STEPS_MAX {
+            return None;
+        }
+        s *= 0.5;
+    }
+    let mut ds = s.min(1.0 - s);
+    let mut from = x.to_vec();
+    while steps < APPROACH_STEPS_MAX {
+        steps += 1;
+        let next = (s + ds).min(1.0);
+        at(next, &from, s, x)?;
+        match correct(x, solver) {
+            Some(c) if next == 1.0 => return Some(c),
+            Some(_) => {
+                s = next;
+                from.copy_from_slice(x);
+            }
+            None => ds *= 0.5,
+        }
+    }
+    None
 }
 
 /// The DOF whose velocity is zero at t = 0: the first free DOF as in Code_Aster (so that
@@ -234,7 +337,7 @@ pub fn start_from_mode_using(
     }
     x[l.omega()] = om;
     init_contact(&sys, &mut x)?;
-    start(sys, settings, x, kind)
+    start(sys, settings, x, kind, Guess::LinearModes)
 }
 
 /// Scaling and reference DOF for a stored physical point.
@@ -259,5 +362,5 @@ pub(super) fn system_for_point(
 pub fn start_from_point(problem: &Problem, settings: &Settings, x: &[f64]) -> Result<StartState> {
     let sys = system_for_point(problem, settings, x)?;
     let xs = to_scaled(&sys, x);
-    start(sys, settings, xs, SolverKind::default())
+    start(sys, settings, xs, SolverKind::default(), Guess::StoredPoint)
 }
