@@ -7,12 +7,13 @@
 //! summary: branches, retries, rows accepted at the round-off floor, the worst frequency error
 //! against the exact nonsmooth (penalty) period over the rows past 1.5x the first-contact
 //! energy, and the wall time. Environment: DIR (DIR_EVOLUTION, default -1), START_PN
-//! (PREC_NEWTON of the start correction only), VERBOSE (also prints the start point).
+//! (PREC_NEWTON of the start correction only), VERBOSE (also prints the start point), PADE
+//! (RESOLUTION/APPROX_MAN = 'PADE').
 
 use aster_nl::nnm::exact::Oscillator;
 use aster_nl::nnm::{
-    continue_controlled, start_from_mode, PostProcessor, Problem, Settings, Shock, ShockLaw,
-    StepControl,
+    continue_controlled, start_from_mode, Approximation, PostProcessor, Problem, Settings, Shock,
+    ShockLaw, StepControl,
 };
 use faer::sparse::{SparseColMat, Triplet};
 use std::time::Instant;
@@ -96,6 +97,11 @@ fn main() {
         stall_branches: 50,
         law_defect_max: Some(0.5),
         spread_max: None,
+        approximation: if std::env::var("PADE").is_ok() {
+            Approximation::Pade
+        } else {
+            Approximation::Series
+        },
     };
     let post = PostProcessor::new(&problem, &settings).unwrap();
     let mut branches = 0;

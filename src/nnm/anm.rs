@@ -10,6 +10,7 @@
 //! 105 branches reach past ENERGIE = 6.5e-3, which the classic estimate does not).
 
 use super::linear_solver::TangentSolver;
+use super::pade::Pade;
 use super::system::{Samples, System};
 use crate::error::{Error, Result};
 
@@ -20,6 +21,9 @@ pub struct Series {
     /// Distance along a to a simple bifurcation detected from the geometric tail, when it
     /// lies inside this branch.
     pub bifurcation: Option<f64>,
+    /// The rational form of the terms that `eval` and `unit_tangent` use instead of the
+    /// power series, when the step was extended by it (series_step.rs, pade.rs).
+    pub pade: Option<Pade>,
 }
 
 pub fn dot(a: &[f64], b: &[f64]) -> f64 {
@@ -33,6 +37,14 @@ pub fn norm(a: &[f64]) -> f64 {
 impl Series {
     /// X(a).
     pub fn eval(&self, x0: &[f64], a: f64) -> Vec<f64> {
+        if let Some(p) = &self.pade {
+            return p.eval(x0, a);
+        }
+        self.eval_series(x0, a)
+    }
+
+    /// X(a) from the power series itself.
+    pub fn eval_series(&self, x0: &[f64], a: f64) -> Vec<f64> {
         let mut x = x0.to_vec();
         let mut ap = 1.0;
         for t in &self.terms {
@@ -46,6 +58,9 @@ impl Series {
 
     /// dX/da at a, normalised.
     pub fn unit_tangent(&self, a: f64) -> Vec<f64> {
+        if let Some(p) = &self.pade {
+            return p.unit_tangent(a);
+        }
         let mut d = vec![0.0; self.terms.first().map_or(0, |t| t.len())];
         let mut ap = 1.0;
         for (p, t) in self.terms.iter().enumerate() {
@@ -170,6 +185,7 @@ pub fn compute(
         terms,
         a_max,
         bifurcation,
+        pade: None,
     })
 }
 

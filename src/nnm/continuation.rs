@@ -95,8 +95,16 @@ fn run(
     // (energy, frequency) of every branch end, for the no-progress guard.
     let mut ends: Vec<(f64, f64)> = Vec::new();
     for b in 1..=settings.n_branches {
-        let mut ser = series_step(&sys, solver.as_mut(), &x0, &params, settings, &orientation)
-            .map_err(|e| in_branch(e, b))?;
+        let mut ser = series_step(
+            &sys,
+            solver.as_mut(),
+            &x0,
+            &params,
+            settings,
+            control.approximation,
+            &orientation,
+        )
+        .map_err(|e| in_branch(e, b))?;
         if b == 1 && anm::dot(&ser.terms[0], &border) < 0.0 {
             // The start was factorised with the motion as border, the branch leaves against
             // it: det [R_X; bᵀ] = (b·t)·det [R_X; tᵀ], so the start's sign flips with it (or

@@ -6,8 +6,9 @@ use super::anm::{self, AnmParams, Series};
 use super::energy;
 use super::linear_solver::TangentSolver;
 use super::newton;
+use super::pade::Pade;
 use super::system::System;
-use super::Settings;
+use super::{Approximation, Settings};
 use crate::error::Result;
 
 /// Which way a branch leaves its start point (the sign of the series' first term).
@@ -68,6 +69,7 @@ pub(super) fn series_step(
     x0: &[f64],
     params: &AnmParams,
     settings: &Settings,
+    approximation: Approximation,
     orientation: &Orientation,
 ) -> Result<Series> {
     let mut ser = anm::compute(sys, solver, x0, params, &|x1: &[f64]| {
@@ -85,5 +87,45 @@ pub(super) fn series_step(
         }
         ser.a_max *= 0.5;
     }
+    if approximation == Approximation::Pade {
+        extend_by_pade(sys, x0, settings, &mut ser);
+    }
     Ok(ser)
+}
+
+/// Largest reduced step ā = a/a_series tried for the Padé approximant.
+const PADE_REACH_MAX: f64 = 10.0;
+/// Growth of ā between the tries.
+const PADE_REACH_FACTOR: f64 = 1.1;
+/// Q below this (Q(0) = 1) counts as at a pole of the approximant: the step ends before.
+const PADE_POLE_MARGIN: f64 = 0.1;
+
+/// The step extended past the series' own a_max by its Padé approximant (pade.rs), as far as
+/// the approximant's residual stays within what the series gives at its a_max (or PREC_MAN,
+/// if larger) and before Q's first pole; the approximant then serves the whole branch.
+fn extend_by_pade(sys: &System, x0: &[f64], settings: &Settings, ser: &mut Series) {
+    let s = ser.a_max;
+    let Some(p) = Pade::new(&ser.terms, s) else {
+        return;
+    };
+    let xs = ser.eval_series(x0, s);
+    let threshold = newton::relative(&sys.residual(&xs), &xs).max(settings.prec_man);
+    let pole = p
+        .first_pole_within(PADE_REACH_MAX, 1000, PADE_POLE_MARGIN)
+        .unwrap_or(f64::INFINITY);
+    let mut best = s;
+    let mut ab = PADE_REACH_FACTOR;
+    while ab <= PADE_REACH_MAX && ab * s < pole {
+        let x = p.eval(x0, ab * s);
+        let r = newton::relative(&sys.residual(&x), &x);
+        if !(r.is_finite() && r <= threshold) {
+            break;
+        }
+        best = ab * s;
+        ab *= PADE_REACH_FACTOR;
+    }
+    if best > s {
+        ser.a_max = best;
+        ser.pade = Some(p);
+    }
 }

@@ -1,5 +1,17 @@
 //! How a run reacts to a branch that goes wrong (retries, the law and energy checks, the
-//! no-progress guard): the values come from the catalog (RESOLUTION).
+//! no-progress guard) and how far its steps reach (the series or its Padé approximants):
+//! the values come from the catalog (RESOLUTION).
+
+/// What a branch is evaluated on (RESOLUTION/APPROX_MAN).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Approximation {
+    /// The power series up to Code_Aster's step length.
+    #[default]
+    Series,
+    /// Padé approximants of the series, the step lengthened as far as they stay accurate
+    /// (pade.rs, series_step.rs).
+    Pade,
+}
 
 /// How the run reacts to a branch that goes wrong; the engine's own callers use
 /// [`StepControl::none`].
@@ -19,6 +31,8 @@ pub struct StepControl {
     pub law_defect_max: Option<f64>,
     /// Likewise for the energy spread over the period (ECART_ENERGIE) of the corrected end.
     pub spread_max: Option<f64>,
+    /// What each branch is evaluated on.
+    pub approximation: Approximation,
 }
 
 /// Relative spread of ENERGIE over the window of [`StepControl::stall_branches`] below which
@@ -35,6 +49,7 @@ impl StepControl {
             stall_branches: 0,
             law_defect_max: None,
             spread_max: None,
+            approximation: Approximation::Series,
         }
     }
 }

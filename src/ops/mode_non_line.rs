@@ -455,8 +455,9 @@ fn settings(args: &Args) -> Result<Settings> {
     })
 }
 
-/// RESOLUTION/NB_REPRISE_PAS_MAXI, NB_BRANCHE_SANS_PROGRES, ECART_LOI_CHOC_MAXI and
-/// ECART_ENERGIE_MAXI (aster-nl extensions; default and bounds in the catalog).
+/// RESOLUTION/NB_REPRISE_PAS_MAXI, NB_BRANCHE_SANS_PROGRES, ECART_LOI_CHOC_MAXI,
+/// ECART_ENERGIE_MAXI and APPROX_MAN (aster-nl extensions; default and bounds in the
+/// catalog).
 fn step_control(args: &Args) -> Result<nnm::StepControl> {
     let r = args.req_fact("RESOLUTION")?;
     Ok(nnm::StepControl {
@@ -464,6 +465,10 @@ fn step_control(args: &Args) -> Result<nnm::StepControl> {
         stall_branches: r.req_count("NB_BRANCHE_SANS_PROGRES")?,
         law_defect_max: Some(r.req_real("ECART_LOI_CHOC_MAXI")?),
         spread_max: r.real("ECART_ENERGIE_MAXI"),
+        approximation: match r.req_text("APPROX_MAN")? {
+            "PADE" => nnm::Approximation::Pade,
+            _ => nnm::Approximation::Series,
+        },
     })
 }
 

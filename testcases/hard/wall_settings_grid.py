@@ -2,6 +2,7 @@
 """Issue 12's grid of settings on sdnd122's wall, through the aster-nl binary.
 
     python3 testcases/hard/wall_settings_grid.py [--bin target/release/aster-nl] [--quick]
+        [--approx SERIE|PADE]
 
 One DOF (m = 1, k = 10, JEU = 0.01, PLAN stop RIGI_NOR = 50 = 5 k), started from the linear
 mode, DIR_EVOLUTION = -1, NB_PAS_MAN = 1, NB_BRANCHE = 400 and ENER_MAX = 5 E_c (E_c = k JEU^2/2,
@@ -61,7 +62,7 @@ MNL = MODE_NON_LINE(MATR_RIGI=RIGIDITE, MATR_MASS=MASSE,
                             RIGI_NOR=50., PARA_REGUL={regul}),
                     RESOLUTION=_F(METHODE='EHMAN', NB_HARM_LINE={hl}, NB_HARM_NONL={hn},
                                   PREC_MAN={prec}, NB_BRANCHE=400, NB_PAS_MAN=1,
-                                  ENER_MAX={emax}),
+                                  ENER_MAX={emax}, APPROX_MAN='{approx}'),
                     INFO=1)
 FIN()
 """
@@ -80,12 +81,13 @@ def period_plan(e):
     return 2.0 * (math.pi - math.acos(G / b)) / w0 + 2.0 * math.acos((G - uc) / (a - uc)) / w1
 
 
-def run_one(binary, work, hl, hn, regul, prec, coef):
+def run_one(binary, work, hl, hn, regul, prec, coef, approx):
     name = f"h{hl}_{hn}_r{regul:.0e}_p{prec:.0e}_c{coef}"
     comm = os.path.join(work, name + ".comm")
     shutil.copy(os.path.join(HERE, "wall_onset.mail"), os.path.join(work, name + ".mail"))
     with open(comm, "w") as f:
-        f.write(TEMPLATE.format(coef=coef, regul=regul, hl=hl, hn=hn, prec=prec, emax=5.0 * E_C))
+        f.write(TEMPLATE.format(coef=coef, regul=regul, hl=hl, hn=hn, prec=prec, emax=5.0 * E_C,
+                                approx=approx))
     db = os.path.join(work, name + ".db")
     t0 = time.time()
     p = subprocess.run([binary, "run", comm, "--db", db], capture_output=True, text=True)
@@ -122,6 +124,8 @@ def main():
     ap.add_argument("--bin", default=os.path.join(HERE, "..", "..", "target", "release", "aster-nl"))
     ap.add_argument("--quick", action="store_true", help="H 10/30 only")
     ap.add_argument("--keep", help="directory for the runs (kept)")
+    ap.add_argument("--approx", default="SERIE", choices=["SERIE", "PADE"],
+                    help="RESOLUTION/APPROX_MAN")
     a = ap.parse_args()
     harms = [(10, 30)] if a.quick else [(10, 30), (20, 60), (40, 120), (60, 180)]
     work = a.keep or tempfile.mkdtemp(prefix="wall_grid_")
@@ -135,7 +139,7 @@ def main():
         for regul in (1e-5, 1e-6, 1e-7):
             for prec in (1e-4, 1e-6, 1e-9):
                 for coef in (0.5, 0.8, 1.0):
-                    r = run_one(os.path.abspath(a.bin), work, hl, hn, regul, prec, coef)
+                    r = run_one(os.path.abspath(a.bin), work, hl, hn, regul, prec, coef, a.approx)
                     counts[r["verdict"]] = counts.get(r["verdict"], 0) + 1
                     if r["verdict"] == "right":
                         worst_right = max(worst_right, r["err"])
