@@ -100,8 +100,9 @@ pub fn run_case(
         prep.omega,
         kind,
     ) {
-        Ok(st) => {
-            let o = nnm::continue_branches(&prep.problem, &prep.settings, st, &mut |_, _| {});
+        Ok(start_state) => {
+            let o =
+                nnm::continue_branches(&prep.problem, &prep.settings, start_state, &mut |_, _| {});
             points = o.points.len();
             if let Some(e) = o.error {
                 error = e.message.replace(' ', "_");
@@ -528,12 +529,12 @@ pub fn compare_tables(a: &Path, b: &Path, t: &str) -> Result<Vec<String>> {
     let cb = rusqlite::Connection::open(b).map_err(io)?;
     let read =
         |c: &rusqlite::Connection| -> Result<(Vec<String>, Vec<Vec<rusqlite::types::Value>>)> {
-            let mut st = c
+            let mut stmt = c
                 .prepare(&format!("SELECT * FROM \"{t}\" ORDER BY NUME_ORDRE"))
                 .map_err(io)?;
-            let cols: Vec<String> = st.column_names().map(|s| s.to_string()).collect();
+            let cols: Vec<String> = stmt.column_names().map(|s| s.to_string()).collect();
             let n = cols.len();
-            let rows = st
+            let rows = stmt
                 .query_map([], |r| {
                     (0..n)
                         .map(|i| r.get::<_, rusqlite::types::Value>(i))
@@ -586,10 +587,10 @@ pub fn compare_tables(a: &Path, b: &Path, t: &str) -> Result<Vec<String>> {
             .join(", "),
     );
     let points = |c: &rusqlite::Connection| -> Result<Vec<Vec<f64>>> {
-        let mut st = c
+        let mut stmt = c
             .prepare("SELECT x FROM mnl_points WHERE concept = ?1 ORDER BY NUME_ORDRE")
             .map_err(io)?;
-        let rows = st
+        let rows = stmt
             .query_map([t], |r| r.get::<_, Vec<u8>>(0))
             .map_err(io)?
             .collect::<std::result::Result<Vec<_>, _>>()

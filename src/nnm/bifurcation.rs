@@ -50,14 +50,14 @@ impl DeterminantWatch {
         self.sign = self.sign.map(|s| -s);
     }
 
-    /// The branch from `x_start` along `ser` has ended with sign `end_sign`: flag its first
+    /// The branch from `x_start` along `series` has ended with sign `end_sign`: flag its first
     /// point past a sign change, if there is one; the end sign becomes the next start's.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn branch_ended(
         &mut self,
         sys: &System,
         end_sign: Option<f64>,
-        ser: &Series,
+        series: &Series,
         x_start: &[f64],
         np: usize,
         points: &mut [Point],
@@ -69,7 +69,7 @@ impl DeterminantWatch {
                     Some(p) => p,
                     None => self.probe.insert(make_probe()?),
                 };
-                let row = first_row_past_sign_change(sys, probe.as_mut(), ser, x_start, np, s1);
+                let row = first_row_past_sign_change(sys, probe.as_mut(), series, x_start, np, s1);
                 if let Some(p) = points.get_mut(row - 1) {
                     p.bifurcation = true;
                 }
@@ -86,15 +86,15 @@ impl DeterminantWatch {
 fn first_row_past_sign_change(
     sys: &System,
     probe: &mut dyn TangentSolver,
-    ser: &Series,
+    series: &Series,
     x_start: &[f64],
     np: usize,
     end_sign: f64,
 ) -> usize {
     for i in 1..np {
-        let a = ser.a_max * i as f64 / np as f64;
-        let x = ser.eval(x_start, a);
-        let t = ser.unit_tangent(a);
+        let a = series.a_max * i as f64 / np as f64;
+        let x = series.eval(x_start, a);
+        let t = series.unit_tangent(a);
         let sign = probe.factor(sys, &x, &t).and_then(|_| probe.det_sign(sys));
         if sign.ok() == Some(end_sign) {
             return i;

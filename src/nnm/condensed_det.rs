@@ -34,10 +34,10 @@ const COLUMNS_PER_SOLVE: usize = 256;
 /// The rows R of J (velocity equations, phase condition, border) whose columns of J⁻¹ are
 /// computed, and the unknowns C (displacements, ω, γ) read from them.
 fn minor_indices(sys: &System) -> (Vec<usize>, Vec<usize>) {
-    let l = sys.lay;
-    let block = l.n * l.n_coef_lin;
-    let rows = (l.v(0)..l.v(0) + block).chain([l.n_eq() - 1, l.n_eq()]);
-    let cols = (l.u(0)..l.u(0) + block).chain([l.omega(), l.gamma()]);
+    let lay = sys.lay;
+    let block = lay.n * lay.n_coef_lin;
+    let rows = (lay.v(0)..lay.v(0) + block).chain([lay.n_eq() - 1, lay.n_eq()]);
+    let cols = (lay.u(0)..lay.u(0) + block).chain([lay.omega(), lay.gamma()]);
     (rows.collect(), cols.collect())
 }
 

@@ -570,7 +570,7 @@ impl ContactBlock {
         for col in 0..self.m {
             let (c, j) = (col / nl, col % nl);
             self.pw.coupling_column(c, j, &mut self.b);
-            let st = self
+            let krylov = self
                 .gmres
                 .solve(
                     &mut self.pw,
@@ -579,7 +579,7 @@ impl ContactBlock {
                     KRYLOV_RTOL,
                 )
                 .map_err(|f| self.krylov_error(f))?;
-            self.counters.krylov_iterations += st.iterations;
+            self.counters.krylov_iterations += krylov.iterations;
         }
         Ok(())
     }
@@ -596,7 +596,7 @@ impl ContactBlock {
                 .gmres
                 .solve(&mut self.pw, &self.b, &mut self.xi[i], KRYLOV_RTOL)
             {
-                Ok(st) => self.counters.krylov_iterations += st.iterations,
+                Ok(krylov) => self.counters.krylov_iterations += krylov.iterations,
                 Err(f) if self.d > DENSE_MAX_DIM => return Err(self.krylov_error(f)),
                 Err(_) => return Ok(false),
             }
@@ -663,8 +663,8 @@ impl ContactBlock {
         let r = self.res.clone();
         let out = self.gmres.solve(&mut self.pw, &r, &mut delta, KRYLOV_RTOL);
         let ok = match out {
-            Ok(st) => {
-                self.counters.krylov_iterations += st.iterations;
+            Ok(krylov) => {
+                self.counters.krylov_iterations += krylov.iterations;
                 for (xi, dv) in x.iter_mut().zip(&delta) {
                     *xi += dv;
                 }
@@ -781,8 +781,8 @@ impl ContactBlock {
                     .gmres
                     .solve(&mut self.pw, &self.b, &mut self.x, KRYLOV_RTOL)
                 {
-                    Ok(st) => {
-                        self.counters.krylov_iterations += st.iterations;
+                    Ok(krylov) => {
+                        self.counters.krylov_iterations += krylov.iterations;
                         r.copy_from_slice(&self.x);
                         Ok(())
                     }

@@ -62,12 +62,12 @@ fn run(
     problem: &Problem,
     settings: &Settings,
     control: StepControl,
-    st: StartState,
+    start_state: StartState,
     on_branch: &mut dyn FnMut(&BranchReport, &[Point]) -> bool,
     out: &mut Vec<Point>,
 ) -> Result<()> {
-    let sys = System::new(problem, settings, st.scaling, st.ref_dof)?;
-    if st.x.len() != sys.lay.n_unk {
+    let sys = System::new(problem, settings, start_state.scaling, start_state.ref_dof)?;
+    if start_state.x.len() != sys.lay.n_unk {
         return Err(Error::internal("start state does not match the problem"));
     }
     let params = AnmParams {
@@ -76,26 +76,26 @@ fn run(
         bif_terms: settings.bif_terms,
         bif_tol: settings.bif_tol,
     };
-    let kind = st.solver;
+    let kind = start_state.solver;
     let mut solver = make_solver(&sys, settings, kind)?;
     // The contact law checked in time at every branch end, when asked for (StepControl).
     let law_check = match control.law_defect_max {
         Some(_) if !problem.shocks.is_empty() => Some(PostProcessor::new(problem, settings)?),
         _ => None,
     };
-    let mut x0 = st.x;
-    let border = st.border;
+    let mut x0 = start_state.x;
+    let border = start_state.border;
     solver
         .factor(&sys, &x0, &border)
         .map_err(|e| in_branch(e, 1))?;
     let mut det = DeterminantWatch::new(settings.det_test, &sys, solver.as_mut());
     // DIR_EVOLUTION (module doc): −1 forward, +1 backward.
-    let travel = st.travel.map(|t: Vec<f64>| to_scaled(&sys, &t));
+    let travel = start_state.travel.map(|t: Vec<f64>| to_scaled(&sys, &t));
     let mut orientation = Orientation::new(settings.direction < 0, travel);
     // (energy, frequency) of every branch end, for the no-progress guard.
     let mut ends: Vec<(f64, f64)> = Vec::new();
     for b in 1..=settings.n_branches {
-        let mut ser = series_step(
+        let mut series = series_step(
             &sys,
             solver.as_mut(),
             &x0,
@@ -105,7 +105,7 @@ fn run(
             &orientation,
         )
         .map_err(|e| in_branch(e, b))?;
-        if b == 1 && anm::dot(&ser.terms[0], &border) < 0.0 {
+        if b == 1 && anm::dot(&series.terms[0], &border) < 0.0 {
             // The start was factorised with the motion as border, the branch leaves against
             // it: det [R_X; bᵀ] = (b·t)·det [R_X; tᵀ], so the start's sign flips with it (or
             // a backward start would be flagged as a bifurcation).
@@ -123,7 +123,7 @@ fn run(
             settings,
             &control,
             law_check.as_ref(),
-            &mut ser,
+            &mut series,
             &x0,
             b,
         )?;
@@ -151,7 +151,7 @@ fn run(
         det.branch_ended(
             &sys,
             end_sign,
-            &ser,
+            &series,
             &x_start,
             settings.n_points_per_branch,
             &mut points,
@@ -160,7 +160,7 @@ fn run(
         let report = branch_report(
             b,
             &points,
-            ser.a_max,
+            series.a_max,
             newton_iterations,
             step_retries,
             at_floor,
@@ -172,7 +172,7 @@ fn run(
         }
         if let Some((e, f)) = stall {
             return Err(in_branch(
-                stalled(control.stall_branches, e, f, ser.a_max),
+                stalled(control.stall_branches, e, f, series.a_max),
                 b,
             ));
         }

@@ -70,27 +70,27 @@ pub(super) fn branch_points_of(
     sys: &System,
     solver: &mut dyn TangentSolver,
     settings: &Settings,
-    ser: &anm::Series,
+    series: &anm::Series,
     x0: &[f64],
     b: usize,
 ) -> Result<std::result::Result<BranchPoints, Error>> {
     let np = settings.n_points_per_branch;
     let mut branch_points = Vec::with_capacity(np);
     let mut newton_iterations = 0;
-    let tangent = ser.unit_tangent(ser.a_max);
+    let tangent = series.unit_tangent(series.a_max);
     if !finite(&tangent) {
         return Err(in_branch(
             Error::numerical("the branch tangent is not finite"),
             b,
         ));
     }
-    let series_bif = ser
+    let series_bif = series
         .bifurcation
-        .map(|ab| (((ab / ser.a_max) * np as f64).round() as usize).clamp(1, np));
+        .map(|ab| (((ab / series.a_max) * np as f64).round() as usize).clamp(1, np));
     let mut x_end = Vec::new();
     for i in 1..=np {
-        let a = ser.a_max * i as f64 / np as f64;
-        let mut x = ser.eval(x0, a);
+        let a = series.a_max * i as f64 / np as f64;
+        let mut x = series.eval(x0, a);
         if !finite(&x) {
             return Err(in_branch(
                 Error::numerical(format!("the series diverged at a = {a:.3e} (point {i})")),
@@ -153,7 +153,7 @@ pub(super) struct CorrectedBranch {
     pub step_retries: usize,
 }
 
-/// The points of branch `b` from `ser` at `x0`. A failed correction, or a corrected end off
+/// The points of branch `b` from `series` at `x0`. A failed correction, or a corrected end off
 /// its contact law ([`off_the_law`]), is retried from the same series with a_max halved (the
 /// series is more accurate closer to its origin), at most `control.retries_max` times; then
 /// the last failure stops the run, naming the retries.
@@ -164,13 +164,13 @@ pub(super) fn correct_branch(
     settings: &Settings,
     control: &StepControl,
     law_check: Option<&PostProcessor>,
-    ser: &mut anm::Series,
+    series: &mut anm::Series,
     x0: &[f64],
     b: usize,
 ) -> Result<CorrectedBranch> {
     let mut step_retries = 0;
     let (mut points, x_end, newton_iterations, tangent) = loop {
-        let attempt = branch_points_of(sys, solver, settings, ser, x0, b)?.and_then(|done| {
+        let attempt = branch_points_of(sys, solver, settings, series, x0, b)?.and_then(|done| {
             match done.0.last() {
                 Some(end) => off_the_law(control, law_check, end)?,
                 None => None,
@@ -181,13 +181,13 @@ pub(super) fn correct_branch(
             Ok(done) => break done,
             Err(_) if step_retries < control.retries_max => {
                 step_retries += 1;
-                ser.a_max *= 0.5;
+                series.a_max *= 0.5;
             }
             Err(e) if step_retries > 0 => {
                 let e = Error {
                     message: format!(
                         "{} (also with the series step halved {step_retries} times, a_max = {:.3e})",
-                        e.message, ser.a_max
+                        e.message, series.a_max
                     ),
                     ..e
                 };

@@ -17,18 +17,18 @@ use std::f64::consts::FRAC_PI_2;
 /// Time-averaged ½uᵀKu + ½vᵀMv (Parseval), quadratic in x: the size of the motion that
 /// orients a start from linear modes (DIR_EVOLUTION).
 pub fn mean_quadratic_energy(sys: &System, x: &[f64]) -> f64 {
-    let l = sys.lay;
-    let nl = l.n_coef_lin;
+    let lay = sys.lay;
+    let nl = lay.n_coef_lin;
     let w = |j: usize| if j == 0 { 1.0 } else { 0.5 };
     let mut e = 0.0;
     for &(i, c, a) in &sys.k.entries {
         for j in 0..nl {
-            e += 0.5 * a * w(j) * x[l.u(i) + j] * x[l.u(c) + j];
+            e += 0.5 * a * w(j) * x[lay.u(i) + j] * x[lay.u(c) + j];
         }
     }
     for &(i, c, a) in &sys.m.entries {
         for j in 0..nl {
-            e += 0.5 * a * w(j) * x[l.v(i) + j] * x[l.v(c) + j];
+            e += 0.5 * a * w(j) * x[lay.v(i) + j] * x[lay.v(c) + j];
         }
     }
     e
@@ -40,12 +40,12 @@ fn quad_form(entries: &[(usize, usize, f64)], y: &[f64]) -> f64 {
 
 /// Displacements and velocities of every DOF at θ.
 fn state_at(sys: &System, x: &[f64], theta: f64) -> (Vec<f64>, Vec<f64>) {
-    let l = sys.lay;
-    let u = (0..l.n)
-        .map(|i| series::eval(&x[l.u(i)..l.u(i) + l.n_coef_lin], l.h_lin, theta))
+    let lay = sys.lay;
+    let u = (0..lay.n)
+        .map(|i| series::eval(&x[lay.u(i)..lay.u(i) + lay.n_coef_lin], lay.h_lin, theta))
         .collect();
-    let v = (0..l.n)
-        .map(|i| series::eval(&x[l.v(i)..l.v(i) + l.n_coef_lin], l.h_lin, theta))
+    let v = (0..lay.n)
+        .map(|i| series::eval(&x[lay.v(i)..lay.v(i) + lay.n_coef_lin], lay.h_lin, theta))
         .collect();
     (u, v)
 }
@@ -75,14 +75,18 @@ pub fn energy_ca(sys: &System, x: &[f64]) -> f64 {
 /// ENERGIE; on a truncated harmonic balance the energy at the one instant π/2 carries the
 /// truncation's ripple, which the mean averages out (docs/mode_non_line.md, "Outputs").
 pub fn energy_mean_ca(sys: &System, x: &[f64]) -> f64 {
-    let l = sys.lay;
+    let lay = sys.lay;
     let smp = sys.sampler();
     let ns = smp.n();
     let mut e = mean_quadratic_energy(sys, x);
     let mut u = vec![vec![0.0; ns]; 2];
     for sh in &sys.shocks {
         for (c, &d) in sh.dofs.iter().enumerate().take(2) {
-            smp.synth(&x[l.u(d)..l.u(d) + l.n_coef_lin], l.h_lin, &mut u[c]);
+            smp.synth(
+                &x[lay.u(d)..lay.u(d) + lay.n_coef_lin],
+                lay.h_lin,
+                &mut u[c],
+            );
         }
         let pen = |d: f64| if d > 0.0 { 0.5 * sh.alpha * d * d } else { 0.0 };
         let total: f64 = (0..ns)
@@ -104,8 +108,14 @@ pub fn energy_mean_ca(sys: &System, x: &[f64]) -> f64 {
 /// added to those of the contact work and sampled by one FFT (not n values per sample:
 /// O(N·nnz) was 0.7 s per point at 10⁴ DOFs).
 pub fn energy_samples(sys: &System, x: &[f64]) -> Vec<f64> {
-    let l = sys.lay;
-    let (n, hl, hn, nl, nn) = (l.n, l.h_lin, l.h_nonl, l.n_coef_lin, l.n_coef_nonl);
+    let lay = sys.lay;
+    let (n, hl, hn, nl, nn) = (
+        lay.n,
+        lay.h_lin,
+        lay.h_nonl,
+        lay.n_coef_lin,
+        lay.n_coef_nonl,
+    );
     let hw = hn + hl;
     let smp = Sampler::new(series::fft_size(2 * hw));
     let ns = smp.n();
@@ -116,7 +126,7 @@ pub fn energy_samples(sys: &System, x: &[f64]) -> Vec<f64> {
     for sh in &sys.shocks {
         for &(c, v) in &sh.eqs.forces {
             let d = sh.dofs[c];
-            series::deriv(&x[l.u(d)..l.u(d) + nl], hl, &mut du);
+            series::deriv(&x[lay.u(d)..lay.u(d) + nl], hl, &mut du);
             let f = &x[sh.offset + v * nn..sh.offset + (v + 1) * nn];
             series::mul_acc(f, hn, &du, hl, hw, 1.0, &mut p);
         }
@@ -128,8 +138,8 @@ pub fn energy_samples(sys: &System, x: &[f64]) -> Vec<f64> {
         w[series::is(hw, k)] = p[series::ic(k)] / kf;
     }
     // ½uᵀKu + ½vᵀMv as a series of degree 2H_l ≤ H_l + H_nl, added to W.
-    let u = &x[l.u(0)..l.u(0) + n * nl];
-    let v = &x[l.v(0)..l.v(0) + n * nl];
+    let u = &x[lay.u(0)..lay.u(0) + n * nl];
+    let v = &x[lay.v(0)..lay.v(0) + n * nl];
     let mut ku = vec![0.0; n * nl];
     let mut mv = vec![0.0; n * nl];
     sys.k.mul_blocks(u, nl, &mut ku);
@@ -160,19 +170,19 @@ pub fn energy_spread(sys: &System, x: &[f64], reference: f64) -> f64 {
 
 /// Dominant harmonic (≥ 1) of the DOF with the largest spectrum.
 pub fn harm_max(sys: &System, x: &[f64]) -> usize {
-    let l = sys.lay;
+    let lay = sys.lay;
     let amp = |i: usize, k: usize| {
-        let u = &x[l.u(i)..l.u(i) + l.n_coef_lin];
-        u[series::ic(k)].hypot(u[series::is(l.h_lin, k)])
+        let u = &x[lay.u(i)..lay.u(i) + lay.n_coef_lin];
+        u[series::ic(k)].hypot(u[series::is(lay.h_lin, k)])
     };
-    let best_dof = (0..l.n)
+    let best_dof = (0..lay.n)
         .max_by(|&a, &b| {
-            let sa: f64 = (1..=l.h_lin).map(|k| amp(a, k).powi(2)).sum();
-            let sb: f64 = (1..=l.h_lin).map(|k| amp(b, k).powi(2)).sum();
+            let sa: f64 = (1..=lay.h_lin).map(|k| amp(a, k).powi(2)).sum();
+            let sb: f64 = (1..=lay.h_lin).map(|k| amp(b, k).powi(2)).sum();
             sa.total_cmp(&sb)
         })
         .unwrap_or(0);
-    (1..=l.h_lin)
+    (1..=lay.h_lin)
         .max_by(|&a, &b| amp(best_dof, a).total_cmp(&amp(best_dof, b)))
         .unwrap_or(1)
 }

@@ -69,23 +69,23 @@ pub fn solves_per_factorisation(order: usize) -> usize {
 impl StructuredSolver {
     /// `force`: impose the contact route of every shock (tests, bench).
     pub fn new(sys: &System, solves: usize, force: Option<Method>) -> Result<StructuredSolver> {
-        let l = sys.lay;
-        let nnl = l.n * l.n_coef_lin;
+        let lay = sys.lay;
+        let nnl = lay.n * lay.n_coef_lin;
         let contacts = sys
             .shocks
             .iter()
             .enumerate()
-            .map(|(i, sh)| ContactBlock::new(sh, i, &l, solves, force))
+            .map(|(i, sh)| ContactBlock::new(sh, i, &lay, solves, force))
             .collect::<Result<Vec<_>>>()?;
         let schur = sys
             .shocks
             .iter()
-            .map(|sh| vec![0.0; (sh.dofs.len() * l.n_coef_lin).pow(2)])
+            .map(|sh| vec![0.0; (sh.dofs.len() * lay.n_coef_lin).pow(2)])
             .collect();
         let q = sys
             .shocks
             .iter()
-            .map(|sh| vec![0.0; sh.eqs.n_own * l.n_coef_nonl])
+            .map(|sh| vec![0.0; sh.eqs.n_own * lay.n_coef_nonl])
             .collect();
         Ok(StructuredSolver {
             reduced: ReducedSystem::new(sys)?,
@@ -97,8 +97,8 @@ impl StructuredSolver {
             du0: vec![0.0; nnl],
             col_omega: vec![0.0; nnl],
             col_gamma: vec![0.0; nnl],
-            t: vec![0.0; l.n_unk],
-            y: vec![0.0; l.n_unk],
+            t: vec![0.0; lay.n_unk],
+            y: vec![0.0; lay.n_unk],
             ty: 0.0,
             red: vec![0.0; nnl + 2],
             tmp: vec![0.0; nnl],
@@ -109,8 +109,8 @@ impl StructuredSolver {
 
     /// Reduced border candidates: U entries and Ω, by decreasing |t|.
     fn border_candidates(&self, sys: &System) -> Vec<usize> {
-        let l = sys.lay;
-        let nnl = l.n * l.n_coef_lin;
+        let lay = sys.lay;
+        let nnl = lay.n * lay.n_coef_lin;
         let mut best: Vec<(f64, usize)> = Vec::with_capacity(4);
         let mut consider = |mag: f64, j: usize| {
             if mag > 0.0 && mag.is_finite() {
@@ -122,15 +122,15 @@ impl StructuredSolver {
         for (j, v) in self.t[..nnl].iter().enumerate() {
             consider(v.abs(), j);
         }
-        consider(self.t[l.omega()].abs(), nnl);
+        consider(self.t[lay.omega()].abs(), nnl);
         best.into_iter().map(|(_, j)| j).collect()
     }
 
     /// Full vector from a reduced solution `red` and the right-hand side `r` (None: zero),
     /// into `z` (length n_unk). Needs `q` (A_ff⁻¹ r_f) when `r` is given.
     fn expand(&mut self, sys: &System, r: Option<&[f64]>, z: &mut [f64]) {
-        let l = sys.lay;
-        let (n, nl, hl, nn) = (l.n, l.n_coef_lin, l.h_lin, l.n_coef_nonl);
+        let lay = sys.lay;
+        let (n, nl, hl, nn) = (lay.n, lay.n_coef_lin, lay.h_lin, lay.n_coef_nonl);
         let nnl = n * nl;
         let d_omega = self.red[nnl];
         // δV = Ω D δU + D U0 δΩ − r_U.
@@ -140,9 +140,9 @@ impl StructuredSolver {
             for j in 0..nl {
                 let mut v = self.omega * self.tmp[j] + self.du0[i * nl + j] * d_omega;
                 if let Some(r) = r {
-                    v -= r[l.u(i) + j];
+                    v -= r[lay.u(i) + j];
                 }
-                z[l.v(i) + j] = v;
+                z[lay.v(i) + j] = v;
             }
         }
         // δF = A_ff⁻¹ r_f − W δu_s.
@@ -168,8 +168,8 @@ impl StructuredSolver {
             }
         }
         z[..nnl].copy_from_slice(&self.red[..nnl]);
-        z[l.omega()] = d_omega;
-        z[l.gamma()] = self.red[nnl + 1];
+        z[lay.omega()] = d_omega;
+        z[lay.gamma()] = self.red[nnl + 1];
     }
 }
 
@@ -180,19 +180,19 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 impl TangentSolver for StructuredSolver {
     fn factor(&mut self, sys: &System, x0: &[f64], border: &[f64]) -> Result<()> {
         self.factored = false;
-        let l = sys.lay;
-        let (n, nl, hl, nn) = (l.n, l.n_coef_lin, l.h_lin, l.n_coef_nonl);
-        if x0.len() != l.n_unk || border.len() != l.n_unk {
+        let lay = sys.lay;
+        let (n, nl, hl, nn) = (lay.n, lay.n_coef_lin, lay.h_lin, lay.n_coef_nonl);
+        if x0.len() != lay.n_unk || border.len() != lay.n_unk {
             return Err(Error::internal("tangent point or border of the wrong size"));
         }
-        self.omega = x0[l.omega()];
-        self.gamma = x0[l.gamma()];
+        self.omega = x0[lay.omega()];
+        self.gamma = x0[lay.gamma()];
         // D U0; q = (ΩD + γ) D U0 + D V0; Ω column M q, γ column M V0.
         for i in 0..n {
             let r = i * nl..(i + 1) * nl;
-            series::deriv(&x0[l.u(i)..l.u(i) + nl], hl, &mut self.du0[r.clone()]);
+            series::deriv(&x0[lay.u(i)..lay.u(i) + nl], hl, &mut self.du0[r.clone()]);
             series::deriv(&self.du0[r.clone()], hl, &mut self.tmp[r.clone()]);
-            series::deriv(&x0[l.v(i)..l.v(i) + nl], hl, &mut self.tmp2[r.clone()]);
+            series::deriv(&x0[lay.v(i)..lay.v(i) + nl], hl, &mut self.tmp2[r.clone()]);
             for j in r {
                 self.tmp[j] = self.omega * self.tmp[j] + self.gamma * self.du0[j] + self.tmp2[j];
             }
@@ -201,10 +201,10 @@ impl TangentSolver for StructuredSolver {
         sys.m.mul_blocks(&self.tmp, nl, &mut self.col_omega);
         self.col_gamma.fill(0.0);
         sys.m
-            .mul_blocks(&x0[l.v(0)..l.v(0) + n * nl], nl, &mut self.col_gamma);
+            .mul_blocks(&x0[lay.v(0)..lay.v(0) + n * nl], nl, &mut self.col_gamma);
         // Contact blocks and their Schur complements C W.
         for (s, sh) in sys.shocks.iter().enumerate() {
-            self.contacts[s].factor(sh, &l, x0)?;
+            self.contacts[s].factor(sh, &lay, x0)?;
             let d = sh.eqs.n_own * nn;
             let m = sh.dofs.len() * nl;
             let w = self.contacts[s].w();
@@ -214,7 +214,7 @@ impl TangentSolver for StructuredSolver {
                 let wc = &w[col * d..(col + 1) * d];
                 for &(c, v) in &sh.eqs.forces {
                     for j in 0..nl {
-                        if let Some(p) = series::map_index(j, hl, l.h_nonl) {
+                        if let Some(p) = series::map_index(j, hl, lay.h_nonl) {
                             g[col * m + c * nl + j] += wc[v * nn + p];
                         }
                     }
@@ -261,15 +261,15 @@ impl TangentSolver for StructuredSolver {
     }
 
     fn solve(&mut self, sys: &System, rhs: &mut [f64]) -> Result<()> {
-        let l = sys.lay;
-        let (n, nl, hl, nn) = (l.n, l.n_coef_lin, l.h_lin, l.n_coef_nonl);
+        let lay = sys.lay;
+        let (n, nl, hl, nn) = (lay.n, lay.n_coef_lin, lay.h_lin, lay.n_coef_nonl);
         let nnl = n * nl;
-        if !self.factored || rhs.len() != l.n_unk {
+        if !self.factored || rhs.len() != lay.n_unk {
             return Err(Error::internal(
                 "solve without a factorisation or of the wrong size",
             ));
         }
-        let rho = rhs[l.n_eq()];
+        let rho = rhs[lay.n_eq()];
         for (s, sh) in sys.shocks.iter().enumerate() {
             let d = sh.eqs.n_own * nn;
             self.q[s].copy_from_slice(&rhs[sh.offset..sh.offset + d]);
@@ -278,24 +278,24 @@ impl TangentSolver for StructuredSolver {
         // Velocity rows: r_V + M (ΩD + γ) r_U − Pᵀ C A_ff⁻¹ r_f.
         for i in 0..n {
             let r = i * nl..(i + 1) * nl;
-            series::deriv(&rhs[l.u(i)..l.u(i) + nl], hl, &mut self.tmp[r.clone()]);
+            series::deriv(&rhs[lay.u(i)..lay.u(i) + nl], hl, &mut self.tmp[r.clone()]);
             for j in r {
-                self.tmp[j] = self.omega * self.tmp[j] + self.gamma * rhs[l.u(0) + j];
+                self.tmp[j] = self.omega * self.tmp[j] + self.gamma * rhs[lay.u(0) + j];
             }
         }
-        self.red[..nnl].copy_from_slice(&rhs[l.v(0)..l.v(0) + nnl]);
+        self.red[..nnl].copy_from_slice(&rhs[lay.v(0)..lay.v(0) + nnl]);
         sys.m.mul_blocks(&self.tmp, nl, &mut self.red[..nnl]);
         for (s, sh) in sys.shocks.iter().enumerate() {
             for &(c, v) in &sh.eqs.forces {
                 let dof = sh.dofs[c];
                 for j in 0..nl {
-                    if let Some(p) = series::map_index(j, hl, l.h_nonl) {
+                    if let Some(p) = series::map_index(j, hl, lay.h_nonl) {
                         self.red[dof * nl + j] -= self.q[s][v * nn + p];
                     }
                 }
             }
         }
-        self.red[nnl] = rhs[l.omega()];
+        self.red[nnl] = rhs[lay.omega()];
         self.red[nnl + 1] = 0.0;
         self.reduced.solve(&mut self.red)?;
         let mut r_u = std::mem::take(&mut self.tmp2);

@@ -28,9 +28,9 @@ pub fn time_history(
 ) -> Result<TimeHistory> {
     let sys = system_for_point(problem, settings, x)?;
     let xs = to_scaled(&sys, x);
-    let l = sys.lay;
-    let sc = sys.sc;
-    let omega = xs[l.omega()] * sc.omega;
+    let lay = sys.lay;
+    let scaling = sys.scaling;
+    let omega = xs[lay.omega()] * scaling.omega;
     if !(omega.is_finite() && omega > 0.0) || n_inst < 2 {
         return Err(
             Error::input("a time history needs ω > 0 and at least 2 instants").keyword("NB_INST"),
@@ -44,15 +44,21 @@ pub fn time_history(
             .map(|&t| f * series::eval(s, h, t))
             .collect::<Vec<f64>>()
     };
-    let displacement = (0..l.n)
-        .map(|i| samp(&xs[l.u(i)..l.u(i) + l.n_coef_lin], l.h_lin, sc.length))
-        .collect();
-    let velocity = (0..l.n)
+    let displacement = (0..lay.n)
         .map(|i| {
             samp(
-                &xs[l.v(i)..l.v(i) + l.n_coef_lin],
-                l.h_lin,
-                sc.length * sc.omega,
+                &xs[lay.u(i)..lay.u(i) + lay.n_coef_lin],
+                lay.h_lin,
+                scaling.length,
+            )
+        })
+        .collect();
+    let velocity = (0..lay.n)
+        .map(|i| {
+            samp(
+                &xs[lay.v(i)..lay.v(i) + lay.n_coef_lin],
+                lay.h_lin,
+                scaling.length * scaling.omega,
             )
         })
         .collect();
@@ -65,9 +71,9 @@ pub fn time_history(
                 .iter()
                 .map(|&(_, v)| {
                     samp(
-                        &xs[sh.offset + v * l.n_coef_nonl..sh.offset + (v + 1) * l.n_coef_nonl],
-                        l.h_nonl,
-                        sc.stiffness * sc.length,
+                        &xs[sh.offset + v * lay.n_coef_nonl..sh.offset + (v + 1) * lay.n_coef_nonl],
+                        lay.h_nonl,
+                        scaling.stiffness * scaling.length,
                     )
                 })
                 .collect()

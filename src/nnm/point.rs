@@ -35,25 +35,25 @@ pub struct Point {
 
 /// Physical value of each unknown per scaled unit.
 pub(super) fn unit_factors(sys: &System) -> Vec<f64> {
-    let l = sys.lay;
-    let sc = sys.sc;
-    let force = sc.stiffness * sc.length;
-    let mut f = vec![sc.length; l.n * l.n_coef_lin];
+    let lay = sys.lay;
+    let scaling = sys.scaling;
+    let force = scaling.stiffness * scaling.length;
+    let mut f = vec![scaling.length; lay.n * lay.n_coef_lin];
     f.extend(std::iter::repeat_n(
-        sc.length * sc.omega,
-        l.n * l.n_coef_lin,
+        scaling.length * scaling.omega,
+        lay.n * lay.n_coef_lin,
     ));
     for sh in &sys.shocks {
         let per: &[f64] = match sh.law {
             ScaledLaw::Plan => &[force],
             ScaledLaw::BiPlan => &[force, 1.0],
-            ScaledLaw::Cercle { .. } => &[force, force, sc.stiffness, 1.0],
+            ScaledLaw::Cercle { .. } => &[force, force, scaling.stiffness, 1.0],
         };
         for &u in per {
-            f.extend(std::iter::repeat_n(u, l.n_coef_nonl));
+            f.extend(std::iter::repeat_n(u, lay.n_coef_nonl));
         }
     }
-    f.extend([sc.omega, sc.omega]);
+    f.extend([scaling.omega, scaling.omega]);
     f
 }
 
@@ -68,11 +68,11 @@ pub(super) fn make_point(
     branch: usize,
     bifurcation: bool,
 ) -> Point {
-    let l = sys.lay;
-    let sc = sys.sc;
-    let e_scale = sc.stiffness * sc.length * sc.length;
+    let lay = sys.lay;
+    let scaling = sys.scaling;
+    let e_scale = scaling.stiffness * scaling.length * scaling.length;
     let energy = energy::energy_ca(sys, x);
-    let omega = x[l.omega()] * sc.omega;
+    let omega = x[lay.omega()] * scaling.omega;
     let xp: Vec<f64> = x
         .iter()
         .zip(unit_factors(sys))
@@ -84,7 +84,7 @@ pub(super) fn make_point(
         energy: energy * e_scale,
         x: xp,
         residual,
-        gamma: x[l.gamma()] * sc.omega,
+        gamma: x[lay.gamma()] * scaling.omega,
         energy_spread: energy::energy_spread(sys, x, energy),
         energy_mean: energy::energy_mean_ca(sys, x) * e_scale,
         bifurcation,

@@ -26,11 +26,11 @@ pub(crate) fn eta_phys(problem: &Problem) -> Result<Vec<f64>> {
         return Ok(Vec::new());
     }
     // With shocks the amplitude and fallback DOF arguments are not used by the scaling.
-    let sc = Scaling::new(problem, 1.0, 0)?;
+    let scaling = Scaling::new(problem, 1.0, 0)?;
     Ok(problem
         .shocks
         .iter()
-        .map(|s| s.regul * sc.stiffness * s.gap * s.gap)
+        .map(|s| s.regul * scaling.stiffness * s.gap * s.gap)
         .collect())
 }
 

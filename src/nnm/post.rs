@@ -59,9 +59,9 @@ impl Unknowns {
     /// Fourier coefficients of the velocity of each DOF.
     pub fn velocity(&self, x: &[f64]) -> Result<Vec<Vec<f64>>> {
         self.check(x)?;
-        let l = &self.lay;
-        Ok((0..l.n)
-            .map(|i| x[l.v(i)..l.v(i) + l.n_coef_lin].to_vec())
+        let lay = &self.lay;
+        Ok((0..lay.n)
+            .map(|i| x[lay.v(i)..lay.v(i) + lay.n_coef_lin].to_vec())
             .collect())
     }
 
@@ -72,9 +72,9 @@ impl Unknowns {
     }
 
     fn displacement_unchecked(&self, x: &[f64]) -> Vec<Vec<f64>> {
-        let l = &self.lay;
-        (0..l.n)
-            .map(|i| x[l.u(i)..l.u(i) + l.n_coef_lin].to_vec())
+        let lay = &self.lay;
+        (0..lay.n)
+            .map(|i| x[lay.u(i)..lay.u(i) + lay.n_coef_lin].to_vec())
             .collect()
     }
 
@@ -213,9 +213,17 @@ mod tests {
         let s = settings(3, 7, 1, 1);
         for p in problems() {
             let sys = System::new(&p, &s, Scaling::new(&p, 1.0, 0).unwrap(), 0).unwrap();
-            let (lay, offsets) = Layout::of(&p, &s);
-            let l = sys.lay;
+            let (of_problem, offsets) = Layout::of(&p, &s);
+            let lay = sys.lay;
             assert_eq!(
+                (
+                    of_problem.n,
+                    of_problem.h_lin,
+                    of_problem.h_nonl,
+                    of_problem.n_coef_lin,
+                    of_problem.n_coef_nonl,
+                    of_problem.n_unk
+                ),
                 (
                     lay.n,
                     lay.h_lin,
@@ -223,8 +231,7 @@ mod tests {
                     lay.n_coef_lin,
                     lay.n_coef_nonl,
                     lay.n_unk
-                ),
-                (l.n, l.h_lin, l.h_nonl, l.n_coef_lin, l.n_coef_nonl, l.n_unk)
+                )
             );
             let engine: Vec<(usize, usize)> = sys
                 .shocks
@@ -240,22 +247,22 @@ mod tests {
 
             // Every series is read from where the engine puts it: number each unknown by
             // its position and check the first coefficient of each series.
-            let x: Vec<f64> = (0..l.n_unk).map(|i| i as f64).collect();
+            let x: Vec<f64> = (0..lay.n_unk).map(|i| i as f64).collect();
             let unk = Unknowns::new(&p, &s).unwrap();
             let u = unk.displacement(&x).unwrap();
             let v = unk.velocity(&x).unwrap();
-            for i in 0..l.n {
-                assert_eq!(u[i][0], l.u(i) as f64);
-                assert_eq!(v[i][0], l.v(i) as f64);
-                assert_eq!((u[i].len(), v[i].len()), (l.n_coef_lin, l.n_coef_lin));
+            for i in 0..lay.n {
+                assert_eq!(u[i][0], lay.u(i) as f64);
+                assert_eq!(v[i][0], lay.v(i) as f64);
+                assert_eq!((u[i].len(), v[i].len()), (lay.n_coef_lin, lay.n_coef_lin));
             }
             let c = unk.contact(&x).unwrap();
             assert_eq!(c.len(), sys.shocks.len());
             for (sh, series) in sys.shocks.iter().zip(&c) {
                 assert_eq!(series.len(), sh.eqs.n_own);
                 for (k, f) in series.iter().enumerate() {
-                    assert_eq!(f[0], (sh.offset + k * l.n_coef_nonl) as f64);
-                    assert_eq!(f.len(), l.n_coef_nonl);
+                    assert_eq!(f[0], (sh.offset + k * lay.n_coef_nonl) as f64);
+                    assert_eq!(f.len(), lay.n_coef_nonl);
                 }
             }
         }

@@ -111,28 +111,28 @@ pub fn start_from_mode_pair(
     let cos_terms: Vec<f64> = mode.iter().zip(&s).map(|(c, s)| c * ct + s * st).collect();
     let sin_terms: Vec<f64> = mode.iter().zip(&s).map(|(c, s)| s * ct - c * st).collect();
 
-    let sc = Scaling::new(problem, coef_ampl, p)?;
-    let sys = System::new(problem, settings, sc, r)?;
-    let l = sys.lay;
+    let scaling = Scaling::new(problem, coef_ampl, p)?;
+    let sys = System::new(problem, settings, scaling, r)?;
+    let lay = sys.lay;
     let phys_per_coef = if problem.shocks.is_empty() {
         1.0
     } else {
-        sc.length
+        scaling.length
     };
-    let om = omega_lin / sc.omega;
-    let mut x = vec![0.0; l.n_unk];
+    let om = omega_lin / scaling.omega;
+    let mut x = vec![0.0; lay.n_unk];
     for i in 0..n {
         let (uc, us) = (
-            coef_ampl * cos_terms[i] * phys_per_coef / sc.length,
-            coef_ampl * sin_terms[i] * phys_per_coef / sc.length,
+            coef_ampl * cos_terms[i] * phys_per_coef / scaling.length,
+            coef_ampl * sin_terms[i] * phys_per_coef / scaling.length,
         );
         // u = uc cos ωt + us sin ωt, so v = ω us cos ωt − ω uc sin ωt.
-        x[l.u(i) + series::ic(1)] = uc;
-        x[l.u(i) + series::is(l.h_lin, 1)] = us;
-        x[l.v(i) + series::ic(1)] = om * us;
-        x[l.v(i) + series::is(l.h_lin, 1)] = -om * uc;
+        x[lay.u(i) + series::ic(1)] = uc;
+        x[lay.u(i) + series::is(lay.h_lin, 1)] = us;
+        x[lay.v(i) + series::ic(1)] = om * us;
+        x[lay.v(i) + series::is(lay.h_lin, 1)] = -om * uc;
     }
-    x[l.omega()] = om;
+    x[lay.omega()] = om;
     init_contact(&sys, &mut x)?;
     start(
         sys,

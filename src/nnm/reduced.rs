@@ -126,8 +126,8 @@ fn lu_error(e: LuError, nr: usize, nnz: usize) -> Error {
 
 impl ReducedSystem {
     pub fn new(sys: &System) -> Result<ReducedSystem> {
-        let l = sys.lay;
-        let (n, nl) = (l.n, l.n_coef_lin);
+        let lay = sys.lay;
+        let (n, nl) = (lay.n, lay.n_coef_lin);
         let nr = n * nl + 2;
         let mut union: BTreeMap<(usize, usize), Pair> = BTreeMap::new();
         for &(row, col, a) in &sys.k.entries {
@@ -162,7 +162,7 @@ impl ReducedSystem {
         let mut rs = ReducedSystem {
             n,
             n_coef_lin: nl,
-            h_lin: l.h_lin,
+            h_lin: lay.h_lin,
             nr,
             pairs,
             mass_rows,
@@ -204,7 +204,7 @@ impl ReducedSystem {
     /// Every entry of the matrix but the border, in a fixed order; `lin` None: pattern only.
     fn visit(&self, lin: Option<&Linearisation>, f: &mut dyn FnMut(usize, usize, f64)) {
         let (nl, hl) = (self.n_coef_lin, self.h_lin);
-        let (om, ga) = lin.map_or((0.0, 0.0), |l| (l.omega, l.gamma));
+        let (om, ga) = lin.map_or((0.0, 0.0), |lay| (lay.omega, lay.gamma));
         let u = |i: usize| i * nl;
         for p in &self.pairs {
             let (r, c) = (u(p.row), u(p.col));
@@ -225,8 +225,8 @@ impl ReducedSystem {
         for &i in &self.mass_rows {
             for j in 0..nl {
                 let row = u(i) + j;
-                f(row, co, lin.map_or(0.0, |l| l.col_omega[row]));
-                f(row, cg, lin.map_or(0.0, |l| l.col_gamma[row]));
+                f(row, co, lin.map_or(0.0, |lay| lay.col_omega[row]));
+                f(row, cg, lin.map_or(0.0, |lay| lay.col_gamma[row]));
             }
         }
         for (s, dofs) in self.shock_dofs.iter().enumerate() {
@@ -237,7 +237,7 @@ impl ReducedSystem {
                     for (cr, &dr) in dofs.iter().enumerate() {
                         for jr in 0..nl {
                             let row = cr * nl + jr;
-                            let v = lin.map_or(0.0, |l| -l.schur[s][col * m + row]);
+                            let v = lin.map_or(0.0, |lay| -lay.schur[s][col * m + row]);
                             f(u(dr) + jr, u(dc) + jc, v);
                         }
                     }

@@ -62,11 +62,11 @@ fn system_and_point(law: ShockLaw, h_nonl: usize) -> Result<(System, Vec<f64>)> 
         direction: 1,
     };
     let sys = System::new(&p, &s, Scaling::new(&p, 1.0, 0)?, 0)?;
-    let l = sys.lay;
-    let mut x = vec![0.0; l.n_unk];
-    x[l.u(0) + series::ic(1)] = 1.3;
-    x[l.u(1) + series::is(l.h_lin, 1)] = 0.4;
-    x[l.omega()] = 1.0;
+    let lay = sys.lay;
+    let mut x = vec![0.0; lay.n_unk];
+    x[lay.u(0) + series::ic(1)] = 1.3;
+    x[lay.u(1) + series::is(lay.h_lin, 1)] = 0.4;
+    x[lay.omega()] = 1.0;
     init_contact(&sys, &mut x)?;
     Ok((sys, x))
 }
@@ -85,18 +85,18 @@ pub fn contact_route_timings(h_values: &[usize], solves: usize) -> Result<Vec<Ro
     for (name, law) in laws {
         for &h in h_values {
             let (sys, x) = system_and_point(law, h)?;
-            let l = sys.lay;
+            let lay = sys.lay;
             let sh = &sys.shocks[0];
-            let rhs: Vec<f64> = (0..sh.eqs.n_own * l.n_coef_nonl)
+            let rhs: Vec<f64> = (0..sh.eqs.n_own * lay.n_coef_nonl)
                 .map(|i| ((i * 7919) % 101) as f64 / 101.0 - 0.5)
                 .collect();
             let time = |m: Method| -> Result<(f64, f64)> {
-                let mut block = ContactBlock::new(sh, 0, &l, solves, Some(m))?;
+                let mut block = ContactBlock::new(sh, 0, &lay, solves, Some(m))?;
                 let mut best = f64::INFINITY;
                 let repeats = if h >= 320 { 2 } else { 5 };
                 for _ in 0..repeats {
                     let t = Instant::now();
-                    block.factor(sh, &l, &x)?;
+                    block.factor(sh, &lay, &x)?;
                     let mut r = rhs.clone();
                     for _ in 0..solves {
                         r.copy_from_slice(&rhs);
@@ -120,9 +120,9 @@ pub fn contact_route_timings(h_values: &[usize], solves: usize) -> Result<Vec<Ro
                 krylov_iterations,
                 model_choice: contact::choose(
                     sh.eqs.n_own,
-                    l.n_coef_nonl,
+                    lay.n_coef_nonl,
                     ns,
-                    solves + sh.dofs.len() * l.n_coef_lin,
+                    solves + sh.dofs.len() * lay.n_coef_lin,
                 ),
             });
         }

@@ -72,7 +72,7 @@ pub(super) fn series_step(
     approximation: Approximation,
     orientation: &Orientation,
 ) -> Result<Series> {
-    let mut ser = anm::compute(sys, solver, x0, params, &|x1: &[f64]| {
+    let mut series = anm::compute(sys, solver, x0, params, &|x1: &[f64]| {
         orientation.sign(sys, x0, x1)
     })?;
     // Safeguard: the step-length estimate assumes the series converges at a_max; where it
@@ -80,17 +80,17 @@ pub(super) fn series_step(
     // without bound), the end residual says so: halve the step until it is credible.
     let credible = 1e3 * settings.prec_man.max(settings.prec_newton);
     for _ in 0..40 {
-        let xe = ser.eval(x0, ser.a_max);
+        let xe = series.eval(x0, series.a_max);
         let r = newton::relative(&sys.residual(&xe), &xe);
         if r.is_finite() && r <= credible.max(newton::roundoff_floor(sys, &xe)) {
             break;
         }
-        ser.a_max *= 0.5;
+        series.a_max *= 0.5;
     }
     if approximation == Approximation::Pade {
-        extend_by_pade(sys, x0, settings, &mut ser);
+        extend_by_pade(sys, x0, settings, &mut series);
     }
-    Ok(ser)
+    Ok(series)
 }
 
 /// Largest reduced step ā = a/a_series tried for the Padé approximant.
@@ -103,12 +103,12 @@ const PADE_POLE_MARGIN: f64 = 0.1;
 /// The step extended past the series' own a_max by its Padé approximant (pade.rs), as far as
 /// the approximant's residual stays within what the series gives at its a_max (or PREC_MAN,
 /// if larger) and before Q's first pole; the approximant then serves the whole branch.
-fn extend_by_pade(sys: &System, x0: &[f64], settings: &Settings, ser: &mut Series) {
-    let s = ser.a_max;
-    let Some(p) = Pade::new(&ser.terms, s) else {
+fn extend_by_pade(sys: &System, x0: &[f64], settings: &Settings, series: &mut Series) {
+    let s = series.a_max;
+    let Some(p) = Pade::new(&series.terms, s) else {
         return;
     };
-    let xs = ser.eval_series(x0, s);
+    let xs = series.eval_series(x0, s);
     let threshold = newton::relative(&sys.residual(&xs), &xs).max(settings.prec_man);
     let pole = p
         .first_pole_within(PADE_REACH_MAX, 1000, PADE_POLE_MARGIN)
@@ -125,7 +125,7 @@ fn extend_by_pade(sys: &System, x0: &[f64], settings: &Settings, ser: &mut Serie
         ab *= PADE_REACH_FACTOR;
     }
     if best > s {
-        ser.a_max = best;
-        ser.pade = Some(p);
+        series.a_max = best;
+        series.pade = Some(p);
     }
 }

@@ -76,17 +76,17 @@ fn problem() -> Problem {
 /// A point whose contact unknowns follow their laws (the physical roots, where the
 /// pointwise Jacobians are invertible), with motion in every harmonic.
 fn point(sys: &System, rng: &mut Lcg) -> Vec<f64> {
-    let l = sys.lay;
-    let mut x = vec![0.0; l.n_unk];
-    for i in 0..l.n {
-        for j in 0..l.n_coef_lin {
+    let lay = sys.lay;
+    let mut x = vec![0.0; lay.n_unk];
+    for i in 0..lay.n {
+        for j in 0..lay.n_coef_lin {
             let a = if j == series::ic(1) { 1.2 } else { 0.15 };
-            x[l.u(i) + j] = a * rng.next();
-            x[l.v(i) + j] = a * rng.next();
+            x[lay.u(i) + j] = a * rng.next();
+            x[lay.v(i) + j] = a * rng.next();
         }
     }
-    x[l.omega()] = 1.1;
-    x[l.gamma()] = 0.03;
+    x[lay.omega()] = 1.1;
+    x[lay.gamma()] = 0.03;
     init_contact(sys, &mut x).unwrap();
     x
 }

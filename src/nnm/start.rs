@@ -46,7 +46,7 @@ impl StartState {
 
 /// Samples of the contact unknowns consistent with the displacements of `x` (scaled).
 pub(super) fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
-    let l = sys.lay;
+    let lay = sys.lay;
     let smp = sys.sampler();
     let ns = smp.n();
     for sh in &sys.shocks {
@@ -55,14 +55,14 @@ pub(super) fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
             .iter()
             .map(|&d| {
                 let mut s = vec![0.0; ns];
-                smp.synth(&x[l.u(d)..l.u(d) + l.n_coef_lin], l.h_lin, &mut s);
+                smp.synth(&x[lay.u(d)..lay.u(d) + lay.n_coef_lin], lay.h_lin, &mut s);
                 s
             })
             .collect();
         let own = laws::own_from_u(sh.law, sh.gap, sh.alpha, sh.eta, &u)?;
         for (v, mut s) in own.into_iter().enumerate() {
-            let o = sh.offset + v * l.n_coef_nonl;
-            smp.analyse(&mut s, l.h_nonl, &mut x[o..o + l.n_coef_nonl]);
+            let o = sh.offset + v * lay.n_coef_nonl;
+            smp.analyse(&mut s, lay.h_nonl, &mut x[o..o + lay.n_coef_nonl]);
         }
     }
     Ok(())
@@ -71,9 +71,9 @@ pub(super) fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
 /// The border guess at a start point: its displacement and velocity part (the branch
 /// leaves a point mostly by scaling its motion).
 pub(super) fn motion_border(sys: &System, x: &[f64]) -> Vec<f64> {
-    let l = sys.lay;
-    let mut b = vec![0.0; l.n_unk];
-    b[..2 * l.n * l.n_coef_lin].copy_from_slice(&x[..2 * l.n * l.n_coef_lin]);
+    let lay = sys.lay;
+    let mut b = vec![0.0; lay.n_unk];
+    b[..2 * lay.n * lay.n_coef_lin].copy_from_slice(&x[..2 * lay.n * lay.n_coef_lin]);
     let n = anm::norm(&b);
     b.iter_mut().for_each(|v| *v /= n);
     b
@@ -149,7 +149,7 @@ pub(super) fn start(
         travel: None,
         border: motion_border(&sys, &x),
         x,
-        scaling: sys.sc,
+        scaling: sys.scaling,
         ref_dof: sys.ref_dof,
         point,
         newton_iterations: it,
@@ -320,22 +320,22 @@ pub fn start_from_mode_using(
     if mp == 0.0 {
         return Err(Error::input("the linear mode is zero").keyword("ETAT_INIT/NUME_ORDRE"));
     }
-    let sc = Scaling::new(problem, coef_ampl * mp, p)?;
-    let sys = System::new(problem, settings, sc, phase_dof(mode))?;
-    let l = sys.lay;
+    let scaling = Scaling::new(problem, coef_ampl * mp, p)?;
+    let sys = System::new(problem, settings, scaling, phase_dof(mode))?;
+    let lay = sys.lay;
     let phys_per_coef = if problem.shocks.is_empty() {
         1.0
     } else {
-        sc.length
+        scaling.length
     };
-    let om = omega_lin / sc.omega;
-    let mut x = vec![0.0; l.n_unk];
+    let om = omega_lin / scaling.omega;
+    let mut x = vec![0.0; lay.n_unk];
     for i in 0..n {
-        let u = coef_ampl * mode[i] * phys_per_coef / sc.length;
-        x[l.u(i) + series::ic(1)] = u;
-        x[l.v(i) + series::is(l.h_lin, 1)] = -om * u;
+        let u = coef_ampl * mode[i] * phys_per_coef / scaling.length;
+        x[lay.u(i) + series::ic(1)] = u;
+        x[lay.v(i) + series::is(lay.h_lin, 1)] = -om * u;
     }
-    x[l.omega()] = om;
+    x[lay.omega()] = om;
     init_contact(&sys, &mut x)?;
     start(sys, settings, x, kind, Guess::LinearModes)
 }
@@ -353,9 +353,9 @@ pub(super) fn system_for_point(
     let p = (0..n)
         .max_by(|&a, &b| amp(a).total_cmp(&amp(b)))
         .unwrap_or(0);
-    let sc = Scaling::new(problem, amp(p), p)?;
+    let scaling = Scaling::new(problem, amp(p), p)?;
     let amps: Vec<f64> = (0..n).map(amp).collect();
-    System::new(problem, settings, sc, phase_dof(&amps))
+    System::new(problem, settings, scaling, phase_dof(&amps))
 }
 
 /// Restart from a stored point (physical `Point::x`), Newton-corrected.

@@ -34,9 +34,9 @@ impl ScaledEntries {
 
     /// out (DOF-major blocks of `nl`) += A · x.
     pub fn mul_blocks(&self, x: &[f64], nl: usize, out: &mut [f64]) {
-        for &(i, l, a) in &self.entries {
+        for &(i, lay, a) in &self.entries {
             for j in 0..nl {
-                out[i * nl + j] += a * x[l * nl + j];
+                out[i * nl + j] += a * x[lay * nl + j];
             }
         }
     }
@@ -215,7 +215,7 @@ pub struct System {
     pub m: ScaledEntries,
     pub shocks: Vec<ShockSys>,
     pub ref_dof: usize,
-    pub sc: Scaling,
+    pub scaling: Scaling,
     sampler: Sampler,
 }
 
@@ -310,7 +310,7 @@ impl System {
     pub fn new(
         problem: &Problem,
         settings: &Settings,
-        sc: Scaling,
+        scaling: Scaling,
         ref_dof: usize,
     ) -> Result<System> {
         validate(problem, settings)?;
@@ -321,11 +321,11 @@ impl System {
                 ShockLaw::Plan => ScaledLaw::Plan,
                 ShockLaw::BiPlan => ScaledLaw::BiPlan,
                 ShockLaw::Cercle { origin } => ScaledLaw::Cercle {
-                    ex: origin[0] / sc.length,
-                    ey: origin[1] / sc.length,
+                    ex: origin[0] / scaling.length,
+                    ey: origin[1] / scaling.length,
                 },
             };
-            let (gs, alpha) = (s.gap / sc.length, s.stiffness / sc.stiffness);
+            let (gs, alpha) = (s.gap / scaling.length, s.stiffness / scaling.stiffness);
             let eqs = laws::equations(law, gs, alpha, s.regul);
             let mut vars: Vec<Var> = Vec::new();
             for v in eqs.quad.iter().flat_map(|t| [t.a, t.b]) {
@@ -347,11 +347,11 @@ impl System {
         let hn = lay.h_nonl;
         Ok(System {
             lay,
-            k: ScaledEntries::from_faer(&problem.k, 1.0 / sc.stiffness),
-            m: ScaledEntries::from_faer(&problem.m, 1.0 / sc.mass),
+            k: ScaledEntries::from_faer(&problem.k, 1.0 / scaling.stiffness),
+            m: ScaledEntries::from_faer(&problem.m, 1.0 / scaling.mass),
             shocks,
             ref_dof,
-            sc,
+            scaling,
             sampler: Sampler::new(series::fft_size(3 * hn)),
         })
     }
@@ -362,15 +362,15 @@ impl System {
 
     /// A law variable of `x` as a slice and its number of harmonics.
     fn var<'a>(&self, x: &'a [f64], sh: &ShockSys, v: Var) -> (&'a [f64], usize) {
-        let l = &self.lay;
+        let lay = &self.lay;
         match v {
             Var::Own(k) => (
-                &x[sh.offset + k * l.n_coef_nonl..sh.offset + (k + 1) * l.n_coef_nonl],
-                l.h_nonl,
+                &x[sh.offset + k * lay.n_coef_nonl..sh.offset + (k + 1) * lay.n_coef_nonl],
+                lay.h_nonl,
             ),
             Var::U(c) => {
                 let d = sh.dofs[c];
-                (&x[l.u(d)..l.u(d) + l.n_coef_lin], l.h_lin)
+                (&x[lay.u(d)..lay.u(d) + lay.n_coef_lin], lay.h_lin)
             }
         }
     }
@@ -408,26 +408,27 @@ impl System {
         cache: Option<&[(&Samples, &Samples)]>,
         out: &mut [f64],
     ) {
-        let l = self.lay;
-        let (n, nl, hl) = (l.n, l.n_coef_lin, l.h_lin);
+        let lay = self.lay;
+        let (n, nl, hl) = (lay.n, lay.n_coef_lin, lay.h_lin);
         // Structural rows: Ω_a D U_b (rows of U) and M (Ω_a D V_b + γ_a V_b) (rows of V).
         let mut w = vec![0.0; n * nl];
         let mut d = vec![0.0; nl];
         for (a, b) in pairs {
-            let (om, ga) = (a[l.omega()], a[l.gamma()]);
+            let (om, ga) = (a[lay.omega()], a[lay.gamma()]);
             for i in 0..n {
-                series::deriv(&b[l.u(i)..l.u(i) + nl], hl, &mut d);
+                series::deriv(&b[lay.u(i)..lay.u(i) + nl], hl, &mut d);
                 for j in 0..nl {
-                    out[l.u(i) + j] += om * d[j];
+                    out[lay.u(i) + j] += om * d[j];
                 }
-                let vb = &b[l.v(i)..l.v(i) + nl];
+                let vb = &b[lay.v(i)..lay.v(i) + nl];
                 series::deriv(vb, hl, &mut d);
                 for j in 0..nl {
                     w[i * nl + j] += om * d[j] + ga * vb[j];
                 }
             }
         }
-        self.m.mul_blocks(&w, nl, &mut out[l.v(0)..l.v(0) + n * nl]);
+        self.m
+            .mul_blocks(&w, nl, &mut out[lay.v(0)..lay.v(0) + n * nl]);
         // Every product accumulated in the time domain, one FFT back per equation: cheaper
         // than convolutions at every H_nl measured (5 to 1000; at H_nl = 50, 0.06 s against
         // 0.41 s for 40 branches of sdnd122a, release).
@@ -443,7 +444,7 @@ impl System {
             }
         };
         let ns = self.sampler.n();
-        let mut c = vec![0.0; l.n_coef_nonl];
+        let mut c = vec![0.0; lay.n_coef_nonl];
         let mut ws = self.sampler.scratch();
         for (k, sh) in self.shocks.iter().enumerate() {
             let pos = |v: Var| sh.vars.iter().position(|&w| w == v).unwrap_or(0);
@@ -457,9 +458,9 @@ impl System {
                 }
             }
             for (e, s) in acc.iter_mut().enumerate() {
-                self.sampler.analyse_with(s, l.h_nonl, &mut c, &mut ws);
-                let o = sh.offset + e * l.n_coef_nonl;
-                for (y, v) in out[o..o + l.n_coef_nonl].iter_mut().zip(&c) {
+                self.sampler.analyse_with(s, lay.h_nonl, &mut c, &mut ws);
+                let o = sh.offset + e * lay.n_coef_nonl;
+                for (y, v) in out[o..o + lay.n_coef_nonl].iter_mut().zip(&c) {
                     *y += v;
                 }
             }
@@ -469,13 +470,13 @@ impl System {
     /// ‖|K||U|‖: the size of the stiffness terms of the velocity equations at `x` (the
     /// componentwise absolute values, what bounds their round-off).
     pub fn stiffness_term_norm(&self, x: &[f64]) -> f64 {
-        let l = self.lay;
-        let nl = l.n_coef_lin;
-        let mut t = vec![0.0; l.n * nl];
+        let lay = self.lay;
+        let nl = lay.n_coef_lin;
+        let mut t = vec![0.0; lay.n * nl];
         for &(i, c, a) in &self.k.entries {
             let a = a.abs();
             for j in 0..nl {
-                t[i * nl + j] += a * x[l.u(c) + j].abs();
+                t[i * nl + j] += a * x[lay.u(c) + j].abs();
             }
         }
         t.iter().map(|v| v * v).sum::<f64>().sqrt()
@@ -483,23 +484,29 @@ impl System {
 
     /// R(X) = C + L(X) + Q(X, X), length n_eq.
     pub fn residual(&self, x: &[f64]) -> Vec<f64> {
-        let l = self.lay;
-        let (n, nl, hl, hn, nn) = (l.n, l.n_coef_lin, l.h_lin, l.h_nonl, l.n_coef_nonl);
-        let mut r = vec![0.0; l.n_eq()];
+        let lay = self.lay;
+        let (n, nl, hl, hn, nn) = (
+            lay.n,
+            lay.n_coef_lin,
+            lay.h_lin,
+            lay.h_nonl,
+            lay.n_coef_nonl,
+        );
+        let mut r = vec![0.0; lay.n_eq()];
         self.quad_sum(&[(x, x)], &mut r);
         for i in 0..n {
             for j in 0..nl {
-                r[l.u(i) + j] -= x[l.v(i) + j];
+                r[lay.u(i) + j] -= x[lay.v(i) + j];
             }
         }
         self.k
-            .mul_blocks(&x[0..n * nl], nl, &mut r[l.v(0)..l.v(0) + n * nl]);
+            .mul_blocks(&x[0..n * nl], nl, &mut r[lay.v(0)..lay.v(0) + n * nl]);
         for sh in &self.shocks {
             for &(c, v) in &sh.eqs.forces {
                 let (d, o) = (sh.dofs[c], sh.offset + v * nn);
                 for j in 0..nl {
                     if let Some(t) = series::map_index(j, hl, hn) {
-                        r[l.v(d) + j] += x[o + t];
+                        r[lay.v(d) + j] += x[o + t];
                     }
                 }
             }
@@ -516,8 +523,8 @@ impl System {
                 r[sh.offset + e * nn] += c;
             }
         }
-        r[l.omega()] = (1..=hl)
-            .map(|k| k as f64 * x[l.u(self.ref_dof) + series::is(hl, k)])
+        r[lay.omega()] = (1..=hl)
+            .map(|k| k as f64 * x[lay.u(self.ref_dof) + series::is(hl, k)])
             .sum();
         r
     }
@@ -525,9 +532,15 @@ impl System {
     /// Triplets of the square bordered tangent [dR/dX(x0); borderᵀ]. The pattern depends
     /// only on the layout (zeros are kept), so the symbolic factorisation can be reused.
     pub fn tangent(&self, x0: &[f64], border: &[f64]) -> Vec<Triplet<usize, usize, f64>> {
-        let l = self.lay;
-        let (n, nl, hl, hn, nn) = (l.n, l.n_coef_lin, l.h_lin, l.h_nonl, l.n_coef_nonl);
-        let (om, ga) = (x0[l.omega()], x0[l.gamma()]);
+        let lay = self.lay;
+        let (n, nl, hl, hn, nn) = (
+            lay.n,
+            lay.n_coef_lin,
+            lay.h_lin,
+            lay.h_nonl,
+            lay.n_coef_nonl,
+        );
+        let (om, ga) = (x0[lay.omega()], x0[lay.gamma()]);
         let mut t = Vec::new();
         let mut push = |r: usize, c: usize, v: f64| t.push(Triplet::new(r, c, v));
         let mut d = vec![0.0; nl];
@@ -535,18 +548,23 @@ impl System {
         let mut mv = vec![0.0; n * nl];
         let mut dv = vec![0.0; n * nl];
         for i in 0..n {
-            series::deriv(&x0[l.v(i)..l.v(i) + nl], hl, &mut dv[i * nl..(i + 1) * nl]);
+            series::deriv(
+                &x0[lay.v(i)..lay.v(i) + nl],
+                hl,
+                &mut dv[i * nl..(i + 1) * nl],
+            );
         }
         self.m.mul_blocks(&dv, nl, &mut mdv);
-        self.m.mul_blocks(&x0[l.v(0)..l.v(0) + n * nl], nl, &mut mv);
+        self.m
+            .mul_blocks(&x0[lay.v(0)..lay.v(0) + n * nl], nl, &mut mv);
         for i in 0..n {
-            let (ru, cu, cv) = (l.u(i), l.u(i), l.v(i));
+            let (ru, cu, cv) = (lay.u(i), lay.u(i), lay.v(i));
             series::deriv(&x0[cu..cu + nl], hl, &mut d);
             for j in 0..nl {
                 push(ru + j, cv + j, -1.0);
-                push(ru + j, l.omega(), d[j]);
-                push(l.v(i) + j, l.omega(), mdv[i * nl + j]);
-                push(l.v(i) + j, l.gamma(), mv[i * nl + j]);
+                push(ru + j, lay.omega(), d[j]);
+                push(lay.v(i) + j, lay.omega(), mdv[i * nl + j]);
+                push(lay.v(i) + j, lay.gamma(), mv[i * nl + j]);
             }
             for k in 1..=hl {
                 let kf = k as f64;
@@ -556,11 +574,11 @@ impl System {
         }
         for &(i, c, a) in &self.k.entries {
             for j in 0..nl {
-                push(l.v(i) + j, l.u(c) + j, a);
+                push(lay.v(i) + j, lay.u(c) + j, a);
             }
         }
         for &(i, c, a) in &self.m.entries {
-            let (r, cv) = (l.v(i), l.v(c));
+            let (r, cv) = (lay.v(i), lay.v(c));
             for j in 0..nl {
                 push(r + j, cv + j, ga * a);
             }
@@ -575,7 +593,7 @@ impl System {
                 let (dd, o) = (sh.dofs[c], sh.offset + v * nn);
                 for j in 0..nl {
                     if let Some(p) = series::map_index(j, hl, hn) {
-                        push(l.v(dd) + j, o + p, 1.0);
+                        push(lay.v(dd) + j, o + p, 1.0);
                     }
                 }
             }
@@ -607,7 +625,7 @@ impl System {
             for ((e, v), mult) in &blocks {
                 let (hx, col0) = match *v {
                     Var::Own(k) => (hn, sh.offset + k * nn),
-                    Var::U(c) => (hl, l.u(sh.dofs[c])),
+                    Var::U(c) => (hl, lay.u(sh.dofs[c])),
                 };
                 let op = series::mul_operator(mult, hn, hx, hn);
                 let row0 = sh.offset + e * nn;
@@ -619,10 +637,14 @@ impl System {
             }
         }
         for k in 1..=hl {
-            push(l.omega(), l.u(self.ref_dof) + series::is(hl, k), k as f64);
+            push(
+                lay.omega(),
+                lay.u(self.ref_dof) + series::is(hl, k),
+                k as f64,
+            );
         }
         for (c, &b) in border.iter().enumerate() {
-            push(l.n_eq(), c, b);
+            push(lay.n_eq(), c, b);
         }
         t
     }

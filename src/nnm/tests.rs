@@ -119,8 +119,8 @@ fn tangent_is_the_derivative_of_the_residual() {
             }],
         };
         let s = settings(2, hn, 1, 1);
-        let sc = Scaling::new(&p, 1.0, 0).unwrap();
-        let sys = System::new(&p, &s, sc, 0).unwrap();
+        let scaling = Scaling::new(&p, 1.0, 0).unwrap();
+        let sys = System::new(&p, &s, scaling, 0).unwrap();
         let n = sys.lay.n_unk;
         let x: Vec<f64> = (0..n)
             .map(|i| ((i * 37 % 11) as f64 / 11.0 - 0.4) * 1.3 + 0.5)
@@ -716,14 +716,14 @@ fn reference_stiffness_is_taken_where_code_aster_takes_it() {
             shock(ShockLaw::BiPlan, vec![2], 0.02),
         ],
     };
-    let sc = Scaling::new(&p, 1.0, 0).unwrap();
-    assert_eq!(sc.length, 0.02);
+    let scaling = Scaling::new(&p, 1.0, 0).unwrap();
+    assert_eq!(scaling.length, 0.02);
     assert!(
-        (sc.stiffness / (171.0 / 20.0) - 1.0).abs() < 1e-14,
+        (scaling.stiffness / (171.0 / 20.0) - 1.0).abs() < 1e-14,
         "{}",
-        sc.stiffness
+        scaling.stiffness
     );
-    assert!((sc.mass / 2.0 - 1.0).abs() < 1e-14, "{}", sc.mass);
+    assert!((scaling.mass / 2.0 - 1.0).abs() < 1e-14, "{}", scaling.mass);
 }
 
 /// Sign and log₁₀|det| of a dense square matrix by Gaussian elimination with partial

@@ -123,14 +123,14 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                     .keyword("MODE_NON_LINE/ETAT_INIT/NUME_ORDRE")
             })?;
             // A stored point that does not fit these settings is the start row's fault.
-            let st = nnm::start_from_point(&problem, &settings, &x).map_err(|e| {
+            let start_state = nnm::start_from_point(&problem, &settings, &x).map_err(|e| {
                 if e.kind == ErrorKind::Input {
                     e.keyword("ETAT_INIT/NUME_ORDRE")
                 } else {
                     e
                 }
             })?;
-            restart_direction(ctx, src, nume_ordre, settings.direction, st)?
+            restart_direction(ctx, src, nume_ordre, settings.direction, start_state)?
         }
         None => mnl_start::from_linear_modes(ctx, etat, &problem, &settings, &k, &k_name)?,
     };
@@ -314,7 +314,7 @@ fn restart_direction(
     src: &str,
     order: i64,
     direction: i32,
-    st: StartState,
+    start_state: StartState,
 ) -> Result<StartState> {
     let t = table_store::load_table(ctx.store, src)?;
     let way = if direction < 0 {
@@ -331,7 +331,7 @@ fn restart_direction(
                     tr.from, tr.to
                 ))?;
             }
-            st.travelling(tr.direction)
+            start_state.travelling(tr.direction)
         }
         None => {
             ctx.alarm(
@@ -343,7 +343,7 @@ fn restart_direction(
                     if direction < 0 { "increasing" } else { "decreasing" }
                 ),
             )?;
-            Ok(st)
+            Ok(start_state)
         }
     }
 }

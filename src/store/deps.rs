@@ -97,10 +97,10 @@ impl Store {
 
     /// The recorded dependencies of `concept`: (depends_on, generation).
     pub fn dependencies(&self, concept: &str) -> Result<Vec<(String, i64)>> {
-        let mut st = self.conn().prepare(
+        let mut stmt = self.conn().prepare(
             "SELECT depends_on, generation FROM concept_deps WHERE concept = ?1 ORDER BY rowid",
         )?;
-        let rows = st.query_map(params![concept], |r| Ok((r.get(0)?, r.get(1)?)))?;
+        let rows = stmt.query_map(params![concept], |r| Ok((r.get(0)?, r.get(1)?)))?;
         Ok(rows.collect::<rusqlite::Result<Vec<_>>>()?)
     }
 

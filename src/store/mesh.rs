@@ -95,11 +95,11 @@ pub fn save_mesh(store: &Store, name: &str, mesh: &Mesh) -> Result<()> {
         "INSERT INTO meshes(mesh, dim) VALUES (?1, ?2)",
         params![name, mesh.dim as i64],
     )?;
-    let mut st = conn
+    let mut stmt = conn
         .prepare("INSERT INTO mesh_nodes(mesh, idx, name, x, y, z) VALUES (?1,?2,?3,?4,?5,?6)")?;
     for (i, n) in mesh.nodes.iter().enumerate() {
         let [x, y, z] = n.coords;
-        st.execute(params![name, i as i64, n.name, x, y, z])?;
+        stmt.execute(params![name, i as i64, n.name, x, y, z])?;
     }
     let node_name = |i: usize| {
         mesh.nodes.get(i).map(|n| n.name.as_str()).ok_or_else(|| {
@@ -108,7 +108,7 @@ pub fn save_mesh(store: &Store, name: &str, mesh: &Mesh) -> Result<()> {
             ))
         })
     };
-    let mut st = conn
+    let mut stmt = conn
         .prepare("INSERT INTO mesh_cells(mesh, idx, name, type, nodes) VALUES (?1,?2,?3,?4,?5)")?;
     for (i, c) in mesh.cells.iter().enumerate() {
         let nodes = c
@@ -117,7 +117,7 @@ pub fn save_mesh(store: &Store, name: &str, mesh: &Mesh) -> Result<()> {
             .map(|&k| node_name(k))
             .collect::<Result<Vec<_>>>()?
             .join(" ");
-        st.execute(params![name, i as i64, c.name, c.kind.aster_name(), nodes])?;
+        stmt.execute(params![name, i as i64, c.name, c.kind.aster_name(), nodes])?;
     }
     let cell_name = |i: usize| {
         mesh.cells.get(i).map(|c| c.name.as_str()).ok_or_else(|| {
@@ -185,9 +185,9 @@ pub fn load_mesh(store: &Store, name: &str) -> Result<Mesh> {
         ..Mesh::default()
     };
 
-    let mut st =
+    let mut stmt =
         conn.prepare("SELECT name, x, y, z FROM mesh_nodes WHERE mesh = ?1 ORDER BY idx")?;
-    let rows = st.query_map(params![name], |r| {
+    let rows = stmt.query_map(params![name], |r| {
         Ok(Node {
             name: r.get(0)?,
             coords: [r.get(1)?, r.get(2)?, r.get(3)?],
@@ -201,9 +201,9 @@ pub fn load_mesh(store: &Store, name: &str) -> Result<Mesh> {
         .map(|(i, n)| (n.name.as_str(), i))
         .collect();
 
-    let mut st =
+    let mut stmt =
         conn.prepare("SELECT name, type, nodes FROM mesh_cells WHERE mesh = ?1 ORDER BY idx")?;
-    let rows = st.query_map(params![name], |r| {
+    let rows = stmt.query_map(params![name], |r| {
         Ok((
             r.get::<_, String>(0)?,
             r.get::<_, String>(1)?,
@@ -243,17 +243,17 @@ pub fn load_mesh(store: &Store, name: &str) -> Result<Mesh> {
 }
 
 fn load_groups(conn: &Connection, mesh: &str, kind: &str, count: usize) -> Result<Vec<Group>> {
-    let mut st = conn
+    let mut stmt = conn
         .prepare("SELECT name FROM mesh_group_defs WHERE mesh = ?1 AND kind = ?2 ORDER BY gidx")?;
-    let names = st
+    let names = stmt
         .query_map(params![mesh, kind], |r| r.get::<_, String>(0))?
         .collect::<rusqlite::Result<Vec<_>>>()?;
-    let mut st = conn.prepare(
+    let mut stmt = conn.prepare(
         "SELECT member_idx FROM mesh_groups WHERE mesh = ?1 AND kind = ?2 AND name = ?3 ORDER BY pos",
     )?;
     let mut out = Vec::with_capacity(names.len());
     for g in names {
-        let members = st
+        let members = stmt
             .query_map(params![mesh, kind, g], |r| r.get::<_, i64>(0))?
             .collect::<rusqlite::Result<Vec<_>>>()?
             .into_iter()

@@ -165,8 +165,8 @@ fn timed_run(case: &StudyCase, cfg: &Config, points_per_branch: usize, det_test:
         (Some(a), Some(b)) => b - a,
         _ => f64::NAN,
     };
-    let st = match start_from_mode(&problem, &s, &case.mode, 1.0, case.omega) {
-        Ok(st) => st,
+    let start_state = match start_from_mode(&problem, &s, &case.mode, 1.0, case.omega) {
+        Ok(start_state) => start_state,
         Err(e) => {
             return Run {
                 points: vec![],
@@ -178,7 +178,7 @@ fn timed_run(case: &StudyCase, cfg: &Config, points_per_branch: usize, det_test:
         }
     };
     let mut branches = 0;
-    let out = continue_while(&problem, &s, st, &mut |r, _| {
+    let out = continue_while(&problem, &s, start_state, &mut |r, _| {
         branches = r.branch;
         r.energy_range.1 <= hi
     });

@@ -223,13 +223,13 @@ fn copy_attached(
     targets: &mut HashMap<String, Target>,
 ) -> Result<u64> {
     let tables: Vec<(String, String)> = {
-        let mut st = conn
+        let mut stmt = conn
             .prepare(
                 "SELECT name, coalesce(sql, '') FROM run.sqlite_master \
                  WHERE type = 'table' AND name NOT LIKE 'sqlite\\_%' ESCAPE '\\' ORDER BY rowid",
             )
             .map_err(|e| sql(db, e))?;
-        let rows = st
+        let rows = stmt
             .query_map([], |r| Ok((r.get(0)?, r.get(1)?)))
             .map_err(|e| sql(db, e))?;
         rows.collect::<rusqlite::Result<_>>()
@@ -301,10 +301,10 @@ fn copy_attached(
 
 /// (name, declared type) of a table of the attached run.
 fn table_columns(conn: &Connection, db: &Path, table: &str) -> Result<Vec<(String, String)>> {
-    let mut st = conn
+    let mut stmt = conn
         .prepare(&format!("PRAGMA run.table_info({})", q(table)))
         .map_err(|e| sql(db, e))?;
-    let rows = st
+    let rows = stmt
         .query_map([], |r| Ok((r.get::<_, String>(1)?, r.get::<_, String>(2)?)))
         .map_err(|e| sql(db, e))?;
     rows.collect::<rusqlite::Result<_>>()

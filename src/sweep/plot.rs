@@ -113,12 +113,12 @@ fn first_mnl_table(conn: &Connection) -> rusqlite::Result<Option<String>> {
     if has_concepts == 0 {
         return Ok(None);
     }
-    let mut st = conn.prepare(
+    let mut stmt = conn.prepare(
         "SELECT name FROM concepts WHERE operator = 'MODE_NON_LINE' \
          AND name IN (SELECT name FROM sqlite_master WHERE type = 'table') \
          ORDER BY rowid LIMIT 1",
     )?;
-    let mut rows = st.query([])?;
+    let mut rows = stmt.query([])?;
     match rows.next()? {
         Some(r) => Ok(Some(r.get(0)?)),
         None => Ok(None),
@@ -133,8 +133,8 @@ fn read_curves(
 ) -> rusqlite::Result<Vec<Curve>> {
     let qt = format!("\"{}\"", table.replace('"', "\"\""));
     let has_stab = {
-        let mut st = conn.prepare(&format!("PRAGMA table_info({qt})"))?;
-        let cols: Vec<String> = st
+        let mut stmt = conn.prepare(&format!("PRAGMA table_info({qt})"))?;
+        let cols: Vec<String> = stmt
             .query_map([], |r| r.get::<_, String>(1))?
             .collect::<rusqlite::Result<_>>()?;
         cols.iter().any(|c| c.eq_ignore_ascii_case("STABILITE"))
@@ -143,12 +143,12 @@ fn read_curves(
         .iter()
         .map(|p| format!("\"{}\"", p.replace('"', "\"\"")))
         .collect();
-    let mut st = conn.prepare(&format!(
+    let mut stmt = conn.prepare(&format!(
         "SELECT \"{POINT_COLUMN}\", {} FROM \"{POINTS_TABLE}\" \
          WHERE STATUS IN ('ok', 'nook') ORDER BY rowid",
         value_cols.join(", ")
     ))?;
-    let points: Vec<(String, Vec<rusqlite::types::Value>)> = st
+    let points: Vec<(String, Vec<rusqlite::types::Value>)> = stmt
         .query_map([], |r| {
             let vals = (0..params.len())
                 .map(|i| r.get::<_, rusqlite::types::Value>(i + 1))

@@ -237,7 +237,7 @@ fn eta_phys_and_the_laws_match_the_engine_scaled_laws() {
         let p = pair(1.0, vec![shock(law, vec![1])]);
         let eta = eta_phys(&p).unwrap()[0];
         assert!((eta / (5e-5 * 120.0 / 11.0 * 1e-4) - 1.0).abs() < 1e-14);
-        let sc = Scaling::new(&p, 1.0, 0).unwrap();
+        let scaling = Scaling::new(&p, 1.0, 0).unwrap();
         let pl = PointLaw {
             law,
             alpha: 50.0,
@@ -250,10 +250,17 @@ fn eta_phys_and_the_laws_match_the_engine_scaled_laws() {
         } else {
             ScaledLaw::BiPlan
         };
-        let u_s: Vec<f64> = us.iter().map(|u| u / sc.length).collect();
-        let own = own_from_u(scaled, 0.01 / sc.length, 50.0 / sc.stiffness, 5e-5, &[u_s]).unwrap();
+        let u_s: Vec<f64> = us.iter().map(|u| u / scaling.length).collect();
+        let own = own_from_u(
+            scaled,
+            0.01 / scaling.length,
+            50.0 / scaling.stiffness,
+            5e-5,
+            &[u_s],
+        )
+        .unwrap();
         for (u, f_s) in us.iter().zip(&own[0]) {
-            let f_engine = f_s * sc.stiffness * sc.length;
+            let f_engine = f_s * scaling.stiffness * scaling.length;
             let f = pl.eval(&[*u]).unwrap().0[0];
             // Two closed forms of the same root (bisection to 1e-15 for BI_PLAN).
             assert!(
