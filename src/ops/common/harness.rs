@@ -6,7 +6,7 @@ use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::ops::{lookup, run_in_transaction, OpContext, TestOutcome, Units};
 use crate::store::Store;
-use crate::value::{Span, Value};
+use crate::value::{ConceptRef, Span, Value};
 
 pub struct Harness {
     pub store: Store,
