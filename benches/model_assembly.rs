@@ -3,6 +3,7 @@
 
 use aster_nl::args::Args;
 use aster_nl::mesh::{Cell, CellKind, Group, Mesh, Node};
+use aster_nl::model::material::Elas;
 use aster_nl::model::{
     assemble, compute_elem_matrices, CaraElem, DofNumbering, ElemInputs, KinematicLoad, LoadKind,
     Material, MaterialField, MatrixKind, Model,
@@ -73,20 +74,9 @@ fn bench(c: &mut Criterion) {
         Span::default(),
     ));
     let cara = CaraElem::build("MO", &model, &mesh, &cara_args).unwrap();
-    let mut mat_args = Args::new("DEFI_MATERIAU");
-    mat_args.factor.push((
-        "ELAS".into(),
-        vec![fact(
-            "ELAS",
-            vec![
-                ("E", Value::Real(2e11)),
-                ("NU", Value::Real(0.3)),
-                ("RHO", Value::Real(7800.0)),
-            ],
-        )],
-        Span::default(),
-    ));
-    let mat = Material::from_args(&mat_args).unwrap();
+    let mat = Material {
+        elas: Some(Elas::new(2e11, 0.3, Some(7800.0)).unwrap()),
+    };
     let field = MaterialField::build(
         "MA",
         &mesh,

@@ -4,7 +4,9 @@
 
 use super::*;
 use crate::args::Args;
+// DEFI_MATERIAU's keywords read by the operator into a material.
 use crate::mesh::{Cell, CellKind, Group, Mesh, Node};
+use crate::ops::defi_materiau::material;
 use crate::value::{Span, Value};
 use faer::sparse::SparseColMat;
 use faer::{Mat, Side};
@@ -133,7 +135,7 @@ fn build(
 ) -> Result<Built> {
     let model = Model::build("MA", &mesh, &affe)?;
     let field = mat.map(|(e, nu, rho)| {
-        let m = Material::from_args(&with_facts(
+        let m = material(&with_facts(
             fact("DEFI_MATERIAU", vec![]),
             "ELAS",
             vec![fact(
