@@ -146,11 +146,8 @@ impl Model {
                     .keyword(occ.key_path(key))
                     .hint("assign beams and bars to cells with GROUP_MA, MAILLE or TOUT"));
                 }
-                let mut node_args = occ.clone();
-                node_args
-                    .simple
-                    .retain(|(k, _, _)| k == "GROUP_NO" || k == "NOEUD");
-                for n in crate::mesh::select::select_nodes(mesh, &node_args)? {
+                let on = crate::ops::common::selection::selection(occ).nodes_only();
+                for n in crate::mesh::select::select_nodes(mesh, &on)? {
                     let k = match point_cells.iter().position(|&p| p == n) {
                         Some(k) => k,
                         None => {
