@@ -2,11 +2,14 @@
 //! elements (30 006 DOFs), the path every modal / MODE_NON_LINE run takes once.
 
 use aster_nl::args::Args;
+use aster_nl::mesh::select::{Names, Selection};
 use aster_nl::mesh::{Cell, CellKind, Group, Mesh, Node};
-use aster_nl::model::material::Elas;
+use aster_nl::model::fe_model::ModelAssignment;
+use aster_nl::model::loads::{Condition, ImposedComponent};
+use aster_nl::model::material::{Elas, MaterialAssignment};
 use aster_nl::model::{
-    assemble, compute_elem_matrices, CaraElem, DofNumbering, ElemInputs, KinematicLoad, LoadKind,
-    Material, MaterialField, MatrixKind, Model,
+    assemble, compute_elem_matrices, CaraElem, Cmp, DofNumbering, ElemInputs, KinematicLoad,
+    LoadKind, Material, MaterialField, MatrixKind, Model, Modelisation,
 };
 use aster_nl::value::{Span, Value};
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -46,17 +49,20 @@ fn bench(c: &mut Criterion) {
         }],
         cell_groups: vec![],
     };
+    // The specs the operators would build from AFFE_MODELE(TOUT='OUI', POU_D_E),
+    // AFFE_CARA_ELEM(POUTRE=CERCLE R=0.01), DEFI_MATERIAU(ELAS) and a clamp on LEFT.
+    let everywhere = Selection {
+        all: true,
+        ..Selection::default()
+    };
     let model = Model::build(
         "MA",
         &mesh,
-        &[fact(
-            "AFFE",
-            vec![
-                ("TOUT", s("OUI")),
-                ("PHENOMENE", s("MECANIQUE")),
-                ("MODELISATION", s("POU_D_E")),
-            ],
-        )],
+        &[ModelAssignment {
+            modelisation: Modelisation::PouDE,
+            on: everywhere.clone(),
+            keyword: "AFFE/MODELISATION".into(),
+        }],
     )
     .unwrap();
     let mut cara_args = Args::new("AFFE_CARA_ELEM");
@@ -80,26 +86,38 @@ fn bench(c: &mut Criterion) {
     let field = MaterialField::build(
         "MA",
         &mesh,
-        &[(fact("AFFE", vec![("TOUT", s("OUI"))]), "S".into(), mat)],
+        &[MaterialAssignment {
+            on: everywhere,
+            name: "S".into(),
+            material: mat,
+        }],
     )
     .unwrap();
+    let left = Selection {
+        node_groups: Names {
+            names: vec!["LEFT".into()],
+            keyword: "MECA_IMPO/GROUP_NO".into(),
+        },
+        ..Selection::default()
+    };
     let clamp = KinematicLoad::build(
         LoadKind::Cine,
         "MO",
         &model,
         &mesh,
-        &[fact(
-            "MECA_IMPO",
-            vec![
-                ("GROUP_NO", s("LEFT")),
-                ("DX", Value::Real(0.0)),
-                ("DY", Value::Real(0.0)),
-                ("DZ", Value::Real(0.0)),
-                ("DRX", Value::Real(0.0)),
-                ("DRY", Value::Real(0.0)),
-                ("DRZ", Value::Real(0.0)),
-            ],
-        )],
+        &[Condition {
+            on: left,
+            components: Cmp::ALL
+                .iter()
+                .map(|&cmp| ImposedComponent {
+                    cmp,
+                    value: 0.0,
+                    keyword: format!("MECA_IMPO/{cmp}"),
+                })
+                .collect(),
+            clamp: false,
+            keyword: "MECA_IMPO".into(),
+        }],
     )
     .unwrap();
     let inp = ElemInputs {

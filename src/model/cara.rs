@@ -7,6 +7,7 @@ use super::select::{describe_cells, model_point_cells, model_select_cells};
 use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::mesh::{CellKind, Mesh};
+use crate::ops::common::selection::selection;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -331,7 +332,7 @@ impl CaraElem {
         }
         for occ in args.facts_or_empty("ORIENTATION") {
             let o = orientation_from_args(occ)?;
-            for c in model_select_cells(mesh, &model.mesh, occ)? {
+            for c in model_select_cells(mesh, &selection(occ))? {
                 cara.orientations.insert(c, o);
             }
         }
@@ -486,9 +487,9 @@ fn cells_of(
     allowed: &[Modelisation],
     key: &str,
 ) -> Result<Vec<usize>> {
-    let mut cells = model_select_cells(mesh, &model.mesh, occ)?;
+    let mut cells = model_select_cells(mesh, &selection(occ))?;
     // NOEUD / GROUP_NO (13.x): the point elements of the model on those nodes.
-    for c in model_point_cells(model, mesh, occ)? {
+    for c in model_point_cells(model, mesh, &selection(occ))? {
         if !cells.contains(&c) {
             cells.push(c);
         }

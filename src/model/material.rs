@@ -1,8 +1,8 @@
 //! Materials (DEFI_MATERIAU) and material fields (AFFE_MATERIAU).
 
 use super::select::model_select_cells;
-use crate::args::Args;
 use crate::error::Result;
+use crate::mesh::select::Selection;
 use crate::mesh::Mesh;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -65,6 +65,15 @@ pub struct Material {
     pub elas: Option<Elas>,
 }
 
+/// One assignment of a material field: a material concept on some cells.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MaterialAssignment {
+    pub on: Selection,
+    /// The material concept's name.
+    pub name: String,
+    pub material: Material,
+}
+
 /// AFFE_MATERIAU: the material of each cell.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct MaterialField {
@@ -76,22 +85,22 @@ pub struct MaterialField {
 }
 
 impl MaterialField {
-    /// `affe`: the AFFE occurrences with, for each, the material concept (name, data).
+    /// `affe` in the user's order: a later assignment overrides an earlier one on a cell.
     pub fn build(
         mesh_name: &str,
         mesh: &Mesh,
-        affe: &[(Args, String, Material)],
+        affe: &[MaterialAssignment],
     ) -> Result<MaterialField> {
         let mut field = MaterialField {
             mesh: mesh_name.to_string(),
             materials: BTreeMap::new(),
             cell_material: BTreeMap::new(),
         };
-        for (occ, name, mat) in affe {
-            for c in model_select_cells(mesh, mesh_name, occ)? {
-                field.cell_material.insert(c, name.clone());
+        for a in affe {
+            for c in model_select_cells(mesh, &a.on)? {
+                field.cell_material.insert(c, a.name.clone());
             }
-            field.materials.insert(name.clone(), mat.clone());
+            field.materials.insert(a.name.clone(), a.material.clone());
         }
         Ok(field)
     }

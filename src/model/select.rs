@@ -1,23 +1,20 @@
 //! Cell/node selection for the model operators, over `mesh::select`, in mesh order.
 
 use super::fe_model::Model;
-use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::mesh::select::Selection;
 use crate::mesh::{CellKind, Mesh};
-use crate::ops::common::selection::selection;
 
 /// Cells chosen by the whole mesh, cell groups or cells of `sel`, sorted and without
 /// repeats (the model keeps its elements in mesh order).
-pub fn model_select_cells(mesh: &Mesh, _mesh_name: &str, args: &Args) -> Result<Vec<usize>> {
-    let sel = &selection(args);
+pub fn model_select_cells(mesh: &Mesh, sel: &Selection) -> Result<Vec<usize>> {
     let mut cells = crate::mesh::select::select_cells(mesh, sel)?;
     cells.sort_unstable();
     Ok(cells)
 }
 
 /// Nodes chosen by `sel` (with the nodes of its cells), sorted and without repeats.
-pub fn model_select_nodes(mesh: &Mesh, _mesh_name: &str, args: &Args) -> Result<Vec<usize>> {
-    let sel = &selection(args);
+pub fn model_select_nodes(mesh: &Mesh, sel: &Selection) -> Result<Vec<usize>> {
     let mut nodes = crate::mesh::select::select_nodes(mesh, sel)?;
     nodes.sort_unstable();
     Ok(nodes)
@@ -26,8 +23,7 @@ pub fn model_select_nodes(mesh: &Mesh, _mesh_name: &str, args: &Args) -> Result<
 /// The POI1 cells carrying an element of `model` on the nodes `sel` names explicitly
 /// (Code_Aster 13.x: characteristics of discrete elements given on nodes), in node order.
 /// `mesh` is the model's mesh completed with its point cells. Every node must carry one.
-pub fn model_point_cells(model: &Model, mesh: &Mesh, args: &Args) -> Result<Vec<usize>> {
-    let sel = &selection(args);
+pub fn model_point_cells(model: &Model, mesh: &Mesh, sel: &Selection) -> Result<Vec<usize>> {
     if !sel.names_nodes() {
         return Ok(Vec::new());
     }
