@@ -1,9 +1,9 @@
 //! Element matrices + numbering + assembly + reduction of a 3D beam of 5000 POU_D_E
 //! elements (30 006 DOFs), the path every modal / MODE_NON_LINE run takes once.
 
-use aster_nl::args::Args;
 use aster_nl::mesh::select::{Names, Selection};
 use aster_nl::mesh::{Cell, CellKind, Group, Mesh, Node};
+use aster_nl::model::cara::{Section, SectionAssignment};
 use aster_nl::model::fe_model::ModelAssignment;
 use aster_nl::model::loads::{Condition, ImposedComponent};
 use aster_nl::model::material::{Elas, MaterialAssignment};
@@ -11,20 +11,8 @@ use aster_nl::model::{
     assemble, compute_elem_matrices, CaraElem, Cmp, DofNumbering, ElemInputs, KinematicLoad,
     LoadKind, Material, MaterialField, MatrixKind, Model, Modelisation,
 };
-use aster_nl::value::{Span, Value};
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
-
-fn fact(path: &str, kv: Vec<(&str, Value)>) -> Args {
-    let mut a = Args::new(path);
-    for (k, v) in kv {
-        a.simple.push((k.to_string(), v, Span::default()));
-    }
-    a
-}
-fn s(x: &str) -> Value {
-    Value::Str(x.into())
-}
 
 fn bench(c: &mut Criterion) {
     let n = 5000;
@@ -65,21 +53,18 @@ fn bench(c: &mut Criterion) {
         }],
     )
     .unwrap();
-    let mut cara_args = Args::new("AFFE_CARA_ELEM");
-    cara_args.factor.push((
-        "POUTRE".into(),
-        vec![fact(
-            "POUTRE",
-            vec![
-                ("TOUT", s("OUI")),
-                ("SECTION", s("CERCLE")),
-                ("CARA", s("R")),
-                ("VALE", Value::Real(0.01)),
-            ],
-        )],
-        Span::default(),
-    ));
-    let cara = CaraElem::build("MO", &model, &mesh, &cara_args).unwrap();
+    let mut cara = CaraElem::new("MO", &model);
+    cara.add_beam(
+        &model,
+        &mesh,
+        &SectionAssignment {
+            on: everywhere.clone(),
+            section: Section::circle(0.01, None),
+            keyword: "POUTRE".into(),
+        },
+    )
+    .unwrap();
+    cara.check_complete(&model, &mesh).unwrap();
     let mat = Material {
         elas: Some(Elas::new(2e11, 0.3, Some(7800.0)).unwrap()),
     };

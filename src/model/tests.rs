@@ -10,6 +10,7 @@ use crate::model::material::MaterialAssignment;
 // build the specs with the operators' readers, so that the keyword paths of errors are
 // checked too.
 use crate::mesh::{Cell, CellKind, Group, Mesh, Node};
+use crate::ops::affe_cara_elem::cara_elem;
 use crate::ops::affe_char_cine::kinematic_load;
 use crate::ops::affe_modele::model as model_of;
 use crate::ops::defi_materiau::material;
@@ -164,7 +165,7 @@ fn build(
         )
         .unwrap()
     });
-    let cara = CaraElem::build("MO", &model, &mesh, &cara_args)?;
+    let cara = cara_elem("MO", &model, &mesh, &cara_args)?;
     Ok(Built {
         mesh,
         model,
