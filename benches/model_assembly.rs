@@ -1,26 +1,18 @@
 //! Element matrices + numbering + assembly + reduction of a 3D beam of 5000 POU_D_E
 //! elements (30 006 DOFs), the path every modal / MODE_NON_LINE run takes once.
 
-use aster_nl::args::Args;
+use aster_nl::mesh::select::{Names, Selection};
 use aster_nl::mesh::{Cell, CellKind, Group, Mesh, Node};
+use aster_nl::model::cara::{Section, SectionAssignment};
+use aster_nl::model::fe_model::ModelAssignment;
+use aster_nl::model::loads::{Condition, ImposedComponent};
+use aster_nl::model::material::{Elas, MaterialAssignment};
 use aster_nl::model::{
-    assemble, compute_elem_matrices, CaraElem, DofNumbering, ElemInputs, KinematicLoad, LoadKind,
-    Material, MaterialField, MatrixKind, Model,
+    assemble, compute_elem_matrices, CaraElem, Cmp, DofNumbering, ElemInputs, KinematicLoad,
+    LoadKind, Material, MaterialField, MatrixKind, Model, Modelisation,
 };
-use aster_nl::value::{Span, Value};
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
-
-fn fact(path: &str, kv: Vec<(&str, Value)>) -> Args {
-    let mut a = Args::new(path);
-    for (k, v) in kv {
-        a.simple.push((k.to_string(), v, Span::default()));
-    }
-    a
-}
-fn s(x: &str) -> Value {
-    Value::Str(x.into())
-}
 
 fn bench(c: &mut Criterion) {
     let n = 5000;
@@ -45,71 +37,72 @@ fn bench(c: &mut Criterion) {
         }],
         cell_groups: vec![],
     };
+    // The specs the operators would build from AFFE_MODELE(TOUT='OUI', POU_D_E),
+    // AFFE_CARA_ELEM(POUTRE=CERCLE R=0.01), DEFI_MATERIAU(ELAS) and a clamp on LEFT.
+    let everywhere = Selection {
+        all: true,
+        ..Selection::default()
+    };
     let model = Model::build(
         "MA",
         &mesh,
-        &[fact(
-            "AFFE",
-            vec![
-                ("TOUT", s("OUI")),
-                ("PHENOMENE", s("MECANIQUE")),
-                ("MODELISATION", s("POU_D_E")),
-            ],
-        )],
+        &[ModelAssignment {
+            modelisation: Modelisation::PouDE,
+            on: everywhere.clone(),
+            keyword: "AFFE/MODELISATION".into(),
+        }],
     )
     .unwrap();
-    let mut cara_args = Args::new("AFFE_CARA_ELEM");
-    cara_args.factor.push((
-        "POUTRE".into(),
-        vec![fact(
-            "POUTRE",
-            vec![
-                ("TOUT", s("OUI")),
-                ("SECTION", s("CERCLE")),
-                ("CARA", s("R")),
-                ("VALE", Value::Real(0.01)),
-            ],
-        )],
-        Span::default(),
-    ));
-    let cara = CaraElem::build("MO", &model, &mesh, &cara_args).unwrap();
-    let mut mat_args = Args::new("DEFI_MATERIAU");
-    mat_args.factor.push((
-        "ELAS".into(),
-        vec![fact(
-            "ELAS",
-            vec![
-                ("E", Value::Real(2e11)),
-                ("NU", Value::Real(0.3)),
-                ("RHO", Value::Real(7800.0)),
-            ],
-        )],
-        Span::default(),
-    ));
-    let mat = Material::from_args(&mat_args).unwrap();
+    let mut cara = CaraElem::new("MO", &model);
+    cara.add_beam(
+        &model,
+        &mesh,
+        &SectionAssignment {
+            on: everywhere.clone(),
+            section: Section::circle(0.01, None),
+            keyword: "POUTRE".into(),
+        },
+    )
+    .unwrap();
+    cara.check_complete(&model, &mesh).unwrap();
+    let mat = Material {
+        elas: Some(Elas::new(2e11, 0.3, Some(7800.0)).unwrap()),
+    };
     let field = MaterialField::build(
         "MA",
         &mesh,
-        &[(fact("AFFE", vec![("TOUT", s("OUI"))]), "S".into(), mat)],
+        &[MaterialAssignment {
+            on: everywhere,
+            name: "S".into(),
+            material: mat,
+        }],
     )
     .unwrap();
+    let left = Selection {
+        node_groups: Names {
+            names: vec!["LEFT".into()],
+            keyword: "MECA_IMPO/GROUP_NO".into(),
+        },
+        ..Selection::default()
+    };
     let clamp = KinematicLoad::build(
         LoadKind::Cine,
         "MO",
         &model,
         &mesh,
-        &[fact(
-            "MECA_IMPO",
-            vec![
-                ("GROUP_NO", s("LEFT")),
-                ("DX", Value::Real(0.0)),
-                ("DY", Value::Real(0.0)),
-                ("DZ", Value::Real(0.0)),
-                ("DRX", Value::Real(0.0)),
-                ("DRY", Value::Real(0.0)),
-                ("DRZ", Value::Real(0.0)),
-            ],
-        )],
+        &[Condition {
+            on: left,
+            components: Cmp::ALL
+                .iter()
+                .map(|&cmp| ImposedComponent {
+                    cmp,
+                    value: 0.0,
+                    keyword: format!("MECA_IMPO/{cmp}"),
+                })
+                .collect(),
+            clamp: false,
+            keyword: "MECA_IMPO".into(),
+        }],
     )
     .unwrap();
     let inp = ElemInputs {

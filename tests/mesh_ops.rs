@@ -5,7 +5,7 @@
 
 use aster_nl::args::Args;
 use aster_nl::error::Result;
-use aster_nl::mesh::select::{select_cells, select_nodes};
+use aster_nl::mesh::select::{select_cells, select_nodes, Names, Selection};
 use aster_nl::mesh::CellKind;
 use aster_nl::ops::{self, OpContext, TestOutcome, Units};
 use aster_nl::store::mesh::load_mesh;
@@ -190,40 +190,49 @@ fn select_helper_on_sdnd122() {
     let st = Store::in_memory().unwrap();
     lire(&st, "MAIL", &units_with(20, "sdnd122a.mail"), "ASTER").unwrap();
     let m = load_mesh(&st, "MAIL").unwrap();
-    let sel = |kv: &[(&str, Value)]| args("AFFE", kv);
+    // One list of names, as an AFFE occurrence gives it (keyword paths AFFE/...).
+    let sel = |key: &str, names: &[&str]| {
+        let list = Names {
+            names: names.iter().map(|n| n.to_string()).collect(),
+            keyword: format!("AFFE/{key}"),
+        };
+        let mut sel = Selection::default();
+        match key {
+            "TOUT" => sel.all = true,
+            "GROUP_MA" => sel.cell_groups = list,
+            "MAILLE" => sel.cells = list,
+            "GROUP_NO" => sel.node_groups = list,
+            _ => sel.nodes = list,
+        }
+        sel
+    };
+    assert_eq!(select_cells(&m, &sel("TOUT", &[])).unwrap(), vec![0, 1]);
     assert_eq!(
-        select_cells(&m, &sel(&[("TOUT", s("OUI"))])).unwrap(),
-        vec![0, 1]
-    );
-    assert_eq!(
-        select_cells(&m, &sel(&[("GROUP_MA", list(&["P2", "M1"]))])).unwrap(),
+        select_cells(&m, &sel("GROUP_MA", &["P2", "M1"])).unwrap(),
         vec![1, 0]
     );
-    assert_eq!(
-        select_cells(&m, &sel(&[("MAILLE", s("M1"))])).unwrap(),
-        vec![0]
-    );
+    assert_eq!(select_cells(&m, &sel("MAILLE", &["M1"])).unwrap(), vec![0]);
     // Nodes of cells, each once.
     assert_eq!(
-        select_nodes(&m, &sel(&[("GROUP_MA", list(&["M1", "P2"]))])).unwrap(),
+        select_nodes(&m, &sel("GROUP_MA", &["M1", "P2"])).unwrap(),
         vec![0, 1]
     );
     assert_eq!(
-        select_nodes(&m, &sel(&[("GROUP_NO", s("N2"))])).unwrap(),
+        select_nodes(&m, &sel("GROUP_NO", &["N2"])).unwrap(),
         vec![1]
     );
     assert_eq!(
-        select_nodes(&m, &sel(&[("NOEUD", list(&["N2", "N1", "N2"]))])).unwrap(),
+        select_nodes(&m, &sel("NOEUD", &["N2", "N1", "N2"])).unwrap(),
         vec![1, 0]
     );
-    let e = select_cells(&m, &sel(&[("GROUP_MA", s("WALL"))])).unwrap_err();
+    let e = select_cells(&m, &sel("GROUP_MA", &["WALL"])).unwrap_err();
     assert_eq!(e.keyword.as_deref(), Some("AFFE/GROUP_MA"));
     let msg = e.to_string();
     assert!(
         msg.contains("GROUP_MA 'WALL' is not in the mesh") && msg.contains("M1, P2"),
         "{msg}"
     );
-    let e = select_nodes(&m, &sel(&[("NOEUD", s("N3"))])).unwrap_err();
+    let e = select_nodes(&m, &sel("NOEUD", &["N3"])).unwrap_err();
     assert!(
         e.to_string().contains("node 'N3' is not in the mesh") && e.to_string().contains("N1, N2"),
         "{e}"

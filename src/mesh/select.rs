@@ -1,87 +1,108 @@
-//! Mesh locations given by keywords: `TOUT='OUI'`, `GROUP_MA`, `MAILLE`, `GROUP_NO`,
-//! `NOEUD`, as every Code_Aster operator that applies something "somewhere" accepts them.
+//! Mesh locations: every cell, cell groups, cells, node groups and nodes by name, as
+//! every Code_Aster operator that applies something "somewhere" accepts them. The
+//! operators read them from the user's keywords into a [`Selection`]; each list carries
+//! the keyword path it came from, which errors name.
 //!
-//! Several keywords in one occurrence add up; the result lists each index once, in order
-//! of first appearance.
+//! Several lists in one selection add up; the result lists each index once, in order of
+//! first appearance.
 
 use super::Mesh;
-use crate::args::Args;
 use crate::error::{Error, Result};
 
-/// Cells designated by `TOUT='OUI'`, `GROUP_MA` or `MAILLE` in `args`.
-pub fn select_cells(mesh: &Mesh, args: &Args) -> Result<Vec<usize>> {
+/// Names given in one list, and the keyword path errors about them name.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Names {
+    pub names: Vec<String>,
+    pub keyword: String,
+}
+
+impl Names {
+    pub fn given(&self) -> bool {
+        !self.names.is_empty()
+    }
+}
+
+/// Where one occurrence applies something.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Selection {
+    /// The whole mesh.
+    pub all: bool,
+    pub cell_groups: Names,
+    pub cells: Names,
+    pub node_groups: Names,
+    pub nodes: Names,
+}
+
+impl Selection {
+    /// Whether the selection names nodes (node groups or nodes) explicitly.
+    pub fn names_nodes(&self) -> bool {
+        self.node_groups.given() || self.nodes.given()
+    }
+
+    /// The keyword path of the first explicit node list (node groups before nodes).
+    pub fn node_keyword(&self) -> &str {
+        if self.node_groups.given() {
+            &self.node_groups.keyword
+        } else {
+            &self.nodes.keyword
+        }
+    }
+
+    /// Only the explicit node lists of this selection.
+    pub fn nodes_only(&self) -> Selection {
+        Selection {
+            node_groups: self.node_groups.clone(),
+            nodes: self.nodes.clone(),
+            ..Selection::default()
+        }
+    }
+}
+
+/// Cells designated by the whole mesh, cell groups or cells of `sel` (its node lists
+/// play no part).
+pub fn select_cells(mesh: &Mesh, sel: &Selection) -> Result<Vec<usize>> {
     let mut out = Picker::new(mesh.cells.len());
-    if is_tout(args) {
+    if sel.all {
         out.extend(0..mesh.cells.len());
     }
-    for g in args.texts("GROUP_MA").unwrap_or_default() {
-        let group = mesh.cell_group(&g).ok_or_else(|| {
-            unknown(
-                args,
-                "GROUP_MA",
-                &g,
-                "GROUP_MA",
-                mesh.cell_groups.iter().map(|g| g.name.as_str()),
-                mesh.cell_index(&g).map(|_| Namesake::Cell),
-            )
-        })?;
-        out.extend(group.members.iter().copied());
-    }
-    for m in args.texts("MAILLE").unwrap_or_default() {
-        let i = mesh.cell_index(&m).ok_or_else(|| {
-            unknown(
-                args,
-                "MAILLE",
-                &m,
-                "cell",
-                mesh.cells.iter().map(|c| c.name.as_str()),
-                mesh.cell_group(&m).map(|_| Namesake::CellGroup),
-            )
-        })?;
-        out.extend([i]);
-    }
+    named_cells(mesh, sel, &mut out)?;
     Ok(out.done())
 }
 
-/// Nodes designated by `GROUP_NO` or `NOEUD` (explicitly), and the nodes of the cells
-/// designated by `TOUT='OUI'`, `GROUP_MA` or `MAILLE`.
-pub fn select_nodes(mesh: &Mesh, args: &Args) -> Result<Vec<usize>> {
+/// Nodes designated by node groups or nodes (explicitly), and the nodes of the cells
+/// designated by the whole mesh, cell groups or cells.
+pub fn select_nodes(mesh: &Mesh, sel: &Selection) -> Result<Vec<usize>> {
     let mut out = Picker::new(mesh.nodes.len());
-    if is_tout(args) {
+    if sel.all {
         // Every node of the mesh, including nodes no cell uses (Code_Aster's TOUT='OUI'
         // on nodes means the whole mesh).
         out.extend(0..mesh.nodes.len());
     }
-    if args.has("GROUP_MA") || args.has("MAILLE") {
-        let mut cell_args = args.clone();
-        cell_args
-            .simple
-            .retain(|(k, _, _)| k == "GROUP_MA" || k == "MAILLE");
-        let cells = select_cells(mesh, &cell_args)?;
-        out.extend(mesh.nodes_of_cells(&cells));
+    if sel.cell_groups.given() || sel.cells.given() {
+        let mut cells = Picker::new(mesh.cells.len());
+        named_cells(mesh, sel, &mut cells)?;
+        out.extend(mesh.nodes_of_cells(&cells.done()));
     }
-    for g in args.texts("GROUP_NO").unwrap_or_default() {
-        let group = mesh.node_group(&g).ok_or_else(|| {
+    for g in &sel.node_groups.names {
+        let group = mesh.node_group(g).ok_or_else(|| {
             unknown(
-                args,
-                "GROUP_NO",
-                &g,
+                &sel.node_groups,
+                g,
                 "GROUP_NO",
                 mesh.node_groups.iter().map(|g| g.name.as_str()),
-                mesh.node_index(&g).map(|_| Namesake::Node),
+                mesh.node_index(g).map(|_| Namesake::Node),
             )
         })?;
         out.extend(group.members.iter().copied());
     }
-    for n in args.texts("NOEUD").unwrap_or_default() {
-        let i = mesh.node_index(&n).ok_or_else(|| {
+    for n in &sel.nodes.names {
+        let i = mesh.node_index(n).ok_or_else(|| {
             unknown(
-                args,
-                "NOEUD",
-                &n,
+                &sel.nodes,
+                n,
                 "node",
                 mesh.nodes.iter().map(|n| n.name.as_str()),
-                mesh.node_group(&n).map(|_| Namesake::NodeGroup),
+                mesh.node_group(n).map(|_| Namesake::NodeGroup),
             )
         })?;
         out.extend([i]);
@@ -89,9 +110,33 @@ pub fn select_nodes(mesh: &Mesh, args: &Args) -> Result<Vec<usize>> {
     Ok(out.done())
 }
 
-fn is_tout(args: &Args) -> bool {
-    args.text("TOUT")
-        .is_some_and(|t| t.eq_ignore_ascii_case("OUI"))
+/// The cells of the cell groups, then the cells by name, of `sel`.
+fn named_cells(mesh: &Mesh, sel: &Selection, out: &mut Picker) -> Result<()> {
+    for g in &sel.cell_groups.names {
+        let group = mesh.cell_group(g).ok_or_else(|| {
+            unknown(
+                &sel.cell_groups,
+                g,
+                "GROUP_MA",
+                mesh.cell_groups.iter().map(|g| g.name.as_str()),
+                mesh.cell_index(g).map(|_| Namesake::Cell),
+            )
+        })?;
+        out.extend(group.members.iter().copied());
+    }
+    for m in &sel.cells.names {
+        let i = mesh.cell_index(m).ok_or_else(|| {
+            unknown(
+                &sel.cells,
+                m,
+                "cell",
+                mesh.cells.iter().map(|c| c.name.as_str()),
+                mesh.cell_group(m).map(|_| Namesake::CellGroup),
+            )
+        })?;
+        out.extend([i]);
+    }
+    Ok(())
 }
 
 /// Collects indices once each, in order of first appearance.
@@ -136,8 +181,7 @@ enum Namesake {
 /// "GROUP_MA 'X' is not in the mesh", naming a few names that exist, or the cell, node
 /// or group of that name when there is one.
 fn unknown<'a>(
-    args: &Args,
-    key: &str,
+    list: &Names,
     name: &str,
     what: &str,
     existing: impl Iterator<Item = &'a str>,
@@ -178,25 +222,33 @@ fn unknown<'a>(
         }
     };
     Error::validation(format!("{what} '{name}' is not in the mesh"))
-        .keyword(args.key_path(key))
+        .keyword(list.keyword.clone())
         .hint(hint)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::value::{Span, Value};
 
     /// A 13.x-style mesh: cells and nodes by name, one group of its own.
     const MESH: &str = "COOR_3D\n N1 0 0 0\n N2 1 0 0\nFINSF\nPOI1\n P2 N2\nFINSF\n\
                         SEG2\n M1 N1 N2\nFINSF\nGROUP_MA\n LIAI\n M1\nFINSF\n\
                         GROUP_NO\n MASSES\n N2\nFINSF\nFIN\n";
 
-    fn args(key: &str, name: &str) -> Args {
-        let mut a = Args::new("AFFE_MODELE/AFFE");
-        a.simple
-            .push((key.to_string(), Value::Str(name.into()), Span::default()));
-        a
+    /// One name in the list of `key`, as AFFE_MODELE/AFFE would give it.
+    fn args(key: &str, name: &str) -> Selection {
+        let names = Names {
+            names: vec![name.to_string()],
+            keyword: format!("AFFE_MODELE/AFFE/{key}"),
+        };
+        let mut sel = Selection::default();
+        match key {
+            "GROUP_MA" => sel.cell_groups = names,
+            "MAILLE" => sel.cells = names,
+            "GROUP_NO" => sel.node_groups = names,
+            _ => sel.nodes = names,
+        }
+        sel
     }
 
     fn cells_err(key: &str, name: &str) -> String {

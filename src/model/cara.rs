@@ -4,8 +4,8 @@
 use super::fe_model::{Model, Modelisation};
 use super::frame::Orientation;
 use super::select::{describe_cells, model_point_cells, model_select_cells};
-use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::mesh::select::Selection;
 use crate::mesh::{CellKind, Mesh};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -159,211 +159,155 @@ pub fn discrete_components(m: Modelisation) -> usize {
     m.components().len()
 }
 
-fn named_values(occ: &Args) -> Result<Vec<(String, f64)>> {
-    let names = occ.texts("CARA").unwrap_or_default();
-    let vals = occ.reals("VALE").unwrap_or_default();
-    if names.len() != vals.len() {
-        return Err(Error::input(format!(
-            "CARA has {} names but VALE has {} values",
-            names.len(),
-            vals.len()
-        ))
-        .keyword(occ.key_path("VALE"))
-        .hint("give one value per CARA name, in the same order"));
+impl Section {
+    /// CERCLE: a disc of radius `r`, or a tube of thickness `ep` (0 < ep <= r).
+    pub fn circle(r: f64, ep: Option<f64>) -> Section {
+        let ri = ep.map_or(0.0, |ep| r - ep);
+        let pi = std::f64::consts::PI;
+        let i = pi / 4.0 * (r.powi(4) - ri.powi(4));
+        Section {
+            kind: "CERCLE".to_string(),
+            a: pi * (r * r - ri * ri),
+            iy: i,
+            iz: i,
+            jx: 2.0 * i,
+        }
     }
-    Ok(names.into_iter().zip(vals).collect())
+
+    /// RECTANGLE: a solid rectangle, `hy` along local y, `hz` along local z.
+    pub fn rectangle(hy: f64, hz: f64) -> Section {
+        // Torsion constant of a solid rectangle (Roark), a >= b:
+        // J = a b³ [1/3 − 0.21 (b/a)(1 − b⁴/(12 a⁴))], within ~0.5 % of the series.
+        let (a, b) = if hy >= hz { (hy, hz) } else { (hz, hy) };
+        let jx =
+            a * b.powi(3) * (1.0 / 3.0 - 0.21 * (b / a) * (1.0 - b.powi(4) / (12.0 * a.powi(4))));
+        Section {
+            kind: "RECTANGLE".to_string(),
+            a: hy * hz,
+            iy: hy * hz.powi(3) / 12.0,
+            iz: hz * hy.powi(3) / 12.0,
+            jx,
+        }
+    }
+
+    /// GENERALE: the properties themselves.
+    pub fn general(a: f64, iy: f64, iz: f64, jx: f64) -> Section {
+        Section {
+            kind: "GENERALE".to_string(),
+            a,
+            iy,
+            iz,
+            jx,
+        }
+    }
+
+    /// A bar's GENERALE section: only the area matters.
+    pub fn bar(a: f64) -> Section {
+        Section::general(a, 0.0, 0.0, 0.0)
+    }
 }
 
-fn positive(occ: &Args, name: &str, v: f64) -> Result<f64> {
-    if v > 0.0 && v.is_finite() {
-        Ok(v)
-    } else {
-        Err(Error::input(format!("{name} must be positive, got {v}")).keyword(occ.key_path("VALE")))
-    }
+/// One occurrence of discrete characteristics: a matrix `cara` of `values` on the
+/// discrete elements of `on`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DiscreteAssignment {
+    pub on: Selection,
+    /// The characteristic's name as given (K_T_D_L), for messages.
+    pub cara: String,
+    /// What that name means.
+    pub spec: DiscreteSpec,
+    pub values: Vec<f64>,
+    pub repere: Repere,
+    /// Keyword paths errors name: the occurrence, the name, the values.
+    pub keyword: String,
+    pub cara_keyword: String,
+    pub values_keyword: String,
 }
 
-/// Section properties from SECTION / CARA / VALE.
-pub fn section_from_args(occ: &Args) -> Result<Section> {
-    let kind = occ.req_text("SECTION")?.to_string();
-    let vals = named_values(occ)?;
-    let get = |n: &str| vals.iter().find(|(k, _)| k == n).map(|(_, v)| *v);
-    let allowed: &[&str] = match kind.as_str() {
-        "CERCLE" => &["R", "EP"],
-        "RECTANGLE" => &["H", "HY", "HZ"],
-        "GENERALE" => &["A", "IY", "IZ", "JX"],
-        other => {
-            return Err(Error::input(format!("SECTION {other} is not supported"))
-                .keyword(occ.key_path("SECTION"))
-                .hint("use CERCLE, RECTANGLE or GENERALE"))
-        }
-    };
-    if let Some((bad, _)) = vals.iter().find(|(k, _)| !allowed.contains(&k.as_str())) {
-        return Err(
-            Error::input(format!("CARA {bad} is not available for SECTION='{kind}'"))
-                .keyword(occ.key_path("CARA"))
-                .hint(format!("expected among {}", allowed.join(", "))),
-        );
-    }
-    let need = |n: &str| {
-        get(n).ok_or_else(|| {
-            Error::input(format!("SECTION='{kind}' needs CARA '{n}'")).keyword(occ.key_path("CARA"))
-        })
-    };
-    let s = match kind.as_str() {
-        "CERCLE" => {
-            let r = positive(occ, "R", need("R")?)?;
-            let ri = match get("EP") {
-                None => 0.0,
-                Some(ep) => {
-                    let ep = positive(occ, "EP", ep)?;
-                    if ep > r {
-                        return Err(Error::input(format!("EP = {ep} is larger than R = {r}"))
-                            .keyword(occ.key_path("VALE")));
-                    }
-                    r - ep
-                }
-            };
-            let pi = std::f64::consts::PI;
-            let i = pi / 4.0 * (r.powi(4) - ri.powi(4));
-            Section {
-                kind,
-                a: pi * (r * r - ri * ri),
-                iy: i,
-                iz: i,
-                jx: 2.0 * i,
-            }
-        }
-        "RECTANGLE" => {
-            let (hy, hz) = match (get("H"), get("HY"), get("HZ")) {
-                (Some(h), None, None) => (h, h),
-                (None, Some(hy), Some(hz)) => (hy, hz),
-                _ => {
-                    return Err(Error::input(
-                        "SECTION='RECTANGLE' needs either H, or both HY and HZ",
-                    )
-                    .keyword(occ.key_path("CARA")))
-                }
-            };
-            let hy = positive(occ, "HY", hy)?;
-            let hz = positive(occ, "HZ", hz)?;
-            // Torsion constant of a solid rectangle (Roark), a >= b:
-            // J = a b³ [1/3 − 0.21 (b/a)(1 − b⁴/(12 a⁴))], within ~0.5 % of the series.
-            let (a, b) = if hy >= hz { (hy, hz) } else { (hz, hy) };
-            let jx = a
-                * b.powi(3)
-                * (1.0 / 3.0 - 0.21 * (b / a) * (1.0 - b.powi(4) / (12.0 * a.powi(4))));
-            Section {
-                kind,
-                a: hy * hz,
-                iy: hy * hz.powi(3) / 12.0,
-                iz: hz * hy.powi(3) / 12.0,
-                jx,
-            }
-        }
-        _ => Section {
-            a: positive(occ, "A", need("A")?)?,
-            iy: positive(occ, "IY", need("IY")?)?,
-            iz: positive(occ, "IZ", need("IZ")?)?,
-            jx: positive(occ, "JX", need("JX")?)?,
-            kind,
-        },
-    };
-    Ok(s)
+/// One occurrence of a beam or bar section on the cells of `on`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SectionAssignment {
+    pub on: Selection,
+    pub section: Section,
+    /// Keyword path of the occurrence, which errors name.
+    pub keyword: String,
 }
 
-/// Bar section: GENERALE with CARA 'A', or CERCLE with 'R' (and optional 'EP').
-pub fn bar_section_from_args(occ: &Args) -> Result<Section> {
-    let kind = occ.req_text("SECTION")?;
-    if kind == "GENERALE" {
-        let vals = named_values(occ)?;
-        return match vals.as_slice() {
-            [(n, a)] if n == "A" => Ok(Section {
-                kind: kind.to_string(),
-                a: positive(occ, "A", *a)?,
-                iy: 0.0,
-                iz: 0.0,
-                jx: 0.0,
-            }),
-            _ => Err(
-                Error::input("BARRE with SECTION='GENERALE' needs CARA='A' alone")
-                    .keyword(occ.key_path("CARA")),
-            ),
-        };
-    }
-    if kind != "CERCLE" {
-        return Err(
-            Error::input(format!("SECTION {kind} is not supported for BARRE"))
-                .keyword(occ.key_path("SECTION"))
-                .hint("use GENERALE (CARA='A') or CERCLE (CARA='R')"),
-        );
-    }
-    section_from_args(occ)
+/// One occurrence of an orientation on the cells of `on`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OrientationAssignment {
+    pub on: Selection,
+    pub orientation: Orientation,
 }
 
 impl CaraElem {
-    /// AFFE_CARA_ELEM: read DISCRET / DISCRET_2D / POUTRE / BARRE / ORIENTATION, then check
-    /// that every element that needs a characteristic got one.
-    pub fn build(model_name: &str, model: &Model, mesh: &Mesh, args: &Args) -> Result<CaraElem> {
-        let mut cara = CaraElem {
+    /// No characteristics yet on the elements of `model`: the operator adds each
+    /// occurrence (later ones override earlier ones), then checks the result complete.
+    pub fn new(model_name: &str, model: &Model) -> CaraElem {
+        CaraElem {
             model: model_name.to_string(),
             mesh: model.mesh.clone(),
             discrete: BTreeMap::new(),
             beams: BTreeMap::new(),
             bars: BTreeMap::new(),
             orientations: BTreeMap::new(),
-        };
-        for key in ["DISCRET", "DISCRET_2D"] {
-            for occ in args.facts_or_empty(key) {
-                cara.add_discrete(model, mesh, occ)?;
-            }
         }
-        for occ in args.facts_or_empty("POUTRE") {
-            let s = section_from_args(occ)?;
-            for c in cells_of(model, mesh, occ, &[Modelisation::PouDE], "POUTRE")? {
-                cara.beams.insert(c, s.clone());
-            }
-        }
-        for occ in args.facts_or_empty("BARRE") {
-            let s = bar_section_from_args(occ)?;
-            for c in cells_of(model, mesh, occ, &[Modelisation::Barre], "BARRE")? {
-                cara.bars.insert(c, s.clone());
-            }
-        }
-        for occ in args.facts_or_empty("ORIENTATION") {
-            let o = orientation_from_args(occ)?;
-            for c in model_select_cells(mesh, &model.mesh, occ)? {
-                cara.orientations.insert(c, o);
-            }
-        }
-        cara.check_complete(model, mesh)?;
-        Ok(cara)
     }
 
-    fn add_discrete(&mut self, model: &Model, mesh: &Mesh, occ: &Args) -> Result<()> {
-        let name = occ.req_text("CARA")?.to_string();
-        let spec = DiscreteSpec::parse(&name).ok_or_else(|| {
-            Error::input(format!("unknown or unsupported discrete CARA {name}"))
-                .keyword(occ.key_path("CARA"))
-                .hint("supported: K_T_D_N K_T_D_L K_TR_D_N K_TR_D_L K_T_N K_T_L K_TR_N K_TR_L, M_T_D_N M_T_D_L M_TR_D_N M_T_N M_T_L M_TR_N M_TR_L, A_... like K_...")
-        })?;
-        if occ.text("SYME").is_some_and(|s| s != "OUI") {
-            return Err(
-                Error::input("only symmetric discrete matrices are supported")
-                    .keyword(occ.key_path("SYME"))
-                    .hint("use SYME='OUI'"),
-            );
+    /// Beam sections, on POU_D_E elements only.
+    pub fn add_beam(&mut self, model: &Model, mesh: &Mesh, a: &SectionAssignment) -> Result<()> {
+        let cells = cells_of(
+            model,
+            mesh,
+            &a.on,
+            &[Modelisation::PouDE],
+            "POUTRE",
+            &a.keyword,
+        )?;
+        for c in cells {
+            self.beams.insert(c, a.section.clone());
         }
-        let repere = match occ.text("REPERE").unwrap_or("GLOBAL") {
-            "LOCAL" => Repere::Local,
-            _ => Repere::Global,
-        };
-        let values = occ.reals("VALE").unwrap_or_default();
+        Ok(())
+    }
+
+    /// Bar sections, on BARRE elements only.
+    pub fn add_bar(&mut self, model: &Model, mesh: &Mesh, a: &SectionAssignment) -> Result<()> {
+        let cells = cells_of(
+            model,
+            mesh,
+            &a.on,
+            &[Modelisation::Barre],
+            "BARRE",
+            &a.keyword,
+        )?;
+        for c in cells {
+            self.bars.insert(c, a.section.clone());
+        }
+        Ok(())
+    }
+
+    pub fn add_orientation(&mut self, mesh: &Mesh, a: &OrientationAssignment) -> Result<()> {
+        for c in model_select_cells(mesh, &a.on)? {
+            self.orientations.insert(c, a.orientation);
+        }
+        Ok(())
+    }
+
+    /// A discrete matrix on each element of `a.on`, which must fit the element: its cell
+    /// kind, its components, the number of values.
+    pub fn add_discrete(
+        &mut self,
+        model: &Model,
+        mesh: &Mesh,
+        a: &DiscreteAssignment,
+    ) -> Result<()> {
+        let (name, spec, values) = (&a.cara, a.spec, &a.values);
         let discrete = [
             Modelisation::DisT,
             Modelisation::DisTr,
             Modelisation::Dis2dT,
         ];
-        for c in cells_of(model, mesh, occ, &discrete, "DISCRET")? {
+        for c in cells_of(model, mesh, &a.on, &discrete, "DISCRET", &a.keyword)? {
             let (Some(cell), Some(el)) = (mesh.cells.get(c), model.element_of(c)) else {
                 continue;
             };
@@ -379,7 +323,7 @@ impl CaraElem {
                     cell.name,
                     cell.kind.aster_name()
                 ))
-                .keyword(occ.key_path("CARA"))
+                .keyword(a.cara_keyword.clone())
                 .hint(if spec.on_segment {
                     "use the _N form (e.g. K_T_D_N) on POI1 cells"
                 } else {
@@ -393,7 +337,7 @@ impl CaraElem {
                     cell.name,
                     el.modelisation.aster_name()
                 ))
-                .keyword(occ.key_path("CARA"))
+                .keyword(a.cara_keyword.clone())
                 .hint(if rot_model {
                     "DIS_TR elements take the K_TR_/M_TR_ forms"
                 } else {
@@ -403,7 +347,7 @@ impl CaraElem {
             let nd = discrete_components(el.modelisation);
             if spec.form == DiscreteForm::RigidBodyMass && nd != 6 {
                 return Err(Error::input(format!("{name} needs a 3D DIS_TR element"))
-                    .keyword(occ.key_path("CARA")));
+                    .keyword(a.cara_keyword.clone()));
             }
             let n = spec.value_count(nd);
             if values.len() != n {
@@ -412,13 +356,13 @@ impl CaraElem {
                     el.modelisation.aster_name(),
                     values.len()
                 ))
-                .keyword(occ.key_path("VALE")));
+                .keyword(a.values_keyword.clone()));
             }
             let dv = DiscreteValue {
                 cara: name.clone(),
                 spec,
                 values: values.clone(),
-                repere,
+                repere: a.repere,
             };
             let entry = self.discrete.entry(c).or_default();
             match spec.category {
@@ -478,17 +422,19 @@ impl CaraElem {
     }
 }
 
-/// Cells selected by `occ` that must all be modelled with one of `allowed`.
+/// Cells selected by `on` that must all be modelled with one of `allowed`; `what` names
+/// the characteristic in messages, `keyword` is the occurrence's path.
 fn cells_of(
     model: &Model,
     mesh: &Mesh,
-    occ: &Args,
+    on: &Selection,
     allowed: &[Modelisation],
-    key: &str,
+    what: &str,
+    keyword: &str,
 ) -> Result<Vec<usize>> {
-    let mut cells = model_select_cells(mesh, &model.mesh, occ)?;
-    // NOEUD / GROUP_NO (13.x): the point elements of the model on those nodes.
-    for c in model_point_cells(model, mesh, occ)? {
+    let mut cells = model_select_cells(mesh, on)?;
+    // Nodes (13.x): the point elements of the model on those nodes.
+    for c in model_point_cells(model, mesh, on)? {
         if !cells.contains(&c) {
             cells.push(c);
         }
@@ -505,33 +451,13 @@ fn cells_of(
     if !bad.is_empty() {
         let names: Vec<&str> = allowed.iter().map(|m| m.aster_name()).collect();
         return Err(Error::input(format!(
-            "{key} given on {} which the model does not carry as {}",
+            "{what} given on {} which the model does not carry as {}",
             describe_cells(mesh, &bad),
             names.join(" / ")
         ))
-        .keyword(occ.path.clone()));
+        .keyword(keyword.to_string()));
     }
     Ok(cells)
-}
-
-fn orientation_from_args(occ: &Args) -> Result<Orientation> {
-    let cara = occ.req_text("CARA")?;
-    let vale = occ.reals("VALE").unwrap_or_default();
-    match (cara, vale.as_slice()) {
-        ("VECT_Y", [x, y, z]) => Ok(Orientation::VectY([*x, *y, *z])),
-        ("ANGL_VRIL", [g]) => Ok(Orientation::AnglVril(*g)),
-        ("VECT_Y", v) | ("ANGL_VRIL", v) => Err(Error::input(format!(
-            "CARA {cara} expects {} values in VALE, got {}",
-            if cara == "VECT_Y" { 3 } else { 1 },
-            v.len()
-        ))
-        .keyword(occ.key_path("VALE"))),
-        _ => Err(
-            Error::input(format!("ORIENTATION CARA {cara} is not supported"))
-                .keyword(occ.key_path("CARA"))
-                .hint("use VECT_Y or ANGL_VRIL"),
-        ),
-    }
 }
 
 #[cfg(test)]

@@ -2,8 +2,8 @@
 
 use super::dof::Cmp;
 use super::select::model_select_cells;
-use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::mesh::select::Selection;
 use crate::mesh::{Cell, CellKind, Mesh};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
@@ -104,93 +104,99 @@ pub fn point_cell_name(node: &str) -> String {
     format!("POI1({node})")
 }
 
-impl Model {
-    /// AFFE_MODELE: every AFFE occurrence assigns a modelisation to its cells; a later
-    /// occurrence overrides an earlier one on the same cell. As in Code_Aster, cells whose
-    /// type has no element for the modelisation are skipped (TOUT='OUI' on a mixed mesh),
-    /// but an occurrence that assigns no cell at all is an error.
-    pub fn build(mesh_name: &str, mesh: &Mesh, affe: &[Args]) -> Result<Model> {
-        let mut by_cell: BTreeMap<usize, Modelisation> = BTreeMap::new();
-        let mut point_cells: Vec<usize> = Vec::new();
-        for occ in affe {
-            let phen = occ.text("PHENOMENE").unwrap_or("MECANIQUE");
-            if phen != "MECANIQUE" {
-                return Err(Error::input(format!("phenomenon {phen} is not supported"))
-                    .keyword(occ.key_path("PHENOMENE"))
-                    .hint("only PHENOMENE='MECANIQUE' is available"));
-            }
-            let names = occ.texts("MODELISATION").unwrap_or_default();
-            let [name] = names.as_slice() else {
-                return Err(Error::input("expected exactly one MODELISATION")
-                    .keyword(occ.key_path("MODELISATION")));
-            };
-            let m = Modelisation::parse(name).ok_or_else(|| {
-                Error::input(format!("unknown MODELISATION {name}"))
-                    .keyword(occ.key_path("MODELISATION"))
-                    .hint(format!(
-                        "expected one of {}",
-                        Modelisation::NAMES.join(", ")
-                    ))
-            })?;
-            if occ.has("GROUP_NO") || occ.has("NOEUD") {
-                // 13.x: elements on nodes, carried by point cells of the model.
-                let key = if occ.has("GROUP_NO") {
-                    "GROUP_NO"
-                } else {
-                    "NOEUD"
+/// One assignment of AFFE_MODELE: a modelisation on some cells, or (Code_Aster 13.x) on
+/// nodes when `on` names nodes (discrete modelisations only: the operator checks it).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModelAssignment {
+    pub modelisation: Modelisation,
+    pub on: Selection,
+    /// Keyword path of the modelisation, which errors about the assignment name.
+    pub keyword: String,
+}
+
+/// A model being built, one assignment after another (the operator reads each from its
+/// occurrence just before it is assigned, so errors come in the user's order).
+pub struct ModelBuilder<'m> {
+    mesh_name: String,
+    mesh: &'m Mesh,
+    by_cell: BTreeMap<usize, Modelisation>,
+    point_cells: Vec<usize>,
+}
+
+impl<'m> ModelBuilder<'m> {
+    pub fn new(mesh_name: &str, mesh: &'m Mesh) -> Self {
+        ModelBuilder {
+            mesh_name: mesh_name.to_string(),
+            mesh,
+            by_cell: BTreeMap::new(),
+            point_cells: Vec::new(),
+        }
+    }
+
+    /// A later assignment overrides an earlier one on the same cell. As in Code_Aster,
+    /// cells whose type has no element for the modelisation are skipped (the whole mesh
+    /// when it mixes cell types), but an assignment that reaches no cell is an error.
+    pub fn assign(&mut self, a: &ModelAssignment) -> Result<()> {
+        let (mesh, m) = (self.mesh, a.modelisation);
+        if a.on.names_nodes() {
+            // 13.x: elements on nodes, carried by point cells of the model.
+            for n in crate::mesh::select::select_nodes(mesh, &a.on.nodes_only())? {
+                let k = match self.point_cells.iter().position(|&p| p == n) {
+                    Some(k) => k,
+                    None => {
+                        self.point_cells.push(n);
+                        self.point_cells.len() - 1
+                    }
                 };
-                if !m.is_discrete() {
-                    return Err(Error::input(format!(
-                        "MODELISATION {name} cannot be assigned to nodes: only discrete elements (DIS_T, DIS_TR, 2D_DIS_T) live on nodes"
-                    ))
-                    .keyword(occ.key_path(key))
-                    .hint("assign beams and bars to cells with GROUP_MA, MAILLE or TOUT"));
-                }
-                let mut node_args = occ.clone();
-                node_args
-                    .simple
-                    .retain(|(k, _, _)| k == "GROUP_NO" || k == "NOEUD");
-                for n in crate::mesh::select::select_nodes(mesh, &node_args)? {
-                    let k = match point_cells.iter().position(|&p| p == n) {
-                        Some(k) => k,
-                        None => {
-                            point_cells.push(n);
-                            point_cells.len() - 1
-                        }
-                    };
-                    by_cell.insert(mesh.cells.len() + k, m);
-                }
+                self.by_cell.insert(mesh.cells.len() + k, m);
+            }
+            return Ok(());
+        }
+        let cells = model_select_cells(mesh, &a.on)?;
+        let mut assigned = 0;
+        for c in cells {
+            let Some(cell) = mesh.cells.get(c) else {
                 continue;
-            }
-            let cells = model_select_cells(mesh, mesh_name, occ)?;
-            let mut assigned = 0;
-            for c in cells {
-                let Some(cell) = mesh.cells.get(c) else {
-                    continue;
-                };
-                if m.cell_kinds().contains(&cell.kind) {
-                    by_cell.insert(c, m);
-                    assigned += 1;
-                }
-            }
-            if assigned == 0 {
-                let kinds: Vec<&str> = m.cell_kinds().iter().map(|k| k.aster_name()).collect();
-                return Err(Error::input(format!(
-                    "MODELISATION {name} assigned no element: none of the selected cells is a {}",
-                    kinds.join(" or ")
-                ))
-                .keyword(occ.key_path("MODELISATION")));
+            };
+            if m.cell_kinds().contains(&cell.kind) {
+                self.by_cell.insert(c, m);
+                assigned += 1;
             }
         }
-        Ok(Model {
-            mesh: mesh_name.to_string(),
-            elements: by_cell
+        if assigned == 0 {
+            let kinds: Vec<&str> = m.cell_kinds().iter().map(|k| k.aster_name()).collect();
+            return Err(Error::input(format!(
+                "MODELISATION {} assigned no element: none of the selected cells is a {}",
+                m.aster_name(),
+                kinds.join(" or ")
+            ))
+            .keyword(a.keyword.clone()));
+        }
+        Ok(())
+    }
+
+    pub fn finish(self) -> Model {
+        Model {
+            mesh: self.mesh_name,
+            elements: self
+                .by_cell
                 .into_iter()
                 .map(|(cell, modelisation)| ModelElement { cell, modelisation })
                 .collect(),
-            point_cells,
-            mesh_cells: mesh.cells.len(),
-        })
+            point_cells: self.point_cells,
+            mesh_cells: self.mesh.cells.len(),
+        }
+    }
+}
+
+impl Model {
+    /// The model of `affe`, assigned in order (see [`ModelBuilder::assign`]).
+    pub fn build(mesh_name: &str, mesh: &Mesh, affe: &[ModelAssignment]) -> Result<Model> {
+        let mut b = ModelBuilder::new(mesh_name, mesh);
+        for a in affe {
+            b.assign(a)?;
+        }
+        Ok(b.finish())
     }
 
     /// Add the model's own point cells (see [`Model::point_cells`]) to its mesh, so that

@@ -8,8 +8,8 @@
 use super::dof::Cmp;
 use super::fe_model::Model;
 use super::select::model_select_nodes;
-use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::mesh::select::Selection;
 use crate::mesh::Mesh;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -37,38 +37,57 @@ pub struct KinematicLoad {
     pub blocked: Vec<BlockedDof>,
 }
 
+/// One component imposed by a condition, and the keyword path that gave it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImposedComponent {
+    pub cmp: Cmp,
+    pub value: f64,
+    pub keyword: String,
+}
+
+/// One condition (an occurrence of MECA_IMPO or DDL_IMPO): components imposed on the
+/// nodes of `on`, or every component the nodes carry blocked (`clamp`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Condition {
+    pub on: Selection,
+    /// Given components, in Code_Aster order.
+    pub components: Vec<ImposedComponent>,
+    /// Every component each node carries, at zero (a clamp).
+    pub clamp: bool,
+    /// Keyword path of the condition, which errors about a whole node name.
+    pub keyword: String,
+}
+
 impl KinematicLoad {
-    /// Build from the MECA_IMPO (Cine) or DDL_IMPO (Meca) occurrences. Every component
-    /// must be carried by the node in the model, as Code_Aster requires.
+    /// Build from the conditions, in order. Every component must be carried by the node
+    /// in the model, as Code_Aster requires.
     pub fn build(
         kind: LoadKind,
         model_name: &str,
         model: &Model,
         mesh: &Mesh,
-        occurrences: &[Args],
+        conditions: &[Condition],
     ) -> Result<KinematicLoad> {
         let carried = model.node_components(mesh);
         let mut blocked: Vec<BlockedDof> = Vec::new();
         // (node index, component) -> position in `blocked`: TOUT='OUI' on a large mesh
         // must not scan the list for every DOF.
         let mut seen: HashMap<(usize, Cmp), usize> = HashMap::new();
-        for occ in occurrences {
-            let nodes = model_select_nodes(mesh, &model.mesh, occ)?;
-            let encastre = occ.text("LIAISON") == Some("ENCASTRE");
-            let given: Vec<(Cmp, f64)> = Cmp::ALL
-                .iter()
-                .filter_map(|&c| occ.real(c.name()).map(|v| (c, v)))
-                .collect();
-            if given.is_empty() && !encastre {
-                return Err(Error::input("no component given")
-                    .keyword(occ.path.clone())
-                    .hint("give at least one of DX DY DZ DRX DRY DRZ (or LIAISON='ENCASTRE')"));
-            }
+        for cond in conditions {
+            let nodes = model_select_nodes(mesh, &cond.on)?;
+            let encastre = cond.clamp;
+            let given: Vec<(Cmp, f64)> = cond.components.iter().map(|c| (c.cmp, c.value)).collect();
+            let keyword_of = |c: Cmp| {
+                cond.components
+                    .iter()
+                    .find(|g| g.cmp == c)
+                    .map_or_else(|| cond.keyword.clone(), |g| g.keyword.clone())
+            };
             // TOUT='OUI' means the model's nodes: nodes without DOFs and components a node
             // does not carry are skipped (a mixed DIS_T/DIS_TR model with TOUT, DRX=0), but
             // each component must exist somewhere. Explicit NOEUD/GROUP_NO/GROUP_MA
             // selections are strict, as Code_Aster's "component absent on node" error.
-            let everywhere = occ.text("TOUT") == Some("OUI");
+            let everywhere = cond.on.all;
             let mut used: Vec<Cmp> = Vec::new();
             for n in nodes {
                 let Some(node) = mesh.nodes.get(n) else {
@@ -82,7 +101,7 @@ impl KinematicLoad {
                         "node {} carries no DOF in model {model_name}",
                         node.name
                     ))
-                    .keyword(occ.path.clone())
+                    .keyword(cond.keyword.clone())
                     .hint("block only nodes of modelled cells"));
                 };
                 let mut these = given.clone();
@@ -98,7 +117,7 @@ impl KinematicLoad {
                             "component {c} does not exist on node {} in model {model_name}",
                             node.name
                         ))
-                        .keyword(occ.key_path(c.name()))
+                        .keyword(keyword_of(c))
                         .hint(format!(
                             "the node carries {}",
                             cmps.iter().map(|c| c.name()).collect::<Vec<_>>().join(" ")
@@ -123,7 +142,7 @@ impl KinematicLoad {
                 return Err(Error::input(format!(
                     "component {c} exists on none of the selected nodes in model {model_name}"
                 ))
-                .keyword(occ.key_path(c.name())));
+                .keyword(keyword_of(*c)));
             }
         }
         Ok(KinematicLoad {

@@ -1,8 +1,8 @@
 //! Materials (DEFI_MATERIAU) and material fields (AFFE_MATERIAU).
 
 use super::select::model_select_cells;
-use crate::args::Args;
-use crate::error::{Error, Result};
+use crate::error::Result;
+use crate::mesh::select::Selection;
 use crate::mesh::Mesh;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -16,46 +16,62 @@ pub struct Elas {
     pub rho: Option<f64>,
 }
 
+/// Why elastic constants are refused.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ElasError {
+    /// Young's modulus not positive.
+    YoungModulus(f64),
+    /// Poisson's ratio outside ]-1, 0.5[.
+    PoissonRatio(f64),
+    /// Negative density.
+    Density(f64),
+}
+
+impl std::fmt::Display for ElasError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ElasError::YoungModulus(e) => write!(f, "E must be positive, got {e}"),
+            ElasError::PoissonRatio(nu) => write!(f, "NU must lie in ]-1, 0.5[, got {nu}"),
+            ElasError::Density(r) => write!(f, "RHO must not be negative, got {r}"),
+        }
+    }
+}
+
 impl Elas {
+    /// Checked constants: the strain energy must be positive definite (E > 0,
+    /// -1 < ν < 0.5) and a mass not negative.
+    pub fn new(e: f64, nu: f64, rho: Option<f64>) -> std::result::Result<Elas, ElasError> {
+        if e <= 0.0 {
+            return Err(ElasError::YoungModulus(e));
+        }
+        if !(-1.0 < nu && nu < 0.5) {
+            return Err(ElasError::PoissonRatio(nu));
+        }
+        if let Some(r) = rho.filter(|r| *r < 0.0) {
+            return Err(ElasError::Density(r));
+        }
+        Ok(Elas { e, nu, rho })
+    }
+
     /// Shear modulus G = E / (2 (1 + ν)).
     pub fn shear_modulus(&self) -> f64 {
         self.e / (2.0 * (1.0 + self.nu))
     }
 }
 
+/// A material (DEFI_MATERIAU): its behaviours, each checked when it was built.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Material {
     pub elas: Option<Elas>,
 }
 
-impl Material {
-    /// DEFI_MATERIAU(ELAS=_F(E=, NU=, RHO=)).
-    pub fn from_args(args: &Args) -> Result<Material> {
-        let elas = match args.fact("ELAS") {
-            None => None,
-            Some(f) => {
-                let e = f.req_real("E")?;
-                let nu = f.req_real("NU")?;
-                if e <= 0.0 {
-                    return Err(Error::input(format!("E must be positive, got {e}"))
-                        .keyword(f.key_path("E")));
-                }
-                if !(-1.0 < nu && nu < 0.5) {
-                    return Err(Error::input(format!("NU must lie in ]-1, 0.5[, got {nu}"))
-                        .keyword(f.key_path("NU")));
-                }
-                let rho = f.real("RHO");
-                if let Some(r) = rho {
-                    if r < 0.0 {
-                        return Err(Error::input(format!("RHO must not be negative, got {r}"))
-                            .keyword(f.key_path("RHO")));
-                    }
-                }
-                Some(Elas { e, nu, rho })
-            }
-        };
-        Ok(Material { elas })
-    }
+/// One assignment of a material field: a material concept on some cells.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MaterialAssignment {
+    pub on: Selection,
+    /// The material concept's name.
+    pub name: String,
+    pub material: Material,
 }
 
 /// AFFE_MATERIAU: the material of each cell.
@@ -69,22 +85,22 @@ pub struct MaterialField {
 }
 
 impl MaterialField {
-    /// `affe`: the AFFE occurrences with, for each, the material concept (name, data).
+    /// `affe` in the user's order: a later assignment overrides an earlier one on a cell.
     pub fn build(
         mesh_name: &str,
         mesh: &Mesh,
-        affe: &[(Args, String, Material)],
+        affe: &[MaterialAssignment],
     ) -> Result<MaterialField> {
         let mut field = MaterialField {
             mesh: mesh_name.to_string(),
             materials: BTreeMap::new(),
             cell_material: BTreeMap::new(),
         };
-        for (occ, name, mat) in affe {
-            for c in model_select_cells(mesh, mesh_name, occ)? {
-                field.cell_material.insert(c, name.clone());
+        for a in affe {
+            for c in model_select_cells(mesh, &a.on)? {
+                field.cell_material.insert(c, a.name.clone());
             }
-            field.materials.insert(name.clone(), mat.clone());
+            field.materials.insert(a.name.clone(), a.material.clone());
         }
         Ok(field)
     }

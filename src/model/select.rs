@@ -1,44 +1,33 @@
-//! Cell/node selection for the model operators (TOUT / GROUP_MA / MAILLE / GROUP_NO /
-//! NOEUD), over `mesh::select`, in mesh order.
+//! Cell/node selection for the model operators, over `mesh::select`, in mesh order.
 
 use super::fe_model::Model;
-use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::mesh::select::Selection;
 use crate::mesh::{CellKind, Mesh};
 
-/// Cells chosen by TOUT='OUI', GROUP_MA or MAILLE in one factor keyword occurrence,
-/// sorted and without repeats (the model keeps its elements in mesh order).
-pub fn model_select_cells(mesh: &Mesh, _mesh_name: &str, args: &Args) -> Result<Vec<usize>> {
-    let mut cells = crate::mesh::select::select_cells(mesh, args)?;
+/// Cells chosen by the whole mesh, cell groups or cells of `sel`, sorted and without
+/// repeats (the model keeps its elements in mesh order).
+pub fn model_select_cells(mesh: &Mesh, sel: &Selection) -> Result<Vec<usize>> {
+    let mut cells = crate::mesh::select::select_cells(mesh, sel)?;
     cells.sort_unstable();
     Ok(cells)
 }
 
-/// Nodes chosen by TOUT, GROUP_NO, NOEUD, GROUP_MA or MAILLE (the nodes of those cells),
-/// sorted and without repeats.
-pub fn model_select_nodes(mesh: &Mesh, _mesh_name: &str, args: &Args) -> Result<Vec<usize>> {
-    let mut nodes = crate::mesh::select::select_nodes(mesh, args)?;
+/// Nodes chosen by `sel` (with the nodes of its cells), sorted and without repeats.
+pub fn model_select_nodes(mesh: &Mesh, sel: &Selection) -> Result<Vec<usize>> {
+    let mut nodes = crate::mesh::select::select_nodes(mesh, sel)?;
     nodes.sort_unstable();
     Ok(nodes)
 }
 
-/// The POI1 cells carrying an element of `model` on the nodes chosen by GROUP_NO or NOEUD
-/// in `args` (Code_Aster 13.x: AFFE_CARA_ELEM/DISCRET on nodes), in node order. `mesh` is
-/// the model's mesh completed with its point cells. Every node must carry one.
-pub fn model_point_cells(model: &Model, mesh: &Mesh, args: &Args) -> Result<Vec<usize>> {
-    if !args.has("GROUP_NO") && !args.has("NOEUD") {
+/// The POI1 cells carrying an element of `model` on the nodes `sel` names explicitly
+/// (Code_Aster 13.x: characteristics of discrete elements given on nodes), in node order.
+/// `mesh` is the model's mesh completed with its point cells. Every node must carry one.
+pub fn model_point_cells(model: &Model, mesh: &Mesh, sel: &Selection) -> Result<Vec<usize>> {
+    if !sel.names_nodes() {
         return Ok(Vec::new());
     }
-    let mut node_args = args.clone();
-    node_args
-        .simple
-        .retain(|(k, _, _)| k == "GROUP_NO" || k == "NOEUD");
-    let key = if args.has("GROUP_NO") {
-        "GROUP_NO"
-    } else {
-        "NOEUD"
-    };
-    let nodes = crate::mesh::select::select_nodes(mesh, &node_args)?;
+    let nodes = crate::mesh::select::select_nodes(mesh, &sel.nodes_only())?;
     let mut out = Vec::new();
     for n in nodes {
         let on_node: Vec<usize> = model
@@ -56,7 +45,7 @@ pub fn model_point_cells(model: &Model, mesh: &Mesh, args: &Args) -> Result<Vec<
             return Err(Error::input(format!(
                 "node {name} carries no point element in the model"
             ))
-            .keyword(args.key_path(key))
+            .keyword(sel.node_keyword().to_string())
             .hint("give the node an element: AFFE_MODELE(AFFE=_F(NOEUD=... or GROUP_NO=..., MODELISATION='DIS_T')), or a POI1 cell with CREA_MAILLAGE/CREA_POI1 modelled through GROUP_MA"));
         }
         out.extend(on_node);

@@ -4,7 +4,16 @@
 
 use super::*;
 use crate::args::Args;
+use crate::mesh::select::Selection;
+use crate::model::material::MaterialAssignment;
+// The model layer takes typed specs. These tests write the keywords a user writes and
+// build the specs with the operators' readers, so that the keyword paths of errors are
+// checked too.
 use crate::mesh::{Cell, CellKind, Group, Mesh, Node};
+use crate::ops::affe_cara_elem::cara_elem;
+use crate::ops::affe_char_cine::kinematic_load;
+use crate::ops::affe_modele::model as model_of;
+use crate::ops::defi_materiau::material;
 use crate::value::{Span, Value};
 use faer::sparse::SparseColMat;
 use faer::{Mat, Side};
@@ -131,9 +140,9 @@ fn build(
     cara_args: Args,
     mat: Option<(f64, f64, f64)>,
 ) -> Result<Built> {
-    let model = Model::build("MA", &mesh, &affe)?;
+    let model = model_of("MA", &mesh, &affe)?;
     let field = mat.map(|(e, nu, rho)| {
-        let m = Material::from_args(&with_facts(
+        let m = material(&with_facts(
             fact("DEFI_MATERIAU", vec![]),
             "ELAS",
             vec![fact(
@@ -145,15 +154,18 @@ fn build(
         MaterialField::build(
             "MA",
             &mesh,
-            &[(
-                fact("AFFE_MATERIAU/AFFE", vec![("TOUT", s("OUI"))]),
-                "STEEL".into(),
-                m,
-            )],
+            &[MaterialAssignment {
+                on: Selection {
+                    all: true,
+                    ..Selection::default()
+                },
+                name: "STEEL".into(),
+                material: m,
+            }],
         )
         .unwrap()
     });
-    let cara = CaraElem::build("MO", &model, &mesh, &cara_args)?;
+    let cara = cara_elem("MO", &model, &mesh, &cara_args)?;
     Ok(Built {
         mesh,
         model,
@@ -197,7 +209,7 @@ fn load(b: &Built, kind: LoadKind, occ: Vec<Vec<(&str, Value)>>) -> Result<Kinem
         .into_iter()
         .map(|o| fact("AFFE_CHAR/DDL_IMPO", o))
         .collect();
-    KinematicLoad::build(kind, "MO", &b.model, &b.mesh, &occ)
+    kinematic_load(kind, "MO", &b.model, &b.mesh, &occ)
 }
 
 fn dis_t_all() -> Vec<Args> {
@@ -895,7 +907,7 @@ fn numbering_from_model_and_loads_equals_numbering_from_matrices() {
     let (km, _) = chain(3, 2.0, 1.0, false, LoadKind::Meca);
     // Rebuild the same chain's model-side numbering directly.
     let mesh = line_mesh(4, [0.0; 3], [4.0, 0.0, 0.0]);
-    let model = Model::build("MA", &mesh, &dis_t_all()).unwrap();
+    let model = model_of("MA", &mesh, &dis_t_all()).unwrap();
     let occ: Vec<Args> = vec![
         fact(
             "X",
@@ -904,7 +916,7 @@ fn numbering_from_model_and_loads_equals_numbering_from_matrices() {
         fact("X", vec![("GROUP_NO", s("LEFT")), ("DX", r(0.0))]),
         fact("X", vec![("GROUP_NO", s("RIGHT")), ("DX", r(0.0))]),
     ];
-    let l = KinematicLoad::build(LoadKind::Meca, "MO", &model, &mesh, &occ).unwrap();
+    let l = kinematic_load(LoadKind::Meca, "MO", &model, &mesh, &occ).unwrap();
     let num = DofNumbering::from_model("MO", &model, &mesh, &[&l]).unwrap();
     assert_eq!(num.dofs, km.numbering.dofs);
     assert_eq!(num.eliminated, km.numbering.eliminated);
@@ -951,21 +963,21 @@ fn tout_skips_nodes_and_components_not_carried() {
             ],
         ),
     ];
-    let model = Model::build("MA", &mesh, &affe).unwrap();
+    let model = model_of("MA", &mesh, &affe).unwrap();
     let occ = vec![fact("X", vec![("TOUT", s("OUI")), ("DRX", r(0.0))])];
-    let l = KinematicLoad::build(LoadKind::Cine, "MO", &model, &mesh, &occ).unwrap();
+    let l = kinematic_load(LoadKind::Cine, "MO", &model, &mesh, &occ).unwrap();
     let nodes: Vec<&str> = l.blocked.iter().map(|b| b.node.as_str()).collect();
     assert_eq!(nodes, ["N1", "N2", "N3"]);
     // Explicitly naming the translation-only node is an error.
     let occ = vec![fact("X", vec![("NOEUD", s("N10")), ("DRX", r(0.0))])];
-    let e = KinematicLoad::build(LoadKind::Cine, "MO", &model, &mesh, &occ).unwrap_err();
+    let e = kinematic_load(LoadKind::Cine, "MO", &model, &mesh, &occ).unwrap_err();
     assert!(
         e.message
             .contains("component DRX does not exist on node N10"),
         "{e}"
     );
-    let only_t = Model::build("MA", &mesh, &dis_t_all()).unwrap();
+    let only_t = model_of("MA", &mesh, &dis_t_all()).unwrap();
     let occ = vec![fact("X", vec![("TOUT", s("OUI")), ("DRZ", r(0.0))])];
-    let e = KinematicLoad::build(LoadKind::Cine, "MO", &only_t, &mesh, &occ).unwrap_err();
+    let e = kinematic_load(LoadKind::Cine, "MO", &only_t, &mesh, &occ).unwrap_err();
     assert!(e.message.contains("component DRZ exists on none"), "{e}");
 }

@@ -1,9 +1,12 @@
 //! AFFE_CHAR_CINE: kinematic conditions eliminated at assembly (MECA_IMPO).
 
+use super::common::selection::selection;
 use super::OpContext;
 use crate::args::Args;
-use crate::error::Result;
-use crate::model::{KinematicLoad, LoadKind};
+use crate::error::{Error, Result};
+use crate::mesh::Mesh;
+use crate::model::loads::{Condition, ImposedComponent};
+use crate::model::{Cmp, KinematicLoad, LoadKind, Model};
 use crate::store::model::{load_model_and_mesh, save_load};
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
@@ -21,7 +24,7 @@ pub(crate) fn build(
     let name = ctx.result_name()?.to_string();
     let model_name = args.req_concept("MODELE")?.name.clone();
     let (model, mesh) = load_model_and_mesh(ctx.store, &model_name)?;
-    let load = KinematicLoad::build(kind, &model_name, &model, &mesh, args.facts_or_empty(key))?;
+    let load = kinematic_load(kind, &model_name, &model, &mesh, args.facts_or_empty(key))?;
     let nonzero = load.nonzero();
     if let Some(first) = nonzero.first() {
         let msg = format!(
@@ -35,4 +38,45 @@ pub(crate) fn build(
     }
     ctx.create(&name, ty)?;
     save_load(ctx.store, &name, &load)
+}
+
+/// The load of the MECA_IMPO (Cine) or DDL_IMPO (Meca) occurrences.
+pub(crate) fn kinematic_load(
+    kind: LoadKind,
+    model_name: &str,
+    model: &Model,
+    mesh: &Mesh,
+    occurrences: &[Args],
+) -> Result<KinematicLoad> {
+    let conditions = occurrences
+        .iter()
+        .map(condition)
+        .collect::<Result<Vec<_>>>()?;
+    KinematicLoad::build(kind, model_name, model, mesh, &conditions)
+}
+
+/// One occurrence: the component keywords are named after the components.
+fn condition(occ: &Args) -> Result<Condition> {
+    let components: Vec<ImposedComponent> = Cmp::ALL
+        .iter()
+        .filter_map(|&cmp| {
+            occ.real(cmp.name()).map(|value| ImposedComponent {
+                cmp,
+                value,
+                keyword: occ.key_path(cmp.name()),
+            })
+        })
+        .collect();
+    let clamp = occ.text("LIAISON") == Some("ENCASTRE");
+    if components.is_empty() && !clamp {
+        return Err(Error::input("no component given")
+            .keyword(occ.path.clone())
+            .hint("give at least one of DX DY DZ DRX DRY DRZ (or LIAISON='ENCASTRE')"));
+    }
+    Ok(Condition {
+        on: selection(occ),
+        components,
+        clamp,
+        keyword: occ.path.clone(),
+    })
 }

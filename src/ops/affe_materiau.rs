@@ -1,8 +1,10 @@
 //! AFFE_MATERIAU: assign materials to cells (MAILLAGE or MODELE).
 
+use super::common::selection::selection;
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::model::material::MaterialAssignment;
 use crate::model::MaterialField;
 use crate::store::model::{load_material, load_mesh, load_model, save_material_field};
 
@@ -24,11 +26,11 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 Error::input("expected exactly one material").keyword(occ.key_path("MATER"))
             );
         };
-        affe.push((
-            occ.clone(),
-            m.name.clone(),
-            load_material(ctx.store, &m.name)?,
-        ));
+        affe.push(MaterialAssignment {
+            on: selection(occ),
+            name: m.name.clone(),
+            material: load_material(ctx.store, &m.name)?,
+        });
     }
     let field = MaterialField::build(&mesh_name, &mesh, &affe)?;
     ctx.create(&name, "cham_mater")?;

@@ -4,6 +4,7 @@
 //! it: a group per node and a group of all of them (sdnd123a's pattern) share the cells,
 //! so that a model on one group and characteristics on the other meet on the same cell.
 
+use super::common::selection::selection;
 use super::OpContext;
 use crate::args::Args;
 use crate::error::Result;
@@ -18,7 +19,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     // node -> its POI1 cell, across every occurrence of this call.
     let mut poi1_of: BTreeMap<usize, usize> = BTreeMap::new();
     for occ in args.facts_or_empty("CREA_POI1") {
-        let nodes = select::select_nodes(&mesh, occ)?;
+        let nodes = select::select_nodes(&mesh, &selection(occ))?;
         let new_nodes: Vec<usize> = nodes
             .iter()
             .copied()

@@ -1,9 +1,11 @@
 //! DEFI_GROUP: add or remove node and cell groups of a mesh (reuse).
 
+use super::common::selection::selection;
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
-use crate::mesh::{edit, select, Mesh};
+use crate::mesh::select::{self, Names, Selection};
+use crate::mesh::{edit, Mesh};
 use crate::store::mesh::{load_mesh, save_mesh};
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
@@ -24,7 +26,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     }
     for occ in args.facts_or_empty("CREA_GROUP_MA") {
         let g = occ.req_text("NOM")?.to_string();
-        let cells = select::select_cells(&mesh, occ)?;
+        let cells = select::select_cells(&mesh, &selection(occ))?;
         edit::add_cell_group(&mut mesh, &g, cells).map_err(|e| e.keyword(occ.key_path("NOM")))?;
     }
     for occ in args.facts_or_empty("CREA_GROUP_NO") {
@@ -75,12 +77,14 @@ fn crea_group_no(mesh: &mut Mesh, occ: &Args) -> Result<Vec<String>> {
                 skipped.push(g.clone());
                 continue;
             }
-            let mut one = Args::new(occ.path.clone());
-            one.simple.push((
-                "GROUP_MA".into(),
-                crate::value::Value::Str(g.clone()),
-                occ.span("GROUP_MA").unwrap_or_default(),
-            ));
+            // The nodes of this one group, blamed on GROUP_MA as the user wrote it.
+            let one = Selection {
+                cell_groups: Names {
+                    names: vec![g.clone()],
+                    keyword: occ.key_path("GROUP_MA"),
+                },
+                ..Selection::default()
+            };
             let nodes = select::select_nodes(mesh, &one)?;
             let new_name = names.get(k).unwrap_or(g);
             edit::add_node_group(mesh, new_name, nodes).map_err(named)?;
@@ -90,7 +94,7 @@ fn crea_group_no(mesh: &mut Mesh, occ: &Args) -> Result<Vec<String>> {
     let name = names.first().ok_or_else(|| {
         Error::validation("NOM is required with NOEUD or GROUP_NO").keyword(occ.key_path("NOM"))
     })?;
-    let nodes = select::select_nodes(mesh, occ)?;
+    let nodes = select::select_nodes(mesh, &selection(occ))?;
     edit::add_node_group(mesh, name, nodes).map_err(named)?;
     Ok(skipped)
 }

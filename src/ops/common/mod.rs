@@ -21,6 +21,10 @@ pub mod plot_args;
 pub mod progress;
 // Whether a call fits the machine (memory, long work).
 pub mod resources;
+// The section keywords (SECTION, CARA, VALE) of AFFE_CARA_ELEM's POUTRE and BARRE.
+pub mod section;
+// The location keywords (TOUT, GROUP_MA, MAILLE, GROUP_NO, NOEUD) as a mesh selection.
+pub mod selection;
 // The table keywords (FILTRE, TRI, TABLE) shared by the table operators.
 pub mod table_args;
 // The comparison behind every TEST_* operator.
