@@ -82,8 +82,9 @@ pub(super) fn motion_border(sys: &System, x: &[f64]) -> Vec<f64> {
 /// Where a start point's guess comes from, which decides how far it is corrected.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Guess {
-    /// Built from linear modes: corrected to PREC_NEWTON, then polished while Newton still
-    /// converges quadratically ([`newton::polish`]).
+    /// Built from linear modes: corrected to PREC_NEWTON (approached in amplitude when that
+    /// fails, [`approach_in_amplitude`]), then polished to the round-off level
+    /// ([`newton::polish`]).
     LinearModes,
     /// A stored, already corrected point: corrected to PREC_NEWTON only, so that a restart
     /// continues from exactly the point the first run continued from.
