@@ -680,3 +680,59 @@ fn energie_moyenne_is_the_orbit_energy_where_energie_carries_the_truncation_ripp
         "{at_mean:e} {at_energie:e}"
     );
 }
+
+/// Issue 12: the series step that jumps across grazing onto the family whose contact force
+/// vanishes in contact (grazing_jump.comm: sdnd122's wall, PARA_REGUL 1e-6, H 10/30,
+/// PREC_MAN 1e-6, started in the gap). With the jump checks (SAUT_RACINE_MAXI,
+/// RAPPORT_CORRECTION_MAXI, catalog defaults) the branch is retried with shorter steps and
+/// every row follows the exact penalty-stop period to ENER_MAX = 5 E_c; tolerance 2e-3, the
+/// truncation to NB_HARM_LINE 10 (measured 2.8e-4; the regularisation's share at PARA_REGUL
+/// 1e-6 is below 1e-4, the wrong family is 6e-3 to 1.1e-1 off). Without them (both 0) the
+/// same file stops on the ECART_LOI_CHOC_MAXI error at about 2.2 E_c, as it did before.
+#[test]
+fn hard_grazing_jump_is_sent_back_to_the_physical_family() {
+    let osc = aster_nl::nnm::exact::Oscillator {
+        m: 1.0,
+        k: 10.0,
+        g: 0.01,
+        alpha: 50.0,
+    };
+    let e_c = osc.contact_energy();
+    let (_dir, c) = run_ok("grazing_jump.comm", 1);
+    let v = rows(&c, "MNL");
+    assert!(v.last().unwrap().energy >= 5.0 * e_c, "{v:?}");
+    let worst = v
+        .iter()
+        .map(|r| (r.freq * osc.period_plan(r.energy) - 1.0).abs())
+        .fold(0.0f64, f64::max);
+    assert!(worst <= 2e-3, "worst frequency error {worst:.3e}: {v:?}");
+    let retries: i64 = c
+        .query_row("SELECT SUM(NB_REPRISE_PAS) FROM MNL", [], |r| r.get(0))
+        .unwrap();
+    assert!(retries > 0, "no branch was retried");
+
+    let dir = tempfile::tempdir().unwrap();
+    let comm = std::fs::read_to_string(case("grazing_jump.comm"))
+        .unwrap()
+        .replace(
+            "ENER_MAX=2.5e-3)",
+            "ENER_MAX=2.5e-3, SAUT_RACINE_MAXI=0., RAPPORT_CORRECTION_MAXI=0.)",
+        );
+    assert!(comm.contains("SAUT_RACINE_MAXI=0."));
+    let file = dir.path().join("unchecked.comm");
+    std::fs::write(&file, comm).unwrap();
+    std::fs::copy(case("grazing_jump.mail"), dir.path().join("unchecked.mail")).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_aster-nl"))
+        .arg("run")
+        .arg(&file)
+        .arg("--db")
+        .arg(dir.path().join("u.db"))
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(
+        out.contains("MODE_NON_LINE/RESOLUTION/ECART_LOI_CHOC_MAXI"),
+        "{out}"
+    );
+}

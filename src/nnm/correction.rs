@@ -7,6 +7,8 @@ use super::linear_solver::TangentSolver;
 use super::newton;
 use super::point::{finite, make_point};
 use super::report::in_branch;
+use super::root_check::frequency_defect;
+use super::step_control::ROOT_JUMP_RATIO;
 use super::system::System;
 use super::{Point, PostProcessor, Settings, StepControl};
 use crate::error::{Error, Result};
@@ -63,10 +65,19 @@ pub(super) fn off_the_law(
 
 /// The points of one branch: the series evaluated at a_max·i/np, the last one corrected.
 /// Ok(Err(e)): the correction failed (retryable with a shorter step); Err: anything else.
-/// Returns the points, the corrected end, the Newton iterations and the end tangent.
-type BranchPoints = (Vec<Point>, Vec<f64>, usize, Vec<f64>);
+struct BranchPoints {
+    points: Vec<Point>,
+    /// The corrected end (scaled).
+    x_end: Vec<f64>,
+    newton_iterations: usize,
+    /// The unit tangent of the series at the end.
+    tangent: Vec<f64>,
+    /// How far the Newton correction moved the end, relative to the step: ‖x_end − x̂‖ /
+    /// ‖x̂ − x0‖, x̂ the series' prediction (0 when the prediction needed no correction).
+    correction_ratio: f64,
+}
 
-pub(super) fn branch_points_of(
+fn branch_points_of(
     sys: &System,
     solver: &mut dyn TangentSolver,
     settings: &Settings,
@@ -88,6 +99,7 @@ pub(super) fn branch_points_of(
         .bifurcation
         .map(|ab| (((ab / series.a_max) * np as f64).round() as usize).clamp(1, np));
     let mut x_end = Vec::new();
+    let mut correction_ratio = 0.0;
     for i in 1..=np {
         let a = series.a_max * i as f64 / np as f64;
         let mut x = series.eval(x0, a);
@@ -100,6 +112,7 @@ pub(super) fn branch_points_of(
         let mut res = newton::relative(&sys.residual(&x), &x);
         let mut at_floor = false;
         if i == np {
+            let predicted = x.clone();
             let corr = match newton::correct(
                 sys,
                 solver,
@@ -115,6 +128,7 @@ pub(super) fn branch_points_of(
             res = corr.residual;
             at_floor = corr.at_floor;
             x_end = x.clone();
+            correction_ratio = distance(&x, &predicted) / distance(&predicted, x0);
         }
         let mut p = make_point(sys, &x, res, b, series_bif == Some(i));
         p.at_floor = at_floor;
@@ -139,7 +153,22 @@ pub(super) fn branch_points_of(
         }
         branch_points.push(p);
     }
-    Ok(Ok((branch_points, x_end, newton_iterations, tangent)))
+    Ok(Ok(BranchPoints {
+        points: branch_points,
+        x_end,
+        newton_iterations,
+        tangent,
+        correction_ratio,
+    }))
+}
+
+/// Euclidean distance of two vectors of unknowns.
+fn distance(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(p, q)| (p - q) * (p - q))
+        .sum::<f64>()
+        .sqrt()
 }
 
 /// One branch, corrected: its points (the last one the corrected end), the corrected end in
@@ -157,6 +186,13 @@ pub(super) struct CorrectedBranch {
 /// its contact law ([`off_the_law`]), is retried from the same series with a_max halved (the
 /// series is more accurate closer to its origin), at most `control.retries_max` times; then
 /// the last failure stops the run, naming the retries.
+///
+/// A branch whose end jumped off its family ([`Jump`]: the correction moved it as far as
+/// the step, or its contact forces jumped to the other root of their law) is retried
+/// likewise. The jump is taken for the branch's own, and the first, full-length attempt
+/// kept (as without the check), when every shorter step jumps too, when a shorter step's
+/// forces carry a defect within [`ROOT_JUMP_RATIO`] of the first attempt's (the same
+/// family, growing steeply), or when a shorter step fails its correction.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn correct_branch(
     sys: &System,
@@ -168,22 +204,70 @@ pub(super) fn correct_branch(
     x0: &[f64],
     b: usize,
 ) -> Result<CorrectedBranch> {
+    let defect_at_start = match control.root_jump_max {
+        Some(_) if !sys.shocks.is_empty() => Some(frequency_defect(sys, x0)?),
+        _ => None,
+    };
     let mut step_retries = 0;
-    let (mut points, x_end, newton_iterations, tangent) = loop {
+    // The first attempt whose end jumped off the family, its step, the retries before it
+    // and why: what is kept when no shorter step shows another family (the discarded
+    // attempts then count no retry, the row is as without the check).
+    let mut jumped: Option<(BranchPoints, f64, usize, Jump)> = None;
+    let BranchPoints {
+        mut points,
+        x_end,
+        newton_iterations,
+        tangent,
+        ..
+    } = loop {
         let attempt = branch_points_of(sys, solver, settings, series, x0, b)?.and_then(|done| {
-            match done.0.last() {
+            match done.points.last() {
                 Some(end) => off_the_law(control, law_check, end)?,
                 None => None,
             }
             .map_or(Ok(done), Err)
         });
         match attempt {
-            Ok(done) => break done,
+            Ok(done) => {
+                let jump = jumped_off(sys, control, defect_at_start, &done)?;
+                // A shorter step whose forces carry nearly the same defect as the first
+                // attempt's followed the same family: the growth is the branch's own.
+                let same_family = match &jumped {
+                    Some((_, _, _, Jump::Root { end })) => {
+                        frequency_defect(sys, &done.x_end)? * ROOT_JUMP_RATIO > *end
+                    }
+                    _ => false,
+                };
+                if jump.is_some() && !same_family && step_retries < control.retries_max {
+                    if jumped.is_none() {
+                        jumped = jump.map(|j| (done, series.a_max, step_retries, j));
+                    }
+                    step_retries += 1;
+                    series.a_max *= 0.5;
+                    continue;
+                }
+                match jumped.take() {
+                    Some((first, a_max, retries, _)) if jump.is_some() || same_family => {
+                        series.a_max = a_max;
+                        step_retries = retries;
+                        break first;
+                    }
+                    _ => break done,
+                }
+            }
             Err(_) if step_retries < control.retries_max => {
                 step_retries += 1;
                 series.a_max *= 0.5;
             }
-            Err(e) if step_retries > 0 => {
+            Err(e) => {
+                if let Some((first, a_max, retries, _)) = jumped.take() {
+                    series.a_max = a_max;
+                    step_retries = retries;
+                    break first;
+                }
+                if step_retries == 0 {
+                    return Err(in_branch(e, b));
+                }
                 let e = Error {
                     message: format!(
                         "{} (also with the series step halved {step_retries} times, a_max = {:.3e})",
@@ -193,7 +277,6 @@ pub(super) fn correct_branch(
                 };
                 return Err(in_branch(e, b));
             }
-            Err(e) => return Err(in_branch(e, b)),
         }
     };
     if let Some(p) = points.last_mut() {
@@ -206,4 +289,41 @@ pub(super) fn correct_branch(
         tangent,
         step_retries,
     })
+}
+
+/// Why a corrected branch end is taken to have left the family its branch started on.
+#[derive(Clone, Copy, Debug)]
+enum Jump {
+    /// The Newton correction moved it by more than `control.correction_ratio_max` times the
+    /// step: a prediction that accurate lands next to its own family, a correction of the
+    /// order of the step has reached another one (e.g. where two families cross at grazing).
+    Correction,
+    /// Its contact forces sit on another root of their law than at the branch start: the
+    /// frequency defect they carry (root_check.rs), `end`, grew past both
+    /// `control.root_jump_max` and [`ROOT_JUMP_RATIO`] times its value at the start. On one
+    /// family the defect grows smoothly (by a factor of about 100 over the branch that
+    /// reaches first contact, measured on sdnd122's wall); a step that crosses grazing onto
+    /// the family whose forces vanish in contact raises it from round-off to the whole
+    /// frequency shift of the contact (1e-8 to 7e-3 there) at once, and the shorter step
+    /// that stays on the physical family carries a defect smaller by orders of magnitude.
+    Root { end: f64 },
+}
+
+fn jumped_off(
+    sys: &System,
+    control: &StepControl,
+    defect_at_start: Option<f64>,
+    done: &BranchPoints,
+) -> Result<Option<Jump>> {
+    if control
+        .correction_ratio_max
+        .is_some_and(|max| done.correction_ratio > max)
+    {
+        return Ok(Some(Jump::Correction));
+    }
+    let (Some(max), Some(start)) = (control.root_jump_max, defect_at_start) else {
+        return Ok(None);
+    };
+    let end = frequency_defect(sys, &done.x_end)?;
+    Ok((end > max.max(ROOT_JUMP_RATIO * start)).then_some(Jump::Root { end }))
 }

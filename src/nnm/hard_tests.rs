@@ -533,6 +533,8 @@ fn hard_non_physical_family_stops_on_the_law_check() {
             retries_max: 4,
             stall_branches: 50,
             law_defect_max,
+            root_jump_max: None,
+            correction_ratio_max: None,
             spread_max: None,
             approximation: Approximation::Series,
         };
@@ -593,6 +595,8 @@ fn wall_grid_run(ratio: f64, regul: f64, approximation: Approximation) -> (usize
         retries_max: 4,
         stall_branches: 50,
         law_defect_max: Some(0.5),
+        root_jump_max: None,
+        correction_ratio_max: None,
         spread_max: None,
         approximation,
     };

@@ -54,6 +54,7 @@ mod quadrature;
 mod reduced;
 mod report;
 mod resolution;
+mod root_check;
 mod route_timing;
 mod series;
 mod series_step;

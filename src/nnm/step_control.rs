@@ -29,6 +29,15 @@ pub struct StepControl {
     /// by max(1, the largest law force in those units): the same as ECART_LOI_CHOC up to
     /// the first-contact regime, relative to the force far into a stop.
     pub law_defect_max: Option<f64>,
+    /// A branch whose corrected end's contact forces carry a relative frequency defect
+    /// (root_check.rs) above both this and [`ROOT_JUMP_RATIO`] times the defect at the
+    /// branch start has jumped to the other root of its law: it is retried with a shorter
+    /// step (None: not checked).
+    pub root_jump_max: Option<f64>,
+    /// A branch whose end the Newton correction moved by more than this times the series
+    /// step has landed on another family: it is retried with a shorter step (None: not
+    /// checked).
+    pub correction_ratio_max: Option<f64>,
     /// Likewise for the energy spread over the period (ECART_ENERGIE) of the corrected end.
     pub spread_max: Option<f64>,
     /// What each branch is evaluated on.
@@ -41,6 +50,10 @@ pub const STALL_ENERGY: f64 = 1.0e-2;
 /// Relative spread of FREQUENCE over that window, likewise.
 pub const STALL_FREQUENCY: f64 = 1.0e-3;
 
+/// How many times the frequency defect of the contact forces may grow over one branch
+/// before the branch counts as having jumped roots ([`StepControl::root_jump_max`]).
+pub const ROOT_JUMP_RATIO: f64 = 10.0;
+
 impl StepControl {
     /// No retry: a failed correction stops the run.
     pub fn none() -> StepControl {
@@ -48,6 +61,8 @@ impl StepControl {
             retries_max: 0,
             stall_branches: 0,
             law_defect_max: None,
+            root_jump_max: None,
+            correction_ratio_max: None,
             spread_max: None,
             approximation: Approximation::Series,
         }

@@ -156,7 +156,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 rep.newton_iterations,
                 if rep.bifurcation { "yes" } else { "no" },
                 if rep.step_retries > 0 {
-                    format!("  step halved {} time(s) after a failed correction", rep.step_retries)
+                    format!("  step halved {} time(s) (a failed correction, a law check or a jump off the family)", rep.step_retries)
                 } else {
                     String::new()
                 },
@@ -455,7 +455,8 @@ fn settings(args: &Args) -> Result<Settings> {
     })
 }
 
-/// RESOLUTION/NB_REPRISE_PAS_MAXI, NB_BRANCHE_SANS_PROGRES, ECART_LOI_CHOC_MAXI,
+/// RESOLUTION/NB_REPRISE_PAS_MAXI, NB_BRANCHE_SANS_PROGRES, ECART_LOI_CHOC_MAXI, SAUT_RACINE_MAXI,
+/// RAPPORT_CORRECTION_MAXI,
 /// ECART_ENERGIE_MAXI and APPROX_MAN (aster-nl extensions; default and bounds in the
 /// catalog).
 fn step_control(args: &Args) -> Result<nnm::StepControl> {
@@ -464,6 +465,8 @@ fn step_control(args: &Args) -> Result<nnm::StepControl> {
         retries_max: r.req_count("NB_REPRISE_PAS_MAXI")?,
         stall_branches: r.req_count("NB_BRANCHE_SANS_PROGRES")?,
         law_defect_max: Some(r.req_real("ECART_LOI_CHOC_MAXI")?),
+        root_jump_max: Some(r.req_real("SAUT_RACINE_MAXI")?).filter(|&v| v > 0.0),
+        correction_ratio_max: Some(r.req_real("RAPPORT_CORRECTION_MAXI")?).filter(|&v| v > 0.0),
         spread_max: r.real("ECART_ENERGIE_MAXI"),
         approximation: match r.req_text("APPROX_MAN")? {
             "PADE" => nnm::Approximation::Pade,
