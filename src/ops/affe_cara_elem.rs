@@ -72,8 +72,8 @@ fn discrete(occ: &Args) -> Result<DiscreteAssignment> {
                 .hint("use SYME='OUI'"),
         );
     }
-    let repere = match occ.text("REPERE") {
-        Some("LOCAL") => Repere::Local,
+    let repere = match occ.req_text("REPERE")? {
+        "LOCAL" => Repere::Local,
         _ => Repere::Global,
     };
     Ok(DiscreteAssignment {
