@@ -181,6 +181,18 @@ impl Args {
     pub fn req_text(&self, key: &str) -> Result<&str> {
         self.text(key).ok_or_else(|| self.missing(key, "a text"))
     }
+    /// A list of reals (a scalar is a one-element list) the catalog makes mandatory or
+    /// defaults; its length is the catalog's `min`..`max`.
+    pub fn req_reals(&self, key: &str) -> Result<Vec<f64>> {
+        self.reals(key)
+            .ok_or_else(|| self.missing(key, "a list of reals"))
+    }
+    /// A list of texts (a scalar is a one-element list) the catalog makes mandatory or
+    /// defaults; its length is the catalog's `min`..`max`.
+    pub fn req_texts(&self, key: &str) -> Result<Vec<String>> {
+        self.texts(key)
+            .ok_or_else(|| self.missing(key, "a list of texts"))
+    }
     pub fn req_concept(&self, key: &str) -> Result<&ConceptRef> {
         self.concept(key)
             .ok_or_else(|| self.missing(key, "a concept"))

@@ -238,6 +238,8 @@ impl Runner<'_> {
                 "a command file starts with DEBUT() (new study) or POURSUITE() (continue one)",
             )
         })?;
+        // INFO: the catalog's default where the operator has the keyword; an operator
+        // without it (TEST_*, DEFI_MATERIAU...) reports at the ordinary level.
         let info = args.int("INFO").unwrap_or(1);
         let mut tests = Vec::new();
         // Every concept given to the operator must still be what it was computed from.
@@ -568,11 +570,14 @@ impl Checker {
         let at = |e: Error| e.at(&self.file, call.op_span);
         match call.op.as_str() {
             "LIRE_MAILLAGE" => {
+                // FORMAT and UNITE: the catalog's defaults; absent here only when the
+                // file computes them (known when it runs), and then checked by the run.
                 let format = args
                     .text("FORMAT")
-                    .and_then(crate::mesh::MeshFormat::from_keyword)
-                    .unwrap_or(crate::mesh::MeshFormat::Aster);
-                let unit = args.int("UNITE").unwrap_or(20);
+                    .and_then(crate::mesh::MeshFormat::from_keyword);
+                let (Some(format), Some(unit)) = (format, args.int("UNITE")) else {
+                    return;
+                };
                 match ops::lire_maillage::resolve_file(&self.units, unit, format) {
                     Ok((path, _)) => {
                         if let Some(e) = mesh_file_problem(&path, format) {

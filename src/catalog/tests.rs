@@ -1596,3 +1596,41 @@ fn a_co_keyword_declares_the_type_it_creates() {
     let nume = asse.simp.iter().find(|s| s.name == "NUME_DDL").unwrap();
     assert_eq!(nume.co_type.as_deref(), Some("nume_ddl_sdaster"));
 }
+
+/// Bounds an operator used to check itself, now the catalog's only: an output unit of
+/// IMPR_TABLE / IMPR_FONCTION is >= 1, ORDRE_GRANDEUR of the TEST_* operators >= 0 and
+/// defaulted to 1.
+#[test]
+fn output_units_and_ordre_grandeur_are_bounded_in_the_catalog() {
+    // (IMPR_FONCTION also misses its COURBE here: one error among others.)
+    let impr_table = vec![k("TABLE", co("T", "table_sdaster"), 2), k("UNITE", i(0), 3)];
+    for (op, args) in [
+        ("IMPR_TABLE", impr_table),
+        ("IMPR_FONCTION", vec![k("UNITE", i(0), 3)]),
+    ] {
+        let c = call(op, args);
+        let unite = format!("{op}/UNITE");
+        let errs = errors(&c);
+        assert!(
+            errs.iter()
+                .any(|e| e.keyword.as_deref() == Some(unite.as_str())),
+            "{op}: {errs:#?}"
+        );
+    }
+    let test = |extra: Vec<Keyword>| {
+        let mut args = vec![
+            k("TABLE", co("T", "table_sdaster"), 2),
+            k("NOM_PARA", s("FREQUENCE"), 3),
+            k("VALE_CALC", r(0.0), 4),
+        ];
+        args.extend(extra);
+        call("TEST_TABLE", args)
+    };
+    single_error(
+        &test(vec![k("ORDRE_GRANDEUR", r(-1.0), 5)]),
+        "TEST_TABLE/ORDRE_GRANDEUR",
+        5,
+    );
+    let a = validate(&test(vec![]), FILE).expect("valid");
+    assert_eq!(a.real("ORDRE_GRANDEUR"), Some(1.0));
+}

@@ -34,26 +34,6 @@ impl Interp {
             Interp::Non => "NON",
         }
     }
-    /// The INTERPOL keyword: none → LIN/LIN; one value → both axes; two → (x, y).
-    pub fn pair(values: &[String]) -> Result<(Interp, Interp)> {
-        let parse = |s: &String| {
-            Interp::parse(s).ok_or_else(|| {
-                Error::validation(format!("unknown interpolation '{s}'"))
-                    .keyword("INTERPOL")
-                    .hint("use 'LIN', 'LOG' or 'NON'")
-            })
-        };
-        match values {
-            [] => Ok((Interp::Lin, Interp::Lin)),
-            [a] => {
-                let a = parse(a)?;
-                Ok((a, a))
-            }
-            [a, b] => Ok((parse(a)?, parse(b)?)),
-            _ => Err(Error::validation("INTERPOL takes one or two values").keyword("INTERPOL")),
-        }
-    }
-
     fn to_space(self, v: f64) -> f64 {
         match self {
             Interp::Log => v.ln(),
@@ -433,20 +413,6 @@ mod tests {
         let f = square((Interp::Log, Interp::Lin));
         let t = (1.5f64).ln() / 2f64.ln();
         assert!(close(f.eval(3.0).unwrap(), 4.0 + 12.0 * t));
-    }
-
-    #[test]
-    fn one_interpol_value_applies_to_both_axes() {
-        assert_eq!(
-            Interp::pair(&["LOG".into()]).unwrap(),
-            (Interp::Log, Interp::Log)
-        );
-        assert_eq!(Interp::pair(&[]).unwrap(), (Interp::Lin, Interp::Lin));
-        assert_eq!(
-            Interp::pair(&["LIN".into(), "LOG".into()]).unwrap(),
-            (Interp::Lin, Interp::Log)
-        );
-        assert!(Interp::pair(&["CUBIC".into()]).is_err());
     }
 
     #[test]

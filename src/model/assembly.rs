@@ -86,6 +86,52 @@ impl AssembledMatrix {
     }
 }
 
+/// Why element matrices cannot be assembled, in the model's terms; the operator names
+/// the keyword (ASSE_MATRICE: MATR_ELEM, NUME_DDL).
+#[derive(Clone, Debug)]
+pub enum AssemblyError {
+    /// No element matrix at all.
+    NoMatrix,
+    /// Element matrices of two kinds (a stiffness and a mass).
+    MixedKinds(MatrixKind, MatrixKind),
+    /// A DOF of an element matrix that the numbering does not have.
+    NotNumbered {
+        node: String,
+        cmp: super::dof::Cmp,
+        model: String,
+    },
+    Other(Error),
+}
+
+impl std::fmt::Display for AssemblyError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            AssemblyError::NoMatrix => write!(f, "no element matrix given"),
+            AssemblyError::MixedKinds(a, b) => write!(
+                f,
+                "cannot add {} and {} element matrices",
+                a.aster_name(),
+                b.aster_name()
+            ),
+            AssemblyError::NotNumbered { node, cmp, model } => write!(
+                f,
+                "DOF {cmp} of node {node} is not in the numbering (model {model})"
+            ),
+            AssemblyError::Other(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+/// The error as it stands, without a keyword (operators name theirs).
+impl From<AssemblyError> for Error {
+    fn from(e: AssemblyError) -> Self {
+        match e {
+            AssemblyError::Other(e) => e,
+            e => Error::input(e.to_string()),
+        }
+    }
+}
+
 /// Assemble element matrices (all of the same kind) on `numbering`; `cine` are the
 /// AFFE_CHAR_CINE loads whose DOFs are eliminated on top of the numbering's.
 pub fn assemble(
@@ -93,18 +139,11 @@ pub fn assemble(
     mesh: &Mesh,
     mats: &[&ElemMatrices],
     cine: &[&KinematicLoad],
-) -> Result<AssembledMatrix> {
-    let first = mats
-        .first()
-        .ok_or_else(|| Error::input("no element matrix given").keyword("MATR_ELEM"))?;
+) -> Result<AssembledMatrix, AssemblyError> {
+    let first = mats.first().ok_or(AssemblyError::NoMatrix)?;
     let kind = first.kind;
     if let Some(other) = mats.iter().find(|m| m.kind != kind) {
-        return Err(Error::input(format!(
-            "cannot add {} and {} element matrices",
-            kind.aster_name(),
-            other.kind.aster_name()
-        ))
-        .keyword("MATR_ELEM"));
+        return Err(AssemblyError::MixedKinds(kind, other.kind));
     }
     let map = numbering.index_map();
     let mut raw = Vec::new();
@@ -113,14 +152,13 @@ pub fn assemble(
             let mut idx = Vec::with_capacity(e.dofs.len());
             for &(n, c) in &e.dofs {
                 let name = mesh.nodes.get(n).map(|x| x.name.as_str()).unwrap_or("?");
-                let i = map.get(&(name, c)).ok_or_else(|| {
-                    Error::input(format!(
-                        "DOF {c} of node {name} is not in the numbering (model {})",
-                        numbering.model
-                    ))
-                    .keyword("NUME_DDL")
-                    .hint("build NUME_DDL from the same model as the element matrices")
-                })?;
+                let i = map
+                    .get(&(name, c))
+                    .ok_or_else(|| AssemblyError::NotNumbered {
+                        node: name.to_string(),
+                        cmp: c,
+                        model: numbering.model.clone(),
+                    })?;
                 idx.push(*i);
             }
             let n = idx.len();
@@ -132,7 +170,7 @@ pub fn assemble(
             }
         }
     }
-    let eliminated = numbering.mark(cine)?;
+    let eliminated = numbering.mark(cine).map_err(AssemblyError::Other)?;
     Ok(AssembledMatrix {
         numbering: numbering.clone(),
         kind,

@@ -261,7 +261,7 @@ impl CaraElem {
             mesh,
             &a.on,
             &[Modelisation::PouDE],
-            "POUTRE",
+            "a beam section",
             &a.keyword,
         )?;
         for c in cells {
@@ -277,7 +277,7 @@ impl CaraElem {
             mesh,
             &a.on,
             &[Modelisation::Barre],
-            "BARRE",
+            "a bar section",
             &a.keyword,
         )?;
         for c in cells {
@@ -307,7 +307,8 @@ impl CaraElem {
             Modelisation::DisTr,
             Modelisation::Dis2dT,
         ];
-        for c in cells_of(model, mesh, &a.on, &discrete, "DISCRET", &a.keyword)? {
+        let what = "a discrete characteristic";
+        for c in cells_of(model, mesh, &a.on, &discrete, what, &a.keyword)? {
             let (Some(cell), Some(el)) = (mesh.cells.get(c), model.element_of(c)) else {
                 continue;
             };
@@ -318,7 +319,7 @@ impl CaraElem {
             };
             if cell.kind != want_kind {
                 return Err(Error::input(format!(
-                    "CARA {name} is for {} cells but cell {} is a {}",
+                    "{name} is for {} cells but cell {} is a {}",
                     want_kind.aster_name(),
                     cell.name,
                     cell.kind.aster_name()
@@ -333,7 +334,7 @@ impl CaraElem {
             let rot_model = el.modelisation == Modelisation::DisTr;
             if spec.rotations != rot_model {
                 return Err(Error::input(format!(
-                    "CARA {name} does not fit cell {} modelled as {}",
+                    "{name} does not fit cell {} modelled as {}",
                     cell.name,
                     el.modelisation.aster_name()
                 ))
@@ -352,7 +353,7 @@ impl CaraElem {
             let n = spec.value_count(nd);
             if values.len() != n {
                 return Err(Error::input(format!(
-                    "CARA {name} on a {} element expects {n} values in VALE, got {}",
+                    "{name} on a {} element expects {n} values, got {}",
                     el.modelisation.aster_name(),
                     values.len()
                 ))
@@ -374,9 +375,9 @@ impl CaraElem {
         Ok(())
     }
 
-    /// Every discrete element needs a stiffness or a mass, every beam a POUTRE section,
-    /// every bar a BARRE section.
-    pub fn check_complete(&self, model: &Model, mesh: &Mesh) -> Result<()> {
+    /// Every discrete element needs a stiffness or a mass, every beam and every bar a
+    /// section.
+    pub fn check_complete(&self, model: &Model, mesh: &Mesh) -> Result<(), Incomplete> {
         let mut no_discrete = Vec::new();
         let mut no_beam = Vec::new();
         let mut no_bar = Vec::new();
@@ -397,33 +398,46 @@ impl CaraElem {
             }
         }
         if !no_discrete.is_empty() {
-            return Err(Error::input(format!(
-                "discrete elements without stiffness nor mass: {}",
-                describe_cells(mesh, &no_discrete)
-            ))
-            .keyword("AFFE_CARA_ELEM/DISCRET")
-            .hint("give each discrete element a K_... or M_... characteristic (a zero stiffness K_T_D_N=(0,0,0) is allowed)"));
+            return Err(Incomplete::Discrete(describe_cells(mesh, &no_discrete)));
         }
         if !no_beam.is_empty() {
-            return Err(Error::input(format!(
-                "beam elements (POU_D_E) without a section: {}",
-                describe_cells(mesh, &no_beam)
-            ))
-            .keyword("AFFE_CARA_ELEM/POUTRE"));
+            return Err(Incomplete::Beam(describe_cells(mesh, &no_beam)));
         }
         if !no_bar.is_empty() {
-            return Err(Error::input(format!(
-                "bar elements (BARRE) without a section: {}",
-                describe_cells(mesh, &no_bar)
-            ))
-            .keyword("AFFE_CARA_ELEM/BARRE"));
+            return Err(Incomplete::Bar(describe_cells(mesh, &no_bar)));
         }
         Ok(())
     }
 }
 
+/// Elements left without the characteristic they need, each with the cells it names
+/// (and their groups); the operator names the keyword.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Incomplete {
+    /// Discrete elements without stiffness nor mass.
+    Discrete(String),
+    /// Beam elements without a section.
+    Beam(String),
+    /// Bar elements without a section.
+    Bar(String),
+}
+
+impl std::fmt::Display for Incomplete {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Incomplete::Discrete(cells) => {
+                write!(f, "discrete elements without stiffness nor mass: {cells}")
+            }
+            Incomplete::Beam(cells) => {
+                write!(f, "beam elements (POU_D_E) without a section: {cells}")
+            }
+            Incomplete::Bar(cells) => write!(f, "bar elements (BARRE) without a section: {cells}"),
+        }
+    }
+}
+
 /// Cells selected by `on` that must all be modelled with one of `allowed`; `what` names
-/// the characteristic in messages, `keyword` is the occurrence's path.
+/// the characteristic in messages ("a beam section"), `keyword` is the occurrence's path.
 fn cells_of(
     model: &Model,
     mesh: &Mesh,

@@ -3,7 +3,7 @@
 use super::beam::{
     bar_mass, bar_stiffness_local, beam_mass_local, beam_stiffness_local, BeamProps,
 };
-use super::cara::{CaraElem, Repere};
+use super::cara::{CaraElem, Incomplete, Repere};
 use super::discrete::discrete_matrix;
 use super::dof::Cmp;
 use super::fe_model::{Model, ModelElement, Modelisation};
@@ -67,15 +67,67 @@ pub struct ElemInputs<'a> {
     pub cara: Option<&'a CaraElem>,
 }
 
+/// Why element matrices cannot be computed, in the model's terms (each with the cells it
+/// names and their groups); the operator names the keyword and says what to do.
+#[derive(Clone, Debug)]
+pub enum ElemError {
+    /// The characteristics given leave elements without one.
+    Incomplete(Incomplete),
+    /// Elements that need characteristics (discrete, beams, bars) and were given none.
+    NoCharacteristics(String),
+    /// Beams and bars without an elastic material.
+    NoElasticity(String),
+    /// Beams and bars whose material has no density, for a mass matrix.
+    NoDensity(String),
+    /// The local axes of a segment cannot be built from its orientation.
+    Frame {
+        cell: String,
+        reason: String,
+    },
+    Other(Error),
+}
+
+impl std::fmt::Display for ElemError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ElemError::Incomplete(e) => write!(f, "{e}"),
+            ElemError::NoCharacteristics(cells) => {
+                write!(f, "no element characteristics for {cells}")
+            }
+            ElemError::NoElasticity(cells) => write!(f, "no material with ELAS on {cells}"),
+            ElemError::NoDensity(cells) => write!(f, "MASS_MECA needs the density RHO on {cells}"),
+            ElemError::Frame { cell, reason } => write!(f, "cell {cell}: {reason}"),
+            ElemError::Other(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl From<Error> for ElemError {
+    fn from(e: Error) -> Self {
+        ElemError::Other(e)
+    }
+}
+
+/// The error as it stands, without a keyword (operators name theirs: CALC_MATR_ELEM).
+impl From<ElemError> for Error {
+    fn from(e: ElemError) -> Self {
+        match e {
+            ElemError::Other(e) => e,
+            e => Error::input(e.to_string()),
+        }
+    }
+}
+
 /// Compute the element matrices of every model element. Missing characteristics or
 /// materials are reported together, naming the cells and their groups.
 pub fn compute_elem_matrices(
     kind: MatrixKind,
     inp: &ElemInputs<'_>,
     loads: Vec<(String, KinematicLoad)>,
-) -> Result<ElemMatrices> {
+) -> Result<ElemMatrices, ElemError> {
     if let Some(c) = inp.cara {
-        c.check_complete(inp.model, inp.mesh)?;
+        c.check_complete(inp.model, inp.mesh)
+            .map_err(ElemError::Incomplete)?;
     }
     let mut elements = Vec::with_capacity(inp.model.elements.len());
     let mut no_cara = Vec::new();
@@ -90,28 +142,15 @@ pub fn compute_elem_matrices(
         }
     }
     if !no_cara.is_empty() {
-        return Err(Error::input(format!(
-            "no element characteristics for {}",
-            describe_cells(inp.mesh, &no_cara)
-        ))
-        .keyword("CARA_ELEM")
-        .hint("discrete elements, beams and bars need AFFE_CARA_ELEM (DISCRET, POUTRE, BARRE)"));
+        return Err(ElemError::NoCharacteristics(describe_cells(
+            inp.mesh, &no_cara,
+        )));
     }
     if !no_mat.is_empty() {
-        return Err(Error::input(format!(
-            "no material with ELAS on {}",
-            describe_cells(inp.mesh, &no_mat)
-        ))
-        .keyword("CHAM_MATER")
-        .hint("assign a material with ELAS=_F(E=..., NU=...) by AFFE_MATERIAU"));
+        return Err(ElemError::NoElasticity(describe_cells(inp.mesh, &no_mat)));
     }
     if !no_rho.is_empty() {
-        return Err(Error::input(format!(
-            "MASS_MECA needs the density RHO on {}",
-            describe_cells(inp.mesh, &no_rho)
-        ))
-        .keyword("CHAM_MATER")
-        .hint("add RHO to ELAS in DEFI_MATERIAU"));
+        return Err(ElemError::NoDensity(describe_cells(inp.mesh, &no_rho)));
     }
     let (load_names, loads) = loads.into_iter().unzip();
     Ok(ElemMatrices {
@@ -131,19 +170,22 @@ enum Outcome {
     NoRho,
 }
 
-fn frame_of(inp: &ElemInputs<'_>, e: &ModelElement, p: &[[f64; 3]]) -> Result<Frame> {
+fn frame_of(inp: &ElemInputs<'_>, e: &ModelElement, p: &[[f64; 3]]) -> Result<Frame, ElemError> {
     let orientation = inp.cara.and_then(|c| c.orientations.get(&e.cell));
     let (Some(a), Some(b)) = (p.first(), p.get(1)) else {
-        return Err(Error::internal("segment without two nodes"));
+        return Err(Error::internal("segment without two nodes").into());
     };
-    segment_frame(*a, *b, orientation).map_err(|m| {
-        let name = inp
+    segment_frame(*a, *b, orientation).map_err(|reason| {
+        let cell = inp
             .mesh
             .cells
             .get(e.cell)
             .map(|c| c.name.as_str())
             .unwrap_or("?");
-        Error::input(format!("cell {name}: {m}")).keyword("AFFE_CARA_ELEM/ORIENTATION")
+        ElemError::Frame {
+            cell: cell.to_string(),
+            reason: reason.to_string(),
+        }
     })
 }
 
@@ -151,7 +193,11 @@ fn elas_of(inp: &ElemInputs<'_>, cell: usize) -> Option<Elas> {
     inp.field?.material_of(cell)?.1.elas
 }
 
-fn element_matrix(kind: MatrixKind, inp: &ElemInputs<'_>, e: &ModelElement) -> Result<Outcome> {
+fn element_matrix(
+    kind: MatrixKind,
+    inp: &ElemInputs<'_>,
+    e: &ModelElement,
+) -> Result<Outcome, ElemError> {
     let cell = inp
         .mesh
         .cells
@@ -211,7 +257,7 @@ fn element_matrix(kind: MatrixKind, inp: &ElemInputs<'_>, e: &ModelElement) -> R
             let frame = frame_of(inp, e, &coords)?;
             let l = match (coords.first(), coords.get(1)) {
                 (Some(a), Some(b)) => length(*a, *b),
-                _ => return Err(Error::internal("segment without two nodes")),
+                _ => return Err(Error::internal("segment without two nodes").into()),
             };
             let beam = e.modelisation == Modelisation::PouDE;
             match kind {
@@ -241,7 +287,7 @@ fn element_matrix(kind: MatrixKind, inp: &ElemInputs<'_>, e: &ModelElement) -> R
                 }
             }
         }
-        _ => return Err(Error::internal("unhandled modelisation")),
+        _ => return Err(Error::internal("unhandled modelisation").into()),
     };
     Ok(Outcome::Done(ElemMatrix {
         cell: e.cell,

@@ -166,7 +166,7 @@ impl<'m> ModelBuilder<'m> {
         if assigned == 0 {
             let kinds: Vec<&str> = m.cell_kinds().iter().map(|k| k.aster_name()).collect();
             return Err(Error::input(format!(
-                "MODELISATION {} assigned no element: none of the selected cells is a {}",
+                "{} assigned no element: none of the selected cells is a {}",
                 m.aster_name(),
                 kinds.join(" or ")
             ))

@@ -11,6 +11,42 @@ use crate::mesh::Mesh;
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
+/// Why element matrices give no numbering, in the model's terms; the operator names the
+/// keyword (NUME_DDL: MATR_RIGI).
+#[derive(Clone, Debug)]
+pub enum NumberingError {
+    /// No element matrix at all.
+    NoMatrix,
+    /// Element matrices of two models.
+    DifferentModels(String, String),
+    Other(Error),
+}
+
+impl std::fmt::Display for NumberingError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            NumberingError::NoMatrix => write!(f, "no element matrix given"),
+            NumberingError::DifferentModels(a, b) => {
+                write!(
+                    f,
+                    "element matrices come from different models ({a} and {b})"
+                )
+            }
+            NumberingError::Other(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+/// The error as it stands, without a keyword (operators name theirs).
+impl From<NumberingError> for Error {
+    fn from(e: NumberingError) -> Self {
+        match e {
+            NumberingError::Other(e) => e,
+            e => Error::input(e.to_string()),
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub struct NumberedDof {
     pub node: String,
@@ -93,18 +129,18 @@ impl DofNumbering {
 
     /// NUME_DDL(MATR_RIGI=...): the DOFs of the element matrices, plus the loads they were
     /// computed with.
-    pub fn from_elem_matrices(mesh: &Mesh, mats: &[&ElemMatrices]) -> Result<DofNumbering> {
-        let first = mats
-            .first()
-            .ok_or_else(|| Error::input("no element matrix given").keyword("MATR_RIGI"))?;
+    pub fn from_elem_matrices(
+        mesh: &Mesh,
+        mats: &[&ElemMatrices],
+    ) -> Result<DofNumbering, NumberingError> {
+        let first = mats.first().ok_or(NumberingError::NoMatrix)?;
         let mut carried: BTreeMap<usize, BTreeSet<Cmp>> = BTreeMap::new();
         for m in mats {
             if m.model != first.model {
-                return Err(Error::input(format!(
-                    "element matrices come from different models ({} and {})",
-                    first.model, m.model
-                ))
-                .keyword("MATR_RIGI"));
+                return Err(NumberingError::DifferentModels(
+                    first.model.clone(),
+                    m.model.clone(),
+                ));
             }
             for e in &m.elements {
                 for &(n, c) in &e.dofs {
@@ -114,6 +150,7 @@ impl DofNumbering {
         }
         let loads: Vec<&KinematicLoad> = mats.iter().flat_map(|m| m.loads.iter()).collect();
         Self::from_carried(&first.mesh, &first.model, mesh, &carried, &loads)
+            .map_err(NumberingError::Other)
     }
 
     /// Eliminated flags of this numbering combined with the DOFs blocked by `loads`.

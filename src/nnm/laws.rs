@@ -8,7 +8,8 @@
 //!   (Code_Aster's F(F/α − (u/JEU − 1)) = η with F = f/(k_ref·JEU), i.e. the physical law
 //!   f(f − α(u−g)) = α η_phys with η_phys = PARA_REGUL·k_ref·JEU²).
 //! - BI_PLAN (f, z):       f − η u − f z = 0,   z − (f/α − u)²/s² = 0
-//!   (Code_Aster's F − η u/JEU − F Z = 0, Z = (F/α − u/JEU)²; the sign of eq. (9) of R5.07.01).
+//!   (Code_Aster's F − η u/JEU − F Z = 0, Z = (F/α − u/JEU)², with its sign; the same law
+//!   in physical units: docs/ehman.md §2).
 //! - CERCLE (fx, fy, λ, z), with d = (ux − ex, uy − ey) the displacement relative to the
 //!   ring centre and F = (fx, fy):  F − λ d = 0 (two equations),  λ − η − λ z = 0,
 //!   z − |F/α − d|²/s² = 0. λ is the secant stiffness of the ring, F/d. With r = |d| and

@@ -7,7 +7,7 @@ use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::model::cara::{
-    DiscreteAssignment, DiscreteSpec, OrientationAssignment, Repere, SectionAssignment,
+    DiscreteAssignment, DiscreteSpec, Incomplete, OrientationAssignment, Repere, SectionAssignment,
 };
 use crate::model::frame::Orientation;
 use crate::model::{CaraElem, Model};
@@ -53,8 +53,25 @@ pub(crate) fn cara_elem(
             },
         )?;
     }
-    cara.check_complete(model, mesh)?;
+    cara.check_complete(model, mesh).map_err(incomplete)?;
     Ok(cara)
+}
+
+/// Elements left without a characteristic, named by the factor keyword that gives it.
+pub(crate) fn incomplete(e: Incomplete) -> Error {
+    let (factor, hint) = match e {
+        Incomplete::Discrete(_) => (
+            "DISCRET",
+            Some("give each discrete element a K_... or M_... characteristic (a zero stiffness K_T_D_N=(0,0,0) is allowed)"),
+        ),
+        Incomplete::Beam(_) => ("POUTRE", None),
+        Incomplete::Bar(_) => ("BARRE", None),
+    };
+    let err = Error::input(e.to_string()).keyword(format!("AFFE_CARA_ELEM/{factor}"));
+    match hint {
+        Some(h) => err.hint(h),
+        None => err,
+    }
 }
 
 /// One DISCRET or DISCRET_2D occurrence.
@@ -72,8 +89,8 @@ fn discrete(occ: &Args) -> Result<DiscreteAssignment> {
                 .hint("use SYME='OUI'"),
         );
     }
-    let repere = match occ.text("REPERE") {
-        Some("LOCAL") => Repere::Local,
+    let repere = match occ.req_text("REPERE")? {
+        "LOCAL" => Repere::Local,
         _ => Repere::Global,
     };
     Ok(DiscreteAssignment {

@@ -30,7 +30,7 @@ pub(crate) fn model(mesh_name: &str, mesh: &Mesh, affe: &[Args]) -> Result<Model
 
 /// One AFFE occurrence.
 fn assignment(occ: &Args) -> Result<ModelAssignment> {
-    let phen = occ.text("PHENOMENE").unwrap_or("MECANIQUE");
+    let phen = occ.req_text("PHENOMENE")?;
     if phen != "MECANIQUE" {
         return Err(Error::input(format!("phenomenon {phen} is not supported"))
             .keyword(occ.key_path("PHENOMENE"))

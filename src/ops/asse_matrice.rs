@@ -3,6 +3,7 @@
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::model::assembly::AssemblyError;
 use crate::model::{assemble, AssembledMatrix, ElemMatrices, KinematicLoad, LoadKind};
 use crate::store::matrix::{load_numbering, save_matrix};
 use crate::store::model::{load_elem_matrices, load_load, load_mesh, same_model};
@@ -54,5 +55,20 @@ pub(crate) fn assemble_named(
     let mesh = load_mesh(store, &num.mesh)?;
     let mrefs: Vec<&ElemMatrices> = mats.iter().collect();
     let lrefs: Vec<&KinematicLoad> = loads.iter().collect();
-    assemble(&num, &mesh, &mrefs, &lrefs)
+    assemble(&num, &mesh, &mrefs, &lrefs).map_err(assembly_error)
+}
+
+/// An assembly failure named by its keyword: the element matrices (MATR_ELEM) or the
+/// numbering (NUME_DDL).
+pub(crate) fn assembly_error(e: AssemblyError) -> Error {
+    let message = e.to_string();
+    match e {
+        AssemblyError::NoMatrix | AssemblyError::MixedKinds(..) => {
+            Error::input(message).keyword("MATR_ELEM")
+        }
+        AssemblyError::NotNumbered { .. } => Error::input(message)
+            .keyword("NUME_DDL")
+            .hint("build NUME_DDL from the same model as the element matrices"),
+        AssemblyError::Other(e) => e,
+    }
 }

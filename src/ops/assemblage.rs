@@ -45,7 +45,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 None => inputs.elem_matrices(ctx.store, MatrixKind::RigiMeca)?,
             };
             let mesh = load_mesh(ctx.store, &base.mesh)?;
-            let num = crate::model::DofNumbering::from_elem_matrices(&mesh, &[&base])?;
+            let num = crate::model::DofNumbering::from_elem_matrices(&mesh, &[&base])
+                .map_err(super::nume_ddl::numbering_error)?;
             ctx.create(co, "nume_ddl_sdaster")?;
             save_numbering(ctx.store, co, &num)?;
             (co.to_string(), num)
@@ -74,7 +75,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let crefs: Vec<&KinematicLoad> = cine.iter().collect();
     let mesh = load_mesh(ctx.store, &num.mesh)?;
     for (co, m) in &elems {
-        let a = assemble(&num, &mesh, &[m], &crefs)?;
+        let a = assemble(&num, &mesh, &[m], &crefs).map_err(super::asse_matrice::assembly_error)?;
         ctx.create(co, "matr_asse_depl_r")?;
         save_matrix(ctx.store, co, &a, &num_name)?;
     }

@@ -3,6 +3,7 @@
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::model::elem::ElemError;
 use crate::model::{
     compute_elem_matrices, ElemInputs, ElemMatrices, KinematicLoad, LoadKind, MatrixKind,
 };
@@ -97,6 +98,26 @@ impl Inputs {
             field: field.as_ref(),
             cara: cara.as_ref(),
         };
-        compute_elem_matrices(kind, &inp, self.loads(store)?)
+        compute_elem_matrices(kind, &inp, self.loads(store)?).map_err(elem_error)
+    }
+}
+
+/// What the element matrices lack, named by the keyword of the concept that should give
+/// it (CARA_ELEM, CHAM_MATER), with what to do.
+fn elem_error(e: ElemError) -> Error {
+    let message = e.to_string();
+    match e {
+        ElemError::Incomplete(i) => super::affe_cara_elem::incomplete(i),
+        ElemError::NoCharacteristics(_) => Error::input(message)
+            .keyword("CARA_ELEM")
+            .hint("discrete elements, beams and bars need AFFE_CARA_ELEM (DISCRET, POUTRE, BARRE)"),
+        ElemError::NoElasticity(_) => Error::input(message)
+            .keyword("CHAM_MATER")
+            .hint("assign a material with ELAS=_F(E=..., NU=...) by AFFE_MATERIAU"),
+        ElemError::NoDensity(_) => Error::input(message)
+            .keyword("CHAM_MATER")
+            .hint("add RHO to ELAS in DEFI_MATERIAU"),
+        ElemError::Frame { .. } => Error::input(message).keyword("AFFE_CARA_ELEM/ORIENTATION"),
+        ElemError::Other(e) => e,
     }
 }

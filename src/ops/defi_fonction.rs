@@ -1,6 +1,7 @@
 //! DEFI_FONCTION: a function of one parameter from points (VALE = x1, y1, x2, y2, ...,
 //! or VALE_PARA + VALE_FONC), with INTERPOL, PROL_GAUCHE,
-//! PROL_DROITE and VERIF ('CROISSANT': increasing abscissas required; 'NON': sorted).
+//! PROL_DROITE and VERIF ('CROISSANT': increasing abscissas required; 'NON': sorted);
+//! their defaults are the catalog's (commands/DEFI_FONCTION.toml).
 
 use super::OpContext;
 use crate::args::Args;
@@ -8,24 +9,59 @@ use crate::error::{Error, Result};
 use crate::function::{Function, Interp, Prol};
 use crate::store::function::save_function;
 
-/// INTERPOL (default LIN), PROL_GAUCHE and PROL_DROITE (default EXCLU) of `args` applied
-/// to `f`, which is then checked.
-pub fn apply_options(f: &mut Function, args: &Args) -> Result<()> {
-    f.interpol = Interp::pair(&args.texts("INTERPOL").unwrap_or_default())
-        .map_err(|e| e.keyword(args.key_path("INTERPOL")))?;
-    for (key, slot) in [
-        ("PROL_GAUCHE", &mut f.prol_gauche),
-        ("PROL_DROITE", &mut f.prol_droite),
-    ] {
-        if let Some(s) = args.text(key) {
-            *slot = Prol::parse(s).ok_or_else(|| {
-                Error::validation(format!("unknown prolongation '{s}'"))
-                    .keyword(args.key_path(key))
-                    .hint("use 'CONSTANT', 'LINEAIRE' or 'EXCLU'")
-            })?;
-        }
+/// The function of the points `x`, `y` with the INTERPOL, PROL_GAUCHE and PROL_DROITE
+/// of `args` (DEFI_FONCTION, RECU_FONCTION; their defaults are the catalog's), checked.
+pub fn function_with_options(
+    args: &Args,
+    name: &str,
+    nom_para: &str,
+    nom_resu: &str,
+    x: Vec<f64>,
+    y: Vec<f64>,
+) -> Result<Function> {
+    let interpol = interpolation(args)?;
+    let prol = |key: &str| -> Result<Prol> {
+        let s = args.req_text(key)?;
+        Prol::parse(s).ok_or_else(|| {
+            Error::validation(format!("unknown prolongation '{s}'"))
+                .keyword(args.key_path(key))
+                .hint("use 'CONSTANT', 'LINEAIRE' or 'EXCLU'")
+        })
+    };
+    let f = Function {
+        name: name.to_string(),
+        nom_para: nom_para.to_string(),
+        nom_resu: nom_resu.to_string(),
+        x,
+        y,
+        interpol,
+        prol_gauche: prol("PROL_GAUCHE")?,
+        prol_droite: prol("PROL_DROITE")?,
+    };
+    f.check().map_err(|e| e.keyword(args.path.clone()))?;
+    Ok(f)
+}
+
+/// INTERPOL: one value for both axes, or two (abscissa, ordinate); one or two values is
+/// the catalog's bound.
+fn interpolation(args: &Args) -> Result<(Interp, Interp)> {
+    let values = args.req_texts("INTERPOL")?;
+    let parse = |s: &String| {
+        Interp::parse(s).ok_or_else(|| {
+            Error::validation(format!("unknown interpolation '{s}'"))
+                .keyword(args.key_path("INTERPOL"))
+                .hint("use 'LIN', 'LOG' or 'NON'")
+        })
+    };
+    match values.as_slice() {
+        [a] => parse(a).map(|a| (a, a)),
+        [a, b] => Ok((parse(a)?, parse(b)?)),
+        _ => Err(Error::internal(format!(
+            "INTERPOL has {} values: its catalog needs min = 1, max = 2",
+            values.len()
+        ))
+        .keyword(args.key_path("INTERPOL"))),
     }
-    f.check().map_err(|e| e.keyword(args.path.clone()))
 }
 
 fn reals(args: &Args, key: &str) -> Result<Vec<f64>> {
@@ -72,17 +108,9 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 .hint("use 'CROISSANT' or 'NON'"))
         }
     };
-    let mut f = Function {
-        name: name.clone(),
-        nom_para: args.req_text("NOM_PARA")?.to_string(),
-        nom_resu: args.req_text("NOM_RESU")?.to_string(),
-        x,
-        y,
-        interpol: (Interp::Lin, Interp::Lin),
-        prol_gauche: Prol::Exclu,
-        prol_droite: Prol::Exclu,
-    };
-    apply_options(&mut f, args)?;
+    let nom_para = args.req_text("NOM_PARA")?;
+    let nom_resu = args.req_text("NOM_RESU")?;
+    let f = function_with_options(args, &name, nom_para, nom_resu, x, y)?;
     ctx.create(&name, "fonction_sdaster")?;
     save_function(ctx.store, &name, &f)
 }

@@ -450,7 +450,7 @@ fn settings(args: &Args) -> Result<Settings> {
         iter_newton_max: usize_of("ITER_NEWTON_MAXI")?,
         bif_terms: usize_of("CRIT_ORDR_BIFURCATION")?,
         bif_tol: r.req_real("RESI_RELA_BIFURCATION")?,
-        det_test: r.text("TEST_BIFURCATION") != Some("SERIE"),
+        det_test: r.req_text("TEST_BIFURCATION")? != "SERIE",
         direction: if direction >= 0 { 1 } else { -1 },
     })
 }
@@ -549,33 +549,25 @@ fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<StoredShock>
     for (i, c) in args.facts_or_empty("CHOC").iter().enumerate() {
         let kw = |k: &str| format!("MODE_NON_LINE/CHOC[{}]/{k}", i + 1);
         let obstacle = c.req_text("OBSTACLE")?.to_string();
-        let cmps = c.texts("NOM_CMP").unwrap_or_default();
-        let want = if obstacle == "CERCLE" { 2 } else { 1 };
-        if cmps.len() != want {
-            return Err(Error::validation(format!(
-                "OBSTACLE='{obstacle}' needs {want} component(s) in NOM_CMP, got {}",
-                cmps.len()
-            ))
-            .keyword(kw("NOM_CMP"))
-            .hint(if want == 1 {
-                "e.g. NOM_CMP='DX'"
-            } else {
-                "e.g. NOM_CMP=('DX', 'DY')"
-            }));
-        }
+        // One component (PLAN, BI_PLAN) or two (CERCLE): the catalog's bounds.
+        let cmps = c.req_texts("NOM_CMP")?;
         let node = choc_node(ctx, args, c, &kw)?;
         // Finite and > 0: the catalog's bounds (val_min = 0, excluded).
         let positive = |key: &str| c.req_real(key);
         let gap = positive("JEU")?;
         let stiffness = positive("RIGI_NOR")?;
         let regul = positive("PARA_REGUL")?;
-        let o = c.reals("ORIG_OBST").unwrap_or_else(|| vec![0.0; 3]);
-        if o.len() != 3 {
-            return Err(
-                Error::validation(format!("ORIG_OBST needs 3 reals, got {}", o.len()))
-                    .keyword(kw("ORIG_OBST")),
-            );
-        }
+        // Three reals: the catalog's default and bounds (min = max = 3).
+        let origin: [f64; 3] = c
+            .req_reals("ORIG_OBST")?
+            .try_into()
+            .map_err(|o: Vec<f64>| {
+                Error::internal(format!(
+                    "ORIG_OBST has {} values: its catalog needs min = max = 3",
+                    o.len()
+                ))
+                .keyword(kw("ORIG_OBST"))
+            })?;
         // The same shock twice doubles its stiffness without a word: refuse it.
         if let Some(j) = out
             .iter()
@@ -596,7 +588,7 @@ fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<StoredShock>
             gap,
             stiffness,
             regul,
-            origin: [o[0], o[1], o[2]],
+            origin,
         });
     }
     Ok(out)

@@ -4,6 +4,7 @@ use super::calc_matr_elem::Inputs;
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::model::numbering::NumberingError;
 use crate::model::{DofNumbering, ElemMatrices};
 use crate::store::matrix::save_numbering;
 use crate::store::model::{load_elem_matrices, load_mesh, load_model_and_mesh};
@@ -34,7 +35,15 @@ pub(crate) fn from_elem_matrices(store: &Store, names: &[String]) -> Result<DofN
         .ok_or_else(|| Error::validation("no element matrix").keyword("MATR_RIGI"))?;
     let mesh = load_mesh(store, &first.mesh)?;
     let refs: Vec<&ElemMatrices> = mats.iter().collect();
-    DofNumbering::from_elem_matrices(&mesh, &refs)
+    DofNumbering::from_elem_matrices(&mesh, &refs).map_err(numbering_error)
+}
+
+/// A numbering failure of the element matrices, named by their keyword (MATR_RIGI).
+pub(crate) fn numbering_error(e: NumberingError) -> Error {
+    match e {
+        NumberingError::Other(e) => e,
+        e => Error::input(e.to_string()).keyword("MATR_RIGI"),
+    }
 }
 
 pub(crate) fn from_model(store: &Store, inputs: &Inputs) -> Result<DofNumbering> {

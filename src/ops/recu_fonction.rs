@@ -4,11 +4,11 @@
 //! alarm FONCT0_62; rows repeating an abscissa already taken are dropped, with a note.
 
 use super::common::table_args::{filters, load_table_arg};
-use super::defi_fonction::apply_options;
+use super::defi_fonction::function_with_options;
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
-use crate::function::{order_points, Function, Interp, Prol, Reorder};
+use crate::function::{order_points, Reorder};
 use crate::store::function::save_function;
 use crate::table::filter::apply_all;
 use crate::table::{Cell, Table};
@@ -100,19 +100,9 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             order.dropped, c.name
         ))?;
     }
-    let mut f = Function {
-        name: name.clone(),
-        // RECU_FONCTION has no NOM_PARA / NOM_RESU keywords: the function is named after
-        // the table's columns.
-        nom_para: px.to_string(),
-        nom_resu: py.to_string(),
-        x,
-        y,
-        interpol: (Interp::Lin, Interp::Lin),
-        prol_gauche: Prol::Exclu,
-        prol_droite: Prol::Exclu,
-    };
-    apply_options(&mut f, args)?;
+    // RECU_FONCTION has no NOM_PARA / NOM_RESU keywords: the function is named after the
+    // table's columns.
+    let f = function_with_options(args, &name, px, py, x, y)?;
     ctx.create(&name, "fonction_sdaster")?;
     save_function(ctx.store, &name, &f)
 }

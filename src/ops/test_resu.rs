@@ -133,9 +133,9 @@ fn dyna_value(
                 .hint("give the node by name for a time history"))
         }
     };
-    // Not a catalog default: NOM_CHAM is optional because giving it is what asks for a
-    // field value (NOEUD, NOM_CMP); a time history without it reads the displacement.
-    let field = match resu.text("NOM_CHAM").unwrap_or("DEPL") {
+    // NOM_CHAM has no default (Code_Aster's neither): giving it is what asks for a field
+    // value, and NOM_CMP (read above) is only allowed with it.
+    let field = match resu.req_text("NOM_CHAM")? {
         "DEPL" => "DEPL",
         "VITE" => "VITE",
         other => {

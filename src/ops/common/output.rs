@@ -54,11 +54,7 @@ pub fn write_unit(ctx: &mut OpContext<'_>, unite: i64, text: &str) -> Result<()>
         ctx.out.write_all(text.as_bytes())?;
         return Ok(());
     }
-    if unite <= 0 {
-        return Err(
-            Error::validation(format!("UNITE={unite} is not a logical unit")).keyword("UNITE"),
-        );
-    }
+    // unite >= 1: the catalogs' bound (IMPR_TABLE, IMPR_FONCTION).
     let path = unit_path(ctx.units, unite);
     check_output_path(ctx.units, &path).map_err(|e| e.keyword("UNITE"))?;
     let mut f = std::fs::OpenOptions::new()

@@ -49,16 +49,11 @@ fn range(args: &Args, key: &str) -> Result<Option<(f64, f64)>> {
 
 /// The picture asked for, or `None` when FORMAT is a text format.
 pub fn picture(ctx: &OpContext<'_>, args: &Args) -> Result<Option<Picture>> {
-    let Some(format) = args.text("FORMAT").and_then(ImageFormat::parse) else {
+    // FORMAT and UNITE: the catalog's defaults and bound (UNITE >= 1).
+    let Some(format) = ImageFormat::parse(args.req_text("FORMAT")?) else {
         return Ok(None);
     };
     let unite = args.req_int("UNITE")?;
-    if unite <= 0 {
-        return Err(
-            Error::validation(format!("UNITE={unite} is not a logical unit"))
-                .keyword(args.key_path("UNITE")),
-        );
-    }
     let fichier = args.text("FICHIER");
     if fichier.is_some_and(|f| f.trim().is_empty()) {
         return Err(Error::validation("FICHIER is empty").keyword(args.key_path("FICHIER")));

@@ -1,15 +1,17 @@
 //! The comparison behind every TEST_* operator (TEST_TABLE, TEST_FONCTION, TEST_RESU...),
 //! with Code_Aster's semantics:
 //!
-//! - `VALE_CALC` is a non-regression value: compared with the tolerance `TOLE_MACHINE`
-//!   (default 1e-6), reference type `NON_REGRESSION`.
+//! - `VALE_CALC` is a non-regression value: compared with the tolerance `TOLE_MACHINE`,
+//!   reference type `NON_REGRESSION`.
 //! - `VALE_REFE` is a reference value of type `REFERENCE` (`ANALYTIQUE`, `SOURCE_EXTERNE`,
-//!   `AUTRE_ASTER`, `NON_DEFINI`), compared with `PRECISION` (default 1e-3).
+//!   `AUTRE_ASTER`, `NON_DEFINI`), compared with `PRECISION`.
 //! - Both may be given: two checks, two lines.
-//! - `CRITERE='RELATIF'` (default) compares `|calc - ref| / |ref|`, `'ABSOLU'` compares
+//! - `CRITERE='RELATIF'` compares `|calc - ref| / |ref|`, `'ABSOLU'` compares
 //!   `|calc - ref|`. When the reference is 0, a relative error means nothing: like
-//!   Code_Aster we then compare absolutely, with the tolerance times `ORDRE_GRANDEUR`
-//!   (default 1), and the printed line says so.
+//!   Code_Aster we then compare absolutely, with the tolerance times `ORDRE_GRANDEUR`,
+//!   and the printed line says so.
+//! - Every default (CRITERE, TOLE_MACHINE, PRECISION, ORDRE_GRANDEUR, VALE_ABS) and bound is
+//!   the catalog's (`commands/TEST_*.toml`): the checks read validated `Args`.
 //! - Integers (`VALE_CALC_I`, `VALE_REFE_I`) and texts (`_K`) must be equal exactly.
 //! - `aster-nl run --tole-machine X` (beyond Code_Aster) raises every real non-regression
 //!   tolerance to at least X, for files whose VALE_CALC were computed by another code:
@@ -33,10 +35,6 @@ pub enum TestValue {
     K(String),
 }
 
-/// Code_Aster's default TOLE_MACHINE for non-regression values.
-pub const TOLE_MACHINE: f64 = 1.0e-6;
-/// Code_Aster's default PRECISION for reference values.
-pub const PRECISION_REFE: f64 = 1.0e-3;
 /// Allowed REFERENCE values.
 pub const REFERENCES: &[&str] = &["ANALYTIQUE", "SOURCE_EXTERNE", "AUTRE_ASTER", "NON_DEFINI"];
 
@@ -229,34 +227,34 @@ pub fn checks_with_floor(
     computed: &TestValue,
     tole_machine_floor: Option<f64>,
 ) -> Result<Vec<TestOutcome>> {
-    let critere = match args.text("CRITERE") {
-        None => Critere::Relatif,
-        Some(s) => Critere::parse(s).ok_or_else(|| {
+    // Defaults and bounds (tolerances >= 0) are the catalog's, filled and checked by the
+    // validation.
+    let criteres = args.req_texts("CRITERE")?;
+    let critere = match criteres.as_slice() {
+        [s] => Critere::parse(s).ok_or_else(|| {
             Error::validation(format!("unknown CRITERE '{s}'"))
                 .keyword(args.key_path("CRITERE"))
                 .hint("use 'RELATIF' or 'ABSOLU'")
         })?,
+        // Two values (the catalog's max = 2: Code_Aster's one for VALE_CALC, one for
+        // VALE_REFE) are not told apart yet: both checks are relative.
+        _ => Critere::Relatif,
     };
-    let positive =
-        |key: &str, default: f64| -> Result<f64> {
-            match args.value(key) {
-                None | Some(Value::None) => Ok(default),
-                Some(_) => match args.real(key) {
-                    Some(x) if x >= 0.0 && x.is_finite() => Ok(x),
-                    _ => Err(Error::validation("expected a non-negative real")
-                        .keyword(args.key_path(key))),
-                },
-            }
-        };
-    let ordre_grandeur = positive("ORDRE_GRANDEUR", 1.0)?;
+    // One value: a second TOLE_MACHINE (the catalog's max = 2) is refused here.
+    let one_real = |key: &str| -> Result<f64> {
+        args.real(key).ok_or_else(|| {
+            Error::validation("expected a non-negative real").keyword(args.key_path(key))
+        })
+    };
+    let ordre_grandeur = one_real("ORDRE_GRANDEUR")?;
     // VALE_ABS='OUI': the absolute value of the computed value is tested.
     let abs_value;
-    let computed = match (args.text("VALE_ABS"), computed) {
-        (Some("OUI"), TestValue::R(x)) => {
+    let computed = match (args.req_text("VALE_ABS")?, computed) {
+        ("OUI", TestValue::R(x)) => {
             abs_value = TestValue::R(x.abs());
             &abs_value
         }
-        (Some("OUI"), TestValue::I(i)) => {
+        ("OUI", TestValue::I(i)) => {
             abs_value = TestValue::I(i.abs());
             &abs_value
         }
@@ -264,7 +262,7 @@ pub fn checks_with_floor(
     };
     let mut out = Vec::new();
     if let Some(calc) = given(args, "VALE_CALC")? {
-        let file_tol = positive("TOLE_MACHINE", TOLE_MACHINE)?;
+        let file_tol = one_real("TOLE_MACHINE")?;
         let widened = matches!(calc, TestValue::R(_))
             && tole_machine_floor.is_some_and(|floor| floor > file_tol);
         let tol = Tolerance {
@@ -292,7 +290,7 @@ pub fn checks_with_floor(
             }
             let tol = Tolerance {
                 critere,
-                precision: positive("PRECISION", PRECISION_REFE)?,
+                precision: one_real("PRECISION")?,
                 ordre_grandeur,
             };
             out.push(check(computed, &refe, kind, tol));
@@ -413,43 +411,57 @@ mod tests {
         assert!(!check(&TestValue::K("1".into()), &TestValue::I(1), "NON_DEFINI", r).ok);
     }
 
-    fn args(simple: Vec<(&str, Value)>) -> Args {
-        Args {
-            path: "TEST_TABLE".into(),
-            simple: simple
-                .into_iter()
-                .map(|(k, v)| (k.to_string(), v, Span::default()))
-                .collect(),
-            factor: vec![],
-        }
+    /// The checks of TEST_TABLE(TABLE=T, NOM_PARA='X', <simple>) on `computed`, the call
+    /// validated as a user's (the catalog's defaults filled in).
+    fn checks(simple: Vec<(&str, Value)>, computed: f64) -> Result<Vec<TestOutcome>> {
+        let mut a = Args::new("TEST_TABLE");
+        let table = Value::Concept(crate::value::ConceptRef {
+            name: "T".into(),
+            ty: "table_sdaster".into(),
+        });
+        a.simple = [("TABLE", table), ("NOM_PARA", Value::Str("X".into()))]
+            .into_iter()
+            .chain(simple)
+            .map(|(k, v)| (k.to_string(), v, Span::default()))
+            .collect();
+        let a = crate::catalog::validate_args("TEST_TABLE", &a, None, "test.comm")?;
+        checks_from_args(&a, &TestValue::R(computed))
     }
 
     #[test]
     fn calc_and_refe_give_two_checks() {
-        let a = args(vec![
-            ("VALE_CALC", Value::Real(2.0000015)),
-            ("VALE_REFE", Value::Real(2.001)),
-            ("REFERENCE", Value::Str("ANALYTIQUE".into())),
-        ]);
-        let out = checks_from_args(&a, &TestValue::R(2.0)).unwrap();
+        let out = checks(
+            vec![
+                ("VALE_CALC", Value::Real(2.0000015)),
+                ("VALE_REFE", Value::Real(2.001)),
+                ("REFERENCE", Value::Str("ANALYTIQUE".into())),
+            ],
+            2.0,
+        )
+        .unwrap();
         // Non-regression: 7.5e-7 > 1e-6? no: 1.5e-6/2.0000015 = 7.5e-7 <= 1e-6 → OK.
         // Reference: 1e-3/2.001 = 5.0e-4 <= 1e-3 → OK.
         assert_eq!(out.len(), 2);
         assert!(out[0].ok && out[0].line.contains("NON_REGRESSION"));
         assert!(out[1].ok && out[1].line.contains("ANALYTIQUE"));
         // VALE_ABS='OUI' tests |-2| = 2.
-        let a = args(vec![
+        let abs = vec![
             ("VALE_CALC", Value::Real(2.0)),
             ("VALE_ABS", Value::Str("OUI".into())),
-        ]);
-        assert!(checks_from_args(&a, &TestValue::R(-2.0)).unwrap()[0].ok);
-        let a = args(vec![("VALE_CALC", Value::Real(2.00001))]);
-        assert!(!checks_from_args(&a, &TestValue::R(2.0)).unwrap()[0].ok);
-        let a = args(vec![("VALE_REFE", Value::Real(2.0))]);
-        assert!(checks_from_args(&a, &TestValue::R(2.0))
-            .unwrap_err()
-            .message
-            .contains("REFERENCE"));
-        assert!(checks_from_args(&args(vec![]), &TestValue::R(2.0)).is_err());
+        ];
+        assert!(checks(abs, -2.0).unwrap()[0].ok);
+        // The catalog's TOLE_MACHINE (1e-6) applies: 5e-6 relative is NOOK.
+        assert!(!checks(vec![("VALE_CALC", Value::Real(2.00001))], 2.0).unwrap()[0].ok);
+        // The catalog's ORDRE_GRANDEUR (1): a zero reference compared absolutely.
+        let zero = vec![("VALE_CALC", Value::Real(0.0))];
+        let out = checks(zero, 5e-7).unwrap();
+        assert!(
+            out[0].ok && out[0].line.contains("compared absolutely"),
+            "{}",
+            out[0].line
+        );
+        let e = checks(vec![("VALE_REFE", Value::Real(2.0))], 2.0).unwrap_err();
+        assert!(e.message.contains("REFERENCE"), "{}", e.message);
+        assert!(checks(vec![], 2.0).is_err());
     }
 }

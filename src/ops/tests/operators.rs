@@ -499,6 +499,51 @@ fn recu_fonction_then_test_fonction() {
     );
 }
 
+/// INTERPOL: one value applies to both axes, two are (abscissa, ordinate), none is the
+/// catalog's default (LIN, LIN); PROL_* default to EXCLU; an unknown value is refused.
+#[test]
+fn defi_fonction_interpol_and_prolongation_defaults() {
+    use crate::function::{Interp, Prol};
+    use crate::store::function::load_function;
+    let mut h = Harness::new();
+    let cases = [
+        ("F1", Some(seq(vec![k("LOG")])), (Interp::Log, Interp::Log)),
+        ("F2", None, (Interp::Lin, Interp::Lin)),
+        (
+            "F3",
+            Some(seq(vec![k("LIN"), k("LOG")])),
+            (Interp::Lin, Interp::Log),
+        ),
+    ];
+    for (name, interpol, want) in cases {
+        let mut simple = vec![
+            ("NOM_PARA", k("FREQ")),
+            ("VALE", seq(vec![r(1.0), r(1.0), r(2.0), r(4.0)])),
+        ];
+        simple.extend(interpol.map(|v| ("INTERPOL", v)));
+        h.run(
+            "DEFI_FONCTION",
+            Some(name),
+            None,
+            &args("DEFI_FONCTION", simple, vec![]),
+        )
+        .unwrap();
+        let f = load_function(&h.store, name).unwrap();
+        assert_eq!(f.interpol, want, "{name}");
+        assert_eq!((f.prol_gauche, f.prol_droite), (Prol::Exclu, Prol::Exclu));
+    }
+    let bad = args(
+        "DEFI_FONCTION",
+        vec![
+            ("NOM_PARA", k("FREQ")),
+            ("VALE", seq(vec![r(1.0), r(1.0), r(2.0), r(4.0)])),
+            ("INTERPOL", k("CUBIC")),
+        ],
+        vec![],
+    );
+    assert!(h.run("DEFI_FONCTION", Some("F4"), None, &bad).is_err());
+}
+
 #[test]
 fn defi_fonction_log_and_impr() {
     let mut h = Harness::new();
