@@ -96,6 +96,8 @@ fn main() {
         retries_max: 4,
         stall_branches: 50,
         law_defect_max: Some(0.5),
+        root_jump_max: None,
+        correction_ratio_max: None,
         spread_max: None,
         approximation: if std::env::var("PADE").is_ok() {
             Approximation::Pade

@@ -190,9 +190,11 @@ pub(super) struct CorrectedBranch {
 /// A branch whose end jumped off its family ([`Jump`]: the correction moved it as far as
 /// the step, or its contact forces jumped to the other root of their law) is retried
 /// likewise. The jump is taken for the branch's own, and the first, full-length attempt
-/// kept (as without the check), when every shorter step jumps too, when a shorter step's
-/// forces carry a defect within [`ROOT_JUMP_RATIO`] of the first attempt's (the same
-/// family, growing steeply), or when a shorter step fails its correction.
+/// kept (as without the check), when every shorter step jumps too or a shorter step fails
+/// its correction. (Keeping the full step as soon as a shorter one carried a defect within
+/// [`ROOT_JUMP_RATIO`] of it, to spare steep physical branches the shorter steps, let one
+/// run of the wall grid end with exit 0 on the wrong family: near grazing the two families
+/// are too close for that test.)
 #[allow(clippy::too_many_arguments)]
 pub(super) fn correct_branch(
     sys: &System,
@@ -209,10 +211,10 @@ pub(super) fn correct_branch(
         _ => None,
     };
     let mut step_retries = 0;
-    // The first attempt whose end jumped off the family, its step, the retries before it
-    // and why: what is kept when no shorter step shows another family (the discarded
-    // attempts then count no retry, the row is as without the check).
-    let mut jumped: Option<(BranchPoints, f64, usize, Jump)> = None;
+    // The first attempt whose end jumped off the family, its step and the retries before
+    // it: what is kept when no shorter step stays on the family (the discarded attempts
+    // then count no retry, the row is as without the check).
+    let mut jumped: Option<(BranchPoints, f64, usize)> = None;
     let BranchPoints {
         mut points,
         x_end,
@@ -230,24 +232,16 @@ pub(super) fn correct_branch(
         match attempt {
             Ok(done) => {
                 let jump = jumped_off(sys, control, defect_at_start, &done)?;
-                // A shorter step whose forces carry nearly the same defect as the first
-                // attempt's followed the same family: the growth is the branch's own.
-                let same_family = match &jumped {
-                    Some((_, _, _, Jump::Root { end })) => {
-                        frequency_defect(sys, &done.x_end)? * ROOT_JUMP_RATIO > *end
-                    }
-                    _ => false,
-                };
-                if jump.is_some() && !same_family && step_retries < control.retries_max {
+                if jump.is_some() && step_retries < control.retries_max {
                     if jumped.is_none() {
-                        jumped = jump.map(|j| (done, series.a_max, step_retries, j));
+                        jumped = Some((done, series.a_max, step_retries));
                     }
                     step_retries += 1;
                     series.a_max *= 0.5;
                     continue;
                 }
                 match jumped.take() {
-                    Some((first, a_max, retries, _)) if jump.is_some() || same_family => {
+                    Some((first, a_max, retries)) if jump.is_some() => {
                         series.a_max = a_max;
                         step_retries = retries;
                         break first;
@@ -260,7 +254,7 @@ pub(super) fn correct_branch(
                 series.a_max *= 0.5;
             }
             Err(e) => {
-                if let Some((first, a_max, retries, _)) = jumped.take() {
+                if let Some((first, a_max, retries)) = jumped.take() {
                     series.a_max = a_max;
                     step_retries = retries;
                     break first;
@@ -299,14 +293,13 @@ enum Jump {
     /// order of the step has reached another one (e.g. where two families cross at grazing).
     Correction,
     /// Its contact forces sit on another root of their law than at the branch start: the
-    /// frequency defect they carry (root_check.rs), `end`, grew past both
+    /// frequency defect they carry (root_check.rs) grew past both
     /// `control.root_jump_max` and [`ROOT_JUMP_RATIO`] times its value at the start. On one
     /// family the defect grows smoothly (by a factor of about 100 over the branch that
     /// reaches first contact, measured on sdnd122's wall); a step that crosses grazing onto
     /// the family whose forces vanish in contact raises it from round-off to the whole
-    /// frequency shift of the contact (1e-8 to 7e-3 there) at once, and the shorter step
-    /// that stays on the physical family carries a defect smaller by orders of magnitude.
-    Root { end: f64 },
+    /// frequency shift of the contact (1e-8 to 7e-3 there) at once.
+    Root,
 }
 
 fn jumped_off(
@@ -325,5 +318,5 @@ fn jumped_off(
         return Ok(None);
     };
     let end = frequency_defect(sys, &done.x_end)?;
-    Ok((end > max.max(ROOT_JUMP_RATIO * start)).then_some(Jump::Root { end }))
+    Ok((end > max.max(ROOT_JUMP_RATIO * start)).then_some(Jump::Root))
 }
