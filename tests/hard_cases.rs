@@ -24,9 +24,14 @@ fn text(o: &Output) -> String {
 }
 
 fn run(name: &str, db: &Path) -> Output {
+    run_file(&case(name), db)
+}
+
+/// `aster-nl run file --db db`.
+fn run_file(file: &Path, db: &Path) -> Output {
     Command::new(env!("CARGO_BIN_EXE_aster-nl"))
         .arg("run")
-        .arg(case(name))
+        .arg(file)
         .arg("--db")
         .arg(db)
         .output()
@@ -755,13 +760,7 @@ fn hard_grazing_jump_is_sent_back_to_the_physical_family() {
     let file = dir.path().join("unchecked.comm");
     std::fs::write(&file, comm).unwrap();
     std::fs::copy(case("grazing_jump.mail"), dir.path().join("unchecked.mail")).unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_aster-nl"))
-        .arg("run")
-        .arg(&file)
-        .arg("--db")
-        .arg(dir.path().join("u.db"))
-        .output()
-        .unwrap();
+    let o = run_file(&file, &dir.path().join("u.db"));
     let out = text(&o);
     assert_eq!(o.status.code(), Some(2), "{out}");
     assert!(
@@ -850,13 +849,7 @@ fn hard_wall_settings_grid_never_ends_wrong_with_exit_0() {
                 )
                 .unwrap();
                 let db = dir.path().join(format!("{name}.db"));
-                let o = Command::new(env!("CARGO_BIN_EXE_aster-nl"))
-                    .arg("run")
-                    .arg(&file)
-                    .arg("--db")
-                    .arg(&db)
-                    .output()
-                    .unwrap();
+                let o = run_file(&file, &db);
                 let out = text(&o);
                 match o.status.code() {
                     Some(0) => {

@@ -22,6 +22,7 @@
 //! families, and this measure, are close).
 
 use super::laws;
+use super::start::shock_displacements;
 use super::system::System;
 use crate::error::Result;
 
@@ -36,15 +37,7 @@ pub(super) fn frequency_defect(sys: &System, x: &[f64]) -> Result<f64> {
     let mut work_defect = 0.0;
     let mut work_law = 0.0;
     for sh in &sys.shocks {
-        let u: Vec<Vec<f64>> = sh
-            .dofs
-            .iter()
-            .map(|&d| {
-                let mut s = vec![0.0; ns];
-                smp.synth(&x[lay.u(d)..lay.u(d) + lay.n_coef_lin], lay.h_lin, &mut s);
-                s
-            })
-            .collect();
+        let u = shock_displacements(sys, sh, x);
         let own = laws::own_from_u(sh.law, sh.gap, sh.alpha, sh.eta, &u)?;
         let mut force = vec![0.0; ns];
         for &(c, v) in &sh.eqs.forces {

@@ -5,7 +5,7 @@
 use super::linear_solver::TangentSolver;
 use super::point::{finite, make_point, to_scaled};
 use super::solver_kind::{make_solver, SolverKind};
-use super::system::{self, Scaling, System};
+use super::system::{self, Scaling, ShockSys, System};
 use super::{anm, laws, newton, post, series, Point, Problem, Settings};
 use crate::error::{Error, Result};
 
@@ -48,17 +48,8 @@ impl StartState {
 pub(super) fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
     let lay = sys.lay;
     let smp = sys.sampler();
-    let ns = smp.n();
     for sh in &sys.shocks {
-        let u: Vec<Vec<f64>> = sh
-            .dofs
-            .iter()
-            .map(|&d| {
-                let mut s = vec![0.0; ns];
-                smp.synth(&x[lay.u(d)..lay.u(d) + lay.n_coef_lin], lay.h_lin, &mut s);
-                s
-            })
-            .collect();
+        let u = shock_displacements(sys, sh, x);
         let own = laws::own_from_u(sh.law, sh.gap, sh.alpha, sh.eta, &u)?;
         for (v, mut s) in own.into_iter().enumerate() {
             let o = sh.offset + v * lay.n_coef_nonl;
@@ -66,6 +57,20 @@ pub(super) fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Time samples (the system's sampler) of the displacement of each of `sh`'s DOFs in `x`.
+pub(super) fn shock_displacements(sys: &System, sh: &ShockSys, x: &[f64]) -> Vec<Vec<f64>> {
+    let lay = sys.lay;
+    let smp = sys.sampler();
+    sh.dofs
+        .iter()
+        .map(|&d| {
+            let mut s = vec![0.0; smp.n()];
+            smp.synth(&x[lay.u(d)..lay.u(d) + lay.n_coef_lin], lay.h_lin, &mut s);
+            s
+        })
+        .collect()
 }
 
 /// The border guess at a start point: its displacement and velocity part (the branch
