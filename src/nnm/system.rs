@@ -7,11 +7,12 @@
 //! zero velocity at t = 0, Σ_k k·us_k = 0. One equation fewer than unknowns: a curve.
 
 use super::laws::{self, LawEqs, ScaledLaw, Var};
-use super::series::{self, Sampler};
+use super::series::{self, FftScratch, Sampler};
 use super::{Problem, Settings, ShockLaw};
 use crate::error::{Error, Result};
 use faer::prelude::*;
 use faer::sparse::{SparseColMat, Triplet};
+use std::cell::RefCell;
 
 /// Compressed columns of a scaled matrix (our own copy, scaled once).
 #[derive(Clone, Debug)]
@@ -260,6 +261,9 @@ pub struct System {
     /// makes them exact for the retained harmonics as any N > 3·H_nl does (up to 37 %
     /// fewer samples than `sampler`).
     products: Sampler,
+    /// `products`' transform scratch, made once (the sampled products run at every order
+    /// of every series and at every residual).
+    scratch: RefCell<FftScratch>,
 }
 
 /// Validate the problem and settings against each other (keyword-named errors).
@@ -390,6 +394,8 @@ impl System {
             });
         }
         let hn = lay.h_nonl;
+        let products = Sampler::new(series::fft_size_smooth(3 * hn));
+        let scratch = RefCell::new(products.scratch());
         Ok(System {
             lay,
             k: ScaledEntries::from_faer(&problem.k, 1.0 / scaling.stiffness),
@@ -398,7 +404,8 @@ impl System {
             ref_dof,
             scaling,
             sampler: Sampler::new(series::fft_size(3 * hn)),
-            products: Sampler::new(series::fft_size_smooth(3 * hn)),
+            products,
+            scratch,
         })
     }
 
@@ -424,7 +431,7 @@ impl System {
     /// Time samples of `x` for the sampled products (`Samples`).
     pub fn samples(&self, x: &[f64]) -> Samples {
         let ns = self.products.n();
-        let mut ws = self.products.scratch();
+        let mut ws = self.scratch.borrow_mut();
         Samples {
             shocks: self
                 .shocks
@@ -529,7 +536,7 @@ impl System {
         };
         let ns = self.products.n();
         let mut c = vec![0.0; lay.n_coef_nonl];
-        let mut ws = self.products.scratch();
+        let mut ws = self.scratch.borrow_mut();
         for (k, sh) in self.shocks.iter().enumerate() {
             let nv = sh.vars.len();
             let mut acc = vec![0.0; sh.eqs.n_own * ns];
