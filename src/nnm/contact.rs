@@ -577,9 +577,10 @@ impl ContactBlock {
         for col in 0..self.m {
             let (c, j) = (col / nl, col % nl);
             self.pw.coupling_column(c, j, &mut self.b);
+            // From the column of the previous factorisation (a nearby block).
             let krylov = self
                 .gmres
-                .solve(
+                .solve_from(
                     &mut self.pw,
                     &self.b,
                     &mut self.w[col * d..(col + 1) * d],
@@ -599,9 +600,10 @@ impl ContactBlock {
         for (i, idx) in [series::ic(hn), series::is(hn, hn)].into_iter().enumerate() {
             self.b.fill(0.0);
             self.b[idx] = 2.0;
+            // From the generator of the previous factorisation (a nearby block).
             match self
                 .gmres
-                .solve(&mut self.pw, &self.b, &mut self.xi[i], KRYLOV_RTOL)
+                .solve_from(&mut self.pw, &self.b, &mut self.xi[i], KRYLOV_RTOL)
             {
                 Ok(krylov) => self.counters.krylov_iterations += krylov.iterations,
                 Err(f) if self.d > DENSE_MAX_DIM => return Err(self.krylov_error(f)),
@@ -699,26 +701,22 @@ impl ContactBlock {
                 }
             }
         }
-        // GMRES (pointwise preconditioner) on the remaining residual.
-        let mut delta = std::mem::take(&mut self.xi[0]);
+        // GMRES (pointwise preconditioner) on the remaining residual (rare: its own
+        // vector, the generators stay as the next factorisation's first guesses).
+        let mut delta = vec![0.0; self.d];
         let r = self.res.clone();
         let out = self.gmres.solve(&mut self.pw, &r, &mut delta, KRYLOV_RTOL);
-        let ok = match out {
+        match out {
             Ok(krylov) => {
                 self.counters.krylov_iterations += krylov.iterations;
                 for (xi, dv) in x.iter_mut().zip(&delta) {
                     *xi += dv;
                 }
-                true
+                Ok(true)
             }
-            Err(f) if self.d > DENSE_MAX_DIM => {
-                self.xi[0] = delta;
-                return Err(self.krylov_error(f));
-            }
-            Err(_) => false,
-        };
-        self.xi[0] = delta;
-        Ok(ok)
+            Err(f) if self.d > DENSE_MAX_DIM => Err(self.krylov_error(f)),
+            Err(_) => Ok(false),
+        }
     }
 
     fn krylov_error(&self, f: gmres::Failure) -> Error {
