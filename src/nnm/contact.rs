@@ -577,10 +577,11 @@ impl ContactBlock {
         for col in 0..self.m {
             let (c, j) = (col / nl, col % nl);
             self.pw.coupling_column(c, j, &mut self.b);
-            // From the column of the previous factorisation (a nearby block).
+            // From zero: the previous factorisation's column (one branch away) was measured
+            // to save no iterations here, only to cost the guess's residual.
             let krylov = self
                 .gmres
-                .solve_from(
+                .solve(
                     &mut self.pw,
                     &self.b,
                     &mut self.w[col * d..(col + 1) * d],
