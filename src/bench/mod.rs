@@ -191,6 +191,26 @@ impl Bench<'_> {
         det: bool,
         repeats: usize,
     ) -> Result<EngineRun> {
+        let exe = self.exe.clone();
+        self.engine_of(&exe, model, solver, det, repeats)
+    }
+
+    /// Median engine run of the old binary (`--old`, its own `bench-case`), when there is
+    /// one and it can run the model; None otherwise.
+    fn old_engine(&mut self, model: &str, repeats: usize) -> Option<EngineRun> {
+        let old = self.opts.old.clone()?;
+        self.engine_of(&old, model, "auto", true, repeats).ok()
+    }
+
+    /// Median engine run of `model` by `exe` (`repeats` child processes).
+    fn engine_of(
+        &mut self,
+        exe: &Path,
+        model: &str,
+        solver: &str,
+        det: bool,
+        repeats: usize,
+    ) -> Result<EngineRun> {
         let dir = self.opts.dir.join(model.replace(':', "_"));
         std::fs::create_dir_all(&dir).map_err(io)?;
         let mut runs = Vec::new();
@@ -204,7 +224,7 @@ impl Bench<'_> {
                 "--dir",
                 dir.to_str().unwrap_or("."),
             ];
-            let c = run_child(&self.exe, &args, &dir)?;
+            let c = run_child(exe, &args, &dir)?;
             let r = parse_bench_line(&c.stdout).ok_or_else(|| {
                 io(format!(
                     "bench-case {model} {solver}: no result (exit {})",
@@ -316,19 +336,23 @@ impl Bench<'_> {
 
     fn hnl_section(&mut self) -> Result<()> {
         self.say("\n## Cost against NB_HARM_NONL (sdnd122a, 105 branches, engine only)\n")?;
-        self.say("| H_nl | reference (old linear algebra) | new | speed-up | new peak |")?;
-        self.say("|---|---|---|---|---|")?;
+        self.say("| H_nl | reference (old linear algebra) | old binary | new | speed-up over old | new peak |")?;
+        self.say("|---|---|---|---|---|---|")?;
         let hs: &[usize] = if self.opts.quick {
             &[20, 50]
         } else {
             &[50, 100, 200, 400, 1000]
         };
         let branches = if self.opts.quick { 10 } else { 105 };
-        let (mut new_pts, mut ref_pts) = (Vec::new(), Vec::new());
+        let (mut new_pts, mut ref_pts, mut old_pts) = (Vec::new(), Vec::new(), Vec::new());
         for &h in hs {
             let model = format!("wall:{h}:{branches}");
-            let reps = if h >= 1000 { 1 } else { self.opts.repeats };
+            let reps = self.opts.repeats;
             let n = self.engine(&model, "auto", true, reps)?;
+            let o = self.old_engine(&model, reps);
+            if let Some(o) = &o {
+                old_pts.push((h as f64, o.cpu));
+            }
             let r = if self.opts.quick || h > 400 {
                 None
             } else {
@@ -339,17 +363,19 @@ impl Bench<'_> {
                 ref_pts.push((h as f64, r.cpu));
             }
             self.say(&format!(
-                "| {h} | {} | {} | {} | {} |",
+                "| {h} | {} | {} | {} | {} | {} |",
                 r.as_ref().map_or("—".into(), |r| fmt_s(r.cpu)),
+                o.as_ref().map_or("—".into(), |o| fmt_s(o.cpu)),
                 fmt_s(n.cpu),
-                r.as_ref()
-                    .map_or("—".into(), |r| format!("{:.1}×", r.cpu / n.cpu)),
+                o.as_ref()
+                    .map_or("—".into(), |o| format!("{:.2}×", o.cpu / n.cpu)),
                 fmt_mb(n.peak_kb)
             ))?;
         }
         self.say(&format!(
-            "\nfitted exponent of CPU against H_nl: new {:.2}, reference {:.2} (H·log H over the same range: {:.2})",
+            "\nfitted exponent of CPU against H_nl: new {:.2}, old binary {:.2}, reference {:.2} (H·log H over the same range: {:.2})",
             exponent(&new_pts),
+            exponent(&old_pts),
             exponent(&ref_pts),
             exponent(&hs.iter().map(|&h| (h as f64, h as f64 * (h as f64).ln())).collect::<Vec<_>>())
         ))
@@ -357,8 +383,8 @@ impl Bench<'_> {
 
     fn n_section(&mut self) -> Result<()> {
         self.say("\n## Cost against the number of DOFs (tube with two CERCLE rings, H_l 5, H_nl 200, engine only)\n")?;
-        self.say("| DOFs | branches | points | CPU | CPU per branch | peak RSS | engine memory / nonzero of K∪M |")?;
-        self.say("|---|---|---|---|---|---|---|")?;
+        self.say("| DOFs | branches | points | old binary CPU | CPU | speed-up over old | CPU per branch | peak RSS | engine memory / nonzero of K∪M |")?;
+        self.say("|---|---|---|---|---|---|---|---|---|")?;
         let sizes: &[(usize, usize)] = if self.opts.quick {
             &[(4, 2), (26, 2)]
         } else {
@@ -369,20 +395,20 @@ impl Bench<'_> {
                 (401, 10),
                 (2501, 10),
                 (2501, 50),
-                (25001, 5),
             ]
         };
         let mut pts = Vec::new();
         for &(el, br) in sizes {
             let model = format!("beam:{el}:5:200:{br}");
             let r = self.engine(&model, "auto", true, 1)?;
+            let o = self.old_engine(&model, 1);
             if br == 10 {
                 pts.push((r.n as f64, r.cpu / br as f64));
             }
             let per_nnz =
                 (r.peak_kb.saturating_sub(r.base_kb) as f64 * 1024.0) / r.nnz.max(1) as f64;
             self.say(&format!(
-                "| {} | {br} | {}{} | {} | {} | {} | {:.0} B |",
+                "| {} | {br} | {}{} | {} | {} | {} | {} | {} | {:.0} B |",
                 r.n,
                 r.points,
                 if r.error != "-" {
@@ -390,7 +416,10 @@ impl Bench<'_> {
                 } else {
                     String::new()
                 },
+                o.as_ref().map_or("—".into(), |o| fmt_s(o.cpu)),
                 fmt_s(r.cpu),
+                o.as_ref()
+                    .map_or("—".into(), |o| format!("{:.2}×", o.cpu / r.cpu)),
                 fmt_s(r.cpu / br as f64),
                 fmt_mb(r.peak_kb),
                 per_nnz

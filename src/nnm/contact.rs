@@ -459,6 +459,8 @@ pub struct ContactBlock {
     /// W = A_ff⁻¹ A_fu, column-major d × m, columns ordered component-major (c·nl + j).
     w: Vec<f64>,
     b: Vec<f64>,
+    /// The second right-hand side of a pair of W's columns (Toeplitz route).
+    b2: Vec<f64>,
     x: Vec<f64>,
     series: Vec<f64>,
     pub counters: Counters,
@@ -504,6 +506,11 @@ impl ContactBlock {
             res: vec![0.0; d],
             w: try_zeroed(d * m, "the contact coupling W")?,
             b: vec![0.0; d],
+            b2: if method == Method::Toeplitz {
+                vec![0.0; d]
+            } else {
+                Vec::new()
+            },
             x: vec![0.0; d],
             series: vec![0.0; lay.n_coef_nonl],
             counters: Counters::default(),
@@ -570,6 +577,8 @@ impl ContactBlock {
         for col in 0..self.m {
             let (c, j) = (col / nl, col % nl);
             self.pw.coupling_column(c, j, &mut self.b);
+            // From zero: the previous factorisation's column (one branch away) was measured
+            // to save no iterations here, only to cost the guess's residual.
             let krylov = self
                 .gmres
                 .solve(
@@ -592,9 +601,10 @@ impl ContactBlock {
         for (i, idx) in [series::ic(hn), series::is(hn, hn)].into_iter().enumerate() {
             self.b.fill(0.0);
             self.b[idx] = 2.0;
+            // From the generator of the previous factorisation (a nearby block).
             match self
                 .gmres
-                .solve(&mut self.pw, &self.b, &mut self.xi[i], KRYLOV_RTOL)
+                .solve_from(&mut self.pw, &self.b, &mut self.xi[i], KRYLOV_RTOL)
             {
                 Ok(krylov) => self.counters.krylov_iterations += krylov.iterations,
                 Err(f) if self.d > DENSE_MAX_DIM => return Err(self.krylov_error(f)),
@@ -609,16 +619,44 @@ impl ContactBlock {
         }
         debug_assert_eq!(d, nn);
         let nl = self.n_coef_lin;
-        for col in 0..self.m {
-            let (c, j) = (col / nl, col % nl);
-            self.pw.coupling_column(c, j, &mut self.b);
+        // Columns two by two: one complex solve gives both (RealGs::solve_pair), each then
+        // checked (and refined) on its own.
+        let mut col = 0;
+        while col < self.m {
+            let pair = col + 1 < self.m;
             let mut x = std::mem::take(&mut self.x);
-            let ok = self.toeplitz_solve(&mut x)?;
+            self.pw.coupling_column(col / nl, col % nl, &mut self.b);
+            x.copy_from_slice(&self.b);
+            if pair {
+                let (c1, j1) = ((col + 1) / nl, (col + 1) % nl);
+                self.pw.coupling_column(c1, j1, &mut self.b2);
+                let w1 = &mut self.w[(col + 1) * d..(col + 2) * d];
+                w1.copy_from_slice(&self.b2);
+                if let Some(gs) = self.gs.as_mut() {
+                    gs.solve_pair(&mut x, w1);
+                }
+            } else if let Some(gs) = self.gs.as_mut() {
+                gs.solve(&mut x);
+            }
+            let ok = self.toeplitz_refine(&mut x)?;
             self.w[col * d..(col + 1) * d].copy_from_slice(&x);
-            self.x = x;
             if !ok {
+                self.x = x;
                 return Ok(false);
             }
+            if pair {
+                // The second column's right-hand side, its solution from the pair.
+                std::mem::swap(&mut self.b, &mut self.b2);
+                x.copy_from_slice(&self.w[(col + 1) * d..(col + 2) * d]);
+                let ok = self.toeplitz_refine(&mut x)?;
+                self.w[(col + 1) * d..(col + 2) * d].copy_from_slice(&x);
+                if !ok {
+                    self.x = x;
+                    return Ok(false);
+                }
+            }
+            self.x = x;
+            col += if pair { 2 } else { 1 };
         }
         Ok(true)
     }
@@ -632,6 +670,12 @@ impl ContactBlock {
         };
         x.copy_from_slice(&self.b);
         gs.solve(x);
+        self.toeplitz_refine(x)
+    }
+
+    /// `x`, a solution of A_ff x = b (`self.b`) by the Gohberg–Semencul inverse, checked by
+    /// the Krylov solves' residual test and refined if needed (`toeplitz_solve`).
+    fn toeplitz_refine(&mut self, x: &mut [f64]) -> Result<bool> {
         let nb = gmres::norm(&self.b);
         let a_norm = self.pw.bound;
         for refinement in 0..3 {
@@ -658,26 +702,22 @@ impl ContactBlock {
                 }
             }
         }
-        // GMRES (pointwise preconditioner) on the remaining residual.
-        let mut delta = std::mem::take(&mut self.xi[0]);
+        // GMRES (pointwise preconditioner) on the remaining residual (rare: its own
+        // vector, the generators stay as the next factorisation's first guesses).
+        let mut delta = vec![0.0; self.d];
         let r = self.res.clone();
         let out = self.gmres.solve(&mut self.pw, &r, &mut delta, KRYLOV_RTOL);
-        let ok = match out {
+        match out {
             Ok(krylov) => {
                 self.counters.krylov_iterations += krylov.iterations;
                 for (xi, dv) in x.iter_mut().zip(&delta) {
                     *xi += dv;
                 }
-                true
+                Ok(true)
             }
-            Err(f) if self.d > DENSE_MAX_DIM => {
-                self.xi[0] = delta;
-                return Err(self.krylov_error(f));
-            }
-            Err(_) => false,
-        };
-        self.xi[0] = delta;
-        Ok(ok)
+            Err(f) if self.d > DENSE_MAX_DIM => Err(self.krylov_error(f)),
+            Err(_) => Ok(false),
+        }
     }
 
     fn krylov_error(&self, f: gmres::Failure) -> Error {

@@ -280,19 +280,67 @@ impl ReducedSystem {
         self.pos = pos;
         // Column ordering once, on the pattern without the border (one entry, wherever it
         // lands, changes the fill by at most one row).
-        let sym = SymbolicSparseColMatRef::new_checked(nr, nr, &self.col_ptr, None, &self.row_idx);
-        let nnz = self.row_idx.len();
-        let mut mem = MemBuffer::try_new(colamd::order_scratch::<usize>(nr, nr, nnz))
-            .map_err(|_| out_of_memory(nnz, "the column ordering"))?;
+        self.order_columns()?;
+        self.col_perm_sign = permutation_sign(&self.col_perm);
+        Ok(())
+    }
+
+    /// The column ordering, from the structure of the reduced matrix rather than from a
+    /// fill-reducing ordering of all of it: away from the shock DOFs the harmonics do not
+    /// couple (per harmonic k, K − (kΩ)²M on cos and sin, coupled by ±γΩkM), so the
+    /// matrix is one block per harmonic with the pattern of K ∪ M, bordered by the columns
+    /// the harmonics share. Order: COLAMD of K ∪ M (n × n) once, repeated for each
+    /// harmonic (cos then sin of each DOF), the harmonic blocks one after the other; then
+    /// every coefficient of the shock DOFs and of the phase condition's DOF (their Schur
+    /// blocks and the phase row couple the harmonics); then Ω and γ (dense columns). The
+    /// fill of each block is that of K ∪ M's LU, not that of a matrix 2H_l+1 times wider.
+    fn order_columns(&mut self) -> Result<()> {
+        let (n, nl, hl, nr) = (self.n, self.n_coef_lin, self.h_lin, self.nr);
+        let mut cp = vec![0usize; n + 1];
+        let mut ri = Vec::with_capacity(self.pairs.len());
+        // `pairs` is sorted by (column, row) (the BTreeMap's keys).
+        for p in &self.pairs {
+            cp[p.col + 1] += 1;
+            ri.push(p.row);
+        }
+        for c in 0..n {
+            cp[c + 1] += cp[c];
+        }
+        let (mut fwd, mut inv) = (vec![0usize; n], vec![0usize; n]);
+        let sym = SymbolicSparseColMatRef::new_checked(n, n, &cp, None, &ri);
+        let mut mem = MemBuffer::try_new(colamd::order_scratch::<usize>(n, n, ri.len()))
+            .map_err(|_| out_of_memory(ri.len(), "the column ordering"))?;
         colamd::order(
-            &mut self.col_perm,
-            &mut self.col_perm_inv,
+            &mut fwd,
+            &mut inv,
             sym,
             colamd::Control::default(),
             MemStack::new(&mut mem),
         )
-        .map_err(|e| lu_error(LuError::Generic(e), nr, nnz))?;
-        self.col_perm_sign = permutation_sign(&self.col_perm);
+        .map_err(|e| lu_error(LuError::Generic(e), nr, ri.len()))?;
+        let mut shared = vec![false; n];
+        for d in self.shock_dofs.iter().flatten() {
+            shared[*d] = true;
+        }
+        shared[self.ref_dof] = true;
+        let mut order = Vec::with_capacity(nr);
+        for k in 0..=hl {
+            for &d in fwd.iter().filter(|&&d| !shared[d]) {
+                order.push(d * nl + series::ic(k));
+                if k > 0 {
+                    order.push(d * nl + series::is(hl, k));
+                }
+            }
+        }
+        for &d in fwd.iter().filter(|&&d| shared[d]) {
+            order.extend(d * nl..(d + 1) * nl);
+        }
+        order.extend([n * nl, n * nl + 1]);
+        debug_assert_eq!(order.len(), nr);
+        for (new, &old) in order.iter().enumerate() {
+            self.col_perm_inv[old] = new;
+        }
+        self.col_perm = order;
         Ok(())
     }
 
@@ -343,6 +391,7 @@ impl ReducedSystem {
         .map_err(|e| lu_error(e, nr, q))?;
         // det = sign(P_r)·sign(P_c)·Π U_jj (L has a unit diagonal).
         let u = self.lu.u_factor_unsorted();
+
         let mut sign = permutation_sign(&self.row_perm) * self.col_perm_sign;
         for j in 0..nr {
             let rows = u.row_idx_of_col_raw(j);

@@ -293,11 +293,12 @@ impl Sampler {
     /// `synth` with a reused scratch (no allocation).
     pub fn synth_with(&self, x: &[f64], h: usize, out: &mut [f64], ws: &mut FftScratch) {
         let spec = &mut ws.spec;
-        spec.fill(Complex::new(0.0, 0.0));
+        let top = h.min(self.n / 2 - 1);
         spec[0] = Complex::new(x[0], 0.0);
-        for k in 1..=h.min(self.n / 2 - 1) {
+        for k in 1..=top {
             spec[k] = Complex::new(0.5 * x[ic(k)], -0.5 * x[is(h, k)]);
         }
+        spec[top + 1..].fill(Complex::new(0.0, 0.0));
         // Lengths are consistent by construction, so the only failure (size mismatch) cannot
         // happen; on error leave NaN so callers' finiteness checks report it.
         if self

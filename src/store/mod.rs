@@ -167,17 +167,31 @@ impl Store {
     }
 
     fn init_schema(&self) -> Result<()> {
+        // Outside any transaction (SQLite ignores it inside one).
         self.conn.execute_batch("PRAGMA foreign_keys = ON;")?;
-        self.conn.execute_batch(CORE_SCHEMA)?;
-        self.conn.execute_batch(deps::SCHEMA)?;
-        self.conn.execute(
-            "INSERT OR REPLACE INTO meta(key, value) VALUES ('schema_version', ?1)",
-            params![SCHEMA_VERSION.to_string()],
-        )?;
-        self.conn.execute(
-            "INSERT OR REPLACE INTO meta(key, value) VALUES ('producer', ?1)",
-            params![format!("aster-nl {}", env!("CARGO_PKG_VERSION"))],
-        )?;
+        // One transaction for the whole schema: each statement on its own would commit (and
+        // sync the file) once per table.
+        self.conn.execute_batch("BEGIN IMMEDIATE")?;
+        let done = (|| -> Result<()> {
+            self.conn.execute_batch(CORE_SCHEMA)?;
+            self.conn.execute_batch(deps::SCHEMA)?;
+            self.conn.execute(
+                "INSERT OR REPLACE INTO meta(key, value) VALUES ('schema_version', ?1)",
+                params![SCHEMA_VERSION.to_string()],
+            )?;
+            self.conn.execute(
+                "INSERT OR REPLACE INTO meta(key, value) VALUES ('producer', ?1)",
+                params![format!("aster-nl {}", env!("CARGO_PKG_VERSION"))],
+            )?;
+            Ok(())
+        })();
+        match done {
+            Ok(()) => self.conn.execute_batch("COMMIT")?,
+            Err(e) => {
+                let _ = self.conn.execute_batch("ROLLBACK");
+                return Err(e);
+            }
+        }
         Ok(())
     }
 
