@@ -428,7 +428,46 @@ impl Bench<'_> {
         self.say(&format!(
             "\nfitted exponent of CPU per branch against DOFs (10 branches): {:.2}",
             exponent(&pts)
-        ))
+        ))?;
+        if !self.opts.quick {
+            self.scale_section()?;
+        }
+        Ok(())
+    }
+
+    /// 10⁵ DOFs: the same bar with 25 001 elements in its one span (condition number ∝ N⁴,
+    /// about 4e17: refused by the reference-stiffness check, nnm::system::inverse_diag), and
+    /// a spring chain of 10⁵ masses (condition ∝ N²) with its stop, which completes.
+    fn scale_section(&mut self) -> Result<()> {
+        self.say("\n### 10⁵ DOFs (H_l 5, H_nl 200, engine only, one run each)\n")?;
+        self.say("| model | DOFs | branches | points | CPU | CPU per branch | peak RSS | engine memory / nonzero of K∪M | outcome |")?;
+        self.say("|---|---|---|---|---|---|---|---|---|")?;
+        for (label, model, br) in [
+            ("bar, one span of 25 001 POU_D_E", "beam:25001:5:200:1", 1),
+            (
+                "chain of 10⁵ masses, one PLAN stop",
+                "chain:100000:5:200:5",
+                5,
+            ),
+        ] {
+            let r = self.engine(model, "auto", true, 1)?;
+            let per_nnz =
+                (r.peak_kb.saturating_sub(r.base_kb) as f64 * 1024.0) / r.nnz.max(1) as f64;
+            let outcome = if r.error == "-" {
+                "completed".to_string()
+            } else {
+                r.error.replace('_', " ")
+            };
+            self.say(&format!(
+                "| {label} | {} | {br} | {} | {} | {} | {} | {per_nnz:.0} B | {outcome} |",
+                r.n,
+                r.points,
+                fmt_s(r.cpu),
+                fmt_s(r.cpu / br as f64),
+                fmt_mb(r.peak_kb),
+            ))?;
+        }
+        Ok(())
     }
 
     fn det_section(&mut self) -> Result<()> {

@@ -57,13 +57,60 @@ pub struct Scaling {
 }
 
 /// (A⁻¹)_pp by one sparse solve, or None when A is singular.
-fn inverse_diag(a: &SparseColMat<usize, f64>, p: usize) -> Option<f64> {
-    let lu = a.sp_lu().ok()?;
-    let mut e = vec![0.0; a.nrows()];
-    e[p] = 1.0;
-    lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut e, a.nrows(), 1));
-    let v = e[p];
-    (v.is_finite() && v > 0.0).then_some(v)
+/// How much one step of iterative refinement may change a computed (A⁻¹)pp for it to count
+/// as computed (three digits: k_ref is a scale; it enters the law only through PARA_REGUL,
+/// whose effect on the results is itself ∝ PARA_REGUL). Measured on the bench's bar, clamped
+/// at both ends: 1.8e-6 at 2 501 elements, 0.18 and of the wrong sign at 25 001.
+const INVERSE_DIAG_REPRODUCIBLE: f64 = 1e-3;
+
+/// (A⁻¹)pp of a symmetric matrix (K or M) at the reference DOF; None when A is singular
+/// (a free structure) or (A⁻¹)pp is not positive: the caller falls back to the diagonal.
+/// An error when A is regular but too ill-conditioned for (A⁻¹)pp to be computed in double
+/// precision (checked by one step of iterative refinement, which leaves a well-conditioned
+/// value unchanged to round-off): there the diagonal fallback would silently give another
+/// k_ref, hence another law for the same PARA_REGUL.
+fn inverse_diag(
+    a: &SparseColMat<usize, f64>,
+    p: usize,
+    (symbol, what): (&str, &str),
+) -> Result<Option<f64>> {
+    let Ok(lu) = a.sp_lu() else {
+        return Ok(None);
+    };
+    let n = a.nrows();
+    let mut z = vec![0.0; n];
+    z[p] = 1.0;
+    lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut z, n, 1));
+    let v = z[p];
+    if !v.is_finite() {
+        return Ok(None);
+    }
+    // r = e_p − A z, then one correction A⁻¹ r.
+    let mut r = vec![0.0; n];
+    r[p] = 1.0;
+    let sym = a.symbolic();
+    let (cp, ri, vals) = (sym.col_ptr(), sym.row_idx(), a.val());
+    for (j, zj) in z.iter().enumerate() {
+        for k in cp[j]..cp[j + 1] {
+            r[ri[k]] -= vals[k] * zj;
+        }
+    }
+    lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut r, n, 1));
+    let change = r[p].abs() / v.abs();
+    if change.is_nan() || change > INVERSE_DIAG_REPRODUCIBLE {
+        return Err(Error::numerical(format!(
+            "the {what} matrix is too ill-conditioned for ({symbol}⁻¹)pp at the reference DOF \
+             (DOF {p}) to be computed in double precision: one step of iterative refinement \
+             changes it by {change:.1e} (relative) from {v:.6e}"
+        ))
+        .keyword("CHOC")
+        .hint(
+            "the reference stiffness k_ref = 1/(K⁻¹)pp (Code_Aster's scaling, docs/mode_non_line.md) \
+             cannot be trusted: a beam meshed with N elements in one span has a condition number \
+             growing like N⁴ (about 10¹⁷ at 25 000 POU_D_E elements); use fewer elements per span",
+        ));
+    }
+    Ok((v > 0.0).then_some(v))
 }
 
 fn diag(a: &SparseColMat<usize, f64>, p: usize) -> f64 {
@@ -95,12 +142,12 @@ impl Scaling {
             None => (amplitude, p_noshock),
         };
         let k = match problem.shocks.is_empty() {
-            false => inverse_diag(&problem.k, p).map(|v| 1.0 / v),
+            false => inverse_diag(&problem.k, p, ("K", "stiffness"))?.map(|v| 1.0 / v),
             true => None,
         }
         .unwrap_or_else(|| diag(&problem.k, p));
         let m = match problem.shocks.is_empty() {
-            false => inverse_diag(&problem.m, p).map(|v| 1.0 / v),
+            false => inverse_diag(&problem.m, p, ("M", "mass"))?.map(|v| 1.0 / v),
             true => None,
         }
         .unwrap_or_else(|| diag(&problem.m, p));
@@ -746,4 +793,108 @@ impl System {
 /// Number of unknowns of `x` for this problem and these settings.
 pub fn unknown_count(problem: &Problem, settings: &Settings) -> usize {
     Layout::of(problem, settings).0.n_unk
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn matrix(rows: &[[f64; 2]; 2]) -> SparseColMat<usize, f64> {
+        let t: Vec<Triplet<usize, usize, f64>> = (0..2)
+            .flat_map(|i| (0..2).map(move |j| (i, j)))
+            .map(|(i, j)| Triplet::new(i, j, rows[i][j]))
+            .collect();
+        SparseColMat::try_new_from_triplets(2, 2, &t).unwrap()
+    }
+
+    /// Q diag(1, λ₂) Qᵀ with Q the rotation by θ.
+    fn rotated(theta: f64, l2: f64) -> SparseColMat<usize, f64> {
+        let (c, s) = (theta.cos(), theta.sin());
+        matrix(&[
+            [c * c + l2 * s * s, c * s * (1.0 - l2)],
+            [c * s * (1.0 - l2), s * s + l2 * c * c],
+        ])
+    }
+
+    #[test]
+    fn inverse_diagonal_of_a_well_conditioned_matrix_is_exact() {
+        // (A⁻¹)₀₀ = c² + s²/λ₂ for A = Q diag(1, λ₂) Qᵀ.
+        let (theta, l2) = (0.3_f64, 1e-3);
+        let exact = theta.cos().powi(2) + theta.sin().powi(2) / l2;
+        let v = inverse_diag(&rotated(theta, l2), 0, ("K", "stiffness"))
+            .unwrap()
+            .unwrap();
+        // cond 1e3: a few ulps times the condition number.
+        assert!((v - exact).abs() <= 1e-12 * exact, "{v} against {exact}");
+    }
+
+    /// Stiffness of a clamped–clamped Euler–Bernoulli beam of length 1 in `elements` equal
+    /// Hermite elements, unknowns (deflection, rotation) of the inner nodes.
+    fn clamped_beam(elements: usize, ei: f64) -> SparseColMat<usize, f64> {
+        let h = 1.0 / elements as f64;
+        let k = ei / h.powi(3);
+        let ke = [
+            [12.0, 6.0 * h, -12.0, 6.0 * h],
+            [6.0 * h, 4.0 * h * h, -6.0 * h, 2.0 * h * h],
+            [-12.0, -6.0 * h, 12.0, -6.0 * h],
+            [6.0 * h, 2.0 * h * h, -6.0 * h, 4.0 * h * h],
+        ];
+        let mut t = Vec::new();
+        for e in 0..elements {
+            // Global unknown of local i: node e + i/2 (node 0 and the last are clamped).
+            let dof = |i: usize| {
+                let node = e + i / 2;
+                (node >= 1 && node < elements).then(|| 2 * (node - 1) + i % 2)
+            };
+            for (a, row) in ke.iter().enumerate() {
+                for (b, v) in row.iter().enumerate() {
+                    if let (Some(r), Some(c)) = (dof(a), dof(b)) {
+                        t.push(Triplet::new(r, c, k * v));
+                    }
+                }
+            }
+        }
+        let n = 2 * (elements - 1);
+        SparseColMat::try_new_from_triplets(n, n, &t).unwrap()
+    }
+
+    #[test]
+    fn the_flexibility_of_a_clamped_beam_is_its_closed_form() {
+        // Hermite elements are nodally exact for point loads: at a from one end (b = 1 − a),
+        // the deflection under a unit load is a³b³ / (3 EI), L = 1.
+        let (elements, ei) = (300, 228.0);
+        let node = elements / 3;
+        let (a, b) = (
+            node as f64 / elements as f64,
+            1.0 - node as f64 / elements as f64,
+        );
+        let exact = a.powi(3) * b.powi(3) / (3.0 * ei);
+        let k = clamped_beam(elements, ei);
+        let v = inverse_diag(&k, 2 * (node - 1), ("K", "stiffness"))
+            .unwrap()
+            .unwrap();
+        // cond ∝ elements⁴ ≈ 1e10 here: ε times that, with margin.
+        assert!((v - exact).abs() <= 1e-5 * exact, "{v} against {exact}");
+    }
+
+    #[test]
+    fn a_beam_beyond_double_precision_is_refused_not_rescaled() {
+        // 25 000 elements in one span: cond ∝ 25 000⁴ ≈ 4e17, no digit of (K⁻¹)pp is left
+        // (the bench's bar: 1.8e-1 change by one refinement step, of the wrong sign).
+        let elements = 25_000;
+        let k = clamped_beam(elements, 228.0);
+        let err = inverse_diag(&k, 2 * (elements / 3 - 1), ("K", "stiffness")).unwrap_err();
+        assert!(
+            err.message.contains("too ill-conditioned"),
+            "{}",
+            err.message
+        );
+        assert!(err.message.contains("(K⁻¹)pp"), "{}", err.message);
+    }
+
+    #[test]
+    fn a_singular_matrix_falls_back_to_the_diagonal() {
+        let r = inverse_diag(&matrix(&[[1.0, 1.0], [1.0, 1.0]]), 0, ("K", "stiffness"));
+        assert!(matches!(r, Ok(None)), "{r:?}");
+    }
 }
