@@ -56,7 +56,6 @@ pub struct Scaling {
     pub omega: f64,
 }
 
-/// (A⁻¹)_pp by one sparse solve, or None when A is singular.
 /// How much one step of iterative refinement may change a computed (A⁻¹)pp for it to count
 /// as computed (three digits: k_ref is a scale; it enters the law only through PARA_REGUL,
 /// whose effect on the results is itself ∝ PARA_REGUL). Measured on the bench's bar, clamped
