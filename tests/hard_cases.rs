@@ -880,3 +880,86 @@ fn hard_wall_settings_grid_never_ends_wrong_with_exit_0() {
     // Regression value (measured, see above): at least the 17 right runs.
     assert!(right >= 17, "{verdicts:#?}");
 }
+
+/// RESOLUTION/CORR_LOI_EXACTE='OUI' (wall_exact_law.comm: sdnd122's wall, H_l 10, H_nl 20,
+/// PARA_REGUL 1e-3): every row's FREQUENCE_LOI_EXACTE against the exact nonsmooth frequency
+/// at its ENERGIE_MOYENNE (nnm::exact, closed form). Tolerance 2e-5: the truncation to 10
+/// harmonics, measured 6e-6 over [1.2, 20] E_c by the study (docs/accuracy.md) and 8.0e-6
+/// over every row here, with 2.5x margin; still 50x below what the regularisation costs
+/// FREQUENCE at the same rows (measured 1.4e-3, asserted above 5e-4).
+#[test]
+fn hard_wall_exact_law_column_is_the_nonsmooth_frequency() {
+    let osc = aster_nl::nnm::exact::Oscillator {
+        m: 1.0,
+        k: 10.0,
+        g: 0.01,
+        alpha: 50.0,
+    };
+    let e_c = osc.contact_energy();
+    let (_dir, c) = run_ok("wall_exact_law.comm", 1);
+    let mut st = c
+        .prepare("SELECT FREQUENCE, ENERGIE, ENERGIE_MOYENNE, FREQUENCE_LOI_EXACTE FROM MNL ORDER BY NUME_ORDRE")
+        .unwrap();
+    let rows: Vec<(f64, f64, f64, f64)> = st
+        .query_map([], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?, r.get(3)?)))
+        .unwrap()
+        .map(Result::unwrap)
+        .collect();
+    assert!(rows.len() > 30, "{}", rows.len());
+    let (mut exact, mut plain) = (0.0f64, 0.0f64);
+    for &(f, e, e_mean, f_exact) in &rows {
+        exact = exact.max((f_exact / osc.frequency_plan(e_mean) - 1.0).abs());
+        if e >= 1.2 * e_c && e <= 20.0 * e_c {
+            plain = plain.max((f / osc.frequency_plan(e) - 1.0).abs());
+        }
+    }
+    println!("FREQUENCE_LOI_EXACTE {exact:.2e}, FREQUENCE {plain:.2e}");
+    assert!(exact < 2e-5, "{exact:e}");
+    assert!(plain > 5e-4, "{plain:e}");
+}
+
+/// CORR_LOI_EXACTE on a model too large for its dense system (chain20_stiff: 20 DOFs,
+/// NB_HARM_LINE 100: 20·201 + 2 = 4022 > 4000 unknowns) stops before any computation with
+/// an error naming the keyword; a value outside the catalog's is refused too.
+#[test]
+fn hard_exact_law_refuses_a_too_large_model_and_a_bad_value() {
+    let dir = tempfile::tempdir().unwrap();
+    let template = std::fs::read_to_string(case("chain20_stiff.comm")).unwrap();
+    for (name, extra, expect) in [
+        (
+            "big",
+            "NB_HARM_LINE=100, NB_HARM_NONL=100, CORR_LOI_EXACTE='OUI',",
+            "MODE_NON_LINE/RESOLUTION/CORR_LOI_EXACTE",
+        ),
+        (
+            "bad",
+            "NB_HARM_LINE=3, NB_HARM_NONL=40, CORR_LOI_EXACTE='PEUT_ETRE',",
+            "CORR_LOI_EXACTE",
+        ),
+        (
+            "few",
+            "NB_HARM_LINE=3, NB_HARM_NONL=40, CORR_LOI_EXACTE='OUI', NB_ECHAN_LOI_EXACTE=1,",
+            "NB_ECHAN_LOI_EXACTE",
+        ),
+    ] {
+        let comm = template.replace("NB_HARM_LINE=3, NB_HARM_NONL=40,", extra);
+        assert_ne!(comm, template);
+        let file = dir.path().join(format!("{name}.comm"));
+        std::fs::write(&file, comm).unwrap();
+        std::fs::copy(
+            case("chain20_stiff.mail"),
+            dir.path().join(format!("{name}.mail")),
+        )
+        .unwrap();
+        let t0 = std::time::Instant::now();
+        let o = run_file(&file, &dir.path().join(format!("{name}.db")));
+        let out = text(&o);
+        assert_ne!(o.status.code(), Some(0), "{name}: {out}");
+        assert!(out.contains(expect), "{name}: {out}");
+        assert!(
+            !out.contains("MODE_NON_LINE MNL:"),
+            "{name} computed: {out}"
+        );
+        assert!(t0.elapsed().as_secs() < 60, "{name}");
+    }
+}

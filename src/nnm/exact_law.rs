@@ -1,6 +1,8 @@
 //! Newton correction of a harmonic-balance point on the exact (unregularised) penalty law of
 //! each shock, by alternating frequency–time (AFT) evaluation. Code_Aster has no equivalent;
-//! today the accuracy study (`aster-nl study`) uses it, no MODE_NON_LINE keyword does yet.
+//! MODE_NON_LINE's RESOLUTION/CORR_LOI_EXACTE = 'OUI' applies it to every stored point
+//! ([`correct_point`], column FREQUENCE_LOI_EXACTE), and the accuracy study
+//! (`aster-nl study`) measures it.
 //!
 //! EHMAN solves the regularised law (PARA_REGUL = η), whose frequency error is ∝ η
 //! (docs/accuracy.md, trend 2). Here the branch point found by EHMAN is the starting guess
@@ -68,6 +70,55 @@ pub const DEFAULT_SAMPLES_PER_COEF: usize = 64;
 
 /// Largest dense system (n·(2H_l+1) + 2) the correction accepts.
 pub const MAX_DENSE: usize = 4000;
+
+/// Dimension of the dense system of a correction: n·(2H_l+1) displacement harmonics, ω and
+/// γ.
+pub fn dense_size(n_dofs: usize, h_lin: usize) -> usize {
+    n_dofs.saturating_mul(series::len(h_lin)).saturating_add(2)
+}
+
+/// Refuses, from the sizes alone (nothing allocated), a correction whose dense system
+/// would exceed [`MAX_DENSE`] or that has no harmonic to correct.
+pub fn check_size(n_dofs: usize, h_lin: usize) -> Result<()> {
+    if h_lin == 0 {
+        return Err(Error::validation(
+            "the exact-law correction needs NB_HARM_LINE ≥ 1",
+        ));
+    }
+    let dim = dense_size(n_dofs, h_lin);
+    if dim > MAX_DENSE {
+        return Err(Error::validation(format!(
+            "the exact-law correction solves a dense system of n·(2·NB_HARM_LINE + 1) + 2 = \
+             {n_dofs}·{} + 2 = {dim} unknowns, more than the {MAX_DENSE} it accepts",
+            series::len(h_lin)
+        )));
+    }
+    Ok(())
+}
+
+/// Corrects a computed branch point on the exact law with its ENERGIE_MOYENNE held
+/// (`settings.held` is taken as [`HeldEnergy::Mean`]): the frequency of the returned orbit
+/// is the exact-law frequency at the point's ENERGIE_MOYENNE.
+pub fn correct_point(
+    problem: &Problem,
+    settings: &ExactLawSettings,
+    p: &super::Point,
+) -> Result<ExactPoint> {
+    let n = problem
+        .k
+        .nrows()
+        .saturating_mul(series::len(settings.h_lin));
+    if p.x.len() < n {
+        return Err(Error::internal(
+            "exact-law correction: the point has fewer unknowns than its displacements",
+        ));
+    }
+    let set = ExactLawSettings {
+        held: HeldEnergy::Mean,
+        ..*settings
+    };
+    correct(problem, &set, &p.x[..n], p.omega, p.energy_mean)
+}
 
 /// The default number of samples for `h_lin` harmonics: the smallest power of two above
 /// `DEFAULT_SAMPLES_PER_COEF`·(2H_l+1).
@@ -543,18 +594,8 @@ fn context(
     let n = problem.k.nrows();
     let h = settings.h_lin;
     let nl = series::len(h);
+    check_size(n, h)?;
     let dim = n * nl + 2;
-    if h == 0 {
-        return Err(Error::validation(
-            "the exact-law correction needs NB_HARM_LINE ≥ 1",
-        ));
-    }
-    if dim > MAX_DENSE {
-        return Err(Error::validation(format!(
-            "the exact-law correction solves a dense system of n·(2·NB_HARM_LINE + 1) + 2 = \
-             {dim} unknowns, more than the {MAX_DENSE} it accepts"
-        )));
-    }
     if u0.len() < n * nl || !(omega0.is_finite() && omega0 > 0.0) {
         return Err(Error::internal(
             "exact-law correction: starting point of the wrong size or pulsation",

@@ -8,6 +8,7 @@
 use crate::args::Args;
 use crate::error::{Error, ErrorKind, Result};
 use crate::nnm::{self, Point, Problem, Settings, StartState};
+use crate::ops::common::mnl_exact_law;
 use crate::ops::common::mnl_problem::{engine_shock, row_of, shocks_from_cara_choc};
 use crate::ops::common::mnl_restart;
 use crate::ops::common::mnl_start;
@@ -67,6 +68,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     }
     let free = k.free_dofs();
     let settings = settings(args)?;
+    let exact_law = mnl_exact_law::settings(args, &settings)?;
     let control = step_control(args)?;
     let bounds = stop_bounds(args)?;
     let etat = args.req_fact("ETAT_INIT")?;
@@ -112,6 +114,9 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         shocks,
     };
 
+    if let Some(x) = &exact_law {
+        mnl_exact_law::check(&problem, x)?;
+    }
     check_budget(ctx, &problem, &settings, &stored_shocks)?;
 
     // Start point.
@@ -206,6 +211,18 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             i64::from(restart_from.is_some()) + restart_reprise(ctx, &restart_from)?,
         ),
     };
+    // RESOLUTION/CORR_LOI_EXACTE: the extra column, added to a reused table that lacks
+    // it; a reused table that has it gets empty cells from a call without the correction.
+    let exact_cells = match &exact_law {
+        Some(x) => {
+            if table.col(mnl_exact_law::COLUMN).is_none() {
+                table.add_column(mnl_exact_law::COLUMN, ColKind::R)?;
+            }
+            mnl_exact_law::cells(ctx, &problem, x, &outcome.points, first_order)?
+        }
+        None => Vec::new(),
+    };
+    let exact_col = table.col(mnl_exact_law::COLUMN);
     let cara_choc = format!("{name}_CHOC");
     if ctx.reuse.is_none() {
         ctx.create(&name, "table_container")?;
@@ -250,7 +267,11 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             suspect.push(order);
         }
         worst_defect = worst_defect.max(defect);
-        table.push_row(row(&name, &cara_choc, order, ncoef, reprise, p, defect))?;
+        let mut cells = row(&name, &cara_choc, order, ncoef, reprise, p, defect);
+        if let Some(i) = exact_col {
+            cells.insert(i, exact_cells.get(j).cloned().unwrap_or(Cell::Null));
+        }
+        table.push_row(cells)?;
         writer.point(order, p.omega, &p.x)?;
         writer.fourier(order, &dof_names, &out.displacement)?;
     }

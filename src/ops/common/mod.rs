@@ -4,6 +4,8 @@
 // Test support: operators run on an in-memory store with hand-built `Args`.
 #[cfg(test)]
 pub mod harness;
+// MODE_NON_LINE's RESOLUTION/CORR_LOI_EXACTE: rows corrected on the exact law.
+pub mod mnl_exact_law;
 // MODE_NON_LINE restarts: the stored direction of travel.
 pub mod mnl_restart;
 // MODE_NON_LINE's start from linear modes (ETAT_INIT).
