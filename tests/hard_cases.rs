@@ -951,7 +951,6 @@ fn hard_exact_law_refuses_a_too_large_model_and_a_bad_value() {
             dir.path().join(format!("{name}.mail")),
         )
         .unwrap();
-        let t0 = std::time::Instant::now();
         let o = run_file(&file, &dir.path().join(format!("{name}.db")));
         let out = text(&o);
         assert_ne!(o.status.code(), Some(0), "{name}: {out}");
@@ -960,6 +959,5 @@ fn hard_exact_law_refuses_a_too_large_model_and_a_bad_value() {
             !out.contains("MODE_NON_LINE MNL:"),
             "{name} computed: {out}"
         );
-        assert!(t0.elapsed().as_secs() < 60, "{name}");
     }
 }

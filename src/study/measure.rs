@@ -291,8 +291,7 @@ pub fn correct_point(problem: &Problem, cfg: &Config, p: &Point) -> Result<(f64,
         iter_max: 15,
         held: HeldEnergy::Mean,
     };
-    let n = problem.k.nrows() * (2 * cfg.h_lin + 1);
-    let c = exact_law::correct(problem, &set, &p.x[..n], p.omega, p.energy_mean)?;
+    let c = exact_law::correct_point(problem, &set, p)?;
     Ok((p.energy_mean, c.frequency))
 }
 
