@@ -129,6 +129,17 @@ fn ring_force(r: f64, g: f64, alpha: f64, eps: f64) -> f64 {
     }
 }
 
+/// sdnd122's one-DOF wall (m = 1, k = 10, PLAN stop at JEU = 0.01, RIGI_NOR = 50), whose
+/// nonsmooth frequency is known in closed form (`nnm::exact`).
+fn sdnd122_wall() -> aster_nl::nnm::exact::Oscillator {
+    aster_nl::nnm::exact::Oscillator {
+        m: 1.0,
+        k: 10.0,
+        g: 0.01,
+        alpha: 50.0,
+    }
+}
+
 fn freq_at(v: &[Row], e: f64) -> Option<f64> {
     v.windows(2)
         .find(|w| w[0].energy <= e && e <= w[1].energy)
@@ -729,12 +740,7 @@ fn energie_moyenne_is_the_orbit_energy_where_energie_carries_the_truncation_ripp
 /// same file stops on the ECART_LOI_CHOC_MAXI error at about 2.2 E_c, as it did before.
 #[test]
 fn hard_grazing_jump_is_sent_back_to_the_physical_family() {
-    let osc = aster_nl::nnm::exact::Oscillator {
-        m: 1.0,
-        k: 10.0,
-        g: 0.01,
-        alpha: 50.0,
-    };
+    let osc = sdnd122_wall();
     let e_c = osc.contact_energy();
     let (_dir, c) = run_ok("grazing_jump.comm", 1);
     let v = rows(&c, "MNL");
@@ -821,12 +827,7 @@ fn period_regularised(e: f64, regul: f64) -> f64 {
 /// law check); with both checks off: 13 right, 5 stopped.
 #[test]
 fn hard_wall_settings_grid_never_ends_wrong_with_exit_0() {
-    let osc = aster_nl::nnm::exact::Oscillator {
-        m: 1.0,
-        k: 10.0,
-        g: 0.01,
-        alpha: 50.0,
-    };
+    let osc = sdnd122_wall();
     let e_c = osc.contact_energy();
     let template = std::fs::read_to_string(case("grazing_jump.comm")).unwrap();
     let dir = tempfile::tempdir().unwrap();
@@ -890,12 +891,7 @@ fn hard_wall_settings_grid_never_ends_wrong_with_exit_0() {
 /// above 5e-4).
 #[test]
 fn hard_wall_exact_law_column_is_the_nonsmooth_frequency() {
-    let osc = aster_nl::nnm::exact::Oscillator {
-        m: 1.0,
-        k: 10.0,
-        g: 0.01,
-        alpha: 50.0,
-    };
+    let osc = sdnd122_wall();
     let e_c = osc.contact_energy();
     let (_dir, c) = run_ok("wall_exact_law.comm", 1);
     let mut st = c
