@@ -503,3 +503,56 @@ fn utube_rings_through_their_centres_match_the_planes() {
         .unwrap();
     assert!(dx < 1e-20, "{dx}");
 }
+
+/// TEST_RESU by INST finds its instant as Code_Aster does: to the second TOLE_MACHINE value
+/// with the second CRITERE (one value: both), while the first values make the test.
+/// sdnd122a's HIST has 256 instants over a period of 1.711203 s, both ends included:
+/// instant 2 is at 6.71060e-3 s, and INST=6.7103e-3 is 4.5e-5 relative (3.0e-7 s) away.
+#[test]
+fn test_resu_finds_inst_with_the_second_tole_machine_and_critere() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("inst.mail")).unwrap();
+    // |VITE| < 1 m/s on this orbit (amplitude about 0.02 m at 0.65 Hz): VALE_CALC=0 passes
+    // at the tolerance 1 (a zero reference is compared absolutely).
+    let test = |extra: &str| {
+        format!(
+            "TEST_RESU(RESU=_F(RESULTAT=HIST, INST=6.7103e-3, NOM_CHAM='VITE', NOEUD='N2', \
+             NOM_CMP='DX', VALE_CALC=0.0, {extra}))\n"
+        )
+    };
+    let run = |tests: &[String]| {
+        let comm = dir.path().join("inst.comm");
+        std::fs::write(
+            &comm,
+            src.replace("\nFIN()", &format!("\n{}FIN()", tests.concat())),
+        )
+        .unwrap();
+        let _ = std::fs::remove_file(dir.path().join("case.db"));
+        let o = bin()
+            .arg("run")
+            .arg(&comm)
+            .arg("--db")
+            .arg(dir.path().join("case.db"))
+            .output()
+            .unwrap();
+        (o.status.code(), text(&o))
+    };
+    let (code, out) = run(&[
+        test("CRITERE=('ABSOLU', 'RELATIF'), TOLE_MACHINE=(1.0, 1.e-4)"),
+        test("CRITERE=('ABSOLU', 'ABSOLU'), TOLE_MACHINE=(1.0, 1.e-6)"),
+    ]);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("tests: 8 OK, 0 NOOK"), "{out}");
+    // The instant is not within the default 1e-6 relative, nor 1e-7 s (one value: the
+    // test's tolerance is the extraction's too).
+    for extra in [
+        "TOLE_MACHINE=1.e-6",
+        "CRITERE='ABSOLU', TOLE_MACHINE=1.e-7",
+        "CRITERE=('ABSOLU', 'ABSOLU'), TOLE_MACHINE=(1.0, 1.e-7)",
+    ] {
+        let (code, out) = run(&[test(extra)]);
+        assert_eq!(code, Some(2), "{extra}:\n{out}");
+        assert!(out.contains("at the requested instant"), "{extra}:\n{out}");
+    }
+}

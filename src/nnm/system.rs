@@ -103,11 +103,18 @@ fn inverse_diag(
              changes it by {change:.1e} (relative) from {v:.6e}"
         ))
         .keyword("CHOC")
-        .hint(
-            "the reference stiffness k_ref = 1/(K⁻¹)pp (Code_Aster's scaling, docs/mode_non_line.md) \
-             cannot be trusted: a beam meshed with N elements in one span has a condition number \
-             growing like N⁴ (about 10¹⁷ at 25 000 POU_D_E elements); use fewer elements per span",
-        ));
+        .hint(format!(
+            "the reference {what} {}_ref = 1/({symbol}⁻¹)pp (Code_Aster's scaling, \
+             docs/mode_non_line.md) cannot be trusted: {}",
+            symbol.to_lowercase(),
+            if symbol == "K" {
+                "a beam meshed with N elements in one span has a condition number growing like N⁴ \
+                 (about 10¹⁷ at 25 000 POU_D_E elements); use fewer elements per span, or more supports"
+            } else {
+                "the mass matrix spans too many orders of magnitude (e.g. a few tiny lumped masses \
+                 beside the structure's); check the masses given in AFFE_CARA_ELEM"
+            }
+        )));
     }
     Ok((v > 0.0).then_some(v))
 }
@@ -889,6 +896,19 @@ mod tests {
             err.message
         );
         assert!(err.message.contains("(K⁻¹)pp"), "{}", err.message);
+        let hint = err.hint.unwrap_or_default();
+        assert!(
+            hint.contains("k_ref") && hint.contains("per span"),
+            "{hint}"
+        );
+        // The same matrix as a mass matrix: the hint names m_ref and the masses, not K.
+        let err = inverse_diag(&k, 2 * (elements / 3 - 1), ("M", "mass")).unwrap_err();
+        assert!(err.message.contains("(M⁻¹)pp"), "{}", err.message);
+        let hint = err.hint.unwrap_or_default();
+        assert!(
+            hint.contains("m_ref") && hint.contains("AFFE_CARA_ELEM") && !hint.contains("k_ref"),
+            "{hint}"
+        );
     }
 
     #[test]

@@ -61,7 +61,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         crate::nnm::budget::floquet_flops(n, n_inst) * rows.len() as f64,
     )?;
     let analyser = FloquetAnalyser::new(&problem, &settings)?;
-    let progress = Progress::new(ctx.progress, rows.len() as u64, "CALC_STABILITE");
+    let progress = Progress::new(ctx.progress, rows.len() as u64, "CALC_STABILITE", "rows");
     let (mut stable, mut unstable) = (0usize, 0usize);
     // Rows whose monodromy does not map the orbit's own tangent onto itself within
     // TOLERANCE (orbit defect): their verdict cannot be trusted to TOLERANCE.

@@ -143,7 +143,12 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     // Continue, reporting each branch.
     let info = ctx.info;
     let mut lines = Vec::new();
-    let progress = Progress::new(ctx.progress, settings.n_branches as u64, "MODE_NON_LINE");
+    let progress = Progress::new(
+        ctx.progress,
+        settings.n_branches as u64,
+        "MODE_NON_LINE",
+        "branches",
+    );
     let mut stopped_by: Option<String> = None;
     let mut bound_error: Option<Error> = None;
     let outcome = nnm::continue_controlled(&problem, &settings, control, start, &mut |rep, pts| {

@@ -8,9 +8,10 @@
 use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::ops::common::nodes::{one_node_of_group, OneNode};
-use crate::ops::common::testing::{checks_with_floor, TestValue};
+use crate::ops::common::testing::{self, checks_with_floor, TestValue};
 use crate::ops::OpContext;
 use crate::store::{modes as mode_store, table as table_store};
+use crate::table::filter::Critere;
 use crate::table::Cell;
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
@@ -148,32 +149,56 @@ fn dyna_value(
     };
     let by_inst = resu.real("INST");
     let n = resu.int("NUME_ORDRE");
-    // Instants are matched to 1e-6 relative (PRECISION is the test's own tolerance).
-    let prec = 1e-6;
+    // Instants are found as Code_Aster finds them: to the second TOLE_MACHINE value with
+    // the second CRITERE (the only ones if one is given: 1e-6 relative by default;
+    // PRECISION is the test's own tolerance).
+    let (prec, critere) = testing::extraction(resu)?;
+    // The row of this DOF at the instant: by NUME_ORDRE exactly, or by INST the nearest
+    // one within the extraction's precision (a coarse precision can hold several).
+    let mut best: Option<(f64, usize)> = None;
     for r in 0..t.nrows() {
         let same_dof = t.cell(r, "NOEUD").and_then(Cell::as_text) == Some(node.as_str())
             && t.cell(r, "NOM_CMP").and_then(Cell::as_text) == Some(cmp);
         if !same_dof {
             continue;
         }
-        let hit = match (by_inst, n) {
+        let distance = match (by_inst, n) {
             (Some(inst), _) => t
                 .cell(r, "INST")
                 .and_then(Cell::as_f64)
-                .is_some_and(|ti| (ti - inst).abs() <= prec * inst.abs().max(1e-300)),
-            (None, Some(n)) => matches!(t.cell(r, "NUME_ORDRE"), Some(Cell::I(i)) if *i == n),
-            (None, None) => false,
+                .map(|ti| (ti - inst).abs())
+                .filter(|d| match critere {
+                    Critere::Relatif => *d <= prec * inst.abs().max(1e-300),
+                    Critere::Absolu => *d <= prec,
+                }),
+            (None, Some(n)) => {
+                matches!(t.cell(r, "NUME_ORDRE"), Some(Cell::I(i)) if *i == n).then_some(0.0)
+            }
+            (None, None) => None,
         };
-        if hit {
-            return t
-                .cell(r, field)
-                .and_then(Cell::as_f64)
-                .ok_or_else(|| Error::store(format!("{name}: no {field} value at this instant")));
+        if let Some(d) = distance {
+            if best.is_none_or(|(bd, _)| d < bd) {
+                best = Some((d, r));
+            }
         }
+    }
+    if let Some((_, r)) = best {
+        return t
+            .cell(r, field)
+            .and_then(Cell::as_f64)
+            .ok_or_else(|| Error::store(format!("{name}: no {field} value at this instant")));
     }
     Err(Error::validation(format!(
         "{name} has no {field} value of {node} {cmp} at the requested instant"
     ))
     .keyword(kw("INST"))
-    .hint("give NUME_ORDRE (1..NB_INST) or an INST of the stored time history"))
+    .hint(format!(
+        "give NUME_ORDRE (1..NB_INST) or an INST of the stored time history; an INST is \
+         found to the last value of TOLE_MACHINE with the last of CRITERE (here {prec:e} {}), \
+         as in Code_Aster",
+        match critere {
+            Critere::Relatif => "RELATIF",
+            Critere::Absolu => "ABSOLU",
+        }
+    )))
 }

@@ -7,6 +7,7 @@ use crate::args::Args;
 use crate::error::Result;
 use crate::nnm::exact_law::{self, ExactLawSettings, HeldEnergy};
 use crate::nnm::{Point, Problem, Settings};
+use crate::ops::common::progress::Progress;
 use crate::ops::common::resources;
 use crate::ops::OpContext;
 use crate::table::Cell;
@@ -70,7 +71,11 @@ pub fn cells(
     let mut cells = Vec::with_capacity(points.len());
     let mut failed: Vec<(i64, String)> = Vec::new();
     let mut iterations = 0;
+    // A dense LU of up to MAX_DENSE unknowns per row, a few times: minutes on the largest
+    // model accepted, so it shows progress as the branches do.
+    let progress = Progress::new(ctx.progress, points.len() as u64, "CORR_LOI_EXACTE", "rows");
     for (j, p) in points.iter().enumerate() {
+        progress.inc();
         match exact_law::correct_point(problem, set, p) {
             Ok(c) if c.frequency.is_finite() && c.frequency > 0.0 => {
                 iterations = iterations.max(c.iterations);
@@ -89,6 +94,7 @@ pub fn cells(
             }
         }
     }
+    progress.finish();
     if ctx.info >= 1 {
         ctx.say(&format!(
             "  CORR_LOI_EXACTE: {} of {} row(s) corrected on the exact law ({} samples per \

@@ -5,14 +5,15 @@ use indicatif::{ProgressBar, ProgressStyle};
 pub struct Progress(Option<ProgressBar>);
 
 impl Progress {
-    pub fn new(enabled: bool, len: u64, label: &str) -> Progress {
+    /// `len` steps of `unit` (plural: "branches", "rows") after the operator's `label`.
+    pub fn new(enabled: bool, len: u64, label: &str, unit: &str) -> Progress {
         if !enabled {
             return Progress(None);
         }
         let bar = ProgressBar::new(len);
-        if let Ok(style) = ProgressStyle::with_template(
-            "{prefix} [{bar:40}] {pos}/{len} branches ({elapsed}, eta {eta})",
-        ) {
+        let template =
+            format!("{{prefix}} [{{bar:40}}] {{pos}}/{{len}} {unit} ({{elapsed}}, eta {{eta}})");
+        if let Ok(style) = ProgressStyle::with_template(&template) {
             bar.set_style(style.progress_chars("=> "));
         }
         bar.set_prefix(label.to_string());

@@ -10,6 +10,9 @@
 //!   `|calc - ref|`. When the reference is 0, a relative error means nothing: like
 //!   Code_Aster we then compare absolutely, with the tolerance times `ORDRE_GRANDEUR`,
 //!   and the printed line says so.
+//! - `CRITERE` and `TOLE_MACHINE` may hold two values, as in Code_Aster: the first is the
+//!   test's (criterion of both checks, tolerance of the non-regression one), the second
+//!   the extraction's (how TEST_RESU finds its INST); one value serves both.
 //! - Every default (CRITERE, TOLE_MACHINE, PRECISION, ORDRE_GRANDEUR, VALE_ABS) and bound is
 //!   the catalog's (`commands/TEST_*.toml`): the checks read validated `Args`.
 //! - Integers (`VALE_CALC_I`, `VALE_REFE_I`) and texts (`_K`) must be equal exactly.
@@ -212,6 +215,47 @@ fn given(args: &Args, prefix: &str) -> Result<Option<TestValue>> {
     Ok(None)
 }
 
+/// CRITERE as Code_Aster reads it: one value for the test and the extraction, or two,
+/// `(test, extraction)` — the test's criterion (for VALE_CALC and VALE_REFE alike) and
+/// the one that finds the tested instant or parameter in a result (TEST_RESU's INST).
+pub fn criteres(args: &Args) -> Result<(Critere, Critere)> {
+    let parse = |s: &str| {
+        Critere::parse(s).ok_or_else(|| {
+            Error::validation(format!("unknown CRITERE '{s}'"))
+                .keyword(args.key_path("CRITERE"))
+                .hint("use 'RELATIF' or 'ABSOLU'")
+        })
+    };
+    match args.req_texts("CRITERE")?.as_slice() {
+        [one] => {
+            let c = parse(one)?;
+            Ok((c, c))
+        }
+        [test, extraction] => Ok((parse(test)?, parse(extraction)?)),
+        _ => Err(Error::validation("expected one or two values")
+            .keyword(args.key_path("CRITERE"))
+            .hint("CRITERE=('RELATIF', 'ABSOLU'): the test's criterion, then the extraction's")),
+    }
+}
+
+/// TOLE_MACHINE as Code_Aster reads it: `(tolerance, precision)`, the tolerance of the
+/// non-regression test and the precision that finds the tested instant (one value: both).
+pub fn tole_machine(args: &Args) -> Result<(f64, f64)> {
+    match args.req_reals("TOLE_MACHINE")?.as_slice() {
+        [one] => Ok((*one, *one)),
+        [tol, prec] => Ok((*tol, *prec)),
+        _ => Err(Error::validation("expected one or two non-negative reals")
+            .keyword(args.key_path("TOLE_MACHINE"))
+            .hint("TOLE_MACHINE=(1.e-6, 1.e-4): the test's tolerance, then the extraction's precision")),
+    }
+}
+
+/// How a TEST_RESU occurrence finds its instant: the second TOLE_MACHINE and CRITERE
+/// values (Code_Aster's extraction precision), or the only ones.
+pub fn extraction(args: &Args) -> Result<(f64, Critere)> {
+    Ok((tole_machine(args)?.1, criteres(args)?.1))
+}
+
 /// Run the checks asked by one TEST_* occurrence (keywords VALE_CALC[_I|_K],
 /// VALE_REFE[_I|_K], REFERENCE, CRITERE, PRECISION, TOLE_MACHINE, ORDRE_GRANDEUR,
 /// VALE_ABS) on the
@@ -229,18 +273,8 @@ pub fn checks_with_floor(
 ) -> Result<Vec<TestOutcome>> {
     // Defaults and bounds (tolerances >= 0) are the catalog's, filled and checked by the
     // validation.
-    let criteres = args.req_texts("CRITERE")?;
-    let critere = match criteres.as_slice() {
-        [s] => Critere::parse(s).ok_or_else(|| {
-            Error::validation(format!("unknown CRITERE '{s}'"))
-                .keyword(args.key_path("CRITERE"))
-                .hint("use 'RELATIF' or 'ABSOLU'")
-        })?,
-        // Two values (the catalog's max = 2: Code_Aster's one for VALE_CALC, one for
-        // VALE_REFE) are not told apart yet: both checks are relative.
-        _ => Critere::Relatif,
-    };
-    // One value: a second TOLE_MACHINE (the catalog's max = 2) is refused here.
+    let (critere, _) = criteres(args)?;
+    // TOLE_MACHINE may hold a second value (the extraction's precision, `extraction`).
     let one_real = |key: &str| -> Result<f64> {
         args.real(key).ok_or_else(|| {
             Error::validation("expected a non-negative real").keyword(args.key_path(key))
@@ -262,7 +296,7 @@ pub fn checks_with_floor(
     };
     let mut out = Vec::new();
     if let Some(calc) = given(args, "VALE_CALC")? {
-        let file_tol = one_real("TOLE_MACHINE")?;
+        let file_tol = tole_machine(args)?.0;
         let widened = matches!(calc, TestValue::R(_))
             && tole_machine_floor.is_some_and(|floor| floor > file_tol);
         let tol = Tolerance {
@@ -463,5 +497,56 @@ mod tests {
         let e = checks(vec![("VALE_REFE", Value::Real(2.0))], 2.0).unwrap_err();
         assert!(e.message.contains("REFERENCE"), "{}", e.message);
         assert!(checks(vec![], 2.0).is_err());
+    }
+
+    /// Code_Aster's two-value CRITERE and TOLE_MACHINE: the first values are the test's
+    /// (for VALE_CALC and VALE_REFE alike), the second the extraction's.
+    #[test]
+    fn two_value_critere_and_tole_machine_test_with_the_first() {
+        let texts = |a: &str, b: &str| Value::Seq(vec![Value::Str(a.into()), Value::Str(b.into())]);
+        let reals = |a: f64, b: f64| Value::Seq(vec![Value::Real(a), Value::Real(b)]);
+        // 1.0005 against 1.0: 5e-4 relative, OK at PRECISION 1e-3.
+        let refe = |critere: Value, computed: f64| {
+            checks(
+                vec![
+                    ("VALE_REFE", Value::Real(1.0)),
+                    ("REFERENCE", Value::Str("ANALYTIQUE".into())),
+                    ("PRECISION", Value::Real(1e-3)),
+                    ("CRITERE", critere),
+                ],
+                computed,
+            )
+            .unwrap()
+        };
+        // A reference of 1e-4 and a computed 5e-4: relative error 4 (NOOK), absolute 4e-4
+        // (OK at 1e-3). ('ABSOLU', 'RELATIF') tests absolutely, ('RELATIF', 'ABSOLU')
+        // relatively: the second value plays no part in the check.
+        let small = |critere: Value| {
+            checks(
+                vec![
+                    ("VALE_REFE", Value::Real(1e-4)),
+                    ("REFERENCE", Value::Str("ANALYTIQUE".into())),
+                    ("PRECISION", Value::Real(1e-3)),
+                    ("CRITERE", critere),
+                ],
+                5e-4,
+            )
+            .unwrap()
+        };
+        assert!(small(texts("ABSOLU", "RELATIF"))[0].ok);
+        assert!(!small(texts("RELATIF", "ABSOLU"))[0].ok);
+        assert!(refe(texts("RELATIF", "ABSOLU"), 1.0005)[0].ok);
+        // TOLE_MACHINE=(1e-2, 1e-6): the non-regression test has 1e-2.
+        let calc = |tole: Value| {
+            checks(
+                vec![("VALE_CALC", Value::Real(2.0)), ("TOLE_MACHINE", tole)],
+                2.01,
+            )
+            .unwrap()[0]
+                .ok
+        };
+        assert!(calc(reals(1e-2, 1e-6)));
+        assert!(!calc(reals(1e-6, 1e-2)));
+        assert!(!calc(Value::Real(1e-6)));
     }
 }
