@@ -42,7 +42,8 @@ fn io(e: impl std::fmt::Display) -> Error {
 
 /// A model named on the command line of `bench-case`:
 /// wall:H_nl:branches | utube:H_nl:branches:points:offset | beam:elements:H_l:H_nl:branches |
-/// chain:masses:H_l:H_nl:branches.
+/// spans:spans:elements:H_l:H_nl:branches (the bar on spans + 1 supports, `elements` in
+/// all, models::spans) | chain:masses:H_l:H_nl:branches.
 pub fn parse_model(spec: &str) -> Result<Case> {
     let p: Vec<&str> = spec.split(':').collect();
     let num = |i: usize| -> Result<f64> {
@@ -55,9 +56,10 @@ pub fn parse_model(spec: &str) -> Result<Case> {
         Some("wall") => Ok(models::wall(int(1)?, int(2)?)),
         Some("utube") => Ok(models::utube(int(1)?, int(2)?, int(3)?, num(4)?)),
         Some("beam") => Ok(models::beam(int(1)?, int(2)?, int(3)?, int(4)?)),
+        Some("spans") => Ok(models::spans(int(1)?, int(2)?, int(3)?, int(4)?, int(5)?)),
         Some("chain") => Ok(models::chain(int(1)?, int(2)?, int(3)?, int(4)?)),
         _ => Err(io(format!(
-            "unknown model '{spec}' (wall:…, utube:…, beam:…)"
+            "unknown model '{spec}' (wall:…, utube:…, beam:…, spans:…, chain:…)"
         ))),
     }
 }
@@ -92,6 +94,8 @@ pub fn run_case(
     let t0 = measure::self_cpu();
     let mut error = String::from("-");
     let mut points = 0;
+    // Frequency of the last point against the linear one: a shift says the shocks acted.
+    let mut f_last = f64::NAN;
     match nnm::start_from_mode_using(
         &prep.problem,
         &prep.settings,
@@ -104,6 +108,9 @@ pub fn run_case(
             let o =
                 nnm::continue_branches(&prep.problem, &prep.settings, start_state, &mut |_, _| {});
             points = o.points.len();
+            if let Some(p) = o.points.last() {
+                f_last = p.frequency;
+            }
             if let Some(e) = o.error {
                 error = e.message.replace(' ', "_");
             }
@@ -114,10 +121,11 @@ pub fn run_case(
     let peak = measure::peak_kb();
     writeln!(
         out,
-        "BENCH cpu={cpu:.6} peak_kb={peak} base_kb={rss0} points={points} n={} nnz={} unknowns={} error={error}",
+        "BENCH cpu={cpu:.6} peak_kb={peak} base_kb={rss0} points={points} n={} nnz={} unknowns={} f_lin={:.6} f_last={f_last:.6} error={error}",
         prep.problem.k.nrows(),
         prep.nnz,
-        nnm::unknown_count(&prep.problem, &prep.settings)
+        nnm::unknown_count(&prep.problem, &prep.settings),
+        prep.omega / (2.0 * std::f64::consts::PI)
     )
     .map_err(io)
 }
@@ -436,14 +444,21 @@ impl Bench<'_> {
     }
 
     /// 10⁵ DOFs: the same bar with 25 001 elements in its one span (condition number ∝ N⁴,
-    /// about 4e17: refused by the reference-stiffness check, nnm::system::inverse_diag), and
-    /// a spring chain of 10⁵ masses (condition ∝ N²) with its stop, which completes.
+    /// about 4e17: refused by the reference-stiffness check, nnm::system::inverse_diag), the
+    /// same bar on 15 supports (14 unequal spans, the longest of 2 498 elements: the
+    /// condition number goes with one span's elements, models::spans), and a spring chain
+    /// of 10⁵ masses (condition ∝ N²) with its stop; the last two complete.
     fn scale_section(&mut self) -> Result<()> {
         self.say("\n### 10⁵ DOFs (H_l 5, H_nl 200, engine only, one run each)\n")?;
         self.say("| model | DOFs | branches | points | CPU | CPU per branch | peak RSS | engine memory / nonzero of K∪M | outcome |")?;
         self.say("|---|---|---|---|---|---|---|---|---|")?;
         for (label, model, br) in [
             ("bar, one span of 25 001 POU_D_E", "beam:25001:5:200:1", 1),
+            (
+                "bar on 15 supports, 25 600 POU_D_E",
+                "spans:14:25600:5:200:5",
+                5,
+            ),
             (
                 "chain of 10⁵ masses, one PLAN stop",
                 "chain:100000:5:200:5",
@@ -717,4 +732,108 @@ pub fn run(opts: &Options, out: &mut dyn Write) -> Result<()> {
         b.compare_section()?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::dof::Cmp;
+    use crate::store::{matrix, Store};
+
+    /// The members of GROUP_NO `g` in a .mail text.
+    fn group_no(mail: &str, g: &str) -> Vec<String> {
+        let mut lines = mail.lines();
+        while let Some(l) = lines.next() {
+            if l == "GROUP_NO" && lines.next().map(str::trim) == Some(g) {
+                return lines
+                    .take_while(|l| *l != "FINSF")
+                    .map(|l| l.trim().to_string())
+                    .collect();
+            }
+        }
+        Vec::new()
+    }
+
+    #[test]
+    fn spans_model_mesh_and_commands() {
+        let per = models::span_elements(5, 500);
+        assert_eq!(per.iter().sum::<usize>(), 500);
+        // The longest in the middle, shorter toward both ends.
+        assert!(per[0] < per[1] && per[1] < per[2], "{per:?}");
+        assert!(per[2] > per[3] && per[3] > per[4], "{per:?}");
+        let per14 = models::span_elements(14, 25600);
+        assert_eq!(per14.iter().sum::<usize>(), 25600);
+        assert_eq!(per14.iter().max(), Some(&per14[7]));
+        assert!(per14[7] <= 2500, "{per14:?}");
+        let case = parse_model("spans:5:500:5:200:3").unwrap();
+        let coor = case.mail.split("COOR_3D\n").nth(1).unwrap();
+        let nodes = coor.lines().take_while(|l| *l != "FINSF").count();
+        assert_eq!(nodes, 501);
+        let supports = group_no(&case.mail, "SUPPORTS");
+        let mut end = 0;
+        let expected: Vec<String> = per[..4]
+            .iter()
+            .map(|n| {
+                end += n;
+                format!("N{end}")
+            })
+            .collect();
+        assert_eq!(supports, expected);
+        assert_eq!(group_no(&case.mail, "ENDS"), ["N0", "N500"]);
+        assert!(case
+            .prefix
+            .contains("_F(GROUP_NO='SUPPORTS', DY=0., DZ=0.)"));
+        assert!(case.prefix.contains("_F(GROUP_NO='ALL', DX=0., DRX=0.)"));
+        // Both rings in the longest (middle) span.
+        let (a, b) = (per[0] + per[1], per[0] + per[1] + per[2]);
+        for s in &case.shocks {
+            let i: usize = s.node[1..].parse().unwrap();
+            assert!(i > a && i < b, "{} not in ({a}, {b})", s.node);
+        }
+        assert_eq!(
+            (case.mnl.h_lin, case.mnl.h_nonl, case.mnl.branches),
+            (5, 200, 3)
+        );
+        assert_eq!(case.name, "bar on 6 supports, 1988 DOFs");
+        assert!(parse_model("spans:5:500:5:200").is_err());
+    }
+
+    /// The first mode is the longest span's first bending mode (XZ): its largest DZ is in
+    /// that span, both rings move, the spans beyond its neighbours much less.
+    #[test]
+    fn spans_first_mode_is_the_longest_spans() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = parse_model("spans:6:240:1:3:1").unwrap();
+        let per = models::span_elements(6, 240);
+        let prep = models::prepare(&case, dir.path()).unwrap();
+        assert_eq!(prep.problem.k.nrows(), 4 * 239 - 2 * 5);
+        let store = Store::open(&dir.path().join("prefix.db")).unwrap();
+        let k = matrix::load_matrix(&store, "RIGIDITE").unwrap();
+        let dz = |i: usize| -> f64 {
+            k.numbering
+                .index_of(&format!("N{i}"), Cmp::Dz)
+                .and_then(|f| k.reduced_index(f))
+                .map_or(0.0, |r| prep.mode[r].abs())
+        };
+        let mut start = 0;
+        let span_max: Vec<f64> = per
+            .iter()
+            .map(|n| {
+                let m = (start..=start + n).map(dz).fold(0.0, f64::max);
+                start += n;
+                m
+            })
+            .collect();
+        let longest = per.len() / 2;
+        let first = span_max[longest];
+        // The neighbours follow (the supports pass the slope on), the next ones much less.
+        for (j, m) in span_max.iter().enumerate() {
+            assert!(j == longest || *m < first, "{span_max:?}");
+            assert!(j.abs_diff(longest) < 2 || *m < 0.5 * first, "{span_max:?}");
+        }
+        for s in &case.shocks {
+            let i: usize = s.node[1..].parse().unwrap();
+            assert!(dz(i) > 0.5 * first, "{}: {:e} of {first:e}", s.node, dz(i));
+        }
+    }
 }

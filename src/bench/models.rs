@@ -252,6 +252,109 @@ pub fn beam(elements: usize, h_lin: usize, h_nonl: usize, branches: usize) -> Ca
     }
 }
 
+/// Ratio of successive span lengths of `spans` (unequal spans: no cluster of modes).
+pub const SPAN_RATIO: f64 = 0.95;
+
+/// Elements per span of `spans`, in their order along the bar: geometric in SPAN_RATIO,
+/// summing to `elements` (at least 4 each), the longest in the middle (index `spans / 2`)
+/// and the others alternately left and right of it, shorter and shorter toward both
+/// clamped ends (a clamped end stiffens its span: the longest span there would not carry
+/// the first mode).
+pub fn span_elements(spans: usize, elements: usize) -> Vec<usize> {
+    let spans = spans.max(1);
+    let elements = elements.max(4 * spans);
+    let w: Vec<f64> = (0..spans).map(|i| SPAN_RATIO.powi(i as i32)).collect();
+    let sum: f64 = w.iter().sum();
+    let mut n: Vec<usize> = w
+        .iter()
+        .map(|wi| ((elements as f64 * wi / sum).round() as usize).max(4))
+        .collect();
+    // Round-off goes to the longest span (it stays the longest).
+    let total: usize = n.iter().sum();
+    n[0] = (n[0] + elements).saturating_sub(total).max(4);
+    // By decreasing length: the middle, then one left, one right, ...
+    let mid = spans / 2;
+    let mut order = vec![0; spans];
+    for (k, nk) in n.iter().enumerate() {
+        let pos = if k % 2 == 1 {
+            mid - k.div_ceil(2)
+        } else {
+            mid + k / 2
+        };
+        order[pos] = *nk;
+    }
+    order
+}
+
+/// A continuous bar on simple supports: `beam()`'s bar (rectangular section 13.7 × 10 mm,
+/// clamped at both ends, DX and DRX blocked everywhere: 4 free DOFs per inner node)
+/// prolonged to `spans` spans of unequal lengths (geometric, ratio SPAN_RATIO, the longest,
+/// 1 m, in the middle: span_elements) with one element size for all, `elements` in all;
+/// the inner span ends (GROUP_NO SUPPORTS) have DY = DZ = 0. The condition number of K
+/// grows like the fourth power of the elements of one span, not of the whole bar, so the
+/// longest span's count (about 2 500 at 10⁵ DOFs) is what must stay moderate. CERCLE rings
+/// as beam()'s (JEU 1 mm, centre offset 0.3 JEU along DY) at the quarter and the middle of
+/// the longest span, where the first mode (its first bending mode in XZ) moves.
+pub fn spans(spans: usize, elements: usize, h_lin: usize, h_nonl: usize, branches: usize) -> Case {
+    let per = span_elements(spans, elements);
+    let spans = per.len();
+    let elements: usize = per.iter().sum();
+    let longest = spans / 2;
+    let h = 1.0 / per[longest] as f64;
+    let nodes: Vec<(String, [f64; 3])> = (0..=elements)
+        .map(|i| (format!("N{i}"), [i as f64 * h, 0.0, 0.0]))
+        .collect();
+    let mut supports = Vec::new();
+    let mut end = 0;
+    for n in &per[..spans - 1] {
+        end += n;
+        supports.push(format!("N{end}"));
+    }
+    let all: Vec<String> = nodes.iter().map(|n| n.0.clone()).collect();
+    let mut groups = vec![
+        ("ENDS", vec!["N0".into(), format!("N{elements}")]),
+        ("ALL", all),
+    ];
+    let mut bc = String::from(
+        "_F(GROUP_NO='ENDS', DX=0., DY=0., DZ=0., DRX=0., DRY=0., DRZ=0.), _F(GROUP_NO='ALL', DX=0., DRX=0.),",
+    );
+    if !supports.is_empty() {
+        groups.push(("SUPPORTS", supports));
+        bc.push_str(" _F(GROUP_NO='SUPPORTS', DY=0., DZ=0.),");
+    }
+    let mail = mail_of(
+        &format!("continuous tube on {} supports", spans + 1),
+        &nodes,
+        &groups,
+    );
+    let prefix = format!(
+        "{}{}",
+        BEAM_PREFIX.replace(
+            "SECTION='CERCLE', CARA=('R', 'EP'), VALE=(0.01, 0.001)",
+            "SECTION='RECTANGLE', CARA=('HY', 'HZ'), VALE=(0.0137, 0.01)"
+        ),
+        assemble_and_modes(&bc)
+    );
+    let start: usize = per[..longest].iter().sum();
+    let (quarter, mid) = (start + per[longest] / 4, start + per[longest] / 2);
+    let gap = 1e-3;
+    let o = [0.0, 0.3 * gap, 0.0];
+    Case {
+        name: format!(
+            "bar on {} supports, {} DOFs",
+            spans + 1,
+            4 * (elements - 1) - 2 * (spans - 1)
+        ),
+        mail,
+        prefix,
+        shocks: vec![
+            ring(&format!("N{mid}"), ["DY", "DZ"], gap, 1e4, 1e-4, o),
+            ring(&format!("N{quarter}"), ["DY", "DZ"], gap, 1e4, 1e-4, o),
+        ],
+        mnl: mnl(h_lin, h_nonl, branches, 1),
+    }
+}
+
 /// A fixed-free chain of `n` unit masses and springs k = 10 (DIS_T), a PLAN stop
 /// (JEU 0.01, RIGI_NOR = k, PARA_REGUL 1e-4) at its free end.
 pub fn chain(n: usize, h_lin: usize, h_nonl: usize, branches: usize) -> Case {
