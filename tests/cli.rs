@@ -21,17 +21,22 @@ fn text(o: &Output) -> String {
     )
 }
 
+/// `aster-nl run COMM --db DB`, its output.
+fn run_with_db(comm: impl AsRef<std::ffi::OsStr>, db: impl AsRef<std::ffi::OsStr>) -> Output {
+    bin()
+        .arg("run")
+        .arg(comm)
+        .arg("--db")
+        .arg(db)
+        .output()
+        .unwrap()
+}
+
 /// Runs a self-checking case with its database in a temporary directory; returns the
 /// output after asserting exit code 0, no NOOK and at least one OK.
 fn run_ok(name: &str) -> String {
     let dir = tempfile::tempdir().unwrap();
-    let o = bin()
-        .arg("run")
-        .arg(case(name))
-        .arg("--db")
-        .arg(dir.path().join("case.db"))
-        .output()
-        .unwrap();
+    let o = run_with_db(case(name), dir.path().join("case.db"));
     let out = text(&o);
     assert_eq!(o.status.code(), Some(0), "{name}:\n{out}");
     assert!(!out.contains("NOOK "), "{name}:\n{out}");
@@ -100,13 +105,7 @@ fn poursuite_sees_the_concepts_of_the_first_run() {
 #[test]
 fn poursuite_without_a_database_is_a_clear_error() {
     let dir = tempfile::tempdir().unwrap();
-    let o = bin()
-        .arg("run")
-        .arg(case("poursuite_suite.comm"))
-        .arg("--db")
-        .arg(dir.path().join("missing.db"))
-        .output()
-        .unwrap();
+    let o = run_with_db(case("poursuite_suite.comm"), dir.path().join("missing.db"));
     let out = text(&o);
     assert_eq!(o.status.code(), Some(2), "{out}");
     assert!(out.contains("no database to continue"), "{out}");
@@ -115,13 +114,7 @@ fn poursuite_without_a_database_is_a_clear_error() {
 #[test]
 fn syntax_error_names_file_line_and_column() {
     let dir = tempfile::tempdir().unwrap();
-    let o = bin()
-        .arg("run")
-        .arg(case("errors/syntax.comm"))
-        .arg("--db")
-        .arg(dir.path().join("x.db"))
-        .output()
-        .unwrap();
+    let o = run_with_db(case("errors/syntax.comm"), dir.path().join("x.db"));
     let out = text(&o);
     assert_eq!(o.status.code(), Some(2), "{out}");
     assert!(out.contains("syntax.comm:2:15"), "{out}");
@@ -197,13 +190,7 @@ fn check_carries_values_only_a_run_knows() {
 fn failed_operator_keeps_earlier_concepts() {
     let dir = tempfile::tempdir().unwrap();
     let db = dir.path().join("r.db");
-    let o = bin()
-        .arg("run")
-        .arg(case("errors/runtime.comm"))
-        .arg("--db")
-        .arg(&db)
-        .output()
-        .unwrap();
+    let o = run_with_db(case("errors/runtime.comm"), &db);
     let out = text(&o);
     assert_eq!(o.status.code(), Some(2), "{out}");
     assert!(out.contains("no mesh file for unit 33"), "{out}");
@@ -217,13 +204,7 @@ fn failed_operator_keeps_earlier_concepts() {
 #[test]
 fn nook_test_gives_exit_code_1() {
     let dir = tempfile::tempdir().unwrap();
-    let o = bin()
-        .arg("run")
-        .arg(case("errors/nook.comm"))
-        .arg("--db")
-        .arg(dir.path().join("n.db"))
-        .output()
-        .unwrap();
+    let o = run_with_db(case("errors/nook.comm"), dir.path().join("n.db"));
     let out = text(&o);
     assert_eq!(o.status.code(), Some(1), "{out}");
     assert!(out.contains("NOOK"), "{out}");
@@ -352,13 +333,7 @@ fn cercle_shock_with_one_component_is_one_clear_error() {
         dir.path().join("cercle_one.mail"),
     )
     .unwrap();
-    let o = bin()
-        .arg("run")
-        .arg(&comm)
-        .arg("--db")
-        .arg(dir.path().join("case.db"))
-        .output()
-        .unwrap();
+    let o = run_with_db(&comm, dir.path().join("case.db"));
     let out = text(&o);
     assert_eq!(o.status.code(), Some(2), "{out}");
     // One error, reported once: the keyword path starts its message.
@@ -387,13 +362,7 @@ fn cercle_shock_with_one_component_is_one_clear_error() {
 fn dir_evolution_backward_then_restarts_against_and_along_the_travel() {
     let dir = tempfile::tempdir().unwrap();
     let db = dir.path().join("case.db");
-    let o = bin()
-        .arg("run")
-        .arg(case("dir_evolution.comm"))
-        .arg("--db")
-        .arg(&db)
-        .output()
-        .unwrap();
+    let o = run_with_db(case("dir_evolution.comm"), &db);
     let out = text(&o);
     assert_eq!(o.status.code(), Some(0), "{out}");
     assert!(out.contains("tests: 4 OK, 0 NOOK"), "{out}");
@@ -452,13 +421,7 @@ fn dir_evolution_backward_then_restarts_against_and_along_the_travel() {
 fn utube_rings_through_their_centres_match_the_planes() {
     let dir = tempfile::tempdir().unwrap();
     let db = dir.path().join("case.db");
-    let o = bin()
-        .arg("run")
-        .arg(case("utube.comm"))
-        .arg("--db")
-        .arg(&db)
-        .output()
-        .unwrap();
+    let o = run_with_db(case("utube.comm"), &db);
     let out = text(&o);
     assert_eq!(o.status.code(), Some(0), "{out}");
     assert!(out.contains("tests: 5 OK, 0 NOOK"), "{out}");
@@ -529,13 +492,7 @@ fn test_resu_finds_inst_with_the_second_tole_machine_and_critere() {
         )
         .unwrap();
         let _ = std::fs::remove_file(dir.path().join("case.db"));
-        let o = bin()
-            .arg("run")
-            .arg(&comm)
-            .arg("--db")
-            .arg(dir.path().join("case.db"))
-            .output()
-            .unwrap();
+        let o = run_with_db(&comm, dir.path().join("case.db"));
         (o.status.code(), text(&o))
     };
     let (code, out) = run(&[

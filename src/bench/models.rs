@@ -75,6 +75,17 @@ fn ring(
     }
 }
 
+/// The bars' two CERCLE rings at nodes N`a` and N`b` (DY, DZ): JEU 1 mm, RIGI_NOR 1e4,
+/// PARA_REGUL 1e-4, centre offset 0.3 JEU along DY.
+fn bar_rings(a: usize, b: usize) -> Vec<StoredShock> {
+    let gap = 1e-3;
+    let o = [0.0, 0.3 * gap, 0.0];
+    [a, b]
+        .iter()
+        .map(|n| ring(&format!("N{n}"), ["DY", "DZ"], gap, 1e4, 1e-4, o))
+        .collect()
+}
+
 /// sdnd122a (testcases/sdnd122a.comm): one DOF against a wall, H_nl varied.
 pub fn wall(h_nonl: usize, branches: usize) -> Case {
     let mail = include_str!("../../testcases/sdnd122a.mail").to_string();
@@ -238,16 +249,11 @@ pub fn beam(elements: usize, h_lin: usize, h_nonl: usize, branches: usize) -> Ca
             "_F(GROUP_NO='ENDS', DX=0., DY=0., DZ=0., DRX=0., DRY=0., DRZ=0.), _F(GROUP_NO='ALL', DX=0., DRX=0.),"
         )
     );
-    let gap = 1e-3;
-    let o = [0.0, 0.3 * gap, 0.0];
     Case {
         name: format!("bar {} DOFs", 4 * (elements - 1)),
         mail,
         prefix,
-        shocks: vec![
-            ring(&format!("N{a}"), ["DY", "DZ"], gap, 1e4, 1e-4, o),
-            ring(&format!("N{b}"), ["DY", "DZ"], gap, 1e4, 1e-4, o),
-        ],
+        shocks: bar_rings(a, b),
         mnl: mnl(h_lin, h_nonl, branches, 1),
     }
 }
@@ -337,8 +343,6 @@ pub fn spans(spans: usize, elements: usize, h_lin: usize, h_nonl: usize, branche
     );
     let start: usize = per[..longest].iter().sum();
     let (quarter, mid) = (start + per[longest] / 4, start + per[longest] / 2);
-    let gap = 1e-3;
-    let o = [0.0, 0.3 * gap, 0.0];
     Case {
         name: format!(
             "bar on {} supports, {} DOFs",
@@ -347,10 +351,7 @@ pub fn spans(spans: usize, elements: usize, h_lin: usize, h_nonl: usize, branche
         ),
         mail,
         prefix,
-        shocks: vec![
-            ring(&format!("N{mid}"), ["DY", "DZ"], gap, 1e4, 1e-4, o),
-            ring(&format!("N{quarter}"), ["DY", "DZ"], gap, 1e4, 1e-4, o),
-        ],
+        shocks: bar_rings(mid, quarter),
         mnl: mnl(h_lin, h_nonl, branches, 1),
     }
 }
