@@ -40,6 +40,9 @@ fn io(e: impl std::fmt::Display) -> Error {
     Error::new(ErrorKind::Io, format!("bench: {e}"))
 }
 
+/// Largest count (elements, masses, harmonics, branches, points) a model spec may give.
+const MAX_COUNT: usize = 1_000_000;
+
 /// A model named on the command line of `bench-case`:
 /// wall:H_nl:branches | utube:H_nl:branches:points:offset | beam:elements:H_l:H_nl:branches |
 /// spans:spans:elements:H_l:H_nl:branches (the bar on spans + 1 supports, `elements` in
@@ -51,7 +54,18 @@ pub fn parse_model(spec: &str) -> Result<Case> {
             .and_then(|s| s.parse::<f64>().ok())
             .ok_or_else(|| io(format!("model '{spec}': field {i} is not a number")))
     };
-    let int = |i: usize| num(i).map(|v| v as usize);
+    // Counts are checked before anything is sized from them: a whole number from 1 to
+    // MAX_COUNT (ten times the largest model the bench runs).
+    let int = |i: usize| -> Result<usize> {
+        let v = num(i)?;
+        if v.fract() == 0.0 && (1.0..=MAX_COUNT as f64).contains(&v) {
+            Ok(v as usize)
+        } else {
+            Err(io(format!(
+                "model '{spec}': field {i} must be a whole number from 1 to {MAX_COUNT}, got {v}"
+            )))
+        }
+    };
     match p.first().copied() {
         Some("wall") => Ok(models::wall(int(1)?, int(2)?)),
         Some("utube") => Ok(models::utube(int(1)?, int(2)?, int(3)?, num(4)?)),
@@ -796,6 +810,20 @@ mod tests {
         );
         assert_eq!(case.name, "bar on 6 supports, 1988 DOFs");
         assert!(parse_model("spans:5:500:5:200").is_err());
+        // Counts out of range are refused before anything is sized from them.
+        for bad in [
+            "spans:0:500:5:200:3",
+            "beam:1e12:5:200:1",
+            "chain:2.5:5:200:1",
+            "wall:-3:5",
+        ] {
+            let e = parse_model(bad).unwrap_err();
+            assert!(
+                e.message.contains("whole number from 1"),
+                "{bad}: {}",
+                e.message
+            );
+        }
     }
 
     /// The first mode is the longest span's first bending mode (XZ): its largest DZ is in
