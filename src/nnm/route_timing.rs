@@ -30,7 +30,7 @@ fn diag(n: usize, v: f64) -> SparseColMat<usize, f64> {
 
 /// A point in contact: the first DOF at 1.3 JEU in its first harmonic, the second (CERCLE)
 /// at 0.4 JEU in quadrature, contact unknowns from their laws.
-fn system_and_point(law: ShockLaw, h_nonl: usize) -> Result<(System, Vec<f64>)> {
+pub(super) fn system_and_point(law: ShockLaw, h_nonl: usize) -> Result<(System, Vec<f64>)> {
     let dofs = if matches!(law, ShockLaw::Cercle { .. }) {
         vec![0, 1]
     } else {

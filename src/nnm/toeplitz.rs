@@ -13,7 +13,7 @@
 //! size N ≥ 4H+1 (no wrap-around onto a retained entry): a solve is six FFTs once the four
 //! generators' spectra are known (`set_generator`, once per factorisation). The formula
 //! is exact in exact arithmetic; its round-off is that of a direct solve of T when T is
-//! well conditioned, and the caller checks every solve's residual (contact.rs).
+//! well conditioned, and the caller checks it by residuals (contact.rs).
 
 use super::series;
 use realfft::num_complex::Complex;
