@@ -610,3 +610,61 @@ fn a_runtime_error_points_at_the_keyword_it_names() {
         "expected {line}:{col}: {out}"
     );
 }
+
+/// Inputs found by a battery of user-style variants of sdnd122a, each refused at once with
+/// the keyword and the remedy: a ring on one component twice (before, a 7.9 s failed start
+/// advising PREC_MAN), a user concept named like the shock table the result creates
+/// (before, silently replaced), and a start amplitude far into the stop (before, the hint
+/// named PREC_MAN and ITER_NEWTON_MAXI, not COEF_AMPL).
+#[test]
+fn a_ring_on_one_component_a_clashing_shock_table_and_a_far_start_are_named() {
+    let base = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("v.mail")).unwrap();
+    let comm = dir.path().join("v.comm");
+    let variants: [(&str, &str, &[&str]); 3] = [
+        (
+            "OBSTACLE='PLAN', GROUP_NO='N2', NOM_CMP='DX'",
+            "OBSTACLE='CERCLE', GROUP_NO='N2', NOM_CMP=('DX', 'DX')",
+            &[
+                "CHOC/NOM_CMP",
+                "names one component twice",
+                "NOM_CMP=('DX', 'DY')",
+            ],
+        ),
+        (
+            "MNL = MODE_NON_LINE(",
+            "MNL_CHOC = CREA_TABLE(LISTE=(_F(PARA='X', LISTE_R=(1., 2.)),))\nMNL = MODE_NON_LINE(",
+            &[
+                "a concept of that name already exists (made by CREA_TABLE)",
+                "MNL_CHOC",
+            ],
+        ),
+        (
+            "COEF_AMPL=1.)",
+            "COEF_AMPL=10.)",
+            &["ETAT_INIT/COEF_AMPL", "start at a smaller COEF_AMPL"],
+        ),
+    ];
+    for (i, (from, to, wants)) in variants.iter().enumerate() {
+        assert!(base.contains(from), "{from}");
+        std::fs::write(&comm, base.replacen(from, to, 1)).unwrap();
+        let db = dir.path().join(format!("v{i}.db"));
+        let o = run_with_db(&comm, &db, &[]);
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{out}");
+        for w in *wants {
+            assert!(out.contains(w), "{w} missing:\n{out}");
+        }
+        // Nothing of the failed operator is kept; the user's table survives the clash.
+        let names = db_concepts(&db);
+        assert!(!names.contains(&"MNL".to_string()), "{names:?}");
+        if i == 1 {
+            let c = rusqlite::Connection::open(&db).unwrap();
+            let n: i64 = c
+                .query_row("SELECT count(*) FROM \"MNL_CHOC\"", [], |r| r.get(0))
+                .unwrap();
+            assert_eq!(n, 2);
+        }
+    }
+}

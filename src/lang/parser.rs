@@ -44,6 +44,21 @@ pub fn parse(src: &Source) -> Result<Program> {
     Ok(Program { stmts })
 }
 
+/// The Python string prefix (f, r, b, fr, rb, ...: letters only, any case) that `before`
+/// ends with, when it is a word of its own: what a quote right after it means in Python.
+fn string_prefix(before: &str) -> Option<&str> {
+    let word_start = before
+        .rfind(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .map_or(0, |i| i + 1);
+    let word = &before[word_start..];
+    let is_prefix = !word.is_empty()
+        && word.len() <= 2
+        && word
+            .chars()
+            .all(|c| matches!(c.to_ascii_lowercase(), 'f' | 'r' | 'b' | 'u'));
+    is_prefix.then_some(word)
+}
+
 struct LineParser<'a> {
     src: &'a Source,
     idx: &'a LineIndex<'a>,
@@ -104,6 +119,16 @@ impl LineParser<'_> {
             span,
         );
         let next = text.get(pos..).unwrap_or("");
+        let before = text.get(..pos).unwrap_or("");
+        if next.starts_with(['\'', '"']) && string_prefix(before).is_some() {
+            let p = string_prefix(before).unwrap_or_default();
+            return self
+                .err(
+                    format!("string prefixes such as {p}'...' (f-strings, raw or byte strings) are not supported"),
+                    self.idx.span(at - p.len(), at + width),
+                )
+                .hint("build the text with + and str(), e.g. 'JEU = ' + str(jeu)");
+        }
         if next.starts_with("==") {
             err = err.hint("comparisons are not supported; a keyword is written KEY=value");
         } else if expected.contains("','")

@@ -555,6 +555,18 @@ fn unsupported_constructs_are_named() {
         run_err("d = {'a': 1}", 1, 5).message,
         "dictionaries ({...}) are not supported"
     );
+    // A string prefix is named at the prefix, with what to write instead; an identifier
+    // that merely ends in f before a quote is an ordinary syntax error.
+    let e = run_err("DEBUT(TITRE=f'x = {x}')", 1, 13);
+    assert!(
+        e.message.starts_with("string prefixes such as f'...'"),
+        "{}",
+        e.message
+    );
+    assert!(e.hint.unwrap().contains("str("));
+    assert!(run_err("x = rb'a'", 1, 5).message.contains("rb'...'"));
+    let e = run_err("x = leaf'a'", 1, 9);
+    assert!(e.message.starts_with("invalid syntax"), "{}", e.message);
     let e = run_err("import os", 1, 8);
     assert_eq!(e.message, "importing module 'os' is not supported");
     assert_eq!(

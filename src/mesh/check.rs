@@ -27,7 +27,7 @@ fn list(names: &[&str]) -> String {
 }
 
 /// Orphan nodes, cells using a node twice, and pairs of nodes closer than `aplat` times
-/// the diagonal of the bounding box.
+/// the typical cell size ([`typical_size`]).
 pub fn verify(mesh: &Mesh, aplat: f64) -> Vec<Finding> {
     let mut out = Vec::new();
     let mut used = vec![false; mesh.nodes.len()];
@@ -79,7 +79,7 @@ pub fn verify(mesh: &Mesh, aplat: f64) -> Vec<Finding> {
         out.push(Finding {
             id: "MAILLAGE_COINCIDENT_NODES",
             message: format!(
-                "{} pair(s) of nodes are closer than {aplat} times the mesh size: {}",
+                "{} pair(s) of nodes are closer than {aplat} times the typical cell size: {}",
                 close.len(),
                 list(&refs)
             ),
@@ -88,8 +88,42 @@ pub fn verify(mesh: &Mesh, aplat: f64) -> Vec<Finding> {
     out
 }
 
-/// Pairs of node indices closer than `aplat` times the bounding-box diagonal. Nodes are
-/// sorted along x so only neighbours within the tolerance in x are compared.
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// The size against which nodes count as coincident: the median over the cells of their
+/// longest edge (between any two of their nodes), so that a uniformly fine mesh (a beam of
+/// 2000 elements: nodes 1/2000 of its length apart) raises nothing while a pair of nodes far
+/// closer than the cells around them does; the bounding-box diagonal when no cell has two
+/// distinct nodes (a mesh of point cells).
+fn typical_size(mesh: &Mesh, diag: f64) -> f64 {
+    let mut sizes: Vec<f64> = mesh
+        .cells
+        .iter()
+        .filter_map(|c| {
+            let pts: Vec<[f64; 3]> = c
+                .nodes
+                .iter()
+                .filter_map(|&n| mesh.nodes.get(n).map(|p| p.coords))
+                .collect();
+            let longest = pts
+                .iter()
+                .enumerate()
+                .flat_map(|(i, &a)| pts[i + 1..].iter().map(move |&b| distance(a, b)))
+                .fold(0.0f64, f64::max);
+            (longest > 0.0 && longest.is_finite()).then_some(longest)
+        })
+        .collect();
+    if sizes.is_empty() {
+        return diag;
+    }
+    let mid = sizes.len() / 2;
+    *sizes.select_nth_unstable_by(mid, f64::total_cmp).1
+}
+
+/// Pairs of node indices closer than `aplat` times the typical cell size. Nodes are sorted
+/// along x so only neighbours within the tolerance in x are compared.
 fn coincident_nodes(mesh: &Mesh, aplat: f64) -> Vec<(usize, usize)> {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
@@ -103,7 +137,7 @@ fn coincident_nodes(mesh: &Mesh, aplat: f64) -> Vec<(usize, usize)> {
     if mesh.nodes.len() < 2 || !diag.is_finite() || diag == 0.0 {
         return Vec::new();
     }
-    let tol = aplat * diag;
+    let tol = aplat * typical_size(mesh, diag);
     let mut order: Vec<usize> = (0..mesh.nodes.len()).collect();
     order.sort_by(|&a, &b| mesh.nodes[a].coords[0].total_cmp(&mesh.nodes[b].coords[0]));
     let mut out = Vec::new();
@@ -114,8 +148,7 @@ fn coincident_nodes(mesh: &Mesh, aplat: f64) -> Vec<(usize, usize)> {
             if pb[0] - pa[0] > tol {
                 break;
             }
-            let d2: f64 = (0..3).map(|k| (pa[k] - pb[k]).powi(2)).sum();
-            if d2.sqrt() < tol {
+            if distance(pa, pb) < tol {
                 out.push((a.min(b), a.max(b)));
             }
         }
@@ -135,7 +168,9 @@ mod tests {
             name: name.into(),
             coords: [x, 0.0, 0.0],
         };
-        // Size 1 (diagonal), APLAT 1e-3: nodes 1e-4 apart are coincident, 1e-2 apart not.
+        // Cells of 0.5, 0.49 and 0.01 (median of the longest edges 0.49; S1 has none), APLAT
+        // 1e-3: nodes 1e-4 apart (B, C, in no common cell) are coincident, 1e-2 apart (D,
+        // E) not.
         let m = Mesh {
             dim: 3,
             nodes: vec![
@@ -154,12 +189,17 @@ mod tests {
                 Cell {
                     name: "S2".into(),
                     kind: CellKind::Seg2,
-                    nodes: vec![1, 2],
+                    nodes: vec![3, 1],
                 },
                 Cell {
                     name: "S3".into(),
                     kind: CellKind::Seg2,
                     nodes: vec![3, 4],
+                },
+                Cell {
+                    name: "S4".into(),
+                    kind: CellKind::Seg2,
+                    nodes: vec![2, 4],
                 },
             ],
             ..Mesh::default()
@@ -176,6 +216,23 @@ mod tests {
             "{}",
             f[1].message
         );
+
+        // A uniformly fine chain (2000 cells of 1/2000): nothing is coincident.
+        let fine = Mesh {
+            dim: 3,
+            nodes: (0..=2000)
+                .map(|i| node(&format!("N{i}"), i as f64 / 2000.0))
+                .collect(),
+            cells: (0..2000)
+                .map(|i| Cell {
+                    name: format!("M{i}"),
+                    kind: CellKind::Seg2,
+                    nodes: vec![i, i + 1],
+                })
+                .collect(),
+            ..Mesh::default()
+        };
+        assert!(verify(&fine, 1e-3).is_empty());
 
         let mut m2 = m.clone();
         m2.nodes.push(node("LONE", 0.7));

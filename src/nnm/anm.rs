@@ -26,9 +26,7 @@ pub struct Series {
     pub pade: Option<Pade>,
 }
 
-pub fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
+pub use super::vector::dot_in_order as dot;
 
 pub fn norm(a: &[f64]) -> f64 {
     dot(a, a).sqrt()

@@ -15,14 +15,16 @@ use crate::error::{Error, Result};
 
 /// Why a corrected branch end is not a point of the physical family although its residual
 /// converged, if it is not (StepControl::law_defect_max, spread_max): the error a retry
-/// with a shorter step may cure, else the one that stops the run.
+/// with a shorter step may cure, else the one that stops the run. The law check's absolute
+/// defect is kept on the point (`Point::law_defect`) for its row.
 pub(super) fn off_the_law(
     control: &StepControl,
     law_check: Option<&PostProcessor>,
-    end: &Point,
+    end: &mut Point,
 ) -> Result<Option<Error>> {
     if let (Some(max), Some(check)) = (control.law_defect_max, law_check) {
-        let defect = check.relative_law_defect(&end.x)?;
+        let (absolute, defect) = check.law_defects(&end.x)?;
+        end.law_defect = Some(absolute);
         if defect.is_nan() || defect > max {
             return Ok(Some(
                 Error::numerical(format!(
@@ -109,7 +111,12 @@ fn branch_points_of(
                 b,
             ));
         }
-        let mut res = newton::relative(&sys.residual(&x), &x);
+        // The end's residual is the Newton correction's first evaluation (not twice).
+        let mut res = if i == np {
+            f64::NAN
+        } else {
+            newton::relative(&sys.residual(&x), &x)
+        };
         let mut at_floor = false;
         if i == np {
             let predicted = x.clone();
@@ -222,13 +229,14 @@ pub(super) fn correct_branch(
         tangent,
         ..
     } = loop {
-        let attempt = branch_points_of(sys, solver, settings, series, x0, b)?.and_then(|done| {
-            match done.points.last() {
-                Some(end) => off_the_law(control, law_check, end)?,
-                None => None,
-            }
-            .map_or(Ok(done), Err)
-        });
+        let attempt =
+            branch_points_of(sys, solver, settings, series, x0, b)?.and_then(|mut done| {
+                match done.points.last_mut() {
+                    Some(end) => off_the_law(control, law_check, end)?,
+                    None => None,
+                }
+                .map_or(Ok(done), Err)
+            });
         match attempt {
             Ok(done) => {
                 let jump = jumped_off(sys, control, defect_at_start, &done)?;

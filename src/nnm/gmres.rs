@@ -7,6 +7,9 @@
 //! leaves: ‖b − A x‖ ≤ rtol·‖b‖ + BACKWARD·ε·‖A‖·‖x‖, ‖A‖ an upper bound the operator
 //! supplies (and never above FLOOR_CAP·‖b‖). The workspace is allocated once for a dimension and a cycle length.
 
+use super::vector::dot;
+pub use super::vector::norm;
+
 /// An operator and its preconditioner, applied to vectors of the workspace's dimension.
 pub trait Preconditioned {
     /// y = A x.
@@ -67,14 +70,6 @@ pub struct Gmres {
     w: Vec<f64>,
     z: Vec<f64>,
     r: Vec<f64>,
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
-pub fn norm(a: &[f64]) -> f64 {
-    dot(a, a).sqrt()
 }
 
 impl Gmres {

@@ -20,6 +20,7 @@ use super::contact::{ContactBlock, Method};
 use super::reduced::{Linearisation, ReducedSystem};
 use super::series;
 use super::system::System;
+use super::vector::dot_in_order as dot;
 use crate::error::{Error, Result};
 use faer::prelude::*;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
@@ -171,10 +172,6 @@ impl StructuredSolver {
         z[lay.omega()] = d_omega;
         z[lay.gamma()] = self.red[nnl + 1];
     }
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
 impl TangentSolver for StructuredSolver {

@@ -64,6 +64,7 @@ mod start;
 mod step_control;
 mod system;
 mod toeplitz;
+mod vector;
 
 #[cfg(test)]
 mod hard_tests;

@@ -31,6 +31,10 @@ pub struct Point {
     /// The correction was accepted at the round-off floor (newton.rs), not below
     /// PREC_NEWTON.
     pub at_floor: bool,
+    /// ECART_LOI_CHOC (`PostProcessor::law_defects`), when the run has already checked this
+    /// point against its contact law (the branch ends, StepControl::law_defect_max): the
+    /// table takes it instead of sampling the law a second time.
+    pub law_defect: Option<f64>,
 }
 
 /// Physical value of each unknown per scaled unit.
@@ -92,6 +96,7 @@ pub(super) fn make_point(
         harm_max: energy::harm_max(sys, x),
         step_retries: 0,
         at_floor: false,
+        law_defect: None,
     }
 }
 

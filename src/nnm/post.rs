@@ -119,10 +119,19 @@ impl PostProcessor {
 
     /// Everything stored with the point `x` (a `Point::x` of this problem and settings).
     pub fn row(&self, x: &[f64]) -> Result<RowOutputs> {
+        self.row_with_defect(x, None)
+    }
+
+    /// `row`, with the law defect taken from `known` when the run has computed it already
+    /// (`Point::law_defect`, from `law_defects` on the same `x`).
+    pub fn row_with_defect(&self, x: &[f64], known: Option<f64>) -> Result<RowOutputs> {
         self.unknowns.check(x)?;
         let displacement = self.unknowns.displacement_unchecked(x);
         let contact = self.unknowns.contact_unchecked(x);
-        let law_defect = self.check.defect(&displacement, &contact)?;
+        let law_defect = match known {
+            Some(d) => d,
+            None => self.check.defect(&displacement, &contact)?,
+        };
         Ok(RowOutputs {
             displacement,
             contact,
@@ -153,10 +162,16 @@ impl PostProcessor {
     /// The law defect relative to the force the law carries (`LawCheck::defects`): what
     /// the run's guard (StepControl::law_defect_max) compares.
     pub fn relative_law_defect(&self, x: &[f64]) -> Result<f64> {
+        Ok(self.law_defects(x)?.1)
+    }
+
+    /// The law defect of `row` and the relative one of `relative_law_defect`, from one
+    /// sampling of the law.
+    pub fn law_defects(&self, x: &[f64]) -> Result<(f64, f64)> {
         self.unknowns.check(x)?;
         let displacement = self.unknowns.displacement_unchecked(x);
         let contact = self.unknowns.contact_unchecked(x);
-        Ok(self.check.defects(&displacement, &contact)?.1)
+        self.check.defects(&displacement, &contact)
     }
 }
 

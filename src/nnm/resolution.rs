@@ -11,6 +11,12 @@ use super::{Point, Problem, Settings, ShockLaw};
 /// amplitude, above which the force series counts as poorly resolved.
 pub const TAIL_RATIO_ALARM: f64 = 1e-2;
 
+/// Tail ratio above which the force series is not resolved at all (its last harmonics as
+/// large as its first): the rows then need not be motions of the system. Measured: 0.994 on
+/// sdnd122a's wall with RIGI_NOR 1e5 and NB_HARM_LINE 5, whose branch loops in energy and
+/// falls below the linear frequency with RESIDU 1e-13.
+pub const UNRESOLVED_RATIO: f64 = 0.5;
+
 /// At most this many points of a branch are examined (evenly spread, the last included).
 const SAMPLED_POINTS: usize = 20;
 
@@ -73,9 +79,18 @@ pub fn resolution_warnings(
         .enumerate()
         .filter(|(_, (r, _))| *r > TAIL_RATIO_ALARM)
         .map(|(s, (r, e))| {
+            let advice = if *r > UNRESOLVED_RATIO {
+                "; the force series is not resolved at all there, and rows with a converged RESIDU \
+                 need not be motions of the system (energies that go back and forth, frequencies \
+                 below the linear one, spurious bifurcations): raise NB_HARM_NONL and, for a stiff \
+                 stop, NB_HARM_LINE (the displacement must follow the short contact), or lower \
+                 RIGI_NOR or raise PARA_REGUL"
+            } else {
+                "; raise NB_HARM_NONL"
+            };
             format!(
                 "the contact force of shock {} is poorly resolved by NB_HARM_NONL={}: its last harmonics \
-                 still carry {:.1}% of its largest harmonic (at ENERGIE={:.4e}); raise NB_HARM_NONL",
+                 still carry {:.1}% of its largest harmonic (at ENERGIE={:.4e}){advice}",
                 s + 1,
                 settings.h_nonl,
                 100.0 * r,

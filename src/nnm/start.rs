@@ -132,9 +132,23 @@ pub(super) fn start(
                 }
                 Guess::StoredPoint => None,
             };
-            approached.ok_or_else(|| Error {
-                message: format!("start point: {}", e.message),
-                ..e
+            approached.ok_or_else(|| {
+                let mut err = Error {
+                    message: format!("start point: {}", e.message),
+                    ..e
+                };
+                if guess == Guess::LinearModes {
+                    // From a linear mode the amplitude is the user's choice and the usual cause.
+                    let usual = err.hint.take();
+                    err.keyword = Some("ETAT_INIT/COEF_AMPL".into());
+                    err = err.hint(format!(
+                        "the start guess is the linear mode scaled by COEF_AMPL (approached from \
+                         smaller amplitudes too): start at a smaller COEF_AMPL, the continuation \
+                         then climbs to the higher energies{}",
+                        usual.map(|h| format!("; else {h}")).unwrap_or_default()
+                    ));
+                }
+                err
             })?
         }
     };

@@ -58,6 +58,24 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     };
     let k_name = args.req_concept("MATR_RIGI")?.name.clone();
     let m_name = args.req_concept("MATR_MASS")?.name.clone();
+    let cara_choc = format!("{name}_CHOC");
+    // The shock table's name is derived from the result's: a concept of that name made
+    // by another operator is the user's, never silently replaced.
+    if let Some(op) = ctx
+        .store
+        .concept_operator(&cara_choc)?
+        .filter(|_| ctx.reuse.is_none())
+    {
+        if op != "MODE_NON_LINE" {
+            return Err(Error::validation(format!(
+                "MODE_NON_LINE stores its shocks in the table {cara_choc}, but a concept of \
+                 that name already exists (made by {op}) and would be overwritten"
+            ))
+            .hint(format!(
+                "name the result of MODE_NON_LINE otherwise, or rename the concept {cara_choc}"
+            )));
+        }
+    }
     let k = matrix::load_matrix(ctx.store, &k_name)?;
     let m = matrix::load_matrix(ctx.store, &m_name)?;
     if k.numbering.dofs != m.numbering.dofs || k.eliminated != m.eliminated {
@@ -228,7 +246,6 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         None => Vec::new(),
     };
     let exact_col = table.col(mnl_exact_law::COLUMN);
-    let cara_choc = format!("{name}_CHOC");
     if ctx.reuse.is_none() {
         ctx.create(&name, "table_container")?;
         // The table names K and M and rebuilds the problem from them when it is used
@@ -266,7 +283,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let mut writer = mnl_store::PointWriter::new(ctx.store, &name)?;
     for (j, p) in outcome.points.iter().enumerate() {
         let order = first_order + j as i64;
-        let out = post.row(&p.x)?;
+        let out = post.row_with_defect(&p.x, p.law_defect)?;
         let defect = out.law_defect;
         if defect > nnm::LAW_DEFECT_ALARM {
             suspect.push(order);
@@ -577,6 +594,18 @@ fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<StoredShock>
         let obstacle = c.req_text("OBSTACLE")?.to_string();
         // One component (PLAN, BI_PLAN) or two (CERCLE): the catalog's bounds.
         let cmps = c.req_texts("NOM_CMP")?;
+        // A ring lies in the plane of two different components: ('DX', 'DX') has no plane
+        // (its tangent is singular, found only after a long failed start).
+        if let [a, b] = cmps.as_slice() {
+            if a == b {
+                return Err(Error::validation(format!(
+                    "NOM_CMP=('{a}', '{b}') names one component twice: OBSTACLE='{obstacle}' \
+                     needs the two different components of the plane of its ring"
+                ))
+                .keyword(kw("NOM_CMP"))
+                .hint("e.g. NOM_CMP=('DX', 'DY') for a ring in the XY plane"));
+            }
+        }
         let node = choc_node(ctx, args, c, &kw)?;
         // Finite and > 0: the catalog's bounds (val_min = 0, excluded).
         let positive = |key: &str| c.req_real(key);

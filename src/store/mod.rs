@@ -277,13 +277,21 @@ impl Store {
     }
 
     pub fn concept_type(&self, name: &str) -> Result<Option<String>> {
+        // Cached: tables look up every text cell of every row (save_table), and a statement
+        // prepared per call costs more than the lookup.
         Ok(self
             .conn
-            .query_row(
-                "SELECT type FROM concepts WHERE name = ?1",
-                params![name],
-                |r| r.get(0),
-            )
+            .prepare_cached("SELECT type FROM concepts WHERE name = ?1")?
+            .query_row(params![name], |r| r.get(0))
+            .optional()?)
+    }
+
+    /// The operator that created concept `name`, if it exists.
+    pub fn concept_operator(&self, name: &str) -> Result<Option<String>> {
+        Ok(self
+            .conn
+            .prepare_cached("SELECT operator FROM concepts WHERE name = ?1")?
+            .query_row(params![name], |r| r.get(0))
             .optional()?)
     }
 

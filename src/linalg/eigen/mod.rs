@@ -118,6 +118,22 @@ impl ModeSet {
     }
 }
 
+/// How precisely double precision determines the ω² of the mode φ of K: ε·|φ|ᵀ|K||φ| /
+/// φᵀKφ, relative. The stored entries of K carry rounding errors of ε relative each (and a
+/// factorisation adds errors of the same form), which move ω² by up to that much; for a
+/// smooth mode of a fine mesh the stiffness terms cancel almost entirely (φᵀKφ ≪ |φ|ᵀ|K||φ|,
+/// by the square of the number of elements per half wavelength for a beam) and the lowest
+/// frequencies lose digits whatever the solver. Infinite when φᵀKφ ≤ 0 (rigid-body modes,
+/// whose ω² is judged absolutely instead).
+pub fn omega2_precision(k: &SymSparse, phi: &[f64]) -> f64 {
+    let q = k.form(phi, phi);
+    if q > 0.0 {
+        f64::EPSILON * k.abs_form(phi) / q
+    } else {
+        f64::INFINITY
+    }
+}
+
 /// f = √max(ω², 0) / 2π: round-off negative ω² of rigid-body modes give 0 Hz, never NaN.
 pub fn frequency(omega2: f64) -> f64 {
     omega2.max(0.0).sqrt() / (2.0 * PI)

@@ -141,6 +141,20 @@ impl SymSparse {
         dot(x, &ay)
     }
 
+    /// |x|ᵀ |A| |x| (entrywise absolute values): what bounds the rounding error of xᵀ A x
+    /// computed from the stored entries.
+    pub fn abs_form(&self, x: &[f64]) -> f64 {
+        let mut sum = 0.0;
+        for j in 0..self.n {
+            for p in self.col_ptr[j]..self.col_ptr[j + 1] {
+                let i = self.row_idx[p];
+                let t = (self.val[p] * x[i] * x[j]).abs();
+                sum += if i == j { t } else { 2.0 * t };
+            }
+        }
+        sum
+    }
+
     pub fn diag(&self) -> Vec<f64> {
         (0..self.n)
             .map(|j| {

@@ -512,3 +512,33 @@ fn lanczos_on_a_tiny_model_returns_every_mode() {
     }
     assert!(orthonormality_error(&set, &mm) < 1e-10);
 }
+
+/// The fixed–fixed chain's K = tridiag(−1, 2, −1) and its lowest mode φ_i = sin(iπ/(n+1))
+/// (positive): |φ|ᵀ|K||φ| / φᵀKφ is the ratio of the eigenvalues of tridiag(1, 2, 1) and
+/// of K for that same vector, (2 + 2c)/(2 − 2c) = cot²(π/(2(n+1))), c = cos(π/(n+1)):
+/// the closed form `omega2_precision` must give times ε, growing like n². (φᵀKφ carries the
+/// very rounding it measures, ε·4e5 ≈ 1e-10 relative at n = 1000: hence 1e-9.)
+#[test]
+fn omega2_precision_is_the_closed_form_of_the_chain() {
+    for n in [10usize, 100, 1000] {
+        let mut lower = Vec::new();
+        for i in 0..n {
+            lower.push((i, i, 2.0));
+            if i + 1 < n {
+                lower.push((i + 1, i, -1.0));
+            }
+        }
+        let k = sym::SymSparse::from_lower_triplets(n, &lower);
+        let h = std::f64::consts::PI / (n + 1) as f64;
+        let phi: Vec<f64> = (1..=n).map(|i| (i as f64 * h).sin()).collect();
+        let exact = f64::EPSILON / (0.5 * h).tan().powi(2);
+        let got = omega2_precision(&k, &phi);
+        assert!(
+            (got / exact - 1.0).abs() < 1e-9,
+            "n = {n}: {got:e} vs {exact:e}"
+        );
+    }
+    // A mode of no stiffness (rigid-body): judged absolutely, not by this ratio.
+    let free = sym::SymSparse::from_lower_triplets(2, &[(0, 0, 1.0), (1, 0, -1.0), (1, 1, 1.0)]);
+    assert!(omega2_precision(&free, &[1.0, 1.0]).is_infinite());
+}
