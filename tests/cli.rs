@@ -513,3 +513,234 @@ fn test_resu_finds_inst_with_the_second_tole_machine_and_critere() {
         assert!(out.contains("at the requested instant"), "{extra}:\n{out}");
     }
 }
+
+/// sdnd122a's wall (m = 1, k = 10, JEU 0.01, RIGI_NOR 50), 20 rows, and what one test of
+/// RECU_FONCTION on a dyna_trans needs: `extra` is appended before FIN. The mesh has a
+/// group TOUS of both nodes. Returns the run's exit code, output and database.
+fn recu_resultat_run(dir: &Path, extra: &str) -> (Option<i32>, String, PathBuf) {
+    let src = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let cut = src.find("FREQ = RECU_FONCTION").unwrap();
+    assert!(src.contains("NB_BRANCHE=105") && src.contains("COEF_AMPL=1."));
+    // A second branch, started inside the gap (COEF_AMPL 0.5) with a regularisation of
+    // 1e-10: its row 1 is before any contact.
+    let mnl = &src[src.find("MNL = MODE_NON_LINE(").unwrap()..cut];
+    let before_contact = mnl
+        .replace("MNL = ", "MNL0 = ")
+        .replace("COEF_AMPL=1.", "COEF_AMPL=0.5")
+        .replace("PARA_REGUL=5.e-5", "PARA_REGUL=1.e-10")
+        .replace("NB_BRANCHE=105", "NB_BRANCHE=1");
+    let comm = format!(
+        "{}{before_contact}{extra}\nFIN()\n",
+        src[..cut].replace("NB_BRANCHE=105", "NB_BRANCHE=20")
+    );
+    std::fs::write(dir.join("recu.comm"), comm).unwrap();
+    let mail = std::fs::read_to_string(case("sdnd122a.mail")).unwrap();
+    let mail = mail.replacen(
+        "GROUP_NO\n",
+        "GROUP_NO\n TOUS\n N1 N2\nFINSF\nGROUP_NO\n",
+        1,
+    );
+    std::fs::write(dir.join("recu.mail"), mail).unwrap();
+    let db = dir.join("recu.db");
+    let _ = std::fs::remove_file(&db);
+    let o = run_with_db(dir.join("recu.comm"), &db);
+    (o.status.code(), text(&o), db)
+}
+
+/// (INST, DEPL, VITE, ACCE) of N2 DX in the dyna_trans table `h`, by NUME_ORDRE.
+fn history_rows(c: &rusqlite::Connection, h: &str) -> Vec<[f64; 4]> {
+    let mut st = c
+        .prepare(&format!(
+            "SELECT INST, DEPL, VITE, ACCE FROM {h} WHERE NOEUD='N2' AND NOM_CMP='DX' \
+             ORDER BY NUME_ORDRE"
+        ))
+        .unwrap();
+    st.query_map([], |r| Ok([r.get(0)?, r.get(1)?, r.get(2)?, r.get(3)?]))
+        .unwrap()
+        .collect::<rusqlite::Result<_>>()
+        .unwrap()
+}
+
+fn max_abs(v: impl Iterator<Item = f64>) -> f64 {
+    v.fold(0.0, |m, x| m.max(x.abs()))
+}
+
+/// RECU_FONCTION(RESULTAT=H, NOM_CHAM=DEPL|VITE|ACCE, NOEUD|GROUP_NO, NOM_CMP) gives the
+/// stored time history, INST against the component; ACCE is the second derivative of the
+/// displacement, checked against ω²·DEPL where the motion is harmonic and against the
+/// centred difference of VITE where it is not.
+#[test]
+fn recu_fonction_reads_depl_vite_acce_of_a_dyna_trans() {
+    let dir = tempfile::tempdir().unwrap();
+    let calls = "
+H = REST_MODE_NONL(MODE_NON_LINE=MNL, NUME_ORDRE=20, NB_INST=1025)
+H0 = REST_MODE_NONL(MODE_NON_LINE=MNL0, NUME_ORDRE=1, NB_INST=65)
+FD = RECU_FONCTION(RESULTAT=H, NOM_CHAM='DEPL', NOEUD='N2', NOM_CMP='DX')
+FV = RECU_FONCTION(RESULTAT=H, NOM_CHAM='VITE', GROUP_NO='N2', NOM_CMP='DX')
+FA = RECU_FONCTION(RESULTAT=H, NOM_CHAM='ACCE', NOEUD='N2', NOM_CMP='DX',
+                   INTERPOL='LIN', PROL_DROITE='CONSTANT')
+";
+    let (code, out, db) = recu_resultat_run(dir.path(), calls);
+    assert_eq!(code, Some(0), "{out}");
+    let c = rusqlite::Connection::open(&db).unwrap();
+    let rows = history_rows(&c, "H");
+    assert_eq!(rows.len(), 1025);
+
+    // (a) Each function is its column of the table, instant by instant, named as in
+    // Code_Aster (NOM_PARA='INST', NOM_RESU the component), with the catalog's defaults.
+    for (f, col, prol_droite) in [
+        ("FD", 1, "Exclu"),
+        ("FV", 2, "Exclu"),
+        ("FA", 3, "Constant"),
+    ] {
+        let json: String = c
+            .query_row(
+                "SELECT json FROM concept_data WHERE concept=?1 AND key='function'",
+                [f],
+                |r| r.get(0),
+            )
+            .unwrap();
+        let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+        assert_eq!(
+            (v["nom_para"].as_str(), v["nom_resu"].as_str()),
+            (Some("INST"), Some("DX"))
+        );
+        assert_eq!(v["prol_gauche"], "Exclu");
+        assert_eq!(v["prol_droite"], prol_droite, "{f}");
+        let xs: Vec<f64> = serde_json::from_value(v["x"].clone()).unwrap();
+        let ys: Vec<f64> = serde_json::from_value(v["y"].clone()).unwrap();
+        assert_eq!(xs, rows.iter().map(|r| r[0]).collect::<Vec<_>>(), "{f}");
+        assert_eq!(ys, rows.iter().map(|r| r[col]).collect::<Vec<_>>(), "{f}");
+    }
+    // ... and TEST_RESU (by NOEUD and by GROUP_NO) and TEST_FONCTION read the same values.
+    let k = 300;
+    let [t, d, v, a] = rows[k - 1];
+    let tests = format!(
+        "{calls}
+TEST_RESU(RESU=(_F(RESULTAT=H, NUME_ORDRE={k}, NOM_CHAM='DEPL', NOEUD='N2', NOM_CMP='DX', VALE_CALC={d:e}, TOLE_MACHINE=1.e-12),
+                _F(RESULTAT=H, NUME_ORDRE={k}, NOM_CHAM='VITE', GROUP_NO='N2', NOM_CMP='DX', VALE_CALC={v:e}, TOLE_MACHINE=1.e-12),
+                _F(RESULTAT=H, NUME_ORDRE={k}, NOM_CHAM='ACCE', GROUP_NO='N2', NOM_CMP='DX', VALE_CALC={a:e}, TOLE_MACHINE=1.e-12)))
+TEST_FONCTION(VALEUR=(_F(FONCTION=FD, VALE_PARA={t:e}, VALE_CALC={d:e}, TOLE_MACHINE=1.e-12),
+                      _F(FONCTION=FV, VALE_PARA={t:e}, VALE_CALC={v:e}, TOLE_MACHINE=1.e-12),
+                      _F(FONCTION=FA, VALE_PARA={t:e}, VALE_CALC={a:e}, TOLE_MACHINE=1.e-12)))
+"
+    );
+    let (code, out, _) = recu_resultat_run(dir.path(), &tests);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("tests: 8 OK, 0 NOOK"), "{out}");
+
+    // (b) Before contact (MNL0 row 1) the motion is harmonic: ACCE = −ω²·DEPL, ω from the
+    // table's FREQUENCE. Not to round-off: inside the gap the regularised PLAN law still
+    // pushes with f ≈ η/(g − u), η = PARA_REGUL·k·g² = 1e-13 here, about 3e-9·k·A at this
+    // amplitude (A = 0.0084, g − A = 0.0016); its effect on ü + ω²u is below that, so
+    // 1e-8·max|ACCE| bounds it while any error in the derivative or in its scale (ω², the
+    // units) is of order 1.
+    let c = rusqlite::Connection::open(&db).unwrap();
+    let f0: f64 = c
+        .query_row("SELECT FREQUENCE FROM MNL0 WHERE NUME_ORDRE=1", [], |r| {
+            r.get(0)
+        })
+        .unwrap();
+    let w2 = (2.0 * std::f64::consts::PI * f0).powi(2);
+    let h0 = history_rows(&c, "H0");
+    let amax0 = max_abs(h0.iter().map(|r| r[3]));
+    assert!(
+        max_abs(h0.iter().map(|r| r[1])) < 0.009,
+        "row 1 of MNL0 touches the wall"
+    );
+    for r in &h0 {
+        assert!((r[3] + w2 * r[1]).abs() <= 1e-8 * amax0, "{r:?}, ω² = {w2}");
+    }
+    // In contact (MNL row 20, harmonics 0..5): the centred difference of VITE over
+    // h = T/1024 differs from v' = ü by at most h²/6·max|v'''| (Taylor), and
+    // max|v'''| = max|u''''| ≤ Σ_k (kω)⁴·|C_k| from the stored Fourier coefficients of u
+    // (mnl_fourier); VITE is the velocity series, equal to u' to round-off at a converged
+    // point, hence the 1e-9·max|ACCE| added for that.
+    let f20: f64 = c
+        .query_row("SELECT FREQUENCE FROM MNL WHERE NUME_ORDRE=20", [], |r| {
+            r.get(0)
+        })
+        .unwrap();
+    let w = 2.0 * std::f64::consts::PI * f20;
+    let mut st = c
+        .prepare(
+            "SELECT HARM, COEF_C, COEF_S FROM mnl_fourier WHERE concept='MNL' AND \
+             NUME_ORDRE=20 AND NOEUD='N2' AND NOM_CMP='DX'",
+        )
+        .unwrap();
+    let m4: f64 = st
+        .query_map([], |r| {
+            Ok((
+                r.get::<_, i64>(0)?,
+                r.get::<_, f64>(1)?,
+                r.get::<_, f64>(2)?,
+            ))
+        })
+        .unwrap()
+        .map(|x| x.unwrap())
+        .map(|(k, cc, ss)| (k as f64 * w).powi(4) * cc.hypot(ss))
+        .sum();
+    let amax = max_abs(rows.iter().map(|r| r[3]));
+    let h = rows[1][0] - rows[0][0];
+    let bound = h * h / 6.0 * m4 + 1e-9 * amax;
+    let mut worst: f64 = 0.0;
+    for i in 1..rows.len() - 1 {
+        let fd = (rows[i + 1][2] - rows[i - 1][2]) / (rows[i + 1][0] - rows[i - 1][0]);
+        worst = worst.max((fd - rows[i][3]).abs());
+    }
+    assert!(
+        worst <= bound,
+        "centred difference {worst:e} > bound {bound:e}"
+    );
+    // The bound is tight enough to matter: 2e-5 of the acceleration here (the first
+    // harmonic gives (ωh)²/6 = 6e-6, the 5th, 5⁴·ω⁴·|C_5|, most of the rest), far below a
+    // wrong factor on any harmonic.
+    assert!(bound < 1e-4 * amax, "{bound:e} vs {amax:e}");
+    assert!(worst > 0.1 * bound, "{worst:e} vs {bound:e}");
+}
+
+/// RECU_FONCTION on a dyna_trans: a wrong node, group or component is one error naming
+/// the keyword and what was expected.
+#[test]
+fn recu_fonction_on_a_dyna_trans_names_the_wrong_keyword() {
+    let dir = tempfile::tempdir().unwrap();
+    for (call, keyword, message) in [
+        (
+            "NOM_CHAM='DEPL', NOEUD='N9', NOM_CMP='DX'",
+            "RECU_FONCTION/NOEUD",
+            "mesh MAIL of H has no node 'N9'",
+        ),
+        (
+            "NOM_CHAM='DEPL', GROUP_NO='TOUS', NOM_CMP='DX'",
+            "RECU_FONCTION/GROUP_NO",
+            "GROUP_NO 'TOUS' holds 2 nodes; RECU_FONCTION extracts the history of one node",
+        ),
+        (
+            "NOM_CHAM='DEPL', GROUP_NO='NONE', NOM_CMP='DX'",
+            "RECU_FONCTION/GROUP_NO",
+            "mesh MAIL has no GROUP_NO 'NONE'",
+        ),
+        (
+            "NOM_CHAM='VITE', NOEUD='N2', NOM_CMP='DY'",
+            "RECU_FONCTION/NOM_CMP",
+            "component DY of node N2 is blocked",
+        ),
+        (
+            "NOM_CHAM='ACCE', NOEUD='N2', NOM_CMP='DRX'",
+            "RECU_FONCTION/NOM_CMP",
+            "node N2 has no component DRX in the model of H: H holds DX at N2",
+        ),
+    ] {
+        let extra = format!(
+            "H = REST_MODE_NONL(MODE_NON_LINE=MNL, NUME_ORDRE=2, NB_INST=8)\n\
+             F = RECU_FONCTION(RESULTAT=H, {call})\n"
+        );
+        let (code, out, _) = recu_resultat_run(dir.path(), &extra);
+        assert_eq!(code, Some(2), "{call}:\n{out}");
+        assert!(
+            out.contains(&format!("{keyword}: {message}")),
+            "{call}:\n{out}"
+        );
+        assert_eq!(out.matches(" × ").count(), 1, "{call}:\n{out}");
+    }
+}

@@ -14,6 +14,9 @@ pub struct TimeHistory {
     /// Per DOF, per instant.
     pub displacement: Vec<Vec<f64>>,
     pub velocity: Vec<Vec<f64>>,
+    /// Exact second derivative of the displacement series: ü = ω² d²u/dθ², with
+    /// d²/dθ² (c_k cos kθ + s_k sin kθ) = −k² (c_k cos kθ + s_k sin kθ).
+    pub acceleration: Vec<Vec<f64>>,
     /// Per shock, per component (PLAN/BI_PLAN: 1, CERCLE: x and y), per instant.
     pub contact_force: Vec<Vec<Vec<f64>>>,
 }
@@ -62,6 +65,16 @@ pub fn time_history(
             )
         })
         .collect();
+    let acceleration = (0..lay.n)
+        .map(|i| {
+            let u = &xs[lay.u(i)..lay.u(i) + lay.n_coef_lin];
+            samp(
+                &second_derivative(u, lay.h_lin),
+                lay.h_lin,
+                scaling.length * omega * omega,
+            )
+        })
+        .collect();
     let contact_force = sys
         .shocks
         .iter()
@@ -83,8 +96,18 @@ pub fn time_history(
         t: th.iter().map(|t| t / omega).collect(),
         displacement,
         velocity,
+        acceleration,
         contact_force,
     })
+}
+
+/// d²/dθ² of a series `[x0, c1..cH, s1..sH]`, exactly: harmonic k is multiplied by −k².
+fn second_derivative(x: &[f64], h: usize) -> Vec<f64> {
+    let mut d1 = vec![0.0; x.len()];
+    let mut d2 = vec![0.0; x.len()];
+    series::deriv(x, h, &mut d1);
+    series::deriv(&d1, h, &mut d2);
+    d2
 }
 
 /// Fourier coefficients (0, C1..CH_l, S1..SH_l) of the displacement of each DOF (physical).

@@ -600,6 +600,18 @@ fn time_history_and_coefficients_are_consistent() {
     assert!((th.displacement[0][0] - u0).abs() < 1e-14);
     assert!(th.velocity[0][0].abs() < 1e-9);
     assert!((th.t[64] * q.omega - 2.0 * std::f64::consts::PI).abs() < 1e-12);
+    // ü(0) = −ω² Σ k² C_k (u is [u0, C1..C3, S1..S3]), exactly from the series.
+    let a0: f64 = -q.omega.powi(2) * (1..4).map(|k| (k * k) as f64 * u[k]).sum::<f64>();
+    assert!((th.acceleration[0][0] - a0).abs() <= 1e-12 * a0.abs());
+    // A quarter period later (instant 16 of 64): −ω² Σ k² (C_k cos kπ/2 + S_k sin kπ/2).
+    let aq: f64 = -q.omega.powi(2)
+        * (1..4)
+            .map(|k| {
+                let (sn, cs) = (k as f64 * std::f64::consts::FRAC_PI_2).sin_cos();
+                (k * k) as f64 * (u[k] * cs + u[3 + k] * sn)
+            })
+            .sum::<f64>();
+    assert!((th.acceleration[0][16] - aq).abs() <= 1e-12 * th.acceleration[0][0].abs());
     // The wall pushes back (negative mean of u) and the force is large only beyond JEU.
     let f = &th.contact_force[0][0];
     let imax = (0..65).max_by(|&a, &b| f[a].total_cmp(&f[b])).unwrap();

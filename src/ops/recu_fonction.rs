@@ -1,8 +1,13 @@
-//! RECU_FONCTION (from a table): the function PARA_Y(PARA_X) built from two columns of a
+//! RECU_FONCTION from a table: the function PARA_Y(PARA_X) built from two columns of a
 //! table after FILTRE. As in Code_Aster, rows whose abscissa is not increasing (a branch
 //! that turns back, a table extended by a `reuse=` restart) are sorted by abscissa with
 //! alarm FONCT0_62; rows repeating an abscissa already taken are dropped, with a note.
+//!
+//! RECU_FONCTION from a `dyna_trans` (RESULTAT=, NOM_CHAM=, NOEUD= | GROUP_NO=, NOM_CMP=):
+//! the time history of one component, NOM_PARA='INST' and NOM_RESU the component's name,
+//! as in Code_Aster.
 
+use super::common::dyna_trans;
 use super::common::table_args::{filters, load_table_arg};
 use super::defi_fonction::function_with_options;
 use super::OpContext;
@@ -66,6 +71,50 @@ fn points(t: &Table, table: &str, px: &str, py: &str) -> Result<(Vec<f64>, Vec<f
 }
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    // The catalog's UN_PARMI(TABLE, RESULTAT) leaves one of them.
+    if args.concept("RESULTAT").is_some() {
+        from_result(ctx, args)
+    } else {
+        from_table(ctx, args)
+    }
+}
+
+/// The time history of one component of a `dyna_trans`: its instants are increasing (one
+/// period sampled from 0), so no reordering is needed.
+fn from_result(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    let name = ctx.result_name()?.to_string();
+    let result = args.req_concept("RESULTAT")?.name.clone();
+    let c = dyna_trans::component(
+        ctx.store,
+        args,
+        &result,
+        &|k| args.key_path(k),
+        "RECU_FONCTION extracts the history of one node",
+    )?;
+    let f = function_with_options(
+        args,
+        &name,
+        "INST",
+        &c.cmp,
+        c.samples.inst,
+        c.samples.values,
+    )?;
+    ctx.create(&name, "fonction_sdaster")?;
+    save_function(ctx.store, &name, &f)?;
+    if ctx.info >= 2 {
+        ctx.say(&format!(
+            "RECU_FONCTION {name}: {} of {} at node {}, component {}: {} instants",
+            c.field,
+            result,
+            c.node,
+            c.cmp,
+            f.x.len()
+        ))?;
+    }
+    Ok(())
+}
+
+fn from_table(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let name = ctx.result_name()?.to_string();
     let (c, t) = load_table_arg(ctx, args, "TABLE")?;
     let t = apply_all(&t, &filters(args, "FILTRE")?)?;

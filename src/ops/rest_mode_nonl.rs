@@ -8,7 +8,9 @@ use crate::model::modes::{Mode, ModeMeca};
 use crate::nnm;
 use crate::ops::common::mnl_problem::{engine_problem, row_of};
 use crate::ops::OpContext;
-use crate::store::{matrix, mnl as mnl_store, modes as mode_store, table as table_store};
+use crate::store::{
+    dyna_trans as dyna_store, matrix, mnl as mnl_store, modes as mode_store, table as table_store,
+};
 use crate::table::{Cell, ColKind, Table};
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
@@ -82,6 +84,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 ("NOM_CMP", ColKind::K),
                 ("DEPL", ColKind::R),
                 ("VITE", ColKind::R),
+                ("ACCE", ColKind::R),
             ] {
                 t.add_column(c, kind)?;
             }
@@ -95,6 +98,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                         Cell::K(dof.cmp.name().to_string()),
                         Cell::R(th.displacement[d][it]),
                         Cell::R(th.velocity[d][it]),
+                        Cell::R(th.acceleration[d][it]),
                     ])?;
                 }
             }
@@ -128,10 +132,27 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             let forces = format!("{name}_FORC");
             ctx.create(&name, "dyna_trans")?;
             table_store::save_table(ctx.store, &name, &t)?;
+            // The DOFs without rows, for a reader to say why (the complement of `free`).
+            let blocked = k
+                .numbering
+                .dofs
+                .iter()
+                .zip(&k.eliminated)
+                .filter(|(_, &e)| e)
+                .map(|(dof, _)| (dof.node.clone(), dof.cmp.name().to_string()))
+                .collect();
+            dyna_store::save_layout(
+                ctx.store,
+                &name,
+                &dyna_store::Layout {
+                    mesh: k.numbering.mesh.clone(),
+                    blocked,
+                },
+            )?;
             ctx.create(&forces, "table_sdaster")?;
             table_store::save_table(ctx.store, &forces, &f)?;
             ctx.say(&format!(
-                "REST_MODE_NONL {name}: {n_inst} instants over one period {:.6e} s; displacements and velocities in SQL table {name}, contact forces in {forces}",
+                "REST_MODE_NONL {name}: {n_inst} instants over one period {:.6e} s; displacements, velocities and accelerations in SQL table {name}, contact forces in {forces}",
                 th.t.last().copied().unwrap_or(0.0)
             ))
         }

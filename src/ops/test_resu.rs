@@ -2,17 +2,17 @@
 //!
 //! RESU=_F(RESULTAT=..., NUME_ORDRE|NUME_MODE=n, PARA='FREQ'|'MASS_GENE'|'RIGI_GENE'|'OMEGA2')
 //! tests a modal quantity of a `mode_meca`; RESU=_F(RESULTAT=..., NUME_ORDRE=n|INST=t,
-//! NOM_CHAM='DEPL'|'VITE', NOEUD=|GROUP_NO=, NOM_CMP=) tests one value of a field (a mode
+//! NOM_CHAM='DEPL'|'VITE'|'ACCE', NOEUD=|GROUP_NO=, NOM_CMP=) tests one value of a field (a mode
 //! shape, or a `dyna_trans` time history).
 
 use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::ops::common::dyna_trans;
 use crate::ops::common::nodes::{one_node_of_group, OneNode};
 use crate::ops::common::testing::{self, checks_with_floor, TestValue};
 use crate::ops::OpContext;
-use crate::store::{modes as mode_store, table as table_store};
+use crate::store::modes as mode_store;
 use crate::table::filter::Critere;
-use crate::table::Cell;
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     for (i, resu) in args.facts_or_empty("RESU").iter().enumerate() {
@@ -122,31 +122,8 @@ fn dyna_value(
     name: &str,
     kw: &dyn Fn(&str) -> String,
 ) -> Result<f64> {
-    let t = table_store::load_table(ctx.store, name)?;
-    let cmp = resu
-        .text("NOM_CMP")
-        .ok_or_else(|| Error::validation("expected NOM_CMP").keyword(kw("NOM_CMP")))?;
-    let node = match resu.text("NOEUD") {
-        Some(n) => n.to_string(),
-        None => {
-            return Err(Error::validation("expected NOEUD")
-                .keyword(kw("NOEUD"))
-                .hint("give the node by name for a time history"))
-        }
-    };
-    // NOM_CHAM has no default (Code_Aster's neither): giving it is what asks for a field
-    // value, and NOM_CMP (read above) is only allowed with it.
-    let field = match resu.req_text("NOM_CHAM")? {
-        "DEPL" => "DEPL",
-        "VITE" => "VITE",
-        other => {
-            return Err(
-                Error::validation(format!("NOM_CHAM='{other}' is not stored"))
-                    .keyword(kw("NOM_CHAM"))
-                    .hint("use DEPL or VITE"),
-            )
-        }
-    };
+    let c = dyna_trans::component(ctx.store, resu, name, kw, "TEST_RESU tests one value")?;
+    let (field, node, cmp) = (c.field, c.node.as_str(), c.cmp.as_str());
     let by_inst = resu.real("INST");
     let n = resu.int("NUME_ORDRE");
     // Instants are found as Code_Aster finds them: to the second TOLE_MACHINE value with
@@ -156,24 +133,13 @@ fn dyna_value(
     // The row of this DOF at the instant: by NUME_ORDRE exactly, or by INST the nearest
     // one within the extraction's precision (a coarse precision can hold several).
     let mut best: Option<(f64, usize)> = None;
-    for r in 0..t.nrows() {
-        let same_dof = t.cell(r, "NOEUD").and_then(Cell::as_text) == Some(node.as_str())
-            && t.cell(r, "NOM_CMP").and_then(Cell::as_text) == Some(cmp);
-        if !same_dof {
-            continue;
-        }
+    for (r, (&ti, &nr)) in c.samples.inst.iter().zip(&c.samples.nume_ordre).enumerate() {
         let distance = match (by_inst, n) {
-            (Some(inst), _) => t
-                .cell(r, "INST")
-                .and_then(Cell::as_f64)
-                .map(|ti| (ti - inst).abs())
-                .filter(|d| match critere {
-                    Critere::Relatif => *d <= prec * inst.abs().max(1e-300),
-                    Critere::Absolu => *d <= prec,
-                }),
-            (None, Some(n)) => {
-                matches!(t.cell(r, "NUME_ORDRE"), Some(Cell::I(i)) if *i == n).then_some(0.0)
-            }
+            (Some(inst), _) => Some((ti - inst).abs()).filter(|d| match critere {
+                Critere::Relatif => *d <= prec * inst.abs().max(1e-300),
+                Critere::Absolu => *d <= prec,
+            }),
+            (None, Some(n)) => (nr == n).then_some(0.0),
             (None, None) => None,
         };
         if let Some(d) = distance {
@@ -183,10 +149,7 @@ fn dyna_value(
         }
     }
     if let Some((_, r)) = best {
-        return t
-            .cell(r, field)
-            .and_then(Cell::as_f64)
-            .ok_or_else(|| Error::store(format!("{name}: no {field} value at this instant")));
+        return Ok(c.samples.values[r]);
     }
     Err(Error::validation(format!(
         "{name} has no {field} value of {node} {cmp} at the requested instant"

@@ -13,6 +13,7 @@
 //! [`Store::rollback_op`]): an operator that fails leaves the file exactly as before.
 
 pub mod deps;
+pub mod dyna_trans;
 pub mod function;
 pub mod matrix;
 pub mod mesh;

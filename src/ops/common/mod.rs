@@ -13,6 +13,9 @@ pub mod mnl_start;
 // Stored shocks and matrices back to the engine's problem (MODE_NON_LINE, REST_MODE_NONL,
 // CALC_STABILITE).
 pub mod mnl_problem;
+// One component of a dyna_trans by NOM_CHAM, NOEUD | GROUP_NO, NOM_CMP (TEST_RESU,
+// RECU_FONCTION).
+pub mod dyna_trans;
 // The node of NOEUD= or of a one-node GROUP_NO= (TEST_RESU, MODE_NON_LINE's CHOC).
 pub mod nodes;
 // Writing to logical units (UNITE); the files a run never writes over.
