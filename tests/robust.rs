@@ -668,3 +668,36 @@ fn a_ring_on_one_component_a_clashing_shock_table_and_a_far_start_are_named() {
         }
     }
 }
+
+/// sdnd122a's wall with RIGI_NOR 1e5 and NB_HARM_LINE 5: the contact force's last harmonics
+/// carry 99 % of its largest one, and the branch (RESIDU 1e-13) goes back and forth in
+/// energy below the linear frequency. Code_Aster completes such a run with an alarm, and so
+/// does aster-nl (a real file must not stop where Code_Aster goes on), but the alarm says
+/// that the rows need not be motions of the system and names NB_HARM_LINE too.
+#[test]
+fn an_unresolved_contact_force_is_said_to_make_the_rows_suspect() {
+    let base = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    assert!(base.contains("RIGI_NOR=50.") && base.contains("NB_BRANCHE=105"));
+    let base = base.replacen("RIGI_NOR=50.", "RIGI_NOR=1.e5", 1).replacen(
+        "NB_BRANCHE=105",
+        "NB_BRANCHE=20",
+        1,
+    );
+    // Only MODE_NON_LINE and what precedes it: the file's own tests are for RIGI_NOR 50.
+    let cut = base.find("FREQ = RECU_FONCTION").unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("u.mail")).unwrap();
+    let comm = dir.path().join("u.comm");
+    std::fs::write(&comm, format!("{}\nFIN()\n", &base[..cut])).unwrap();
+    let o = run_with_db(&comm, &dir.path().join("u.db"), &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    for want in [
+        "<MODE_NON_LINE_1>",
+        "is not resolved at all there",
+        "need not be motions of the system",
+        "NB_HARM_LINE",
+    ] {
+        assert!(out.contains(want), "{want} missing:\n{out}");
+    }
+}

@@ -11,11 +11,13 @@ use super::{Point, Problem, Settings, ShockLaw};
 /// amplitude, above which the force series counts as poorly resolved.
 pub const TAIL_RATIO_ALARM: f64 = 1e-2;
 
-/// Tail ratio above which the force series is not resolved at all (its last harmonics as
-/// large as its first): the rows then need not be motions of the system. Measured: 0.994 on
-/// sdnd122a's wall with RIGI_NOR 1e5 and NB_HARM_LINE 5, whose branch loops in energy and
-/// falls below the linear frequency with RESIDU 1e-13.
-pub const UNRESOLVED_RATIO: f64 = 0.5;
+/// Tail ratio above which the force series is not resolved at all: the rows then need not
+/// be motions of the system, and the alarm says so. Measured on sdnd122a's wall with
+/// RIGI_NOR 1e5, RESIDU 1e-13 on every row: 0.994 (NB_HARM_LINE 5), 0.428 (the same, 20
+/// branches) and 0.442 (NB_HARM_NONL 1000), branches whose energy goes back and forth and
+/// whose frequency falls below the linear one; 0.015 with NB_HARM_LINE 20, whose rows follow
+/// the exact period to 5e-3. An alarm, not an error: Code_Aster completes such runs.
+pub const UNRESOLVED_RATIO: f64 = 0.2;
 
 /// At most this many points of a branch are examined (evenly spread, the last included).
 const SAMPLED_POINTS: usize = 20;
