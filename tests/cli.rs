@@ -744,3 +744,50 @@ fn recu_fonction_on_a_dyna_trans_names_the_wrong_keyword() {
         assert_eq!(out.matches(" × ").count(), 1, "{call}:\n{out}");
     }
 }
+
+/// DETRUIRE of a MODE_NON_LINE result takes its CARA_CHOC sub-table (`MNL_CHOC`) with it,
+/// naming that sub-table as well is not an error, and the name can then be computed again.
+#[test]
+fn detruire_of_a_mode_non_line_result_takes_its_shock_table() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let head = &src[..src.find("FREQ = RECU_FONCTION").unwrap()];
+    // A short run: the same model and law, fewer harmonics and branches.
+    let short = head
+        .replace("NB_HARM_NONL=200", "NB_HARM_NONL=40")
+        .replace("NB_BRANCHE=105", "NB_BRANCHE=3");
+    assert_ne!(short, head);
+    let comm = dir.path().join("detr.comm");
+    let body = format!(
+        "{short}\nDETRUIRE(CONCEPT=_F(NOM=(MNL, MNL_CHOC)))\n\
+         MNL = MODE_NON_LINE(MATR_RIGI=RIGIDITE, MATR_MASS=MASSE,\n\
+         ETAT_INIT=_F(MODE_LINE=MODES, NUME_ORDRE=1, DIR_EVOLUTION=-1),\n\
+         CHOC=_F(OBSTACLE='PLAN', GROUP_NO='N2', NOM_CMP='DX', JEU=0.01, RIGI_NOR=50.,\n\
+         PARA_REGUL=5.e-5),\n\
+         RESOLUTION=_F(NB_HARM_LINE=5, NB_HARM_NONL=40, NB_BRANCHE=2, NB_PAS_MAN=1))\n\
+         DETRUIRE(CONCEPT=_F(NOM=MNL))\nFIN()\n"
+    );
+    std::fs::write(&comm, body).unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("detr.mail")).unwrap();
+    let db = dir.path().join("case.db");
+    let o = run_with_db(&comm, &db);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    let conn = rusqlite::Connection::open(&db).unwrap();
+    let left: Vec<String> = conn
+        .prepare("SELECT name FROM concepts WHERE name LIKE 'MNL%'")
+        .unwrap()
+        .query_map([], |r| r.get(0))
+        .unwrap()
+        .collect::<Result<_, _>>()
+        .unwrap();
+    assert!(left.is_empty(), "{left:?}\n{out}");
+    let tables: i64 = conn
+        .query_row(
+            "SELECT count(*) FROM sqlite_master WHERE name IN ('MNL', 'MNL_CHOC')",
+            [],
+            |r| r.get(0),
+        )
+        .unwrap();
+    assert_eq!(tables, 0, "{out}");
+}

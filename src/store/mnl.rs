@@ -81,6 +81,23 @@ pub fn drop_data(store: &Store, name: &str) -> Result<()> {
     Ok(())
 }
 
+/// The concepts a MODE_NON_LINE result owns beside its own rows: its CARA_CHOC sub-table
+/// (`<name>_CHOC`), when that concept is still the one MODE_NON_LINE made. Empty for any
+/// other concept. DETRUIRE removes them with their result, as Code_Aster's table_container
+/// takes its sub-tables with it.
+pub fn owned_concepts(store: &Store, name: &str) -> Result<Vec<String>> {
+    if store.concept_operator(name)?.as_deref() != Some("MODE_NON_LINE") {
+        return Ok(Vec::new());
+    }
+    let Ok(setup) = load_setup(store, name) else {
+        return Ok(Vec::new());
+    };
+    let sub = setup.cara_choc;
+    let made_here =
+        sub != name && store.concept_operator(&sub)?.as_deref() == Some("MODE_NON_LINE");
+    Ok(if made_here { vec![sub] } else { Vec::new() })
+}
+
 pub fn save_setup(store: &Store, name: &str, setup: &MnlSetup) -> Result<()> {
     store.put_json(name, "mnl_setup", setup)
 }

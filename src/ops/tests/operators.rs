@@ -697,6 +697,18 @@ fn detruire_drops_the_sql_table() {
     assert!(h.run("DETRUIRE", None, None, &a).is_err());
 }
 
+/// The newer syntax, DETRUIRE(NOM=...), removes the concept as CONCEPT=_F(NOM=...) does.
+#[test]
+fn detruire_by_the_top_level_nom() {
+    let mut h = Harness::new();
+    crea(&mut h);
+    let a = args("DETRUIRE", vec![("NOM", seq(vec![table("TAB")]))], vec![]);
+    h.run("DETRUIRE", None, None, &a).unwrap();
+    assert!(h.store.concept_type("TAB").unwrap().is_none());
+    let err = h.run("DETRUIRE", None, None, &a).unwrap_err();
+    assert!(err.message.contains("TAB is not a concept"), "{err:?}");
+}
+
 #[test]
 fn a_table_named_like_an_internal_table_is_refused_and_rolled_back() {
     let mut h = Harness::new();
