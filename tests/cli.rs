@@ -791,3 +791,39 @@ fn detruire_of_a_mode_non_line_result_takes_its_shock_table() {
         .unwrap();
     assert_eq!(tables, 0, "{out}");
 }
+
+/// A nonlinear mode started from a rigid-body mode (the free–free chain's first, 0 Hz) is
+/// refused at ETAT_INIT/NUME_ORDRE with the reason and what to do, not with a numerical
+/// failure later; the next mode (the first elastic one) starts.
+#[test]
+fn a_start_from_a_rigid_body_mode_is_refused_with_its_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = std::fs::read_to_string(case("chain_free_free.comm")).unwrap();
+    let with_mnl = |order: usize| {
+        src.replace(
+            "FIN()",
+            &format!(
+                "MNL = MODE_NON_LINE(MATR_RIGI=K, MATR_MASS=M,\n\
+                 ETAT_INIT=_F(MODE_LINE=MODES, NUME_ORDRE={order}, COEF_AMPL=1.),\n\
+                 CHOC=_F(OBSTACLE='PLAN', NOEUD='N4', NOM_CMP='DX', JEU=0.01, RIGI_NOR=500.,\n\
+                 PARA_REGUL=1.e-4),\n\
+                 RESOLUTION=_F(NB_HARM_LINE=3, NB_HARM_NONL=30, NB_BRANCHE=2, NB_PAS_MAN=1))\n\
+                 FIN()"
+            ),
+        )
+    };
+    std::fs::copy(case("chain_free_free.mail"), dir.path().join("ff.mail")).unwrap();
+    let comm = dir.path().join("ff.comm");
+    std::fs::write(&comm, with_mnl(1)).unwrap();
+    let o = run_with_db(&comm, dir.path().join("a.db"));
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("MODE_NON_LINE/ETAT_INIT/NUME_ORDRE"), "{out}");
+    assert!(out.contains("rigid-body mode"), "{out}");
+    assert!(out.contains("start from an elastic mode"), "{out}");
+    std::fs::write(&comm, with_mnl(2)).unwrap();
+    let o = run_with_db(&comm, dir.path().join("b.db"));
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert!(out.contains("MODE_NON_LINE MNL: 2 point(s)"), "{out}");
+}

@@ -62,8 +62,9 @@ pub struct Correction {
     pub iterations: usize,
     /// Final relative residual (RESIDU).
     pub residual: f64,
-    /// Accepted above the target because it had stopped decreasing at the round-off level
-    /// (the rule of [`correct`]); the caller raises an alarm.
+    /// Accepted above the target because it had stopped decreasing at the round-off level,
+    /// or because the last correction changed X only in its 12th digit (the rules of
+    /// [`correct`]); the caller raises an alarm.
     pub at_floor: bool,
 }
 
@@ -129,11 +130,14 @@ pub fn correct(
         solver.solve(sys, &mut d)?;
         // A correction at the 12th digit of X: what residual remains is round-off in the
         // quadratic terms (it grows like ε‖X‖² far up a branch), not a lack of convergence.
+        // Accepted, but flagged when it is still above the target, so that the caller says
+        // so (the rows are then as accurate as the arithmetic allows, not to PREC_NEWTON).
         if norm(&d) <= 1e-12 * norm(x).max(1.0) {
             for (xi, di) in x.iter_mut().zip(&d) {
                 *xi += di;
             }
-            return Ok(done(it + 1, relative(&sys.residual(x), x), false));
+            let residual = relative(&sys.residual(x), x);
+            return Ok(done(it + 1, residual, residual > tol));
         }
         // Full step unless it increases the residual (a start point far from the branch,
         // e.g. a linear mode placed deep into contact): then halve it a few times.

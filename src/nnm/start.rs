@@ -288,9 +288,14 @@ pub(crate) fn check_start(
     }
     if !(omega_lin.is_finite() && omega_lin > 0.0) {
         return Err(Error::input(format!(
-            "the linear pulsation must be positive, got {omega_lin}"
+            "the linear mode chosen has pulsation {omega_lin}: a rigid-body mode (or not a \
+             vibration mode) has no periodic orbits to continue"
         ))
-        .keyword("ETAT_INIT/NUME_ORDRE"));
+        .keyword("ETAT_INIT/NUME_ORDRE")
+        .hint(
+            "start from an elastic mode (frequency above zero): the first NUME_ORDRE after \
+             the rigid-body modes, or block the rigid-body motion (AFFE_CHAR_CINE, DDL_IMPO)",
+        ));
     }
     Ok(n)
 }

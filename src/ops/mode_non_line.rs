@@ -328,8 +328,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             &format!(
                 "{} row(s) between NUME_ORDRE {first} and {last} were accepted with RESIDU above \
                  PREC_NEWTON: the correction had stopped decreasing at the round-off level of the \
-                 equations there (docs/nnm.md, 'Convergence at the round-off floor'); a larger \
-                 PARA_REGUL or a smaller RIGI_NOR lowers that level",
+                 equations there (docs/nnm.md, `Point::residual`); that level \
+                 grows with the amplitude far up a branch (the quadratic law terms) and with a \
+                 stiff regularised law: a larger PARA_REGUL or a smaller RIGI_NOR lowers it, or \
+                 NB_BRANCHE can stop the branch lower",
                 floor_rows.len()
             ),
         )?;
