@@ -1,5 +1,5 @@
-//! IMPR_TABLE: print a table (FORMAT 'TABLEAU' or 'CSV') after FILTRE, TRI and NOM_PARA;
-//! TITRE replaces the table's title in the TABLEAU header. FORMAT='PNG' | 'SVG' (aster-nl)
+//! IMPR_TABLE: print a table (FORMAT 'TABLEAU', 'ASTER', 'CSV', 'TABLEAU_CROISE' or
+//! 'XMGRACE') after FILTRE, TRI and NOM_PARA; TITRE replaces the table's title. FORMAT='PNG' | 'SVG' (aster-nl)
 //! draws it instead: see [`draw`].
 
 use super::common::output::write_unit;
@@ -15,8 +15,9 @@ use crate::plot::tables::{
 use crate::plot::{
     frequency_energy_spec, phase_portrait_spec, stacked, time_history_specs, xy_plot, HISTORY_SIZE,
 };
+use crate::table::cross::cross;
 use crate::table::filter::apply_all;
-use crate::table::print::{csv, tableau, FormatR};
+use crate::table::print::{aster, csv, grace, tableau, FormatR};
 use crate::table::Table;
 use crate::value::ConceptRef;
 
@@ -39,24 +40,59 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let fmt = FormatR::parse(args.req_text("FORMAT_R")?)?;
     let format = args.req_text("FORMAT")?;
     let separateur = args.req_text("SEPARATEUR")?;
-    let text = match format {
-        "TABLEAU" => {
-            let title = if let Some(titre) = titre(args) {
-                titre
-            } else if t.title.is_empty() {
-                format!("ASTER CONCEPT {} DE TYPE {}", c.name, c.ty.to_uppercase())
-            } else {
-                t.title.clone()
-            };
-            tableau(&t, &title, fmt, separateur)
+    let title = match titre(args) {
+        Some(titre) => titre,
+        None if t.title.is_empty() => {
+            format!("ASTER CONCEPT {} DE TYPE {}", c.name, c.ty.to_uppercase())
         }
+        None => t.title.clone(),
+    };
+    let text = match format {
+        "TABLEAU" => tableau(&t, &title, fmt, separateur),
+        "ASTER" => aster(&t, &title, fmt, separateur),
         "CSV" => csv(&t, fmt, separateur),
+        "TABLEAU_CROISE" => {
+            let Some(crossed) = cross(&t, fmt) else {
+                // As Code_Aster: an alarm, and nothing printed.
+                return ctx.alarm(
+                    "TABLE0_36",
+                    &format!(
+                        "FORMAT='TABLEAU_CROISE' needs a table of three parameters (P1, P2, \
+                         P3), {} has {}: nothing printed; choose them with NOM_PARA",
+                        c.name,
+                        t.columns.len()
+                    ),
+                );
+            };
+            let title = titre(args).unwrap_or_else(|| crossed.title.clone());
+            tableau(&crossed, &title, fmt, separateur)
+        }
+        "XMGRACE" => {
+            if t.columns.len() != 2 {
+                return ctx.alarm(
+                    "TABLE0_21",
+                    &format!(
+                        "FORMAT='XMGRACE' draws two columns, {} has {}: nothing written; \
+                         choose them with NOM_PARA=(x, y)",
+                        c.name,
+                        t.columns.len()
+                    ),
+                );
+            }
+            grace(&t, &title, fmt).map_err(|e| e.keyword("IMPR_TABLE/NOM_PARA"))?
+        }
         other => {
-            return Err(
-                Error::validation(format!("FORMAT '{other}' is not supported"))
-                    .keyword("IMPR_TABLE/FORMAT")
-                    .hint("use 'TABLEAU', 'CSV', or 'PNG' / 'SVG' for a picture"),
-            )
+            // NUMPY and AGRAF: output for other programs that aster-nl does not write. A
+            // print never stops the study: the table stays in the database.
+            return ctx.alarm(
+                "IMPR_TABLE_1",
+                &format!(
+                    "FORMAT='{other}' is not written by aster-nl: {} was not printed; it \
+                     stays in the database (query it with SQL), or print it with \
+                     FORMAT='TABLEAU', 'ASTER', 'CSV' or 'PNG'",
+                    c.name
+                ),
+            );
         }
     };
     let unite = args.req_int("UNITE")?;

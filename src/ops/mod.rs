@@ -195,13 +195,16 @@ impl<'a> OpContext<'a> {
 
 /// Alarms Code_Aster raises in the same situation: RECU_FONCTION reordering the abscissas
 /// (FONCT0_62, the id Code_Aster's files silence) and LIRE_MAILLAGE's checks of the mesh
-/// (orphan, coincident nodes, degenerate cells: Code_Aster's VERI_MAIL, on by default).
-/// Only these become errors under DEBUT(ERREUR=_F(ALARME='EXCEPTION')).
+/// (orphan, coincident nodes, degenerate cells: Code_Aster's VERI_MAIL, on by default),
+/// IMPR_TABLE's TABLEAU_CROISE of a table without three parameters (TABLE0_36) and XMGRACE
+/// of one without two (TABLE0_21). Only these become errors under DEBUT(ERREUR=_F(ALARME='EXCEPTION')).
 pub const CODE_ASTER_ALARMS: &[&str] = &[
     "FONCT0_62",
     "MAILLAGE_ORPHAN_NODES",
     "MAILLAGE_COINCIDENT_NODES",
     "MAILLAGE_DEGENERATE_CELLS",
+    "TABLE0_36",
+    "TABLE0_21",
 ];
 
 /// Signature of every operator.

@@ -7,6 +7,7 @@
 //! persistence lives in `store::table`.
 
 pub mod aggregate;
+pub mod cross;
 pub mod filter;
 pub mod print;
 pub mod sort;

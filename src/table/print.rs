@@ -1,6 +1,8 @@
 //! Printing tables as Code_Aster does: FORMAT='TABLEAU' (title lines starting with `#`,
-//! aligned columns) and FORMAT='CSV'. Reals follow FORMAT_R (`E12.5` by default, i.e. C's
-//! `%12.5E` with a two-digit exponent at least).
+//! aligned columns), FORMAT='ASTER' (the same between `#DEBUT_TABLE` and `#FIN_TABLE`,
+//! with a line of types), FORMAT='CSV' and FORMAT='XMGRACE' (two columns as a Grace
+//! file). Reals follow FORMAT_R (`E12.5` by default, i.e. C's `%12.5E` with a two-digit
+//! exponent at least).
 
 use super::{Cell, ColKind, Table};
 use crate::error::{Error, Result};
@@ -84,67 +86,145 @@ fn cell_string(c: &Cell, fmt: FormatR) -> String {
     }
 }
 
+/// The printed cells and the column widths shared by TABLEAU and ASTER: numbers are
+/// right-aligned, texts, names and empty cells (`-`) left-aligned, columns at least as wide
+/// as the real format.
+struct Layout {
+    header: Vec<String>,
+    /// One entry per printed row (a row with only empty cells is not printed, as in
+    /// Code_Aster).
+    rows: Vec<Vec<String>>,
+}
+
+impl Layout {
+    fn new(t: &Table, fmt: FormatR) -> Layout {
+        let cells: Vec<Vec<String>> = t
+            .rows
+            .iter()
+            .map(|r| r.iter().map(|c| cell_string(c, fmt)).collect())
+            .collect();
+        let widths: Vec<usize> = t
+            .columns
+            .iter()
+            .enumerate()
+            .map(|(j, c)| {
+                let base = match c.kind {
+                    ColKind::R | ColKind::I => fmt.width(),
+                    ColKind::K => 0,
+                };
+                cells
+                    .iter()
+                    .filter_map(|r| r.get(j).map(|s| s.chars().count()))
+                    .chain([c.name.chars().count(), base])
+                    .max()
+                    .unwrap_or(0)
+            })
+            .collect();
+        let header = t
+            .columns
+            .iter()
+            .zip(&widths)
+            .map(|(c, &w)| format!("{:<w$}", c.name))
+            .collect();
+        let rows = t
+            .rows
+            .iter()
+            .zip(&cells)
+            .filter(|(row, _)| !row.iter().all(Cell::is_null))
+            .map(|(row, strs)| {
+                row.iter()
+                    .zip(strs)
+                    .zip(&widths)
+                    .map(|((c, s), &w)| match c {
+                        Cell::R(_) | Cell::I(_) => format!("{s:>w$}"),
+                        _ => format!("{s:<w$}"),
+                    })
+                    .collect()
+            })
+            .collect();
+        Layout { header, rows }
+    }
+}
+
+/// Code_Aster's header of a printed table: "#", a rule of 80 dashes, "#".
+fn rule() -> String {
+    format!("#\n#{}\n#\n", "-".repeat(80))
+}
+
 /// FORMAT='TABLEAU': the `#` header, one `#` line per title line, the parameter names,
-/// the rows, a blank line. Numbers are right-aligned, texts, names and empty cells (`-`)
-/// left-aligned, columns at least as wide as the real format.
+/// the rows, a blank line.
 pub fn tableau(t: &Table, title: &str, fmt: FormatR, sep: &str) -> String {
-    let cells: Vec<Vec<String>> = t
-        .rows
-        .iter()
-        .map(|r| r.iter().map(|c| cell_string(c, fmt)).collect())
-        .collect();
-    let widths: Vec<usize> = t
-        .columns
-        .iter()
-        .enumerate()
-        .map(|(j, c)| {
-            let base = match c.kind {
-                ColKind::R | ColKind::I => fmt.width(),
-                ColKind::K => 0,
-            };
-            cells
-                .iter()
-                .filter_map(|r| r.get(j).map(|s| s.chars().count()))
-                .chain([c.name.chars().count(), base])
-                .max()
-                .unwrap_or(0)
-        })
-        .collect();
-    // Code_Aster's header: "#", a rule of 80 dashes, "#", then the title lines.
-    let mut out = format!("#\n#{}\n#\n", "-".repeat(80));
+    let layout = Layout::new(t, fmt);
+    let mut out = rule();
     for line in title.lines() {
         out.push('#');
         out.push_str(line);
         out.push('\n');
     }
-    let header: Vec<String> = t
-        .columns
-        .iter()
-        .zip(&widths)
-        .map(|(c, &w)| format!("{:<w$}", c.name))
-        .collect();
-    out.push_str(header.join(sep).trim_end());
-    out.push('\n');
-    for (row, strs) in t.rows.iter().zip(&cells) {
-        // Like Code_Aster, a row with only empty cells is not printed.
-        if row.iter().all(Cell::is_null) {
-            continue;
-        }
-        let line: Vec<String> = row
-            .iter()
-            .zip(strs)
-            .zip(&widths)
-            .map(|((c, s), &w)| match c {
-                Cell::R(_) | Cell::I(_) => format!("{s:>w$}"),
-                _ => format!("{s:<w$}"),
-            })
-            .collect();
+    for line in std::iter::once(&layout.header).chain(&layout.rows) {
         out.push_str(line.join(sep).trim_end());
         out.push('\n');
     }
     // A blank line closes the table, so successive prints to one unit stay apart.
     out.push('\n');
     out
+}
+
+/// FORMAT='ASTER': the block Code_Aster's LIRE_TABLE reads back: the `#` header, then
+/// `#DEBUT_TABLE`, one `#TITRE` line per title line, the parameter names, their types, the
+/// rows and `#FIN_TABLE`; every line of the block after the markers starts with the
+/// separator. The store keeps a text column's kind, not its declared length, so its type is
+/// written as the shortest of Code_Aster's K8, K16, K24, K32, K80 that holds its longest
+/// text.
+pub fn aster(t: &Table, title: &str, fmt: FormatR, sep: &str) -> String {
+    let layout = Layout::new(t, fmt);
+    let types: Vec<String> = t
+        .columns
+        .iter()
+        .enumerate()
+        .zip(&layout.header)
+        .map(|((j, c), h)| {
+            let name = match c.kind {
+                ColKind::R => "R".to_string(),
+                ColKind::I => "I".to_string(),
+                ColKind::K => text_type(t, j).to_string(),
+            };
+            format!("{name:<w$}", w = h.chars().count())
+        })
+        .collect();
+    let mut out = rule();
+    out.push_str("#DEBUT_TABLE\n");
+    for line in title.lines() {
+        out.push_str("#TITRE ");
+        out.push_str(line);
+        out.push('\n');
+    }
+    let lines = [&layout.header, &types].into_iter().chain(&layout.rows);
+    for line in lines {
+        out.push_str(sep);
+        out.push_str(line.join(sep).trim_end());
+        out.push('\n');
+    }
+    out.push_str("#FIN_TABLE\n\n");
+    out
+}
+
+/// The shortest Code_Aster text type (K8 … K80) that holds column `j`'s longest text.
+fn text_type(t: &Table, j: usize) -> &'static str {
+    let longest = t
+        .rows
+        .iter()
+        .filter_map(|r| r.get(j).and_then(Cell::as_text))
+        .map(|s| s.chars().count())
+        .max()
+        .unwrap_or(0);
+    match longest {
+        0..=8 => "K8",
+        9..=16 => "K16",
+        17..=24 => "K24",
+        25..=32 => "K32",
+        _ => "K80",
+    }
 }
 
 /// FORMAT='CSV': a header line of parameter names, then one line per row; no padding,
@@ -174,6 +254,47 @@ pub fn csv(t: &Table, fmt: FormatR, sep: &str) -> String {
         out.push('\n');
     }
     out
+}
+
+/// FORMAT='XMGRACE': a two-column table as a Grace project file (xmgrace reads it): the
+/// first column against the second, one xy set, rows with an empty cell left out as
+/// Code_Aster does. Both columns must be numbers.
+pub fn grace(t: &Table, title: &str, fmt: FormatR) -> Result<String> {
+    let [x, y] = t.columns.as_slice() else {
+        return Err(Error::validation(format!(
+            "FORMAT='XMGRACE' draws two columns, the table has {}",
+            t.columns.len()
+        ))
+        .keyword("NOM_PARA"));
+    };
+    for c in [x, y] {
+        if c.kind == ColKind::K {
+            return Err(Error::validation(format!(
+                "FORMAT='XMGRACE' draws numbers; column {} holds texts",
+                c.name
+            ))
+            .keyword("NOM_PARA"));
+        }
+    }
+    let quoted = |s: &str| s.replace('"', "'");
+    let mut out = String::from("# Grace project file (aster-nl, IMPR_TABLE)\n@version 50122\n");
+    out.push_str(&format!(
+        "@title \"{}\"\n@xaxis label \"{}\"\n@yaxis label \"{}\"\n",
+        quoted(title.lines().next().unwrap_or("")),
+        quoted(&x.name),
+        quoted(&y.name)
+    ));
+    out.push_str(&format!(
+        "@target G0.S0\n@type xy\n@s0 legend \"{}\"\n",
+        quoted(&y.name)
+    ));
+    for row in &t.rows {
+        if let (Some(a), Some(b)) = (row[0].as_f64(), row[1].as_f64()) {
+            out.push_str(&format!("{} {}\n", fmt.format(a), fmt.format(b)));
+        }
+    }
+    out.push_str("&\n");
+    Ok(out)
 }
 
 #[cfg(test)]

@@ -205,6 +205,89 @@ fn impr_table_to_stdout_and_to_a_unit() {
     );
 }
 
+/// FORMAT='ASTER' is the TABLEAU block between Code_Aster's markers with a line of types;
+/// TABLEAU_CROISE turns three parameters into a cross table; XMGRACE writes two columns as
+/// a Grace file; a format aster-nl does not write (NUMPY) is an alarm that loses nothing,
+/// not a stop of the study.
+#[test]
+fn impr_table_aster_cross_grace_and_unwritten_formats() {
+    let mut h = Harness::new();
+    crea(&mut h);
+    let print = |h: &mut Harness, format: &str, names: &[&str]| {
+        let mut simple = vec![("TABLE", table("TAB")), ("FORMAT", k(format))];
+        if !names.is_empty() {
+            simple.push(("NOM_PARA", seq(names.iter().map(|n| k(n)).collect())));
+        }
+        let before = h.output().len();
+        h.run(
+            "IMPR_TABLE",
+            None,
+            None,
+            &args("IMPR_TABLE", simple, vec![]),
+        )
+        .unwrap();
+        h.output()[before..].to_string()
+    };
+    let expected = concat!(
+        "#\n#--------------------------------------------------------------------------------\n#\n",
+        "#DEBUT_TABLE\n",
+        "#TITRE three modes\n",
+        " NUME_ORDRE   FREQ         NOM\n",
+        " I            R            K8\n",
+        "            1  1.50000E+00 a\n",
+        "            2  2.50000E+00 b\n",
+        "            3  3.50000E+00 c\n",
+        "#FIN_TABLE\n",
+        "\n",
+    );
+    assert_eq!(print(&mut h, "ASTER", &[]), expected);
+
+    // NOM as a function of FREQ (rows) and NUME_ORDRE (columns): the diagonal is filled.
+    let crossed = print(&mut h, "TABLEAU_CROISE", &[]);
+    let lines: Vec<&str> = crossed.lines().collect();
+    assert_eq!(lines[3], "#three modes");
+    assert_eq!(lines[4], "#NOM FONCTION DE FREQ ET NUME_ORDRE");
+    assert_eq!(lines[5], "FREQ/NUME_ORDRE 1 2 3");
+    assert_eq!(lines[6], "    1.50000E+00 a - -");
+    assert_eq!(lines[7], "    2.50000E+00 - b -");
+    assert_eq!(lines[8], "    3.50000E+00 - - c");
+    // Two parameters cannot be crossed: an alarm, nothing printed.
+    let out = print(&mut h, "TABLEAU_CROISE", &["NUME_ORDRE", "FREQ"]);
+    assert!(out.contains("TABLE0_36") && !out.contains("#---"), "{out}");
+
+    let grace = print(&mut h, "XMGRACE", &["NUME_ORDRE", "FREQ"]);
+    assert!(grace.contains("@xaxis label \"NUME_ORDRE\""), "{grace}");
+    assert!(
+        grace.ends_with("@type xy\n@s0 legend \"FREQ\"\n 1.00000E+00  1.50000E+00\n 2.00000E+00  2.50000E+00\n 3.00000E+00  3.50000E+00\n&\n"),
+        "{grace}"
+    );
+    let out = print(&mut h, "XMGRACE", &[]);
+    assert!(out.contains("TABLE0_21"), "{out}");
+    let err = h
+        .run(
+            "IMPR_TABLE",
+            None,
+            None,
+            &args(
+                "IMPR_TABLE",
+                vec![
+                    ("TABLE", table("TAB")),
+                    ("FORMAT", k("XMGRACE")),
+                    ("NOM_PARA", seq(vec![k("FREQ"), k("NOM")])),
+                ],
+                vec![],
+            ),
+        )
+        .unwrap_err();
+    assert!(err.message.contains("column NOM holds texts"), "{err}");
+
+    let out = print(&mut h, "NUMPY", &[]);
+    assert!(
+        out.contains("IMPR_TABLE_1") && out.contains("FORMAT='NUMPY' is not written"),
+        "{out}"
+    );
+}
+
 #[test]
 fn calc_table_applies_actions_in_order() {
     let mut h = Harness::new();
