@@ -827,3 +827,50 @@ fn a_start_from_a_rigid_body_mode_is_refused_with_its_reason() {
     assert_eq!(o.status.code(), Some(0), "{out}");
     assert!(out.contains("MODE_NON_LINE MNL: 2 point(s)"), "{out}");
 }
+
+/// A MODE_NON_LINE result's name given again to another operator's result drops its old
+/// shock table too (as DETRUIRE would): `MNL_CHOC` must not outlive the `MNL` it described.
+#[test]
+fn a_mode_non_line_name_given_again_drops_its_shock_table() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let head = &src[..src.find("FREQ = RECU_FONCTION").unwrap()];
+    let short = head
+        .replace("NB_HARM_NONL=200", "NB_HARM_NONL=40")
+        .replace("NB_BRANCHE=105", "NB_BRANCHE=3");
+    assert_ne!(short, head);
+    let comm = dir.path().join("again.comm");
+    let db = dir.path().join("case.db");
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("again.mail")).unwrap();
+    let shock_tables = |db: &std::path::Path| -> i64 {
+        rusqlite::Connection::open(db)
+            .unwrap()
+            .query_row(
+                "SELECT count(*) FROM concepts WHERE name = 'MNL_CHOC'",
+                [],
+                |r| r.get(0),
+            )
+            .unwrap()
+    };
+    // Without the new assignment the shock table is there (else the test says nothing).
+    std::fs::write(&comm, format!("{short}\nFIN()\n")).unwrap();
+    let o = run_with_db(&comm, &db);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert_eq!(shock_tables(&db), 1);
+    std::fs::remove_file(&db).unwrap();
+    let body = format!("{short}\nMNL = CREA_TABLE(LISTE=_F(PARA='X', LISTE_R=(1., 2.)))\nFIN()\n");
+    std::fs::write(&comm, body).unwrap();
+    let o = run_with_db(&comm, &db);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert_eq!(shock_tables(&db), 0, "{out}");
+    let tables: i64 = rusqlite::Connection::open(&db)
+        .unwrap()
+        .query_row(
+            "SELECT count(*) FROM sqlite_master WHERE name = 'MNL_CHOC'",
+            [],
+            |r| r.get(0),
+        )
+        .unwrap();
+    assert_eq!(tables, 0, "{out}");
+}

@@ -267,6 +267,12 @@ impl Store {
         line: usize,
     ) -> Result<()> {
         if self.concept_type(name)?.is_some() {
+            // A name given again drops what went with its old concept (a MODE_NON_LINE
+            // result's shock table), as DETRUIRE does: else that table would outlive the
+            // result it describes.
+            for owned in mnl::owned_concepts(self, name)? {
+                self.delete_concept(&owned)?;
+            }
             self.delete_concept(name)?;
         }
         self.conn.execute(
