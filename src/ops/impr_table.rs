@@ -1,6 +1,6 @@
 //! IMPR_TABLE: print a table (FORMAT 'TABLEAU', 'ASTER', 'CSV', 'TABLEAU_CROISE' or
-//! 'XMGRACE') after FILTRE, TRI and NOM_PARA; TITRE replaces the table's title. FORMAT='PNG' | 'SVG' (aster-nl)
-//! draws it instead: see [`draw`].
+//! 'XMGRACE') after FILTRE, TRI and NOM_PARA; TITRE replaces the table's title.
+//! FORMAT='PNG' | 'SVG' (aster-nl) draws it instead: see [`draw`].
 
 use super::common::output::write_unit;
 use super::common::plot_args::{picture, Picture};
