@@ -204,12 +204,17 @@ impl Pointwise {
     }
 
     /// J(t) and J_u(t) at `x0` from the law's terms, and the pointwise inverse. Err with
-    /// the first sample where J(t) is singular.
+    /// the first sample where J(t) is singular. `even`: X0 is time-symmetric, so J and J_u
+    /// are even in time in exact arithmetic; their samples at t and −t are set to their
+    /// mean, which makes the operator exactly real in complex coefficients (the real
+    /// Gohberg–Semencul route, toeplitz.rs, is then an inverse of the operator its solves
+    /// are checked against, not of a neighbour one round-off away).
     fn linearise(
         &mut self,
         sh: &ShockSys,
         lay: &Layout,
         x0: &[f64],
+        even: bool,
     ) -> std::result::Result<(), usize> {
         let (ns, no, nc) = (self.ns, self.n_own, self.n_comp);
         // Samples of every variable: own unknowns then components.
@@ -265,6 +270,10 @@ impl Pointwise {
                     }
                 }
             }
+        }
+        if even {
+            symmetrise_samples(&mut self.jac, ns, no * no);
+            symmetrise_samples(&mut self.jac_u, ns, no * nc);
         }
         let mut bound = 0.0f64;
         let mut a = vec![0.0; no * no];
@@ -380,6 +389,19 @@ impl Preconditioned for Pointwise {
 /// Inverse of the n × n row-major matrix `a` (destroyed) into `inv` (row-major), by
 /// Gauss-Jordan with partial pivoting; false when a pivot vanishes relative to the
 /// matrix's largest entry.
+/// Samples at t_j and t_{N−j} (`ns` samples of blocks of `len`, sample-major) set to
+/// their mean: the even part of a function of time.
+fn symmetrise_samples(v: &mut [f64], ns: usize, len: usize) {
+    for j in 1..ns.div_ceil(2) {
+        let (lo, hi) = v.split_at_mut((ns - j) * len);
+        for (a, b) in lo[j * len..(j + 1) * len].iter_mut().zip(&mut hi[..len]) {
+            let m = 0.5 * (*a + *b);
+            *a = m;
+            *b = m;
+        }
+    }
+}
+
 fn invert_small(a: &mut [f64], inv: &mut [f64], n: usize) -> bool {
     if n == 1 {
         let d = a[0];
@@ -463,6 +485,10 @@ pub struct ContactBlock {
     /// The Toeplitz route's inverse passed its check on every column of W at the first
     /// try (`toeplitz_w`): further solves of this factorisation are not checked.
     trusted: bool,
+    /// X0 is time-symmetric (`Layout::is_time_symmetric`), Toeplitz route: the symbol is
+    /// even, T real, and the right-hand sides of the contact equations are even in exact
+    /// arithmetic, so the solves take their cosine parts by real FFTs (`RealGs::solve_even`).
+    symmetric: bool,
     /// W = A_ff⁻¹ A_fu, column-major d × m, columns ordered component-major (c·nl + j).
     w: Vec<f64>,
     b: Vec<f64>,
@@ -512,6 +538,7 @@ impl ContactBlock {
             },
             res: vec![0.0; d],
             trusted: false,
+            symmetric: false,
             w: try_zeroed(d * m, "the contact coupling W")?,
             b: vec![0.0; d],
             b2: if method == Method::Toeplitz {
@@ -544,7 +571,8 @@ impl ContactBlock {
     /// Linearise at `x0` and compute W.
     pub fn factor(&mut self, sh: &ShockSys, lay: &Layout, x0: &[f64]) -> Result<()> {
         self.counters.factorisations += 1;
-        let singular_at = self.pw.linearise(sh, lay, x0).err();
+        self.symmetric = self.method == Method::Toeplitz && lay.is_time_symmetric(x0);
+        let singular_at = self.pw.linearise(sh, lay, x0, self.symmetric).err();
         self.active = self.method;
         self.trusted = false;
         if self.method == Method::Toeplitz {
@@ -623,7 +651,7 @@ impl ContactBlock {
         let Some(gs) = self.gs.as_mut() else {
             return Ok(false);
         };
-        if !gs.set_from_real(&self.xi[0], &self.xi[1]) {
+        if !gs.set_from_real(&self.xi[0], &self.xi[1], self.symmetric) {
             return Ok(false);
         }
         debug_assert_eq!(d, nn);
@@ -683,8 +711,19 @@ impl ContactBlock {
         let Some(gs) = self.gs.as_mut() else {
             return Ok(false);
         };
-        x.copy_from_slice(&self.b);
-        gs.solve(x);
+        if self.symmetric {
+            // The sine part of an even right-hand side is round-off: dropped here, so that
+            // a checked solve is checked against the right-hand side it solved.
+            let h = self.pw.h_nonl;
+            for k in 1..=h {
+                self.b[series::is(h, k)] = 0.0;
+            }
+            x.copy_from_slice(&self.b);
+            gs.solve_even(x);
+        } else {
+            x.copy_from_slice(&self.b);
+            gs.solve(x);
+        }
         if self.trusted && x.iter().all(|v| v.is_finite()) {
             self.counters.unchecked += 1;
             return Ok(true);
@@ -909,6 +948,57 @@ mod tests {
         }
         assert_eq!(toeplitz.counters.unchecked, 3);
         assert_eq!(toeplitz.counters.refinements, 0);
+    }
+
+    /// A time-symmetric point (U and the contact force cosine series, V zero): the block
+    /// is marked symmetric, its inverse is the real one, W's columns pass their check, and
+    /// the solve of an even right-hand side by real FFTs equals the dense route's to 1e-12
+    /// relative (as above). A sine part of the right-hand side is dropped (it is round-off
+    /// on such a branch): the solve of rhs + sine equals that of rhs. A point with a sine
+    /// in U is not symmetric.
+    #[test]
+    fn a_time_symmetric_point_takes_the_real_route() {
+        let (sys, mut x) = system_and_point(ShockLaw::Plan, 40).unwrap();
+        let (lay, sh) = (sys.lay, &sys.shocks[0]);
+        assert!(!lay.is_time_symmetric(&x), "U(1) has a sine");
+        x[lay.u(1) + series::is(lay.h_lin, 1)] = 0.0;
+        x[lay.u(1) + series::ic(1)] = 0.4;
+        crate::nnm::start::init_contact(&sys, &mut x).unwrap();
+        assert!(lay.is_time_symmetric(&x));
+        let mut toeplitz = ContactBlock::new(sh, 0, &lay, 8, Some(Method::Toeplitz)).unwrap();
+        let mut dense = ContactBlock::new(sh, 0, &lay, 8, Some(Method::Dense)).unwrap();
+        toeplitz.factor(sh, &lay, &x).unwrap();
+        dense.factor(sh, &lay, &x).unwrap();
+        assert_eq!(toeplitz.active, Method::Toeplitz);
+        assert!(toeplitz.symmetric && toeplitz.trusted);
+        assert!(toeplitz.gs.as_ref().is_some_and(|g| g.gs.is_real()));
+        let rel = |a: &[f64], b: &[f64]| {
+            let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            a.iter()
+                .zip(b)
+                .fold(0.0f64, |m, (p, q)| m.max((p - q).abs()))
+                / scale
+        };
+        assert!(rel(toeplitz.w(), dense.w()) < 1e-12);
+        let h = lay.h_nonl;
+        let even: Vec<f64> = (0..toeplitz.d)
+            .map(|i| {
+                let is_sine = i > h;
+                if is_sine {
+                    0.0
+                } else {
+                    ((i * 7919) % 101) as f64 / 101.0 - 0.5
+                }
+            })
+            .collect();
+        let (mut a, mut b) = (even.clone(), even.clone());
+        toeplitz.solve(&mut a).unwrap();
+        dense.solve(&mut b).unwrap();
+        assert!(rel(&a, &b) < 1e-12, "{:e}", rel(&a, &b));
+        let mut c = even.clone();
+        c[series::is(h, 3)] = 1e-3;
+        toeplitz.solve(&mut c).unwrap();
+        assert_eq!(a, c);
     }
 
     #[test]
