@@ -386,9 +386,6 @@ impl Preconditioned for Pointwise {
     }
 }
 
-/// Inverse of the n × n row-major matrix `a` (destroyed) into `inv` (row-major), by
-/// Gauss-Jordan with partial pivoting; false when a pivot vanishes relative to the
-/// matrix's largest entry.
 /// Samples at t_j and t_{N−j} (`ns` samples of blocks of `len`, sample-major) set to
 /// their mean: the even part of a function of time.
 fn symmetrise_samples(v: &mut [f64], ns: usize, len: usize) {
@@ -402,6 +399,9 @@ fn symmetrise_samples(v: &mut [f64], ns: usize, len: usize) {
     }
 }
 
+/// Inverse of the n × n row-major matrix `a` (destroyed) into `inv` (row-major), by
+/// Gauss-Jordan with partial pivoting; false when a pivot vanishes relative to the
+/// matrix's largest entry.
 fn invert_small(a: &mut [f64], inv: &mut [f64], n: usize) -> bool {
     if n == 1 {
         let d = a[0];
