@@ -11,7 +11,9 @@
 //! L(v) the lower-triangular Toeplitz matrix of first column v, Z the down-shift and J the
 //! exchange. Each factor is a linear convolution or correlation, applied by complex FFTs of
 //! size N ≥ 4H+1 (no wrap-around onto a retained entry): a solve is six FFTs once the four
-//! generators' spectra are known (`set_generator`, once per factorisation). The formula
+//! generators' spectra are known (`set_generator`, once per factorisation). When a is
+//! even in time (a time-symmetric orbit), T and ξ are real and a real right-hand side
+//! (an even series) is solved by six real FFTs instead (`EvenGs`). The formula
 //! is exact in exact arithmetic; its round-off is that of a direct solve of T when T is
 //! well conditioned, and the caller checks it by residuals (contact.rs).
 
