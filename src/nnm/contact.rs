@@ -630,22 +630,29 @@ impl ContactBlock {
         Ok(())
     }
 
-    /// The Toeplitz route's factorisation: the generator from two Krylov solves, then W.
+    /// The Toeplitz route's factorisation: the generator from two Krylov solves (one on a
+    /// time-symmetric block, `symmetric_generators`), then W.
     /// Ok(false): no representation (a Krylov solve failed or ξ₀ = 0), take the dense
     /// route; an Err only when that cannot be taken either.
     fn toeplitz_w(&mut self) -> Result<bool> {
         let (d, nn, hn) = (self.d, self.n_coef_nonl, self.pw.h_nonl);
-        for (i, idx) in [series::ic(hn), series::is(hn, hn)].into_iter().enumerate() {
-            self.b.fill(0.0);
-            self.b[idx] = 2.0;
-            // From the generator of the previous factorisation (a nearby block).
-            match self
-                .gmres
-                .solve_from(&mut self.pw, &self.b, &mut self.xi[i], KRYLOV_RTOL)
-            {
-                Ok(krylov) => self.counters.krylov_iterations += krylov.iterations,
-                Err(f) if self.d > DENSE_MAX_DIM => return Err(self.krylov_error(f)),
-                Err(_) => return Ok(false),
+        if self.symmetric {
+            if !self.symmetric_generators()? {
+                return Ok(false);
+            }
+        } else {
+            for (i, idx) in [series::ic(hn), series::is(hn, hn)].into_iter().enumerate() {
+                self.b.fill(0.0);
+                self.b[idx] = 2.0;
+                // From the generator of the previous factorisation (a nearby block).
+                match self
+                    .gmres
+                    .solve_from(&mut self.pw, &self.b, &mut self.xi[i], KRYLOV_RTOL)
+                {
+                    Ok(krylov) => self.counters.krylov_iterations += krylov.iterations,
+                    Err(f) if self.d > DENSE_MAX_DIM => return Err(self.krylov_error(f)),
+                    Err(_) => return Ok(false),
+                }
             }
         }
         let Some(gs) = self.gs.as_mut() else {
@@ -702,6 +709,47 @@ impl ContactBlock {
         // same inverse are not checked again (`solve`).
         self.trusted = self.m >= 2 && self.counters.refinements == refinements;
         Ok(true)
+    }
+
+    /// The two generator solutions of a time-symmetric block by one Krylov solve: A_ff
+    /// (j even) maps cosine series to cosine series and sine series to sine series, so the
+    /// solution for 2 cos Hθ + 2 sin Hθ is ξ_c + ξ_s, its cosine and sine parts. The
+    /// tolerance is divided by √2 so that each part's residual meets KRYLOV_RTOL relative
+    /// to its own right-hand side, as two solves would. Ok(false) as `toeplitz_w`.
+    fn symmetric_generators(&mut self) -> Result<bool> {
+        let hn = self.pw.h_nonl;
+        self.b.fill(0.0);
+        self.b[series::ic(hn)] = 2.0;
+        self.b[series::is(hn, hn)] = 2.0;
+        // From the previous factorisation's generators (a nearby block), their parts.
+        let mut x = std::mem::take(&mut self.x);
+        for (i, v) in x.iter_mut().enumerate() {
+            *v = if i <= hn {
+                self.xi[0][i]
+            } else {
+                self.xi[1][i]
+            };
+        }
+        let out = self.gmres.solve_from(
+            &mut self.pw,
+            &self.b,
+            &mut x,
+            KRYLOV_RTOL * std::f64::consts::FRAC_1_SQRT_2,
+        );
+        for (i, v) in x.iter().enumerate() {
+            let (c, s) = if i <= hn { (*v, 0.0) } else { (0.0, *v) };
+            self.xi[0][i] = c;
+            self.xi[1][i] = s;
+        }
+        self.x = x;
+        match out {
+            Ok(krylov) => {
+                self.counters.krylov_iterations += krylov.iterations;
+                Ok(true)
+            }
+            Err(f) if self.d > DENSE_MAX_DIM => Err(self.krylov_error(f)),
+            Err(_) => Ok(false),
+        }
     }
 
     /// x ← A_ff⁻¹ b (`self.b`) on the Toeplitz route, accepted by the Krylov solves'
