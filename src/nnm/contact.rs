@@ -960,6 +960,15 @@ mod tests {
     use crate::nnm::route_timing::system_and_point;
     use crate::nnm::ShockLaw;
 
+    /// Largest difference of `a` from `b`, relative to b's largest entry.
+    fn rel(a: &[f64], b: &[f64]) -> f64 {
+        let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        a.iter()
+            .zip(b)
+            .fold(0.0f64, |m, (p, q)| m.max((p - q).abs()))
+            / scale
+    }
+
     /// On the Toeplitz route, W (its coupling from the series of J_u, then checked column
     /// by column) and the right-hand sides' solves, unchecked once W has passed, equal the
     /// dense route's LU solves to 1e-12 relative: both are direct, and this PLAN block's
@@ -977,13 +986,6 @@ mod tests {
             toeplitz.trusted,
             "W's columns passed their check at the first try"
         );
-        let rel = |a: &[f64], b: &[f64]| {
-            let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            a.iter()
-                .zip(b)
-                .fold(0.0f64, |m, (p, q)| m.max((p - q).abs()))
-                / scale
-        };
         assert!(rel(toeplitz.w(), dense.w()) < 1e-12);
         for k in 0..3 {
             let r: Vec<f64> = (0..toeplitz.d)
@@ -1020,13 +1022,6 @@ mod tests {
         assert_eq!(toeplitz.active, Method::Toeplitz);
         assert!(toeplitz.symmetric && toeplitz.trusted);
         assert!(toeplitz.gs.as_ref().is_some_and(|g| g.gs.is_real()));
-        let rel = |a: &[f64], b: &[f64]| {
-            let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            a.iter()
-                .zip(b)
-                .fold(0.0f64, |m, (p, q)| m.max((p - q).abs()))
-                / scale
-        };
         assert!(rel(toeplitz.w(), dense.w()) < 1e-12);
         let h = lay.h_nonl;
         let even: Vec<f64> = (0..toeplitz.d)
