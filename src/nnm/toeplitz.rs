@@ -101,18 +101,6 @@ impl EvenGs {
         }
     }
 
-    /// Half spectrum of the real sequence `x` (length N) into `out`.
-    fn forward(&mut self, which: usize, x: &mut [f64]) {
-        let out = match which {
-            0 => &mut self.corr1,
-            1 => &mut self.corr2,
-            2 => &mut self.conv1,
-            _ => &mut self.conv2,
-        };
-        // Lengths are the plan's by construction: no error can come back.
-        let _ = self.fwd.process_with_scratch(x, out, &mut self.scratch);
-    }
-
     /// b ← T⁻¹ b for real coefficient vectors b (length n ≤ N/2).
     fn solve(&mut self, b: &mut [f64]) {
         let n = b.len();
@@ -227,6 +215,7 @@ impl GsInverse {
     }
 
     /// Whether the current generator is real (T real), so that `solve_real` applies.
+    #[cfg(test)]
     pub fn is_real(&self) -> bool {
         self.real
     }
@@ -295,46 +284,43 @@ impl GsInverse {
     fn set_real_spectra(&mut self) {
         let nf = self.nfft;
         let even = self.even.get_or_insert_with(|| Box::new(EvenGs::new(nf)));
-        let mut work = std::mem::take(&mut even.b);
-        for (which, buf) in [
-            &mut self.corr1,
-            &mut self.corr2,
-            &mut self.conv1,
-            &mut self.conv2,
-        ]
-        .into_iter()
-        .enumerate()
-        {
+        let EvenGs {
+            fwd,
+            scratch,
+            corr1,
+            corr2,
+            conv1,
+            conv2,
+            b: work,
+            ..
+        } = &mut **even;
+        for (buf, half) in [
+            (&mut self.corr1, corr1),
+            (&mut self.corr2, corr2),
+            (&mut self.conv1, conv1),
+            (&mut self.conv2, conv2),
+        ] {
             for (w, v) in work.iter_mut().zip(buf.iter()) {
                 *w = v.re;
             }
-            even.forward(which, &mut work);
-            let half = match which {
-                0 => &even.corr1,
-                1 => &even.corr2,
-                2 => &even.conv1,
-                _ => &even.conv2,
-            };
+            // Lengths are the plan's by construction: no error can come back.
+            let _ = fwd.process_with_scratch(work, half, scratch);
             buf[..half.len()].copy_from_slice(half);
             for k in half.len()..nf {
                 buf[k] = buf[nf - k].conj();
             }
         }
-        even.b = work;
     }
 
-    /// b ← T⁻¹ b for a real coefficient vector b (length 2H+1), the generator being real
-    /// (`is_real`): the same formula in real FFTs.
-    pub fn solve_real(&mut self, b: &mut [f64]) {
+    /// b ← T⁻¹ b for a real coefficient vector b (length 2H+1) by real FFTs, when the
+    /// generator is real (`is_real`); false, b untouched, when it is not.
+    pub fn solve_real(&mut self, b: &mut [f64]) -> bool {
         match self.even.as_mut() {
-            Some(even) if self.real => even.solve(b),
-            _ => {
-                let mut z: Vec<C> = b.iter().map(|&v| C::new(v, 0.0)).collect();
-                self.solve_complex(&mut z);
-                for (o, v) in b.iter_mut().zip(&z) {
-                    *o = v.re;
-                }
+            Some(even) if self.real => {
+                even.solve(b);
+                true
             }
+            _ => false,
         }
     }
 
@@ -427,12 +413,6 @@ impl RealGs {
     /// real generator, `solve` of x_even.
     pub fn solve_even(&mut self, x: &mut [f64]) {
         let h = self.gs.harmonics();
-        if !self.gs.is_real() {
-            for k in 1..=h {
-                x[series::is(h, k)] = 0.0;
-            }
-            return self.solve(x);
-        }
         let e = &mut self.e;
         e[h] = x[0];
         for k in 1..=h {
@@ -440,11 +420,16 @@ impl RealGs {
             e[h + k] = v;
             e[h - k] = v;
         }
-        self.gs.solve_real(e);
+        let real = self.gs.solve_real(e);
+        for k in 1..=h {
+            x[series::is(h, k)] = 0.0;
+        }
+        if !real {
+            return self.solve(x);
+        }
         x[0] = e[h];
         for k in 1..=h {
             x[series::ic(k)] = e[h + k] + e[h - k];
-            x[series::is(h, k)] = 0.0;
         }
     }
 
