@@ -11,7 +11,7 @@
 
 use super::linear_solver::TangentSolver;
 use super::pade::Pade;
-use super::system::{Samples, System};
+use super::system::{Grid, Samples, System};
 use crate::error::{Error, Result};
 
 pub struct Series {
@@ -108,7 +108,18 @@ pub fn compute(
     let y_x1 = dot(&y, &x1);
     // Each term's law variables sampled in time once: every product of two terms is then a
     // pointwise product (cheaper than a convolution at every H_nl measured, 5 to 1000).
-    let mut samples = vec![sys.samples(&x1)];
+    // When X0 and X_1 are time-symmetric, every term is in exact arithmetic (the system is
+    // reversible, the phase condition keeps t = 0 a turning point, and the orders' right-
+    // hand sides are products of symmetric terms), so the law variables are cosine series:
+    // sampled on half the instants, their sine parts (round-off) dropped from the
+    // products. X_1 is checked too: at a symmetry-breaking bifurcation the branch leaves
+    // a symmetric X0 along a direction that is not.
+    let grid = if sys.lay.is_time_symmetric(x0) && sys.lay.is_time_symmetric(&x1) {
+        Grid::Cosine
+    } else {
+        Grid::Full
+    };
+    let mut samples = vec![sys.samples_on(&x1, grid)];
     let mut terms = vec![x1];
     for order in 2..=p.order {
         let mut rhs = vec![0.0; n];
@@ -131,7 +142,7 @@ pub fn compute(
                 "series term of order {order} is not finite"
             )));
         }
-        samples.push(sys.samples(&rhs));
+        samples.push(sys.samples_on(&rhs, grid));
         terms.push(rhs);
     }
     let last = terms.len();

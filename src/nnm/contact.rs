@@ -33,7 +33,7 @@ use super::dense_lu::{try_zeroed, DenseLu};
 use super::gmres::{self, Gmres, Preconditioned};
 use super::laws::Var;
 use super::series::{self, FftScratch, Sampler};
-use super::system::{Layout, ShockSys};
+use super::system::{is_cosine_series, Layout, ShockSys};
 use super::toeplitz::RealGs;
 use crate::error::{Error, Result};
 
@@ -486,8 +486,9 @@ pub struct ContactBlock {
     /// try (`toeplitz_w`): further solves of this factorisation are not checked.
     trusted: bool,
     /// X0 is time-symmetric (`Layout::is_time_symmetric`), Toeplitz route: the symbol is
-    /// even, T real, and the right-hand sides of the contact equations are even in exact
-    /// arithmetic, so the solves take their cosine parts by real FFTs (`RealGs::solve_even`).
+    /// even and T real. A right-hand side whose sine part is round-off (`is_cosine_series`:
+    /// the series of a symmetric branch) is solved as a cosine series by real FFTs
+    /// (`RealGs::solve_even`).
     symmetric: bool,
     /// W = A_ff⁻¹ A_fu, column-major d × m, columns ordered component-major (c·nl + j).
     w: Vec<f64>,
@@ -759,10 +760,12 @@ impl ContactBlock {
         let Some(gs) = self.gs.as_mut() else {
             return Ok(false);
         };
-        if self.symmetric {
+        let h = self.pw.h_nonl;
+        if self.symmetric && is_cosine_series(&self.b, h) {
             // The sine part of an even right-hand side is round-off: dropped here, so that
-            // a checked solve is checked against the right-hand side it solved.
-            let h = self.pw.h_nonl;
+            // a checked solve is checked against the right-hand side it solved. One with a
+            // larger sine part (a series leaving a symmetric X0 along a symmetry-breaking
+            // direction, at a bifurcation) is solved whole.
             for k in 1..=h {
                 self.b[series::is(h, k)] = 0.0;
             }
@@ -1003,9 +1006,10 @@ mod tests {
     /// A time-symmetric point (U and the contact force cosine series, V zero): the block
     /// is marked symmetric, its inverse is the real one, W's columns pass their check, and
     /// the solve of an even right-hand side by real FFTs equals the dense route's to 1e-12
-    /// relative (as above). A sine part of the right-hand side is dropped (it is round-off
-    /// on such a branch): the solve of rhs + sine equals that of rhs. A point with a sine
-    /// in U is not symmetric.
+    /// relative (as above). A round-off sine part of the right-hand side is dropped: the
+    /// solve of rhs + 1e-18 sine equals that of rhs. A larger one (a series leaving the
+    /// point along a symmetry-breaking direction) is solved whole, as the dense route does.
+    /// A point with a sine in U is not symmetric.
     #[test]
     fn a_time_symmetric_point_takes_the_real_route() {
         let (sys, mut x) = system_and_point(ShockLaw::Plan, 40).unwrap();
@@ -1039,9 +1043,15 @@ mod tests {
         dense.solve(&mut b).unwrap();
         assert!(rel(&a, &b) < 1e-12, "{:e}", rel(&a, &b));
         let mut c = even.clone();
-        c[series::is(h, 3)] = 1e-3;
+        c[series::is(h, 3)] = 1e-18;
         toeplitz.solve(&mut c).unwrap();
         assert_eq!(a, c);
+        let mut d = even.clone();
+        d[series::is(h, 3)] = 1e-3;
+        let mut e = d.clone();
+        toeplitz.solve(&mut d).unwrap();
+        dense.solve(&mut e).unwrap();
+        assert!(rel(&d, &e) < 1e-12, "{:e}", rel(&d, &e));
     }
 
     #[test]

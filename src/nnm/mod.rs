@@ -35,6 +35,7 @@ mod condensed_det;
 mod contact;
 mod continuation;
 mod correction;
+mod cosine_sampler;
 mod dense_lu;
 mod energy;
 pub mod exact;
