@@ -15,16 +15,11 @@
 //! `series::Sampler`): the offset of the grid by half a step changes no alias, since none
 //! reaches a retained harmonic.
 
-use super::series::{ic, len};
+use super::series::{ic, is_5_smooth, len, real_fft_plans};
 use realfft::num_complex::Complex;
-use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
-use std::cell::RefCell;
+use realfft::{ComplexToReal, RealToComplex};
 use std::f64::consts::PI;
 use std::sync::Arc;
-
-thread_local! {
-    static PLANNER: RefCell<RealFftPlanner<f64>> = RefCell::new(RealFftPlanner::new());
-}
 
 /// Cosine series ↔ their n samples on the midpoints of a half period.
 pub struct CosineSampler {
@@ -47,10 +42,7 @@ impl CosineSampler {
     /// A sampler of `n` samples (n ≥ 2); exact products of series of H harmonics need
     /// 2n > 3H (`for_products`).
     pub fn new(n: usize) -> Self {
-        let (fwd, inv) = PLANNER.with(|p| {
-            let mut p = p.borrow_mut();
-            (p.plan_fft_forward(n), p.plan_fft_inverse(n))
-        });
+        let (fwd, inv) = real_fft_plans(n);
         let twiddle = (0..=n)
             .map(|k| {
                 let (s, c) = (PI * k as f64 / (2 * n) as f64).sin_cos();
@@ -175,18 +167,10 @@ fn unorder(v: &[f64], s: &mut [f64]) {
 /// Smallest 2^a·3^b·5^c ≥ `need` (and at least 2).
 fn smooth_at_least(need: usize) -> usize {
     let mut n = need.max(2);
-    loop {
-        let mut m = n;
-        for p in [2, 3, 5] {
-            while m.is_multiple_of(p) {
-                m /= p;
-            }
-        }
-        if m == 1 {
-            return n;
-        }
+    while !is_5_smooth(n) {
         n += 1;
     }
+    n
 }
 
 #[cfg(test)]

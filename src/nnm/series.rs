@@ -171,20 +171,10 @@ pub fn fft_size(need: usize) -> usize {
 /// sizes realfft transforms fastest besides powers of two, up to 25 % fewer samples.
 pub fn fft_size_smooth(need: usize) -> usize {
     let mut n = (need + 1).max(8);
-    loop {
-        let mut m = n;
-        if m.is_multiple_of(2) {
-            for p in [2, 3, 5] {
-                while m.is_multiple_of(p) {
-                    m /= p;
-                }
-            }
-            if m == 1 {
-                return n;
-            }
-        }
+    while !(n.is_multiple_of(2) && is_5_smooth(n)) {
         n += 1;
     }
+    n
 }
 
 /// Dense operator x ↦ trunc_hout(c·x) written into `out` (column-major, leading dimension
@@ -249,6 +239,26 @@ thread_local! {
     static PLANNER: RefCell<RealFftPlanner<f64>> = RefCell::new(RealFftPlanner::new());
 }
 
+/// The forward and inverse real FFTs of size `n`, from this thread's planner (plans are
+/// shared between the samplers of one size).
+pub fn real_fft_plans(n: usize) -> (Arc<dyn RealToComplex<f64>>, Arc<dyn ComplexToReal<f64>>) {
+    PLANNER.with(|p| {
+        let mut p = p.borrow_mut();
+        (p.plan_fft_forward(n), p.plan_fft_inverse(n))
+    })
+}
+
+/// Whether `n` ≥ 1 is 2^a·3^b·5^c.
+pub fn is_5_smooth(n: usize) -> bool {
+    let mut m = n;
+    for p in [2, 3, 5] {
+        while m.is_multiple_of(p) {
+            m /= p;
+        }
+    }
+    m == 1
+}
+
 /// Samples x(2πj/N), j = 0..N−1, and back, by real FFTs of size N.
 pub struct Sampler {
     n: usize,
@@ -265,10 +275,7 @@ pub struct FftScratch {
 
 impl Sampler {
     pub fn new(n: usize) -> Self {
-        let (fwd, inv) = PLANNER.with(|p| {
-            let mut p = p.borrow_mut();
-            (p.plan_fft_forward(n), p.plan_fft_inverse(n))
-        });
+        let (fwd, inv) = real_fft_plans(n);
         Sampler { n, fwd, inv }
     }
 
