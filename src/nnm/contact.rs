@@ -34,7 +34,7 @@ use super::gmres::{self, Gmres, Preconditioned};
 use super::laws::Var;
 use super::series::{self, FftScratch, Sampler};
 use super::system::{is_cosine_series, Layout, ShockSys};
-use super::toeplitz::RealGs;
+use super::toeplitz::ToeplitzInverse;
 use crate::error::{Error, Result};
 
 /// How a shock's block is solved.
@@ -479,7 +479,7 @@ pub struct ContactBlock {
     dense: DenseLu,
     /// The Toeplitz route's inverse (laws with one own unknown), its two generator
     /// solutions and the residual of a checked solve.
-    gs: Option<RealGs>,
+    gs: Option<ToeplitzInverse>,
     xi: [Vec<f64>; 2],
     res: Vec<f64>,
     /// The Toeplitz route's inverse passed its check on every column of W at the first
@@ -488,13 +488,11 @@ pub struct ContactBlock {
     /// X0 is time-symmetric (`Layout::is_time_symmetric`), Toeplitz route: the symbol is
     /// even and T real. A right-hand side whose sine part is round-off (`is_cosine_series`:
     /// the series of a symmetric branch) is solved as a cosine series by real FFTs
-    /// (`RealGs::solve_even`).
+    /// (`ToeplitzInverse::solve_even`).
     symmetric: bool,
     /// W = A_ff⁻¹ A_fu, column-major d × m, columns ordered component-major (c·nl + j).
     w: Vec<f64>,
     b: Vec<f64>,
-    /// The second right-hand side of a pair of W's columns (Toeplitz route).
-    b2: Vec<f64>,
     x: Vec<f64>,
     series: Vec<f64>,
     pub counters: Counters,
@@ -531,7 +529,8 @@ impl ContactBlock {
             pw: Pointwise::new(sh, lay, ns),
             gmres: Gmres::new(d, KRYLOV_CYCLE, KRYLOV_CYCLES),
             dense: DenseLu::default(),
-            gs: (n_own == 1 && method == Method::Toeplitz).then(|| RealGs::new(lay.h_nonl)),
+            gs: (n_own == 1 && method == Method::Toeplitz)
+                .then(|| ToeplitzInverse::new(lay.h_nonl)),
             xi: if method == Method::Toeplitz {
                 [vec![0.0; d], vec![0.0; d]]
             } else {
@@ -542,11 +541,6 @@ impl ContactBlock {
             symmetric: false,
             w: try_zeroed(d * m, "the contact coupling W")?,
             b: vec![0.0; d],
-            b2: if method == Method::Toeplitz {
-                vec![0.0; d]
-            } else {
-                Vec::new()
-            },
             x: vec![0.0; d],
             series: vec![0.0; lay.n_coef_nonl],
             counters: Counters::default(),
@@ -659,7 +653,7 @@ impl ContactBlock {
         let Some(gs) = self.gs.as_mut() else {
             return Ok(false);
         };
-        if !gs.set_from_real(&self.xi[0], &self.xi[1], self.symmetric) {
+        if !gs.set_generator(&self.xi[0], &self.xi[1], self.symmetric) {
             return Ok(false);
         }
         debug_assert_eq!(d, nn);
@@ -667,43 +661,44 @@ impl ContactBlock {
         // then solved in place: no transform per column.
         self.fill_coupling();
         let refinements = self.counters.refinements;
-        // Columns two by two: one complex solve gives both (RealGs::solve_pair), each then
-        // checked (and refined) on its own against its right-hand side.
-        let mut col = 0;
-        while col < self.m {
-            let pair = col + 1 < self.m;
+        let (nl, hl) = (self.n_coef_lin, self.pw.h_lin);
+        for col in 0..self.m {
             let mut x = std::mem::take(&mut self.x);
             self.b.copy_from_slice(&self.w[col * d..(col + 1) * d]);
-            x.copy_from_slice(&self.b);
-            if pair {
-                self.b2
-                    .copy_from_slice(&self.w[(col + 1) * d..(col + 2) * d]);
-                let w1 = &mut self.w[(col + 1) * d..(col + 2) * d];
-                if let Some(gs) = self.gs.as_mut() {
-                    gs.solve_pair(&mut x, w1);
+            let Some(gs) = self.gs.as_mut() else {
+                return Ok(false);
+            };
+            if self.symmetric {
+                // J_u is even: a displacement cosine (or the mean) drives an even column,
+                // a sine an odd one; the other part of the column is round-off, dropped
+                // here so that the column is checked against what was solved.
+                let even = col % nl <= hl;
+                for k in 1..=hn {
+                    if even {
+                        self.b[series::is(hn, k)] = 0.0;
+                    } else {
+                        self.b[series::ic(k)] = 0.0;
+                    }
                 }
-            } else if let Some(gs) = self.gs.as_mut() {
+                if !even {
+                    self.b[0] = 0.0;
+                }
+                x.copy_from_slice(&self.b);
+                if even {
+                    gs.solve_even(&mut x);
+                } else {
+                    gs.solve_odd(&mut x);
+                }
+            } else {
+                x.copy_from_slice(&self.b);
                 gs.solve(&mut x);
             }
             let ok = self.toeplitz_refine(&mut x)?;
             self.w[col * d..(col + 1) * d].copy_from_slice(&x);
+            self.x = x;
             if !ok {
-                self.x = x;
                 return Ok(false);
             }
-            if pair {
-                // The second column's right-hand side, its solution from the pair.
-                std::mem::swap(&mut self.b, &mut self.b2);
-                x.copy_from_slice(&self.w[(col + 1) * d..(col + 2) * d]);
-                let ok = self.toeplitz_refine(&mut x)?;
-                self.w[(col + 1) * d..(col + 2) * d].copy_from_slice(&x);
-                if !ok {
-                    self.x = x;
-                    return Ok(false);
-                }
-            }
-            self.x = x;
-            col += if pair { 2 } else { 1 };
         }
         // W's columns (right-hand sides spread over every harmonic) are the check of this
         // inverse: when all of them passed at the first try, the series' solves with the
@@ -1025,7 +1020,7 @@ mod tests {
         dense.factor(sh, &lay, &x).unwrap();
         assert_eq!(toeplitz.active, Method::Toeplitz);
         assert!(toeplitz.symmetric && toeplitz.trusted);
-        assert!(toeplitz.gs.as_ref().is_some_and(|g| g.gs.is_real()));
+        assert!(toeplitz.gs.as_ref().is_some_and(|g| g.is_symmetric()));
         assert!(rel(toeplitz.w(), dense.w()) < 1e-12);
         let h = lay.h_nonl;
         let even: Vec<f64> = (0..toeplitz.d)

@@ -36,6 +36,10 @@ pub struct CosineScratch {
     work: Vec<Complex<f64>>,
     /// The samples in Makhoul's order.
     reordered: Vec<f64>,
+    /// The coefficients G_k (k = 0..=n) of a synthesis, and the n coefficients of an
+    /// analysis.
+    g: Vec<f64>,
+    coefs: Vec<f64>,
 }
 
 impl CosineSampler {
@@ -73,33 +77,103 @@ impl CosineSampler {
             spec: vec![Complex::new(0.0, 0.0); self.n / 2 + 1],
             work: vec![Complex::new(0.0, 0.0); len],
             reordered: vec![0.0; self.n],
+            g: vec![0.0; self.n + 1],
+            coefs: vec![0.0; self.n],
         }
     }
 
     /// Samples (length n) of the cosine part of `x` (h harmonics, h < n, the layout of
     /// series.rs); its sine coefficients are not read.
     pub fn synth_with(&self, x: &[f64], h: usize, out: &mut [f64], ws: &mut CosineScratch) {
+        let top = h.min(self.n - 1);
+        ws.g.fill(0.0);
+        ws.g[0] = x[0];
+        for (g, &c) in ws.g[1..=top].iter_mut().zip(&x[1..=top]) {
+            *g = 0.5 * c;
+        }
+        self.synth_g(out, ws);
+    }
+
+    /// Cosine coefficients (h harmonics, h < n) of the samples `s` (length n) into `out`,
+    /// its sine coefficients set to zero.
+    pub fn analyse_with(&self, s: &[f64], h: usize, out: &mut [f64], ws: &mut CosineScratch) {
+        out[..len(h)].fill(0.0);
+        let top = h.min(self.n - 1);
+        if self.analyse_all(s, false, ws) {
+            out[..=top].copy_from_slice(&ws.coefs[..=top]);
+        } else {
+            out.fill(f64::NAN);
+        }
+    }
+
+    /// Samples of a_0 + Σ_{k=1}^{K} a_k cos kθ, `a` = [a_0..a_K] with K < n (the plain
+    /// coefficients of an even function, as `cos_analyse` gives them); `a` not empty.
+    pub fn cos_synth(&self, a: &[f64], out: &mut [f64], ws: &mut CosineScratch) {
+        let top = a.len().min(self.n).saturating_sub(1);
+        ws.g.fill(0.0);
+        ws.g[0] = a[0];
+        for (g, &c) in ws.g[1..=top].iter_mut().zip(&a[1..=top]) {
+            *g = 0.5 * c;
+        }
+        self.synth_g(out, ws);
+    }
+
+    /// All n cosine coefficients [a_0..a_{n−1}] of the samples `s` of an even function
+    /// (into `a`, length at most n: the first ones).
+    pub fn cos_analyse(&self, s: &[f64], a: &mut [f64], ws: &mut CosineScratch) {
+        let k = a.len().min(self.n);
+        if self.analyse_all(s, false, ws) {
+            a[..k].copy_from_slice(&ws.coefs[..k]);
+        } else {
+            a.fill(f64::NAN);
+        }
+    }
+
+    /// Samples of Σ_{k=1}^{K} b_k sin kθ, `b` = [b_1..b_K] with K ≤ n (an odd function).
+    /// On these instants sin((n − k)θ_j) = (−1)^j cos kθ_j, so this is the cosine
+    /// synthesis of the reversed coefficients, every other sample negated.
+    pub fn sin_synth(&self, b: &[f64], out: &mut [f64], ws: &mut CosineScratch) {
+        let (n, top) = (self.n, b.len().min(self.n));
+        // Cosine coefficient k' is b_{n−k'}, present when 1 ≤ n − k' ≤ K; G_0 = b_n.
+        ws.g.fill(0.0);
+        if top == n {
+            ws.g[0] = b[n - 1];
+        }
+        for (i, &c) in b[..top.min(n - 1)].iter().enumerate() {
+            ws.g[n - 1 - i] = 0.5 * c;
+        }
+        self.synth_g(out, ws);
+        out.iter_mut().skip(1).step_by(2).for_each(|v| *v = -*v);
+    }
+
+    /// The sine coefficients [b_1..b_K] (K = b.len() ≤ n) of the samples `s` of an odd
+    /// function (`sin_synth`'s inverse).
+    pub fn sin_analyse(&self, s: &[f64], b: &mut [f64], ws: &mut CosineScratch) {
         let n = self.n;
-        let top = h.min(n - 1);
-        // G_k = n·a_k/2 (G_0 = n·a_0) of the module doc, divided by n for the unnormalised
-        // inverse FFT.
-        let g = |k: usize| -> f64 {
-            if k == 0 {
-                x[0]
-            } else if k <= top {
-                0.5 * x[ic(k)]
-            } else {
-                0.0
-            }
-        };
-        for (k, v) in ws.spec.iter_mut().enumerate() {
-            *v = self.twiddle[k].conj() * Complex::new(g(k), -g(n - k));
+        if !self.analyse_all(s, true, ws) {
+            b.fill(f64::NAN);
+            return;
+        }
+        for (i, v) in b.iter_mut().enumerate().take(n) {
+            *v = ws.coefs[n - 1 - i];
+        }
+    }
+
+    /// The inverse DCT of type III of the coefficients G_k in `ws.g` (k = 0..=n, the
+    /// module doc's G_k over n), into `out`.
+    fn synth_g(&self, out: &mut [f64], ws: &mut CosineScratch) {
+        let n = self.n;
+        let g = &ws.g;
+        for (k, (v, tw)) in ws.spec.iter_mut().zip(&self.twiddle).enumerate() {
+            // conj(tw)·(g_k − i g_{n−k})
+            let (a, b) = (g[k], g[n - k]);
+            *v = Complex::new(tw.re * a - tw.im * b, -tw.re * b - tw.im * a);
         }
         // V_0 and (n even) V_{n/2} are real in exact arithmetic: the inverse FFT needs them
         // exactly so.
         ws.spec[0].im = 0.0;
         if n.is_multiple_of(2) {
-            ws.spec[n / 2] = Complex::new(std::f64::consts::SQRT_2 * g(n / 2), 0.0);
+            ws.spec[n / 2] = Complex::new(std::f64::consts::SQRT_2 * g[n / 2], 0.0);
         }
         if self
             .inv
@@ -113,54 +187,65 @@ impl CosineSampler {
         unorder(&ws.reordered, out);
     }
 
-    /// Cosine coefficients (h harmonics, h < n) of the samples `s` (length n) into `out`,
-    /// its sine coefficients set to zero.
-    pub fn analyse_with(&self, s: &[f64], h: usize, out: &mut [f64], ws: &mut CosineScratch) {
+    /// All n cosine coefficients of `s` (`alternate`: of (−1)^j s_j) into `ws.coefs`:
+    /// C_k/n for k = 0, 2C_k/n else, C_k = Re(e^{−iπk/(2n)} V_k), V the DFT of the samples
+    /// in Makhoul's order. False if the transform failed.
+    fn analyse_all(&self, s: &[f64], alternate: bool, ws: &mut CosineScratch) -> bool {
         let n = self.n;
-        reorder(s, &mut ws.reordered);
+        reorder(s, alternate, &mut ws.reordered);
         if self
             .fwd
             .process_with_scratch(&mut ws.reordered, &mut ws.spec, &mut ws.work)
             .is_err()
         {
-            out.iter_mut().for_each(|v| *v = f64::NAN);
-            return;
+            return false;
         }
-        let nf = n as f64;
-        out[..len(h)].fill(0.0);
-        out[0] = ws.spec[0].re / nf;
-        for k in 1..=h.min(n - 1) {
-            let vk = if k <= n / 2 {
-                ws.spec[k]
-            } else {
-                ws.spec[n - k].conj()
-            };
-            out[ic(k)] = 2.0 * (self.twiddle[k] * vk).re / nf;
+        let two_n = 2.0 / n as f64;
+        let half = n / 2;
+        let (c, spec, tw) = (&mut ws.coefs, &ws.spec, &self.twiddle);
+        c[0] = spec[0].re / n as f64;
+        for k in 1..=half {
+            c[k] = two_n * (tw[k].re * spec[k].re - tw[k].im * spec[k].im);
         }
+        // V_k = conj(V_{n−k}) beyond n/2.
+        for k in half + 1..n {
+            let z = spec[n - k];
+            c[k] = two_n * (tw[k].re * z.re + tw[k].im * z.im);
+        }
+        true
     }
 }
 
-/// Makhoul's order: v_j = s_{2j}, v_{n−1−j} = s_{2j+1}.
-fn reorder(s: &[f64], v: &mut [f64]) {
+/// Makhoul's order: v_j = s_{2j}, v_{n−1−j} = s_{2j+1}; with `alternate`, of (−1)^j s_j
+/// (every odd sample negated).
+fn reorder(s: &[f64], alternate: bool, v: &mut [f64]) {
     let n = v.len();
-    for (j, &x) in s.iter().enumerate().take(n) {
-        if j % 2 == 0 {
-            v[j / 2] = x;
-        } else {
-            v[n - 1 - j / 2] = x;
-        }
+    for (d, &x) in v.iter_mut().zip(s.iter().step_by(2)) {
+        *d = x;
+    }
+    let odd = if alternate { -1.0 } else { 1.0 };
+    for (d, &x) in v[n.div_ceil(2)..]
+        .iter_mut()
+        .rev()
+        .zip(s.iter().skip(1).step_by(2))
+    {
+        *d = odd * x;
     }
 }
 
 /// The inverse of `reorder`.
 fn unorder(v: &[f64], s: &mut [f64]) {
     let n = v.len();
-    for (j, x) in s.iter_mut().enumerate().take(n) {
-        *x = if j % 2 == 0 {
-            v[j / 2]
-        } else {
-            v[n - 1 - j / 2]
-        };
+    for (d, &x) in s.iter_mut().step_by(2).zip(v) {
+        *d = x;
+    }
+    for (d, &x) in s
+        .iter_mut()
+        .skip(1)
+        .step_by(2)
+        .zip(v[n.div_ceil(2)..].iter().rev())
+    {
+        *d = x;
     }
 }
 
@@ -270,6 +355,56 @@ mod tests {
         let scale = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for (k, (g, w)) in got.iter().zip(&want).enumerate() {
             assert!((g - w).abs() < 1e-14 * scale, "coefficient {k}: {g} vs {w}");
+        }
+    }
+
+    /// The plain transforms against direct sums of cosines and sines (every coefficient up
+    /// to n − 1, resp. n, for even and odd n), and each analysis inverting its synthesis
+    /// (round-off of sums of n terms of size ≤ 1: 1e-12).
+    #[test]
+    fn plain_cosine_and_sine_transforms_equal_direct_sums() {
+        for n in [2usize, 5, 8, 9, 216, 135] {
+            let s = CosineSampler::new(n);
+            let mut ws = s.scratch();
+            let a: Vec<f64> = (0..n)
+                .map(|k| ((k * 37 % 11) as f64 - 5.0) / (k + 1) as f64)
+                .collect();
+            let b: Vec<f64> = (1..=n)
+                .map(|k| ((k * 53 % 13) as f64 - 6.0) / k as f64)
+                .collect();
+            let (mut cs, mut ss) = (vec![0.0; n], vec![0.0; n]);
+            s.cos_synth(&a, &mut cs, &mut ws);
+            s.sin_synth(&b, &mut ss, &mut ws);
+            for j in 0..n {
+                let t = midpoint(n, j);
+                let c = a[0] + (1..n).map(|k| a[k] * (k as f64 * t).cos()).sum::<f64>();
+                let sn = (1..=n)
+                    .map(|k| b[k - 1] * (k as f64 * t).sin())
+                    .sum::<f64>();
+                assert!(
+                    (cs[j] - c).abs() < 1e-12,
+                    "n {n} cos j {j}: {} vs {c}",
+                    cs[j]
+                );
+                assert!(
+                    (ss[j] - sn).abs() < 1e-12,
+                    "n {n} sin j {j}: {} vs {sn}",
+                    ss[j]
+                );
+            }
+            let (mut a2, mut b2) = (vec![0.0; n], vec![0.0; n]);
+            s.cos_analyse(&cs, &mut a2, &mut ws);
+            s.sin_analyse(&ss, &mut b2, &mut ws);
+            for k in 0..n {
+                assert!((a2[k] - a[k]).abs() < 1e-12, "n {n} a_{k}");
+                assert!((b2[k] - b[k]).abs() < 1e-12, "n {n} b_{}", k + 1);
+            }
+            // Fewer coefficients: the first ones, the rest taken as zero.
+            let mut part = vec![0.0; n];
+            s.sin_synth(&b[..1], &mut part, &mut ws);
+            for (j, v) in part.iter().enumerate() {
+                assert!((v - b[0] * midpoint(n, j).sin()).abs() < 1e-13);
+            }
         }
     }
 

@@ -1,464 +1,438 @@
-//! Exact solves with a truncated multiplication operator of one scalar series, in
-//! O(H log H) each, from the Gohberg–Semencul formula.
+//! Exact solves with a truncated multiplication operator T = Trunc_H(a·) of one real
+//! function a(θ), in O(H log H) each, from one column of T⁻¹.
 //!
-//! In complex coefficients (x̂_k, k = −H..H; x = Σ x̂_k e^{ikθ}), x ↦ Trunc_H(a·x) is the
-//! (2H+1)² Toeplitz matrix T_{kl} = â_{k−l}. With ξ = T⁻¹e₀ (first column of the inverse,
-//! e₀ the harmonic −H) and ξ₀ ≠ 0, and T Hermitian (a real: â_{−k} = conj(â_k), so the
-//! last column of T⁻¹ is the reversed conjugate of ξ):
+//! In complex coefficients (x̂_k, k = −H..H) T is the Hermitian Toeplitz matrix
+//! T_{kl} = â_{k−l}. Let ξ_c = T⁻¹(2 cos Hθ) and ξ_s = T⁻¹(2 sin Hθ) (real series; their
+//! complex combination (ξ̂_c − iξ̂_s)/2 is the first column of T⁻¹, the Gohberg–Semencul
+//! generator), p(θ) and q(θ) their values, and κ = c_H(ξ_c) + s_H(ξ_s) (four times the
+//! corner entry (T⁻¹)₀₀, nonzero whenever the generator exists). The generating function
+//! of T⁻¹ is then a Toeplitz Bezoutian, and on any grid of N ≥ 2H+1 equally spaced
+//! instants θ_j the solution y = T⁻¹x of a series x with samples r_j is, sample by sample,
 //!
-//!   ξ₀ T⁻¹ = L(ξ) L(ξ̄)ᵀ − L(Z J ξ̄) L(Z J ξ)ᵀ,
+//!   κN·y_i = p_i (Σ_j p_j r_j − (C q r)_i) + q_i (Σ_j q_j r_j + (C p r)_i)
+//!            + 2 (p q' − p' q)_i r_i,
 //!
-//! L(v) the lower-triangular Toeplitz matrix of first column v, Z the down-shift and J the
-//! exchange. Each factor is a linear convolution or correlation, applied by complex FFTs of
-//! size N ≥ 4H+1 (no wrap-around onto a retained entry): a solve is six FFTs once the four
-//! generators' spectra are known (`set_generator`, once per factorisation). When a is
-//! even in time (a time-symmetric orbit), T and ξ are real and a real right-hand side
-//! (an even series) is solved by six real FFTs instead (`EvenGs`). The formula
-//! is exact in exact arithmetic; its round-off is that of a direct solve of T when T is
-//! well conditioned, and the caller checks it by residuals (contact.rs).
+//! with C the circulant (C v)_i = Σ_{j≠i} cot((θ_i − θ_j)/2) v_j. (Derivation: the kernel
+//! Σ_{kl} (T⁻¹)_{kl} e^{ikφ} e^{−ilθ} equals, with Ξ = (p − iq)/2 and δ = φ − θ,
+//! 4[Re(Ξ(φ)Ξ̄(θ)) − cot(δ/2) Im(Ξ(φ)Ξ̄(θ))]/κ, and its value at δ = 0 is the limit, the
+//! derivative term; the mean over the grid of kernel × samples is exact because every
+//! product of two harmonics of order ≤ H that it averages has order < N.) C is diagonal in
+//! Fourier: cos kθ ↦ (N − 2k) sin kθ, sin kθ ↦ −(N − 2k) cos kθ (0 < k < N/2), the
+//! mean and the Nyquist harmonic ↦ 0. A solve is therefore: the samples of x, two
+//! pointwise products, two transforms to the spectrum and two back, a pointwise sum, and
+//! the analysis of y: six real FFTs of N = 2m ≥ 2H+2 instants (`Full`), against six
+//! complex FFTs of N ≥ 4H+1 for the Gohberg–Semencul product of triangular factors.
+//!
+//! When a is even in time (a time-symmetric orbit), ξ_c is a cosine series and ξ_s a
+//! sine series, so p is even and q odd, and T maps cosine series to cosine series and
+//! sine series to sine series. The formula then splits by parity onto the m midpoints of
+//! half a period (`Half`): for an even x, p r is even and q r odd (and Σ q r = 0), and C
+//! maps each to the other parity; each of the six transforms is a cosine or sine
+//! transform of m points, one real FFT of m (cosine_sampler.rs). An odd x takes the same
+//! path with the parities exchanged; a mixed x is the sum of both.
+//!
+//! The formula is exact in exact arithmetic; its round-off is that of a direct solve of T
+//! when T is well conditioned (the callers check residuals, contact.rs).
 
-use super::series;
+use super::cosine_sampler::{CosineSampler, CosineScratch};
+use super::series::{self, ic, is};
 use realfft::num_complex::Complex;
-use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
-use rustfft::{Fft, FftPlanner};
-use std::cell::RefCell;
+use realfft::{ComplexToReal, RealToComplex};
 use std::sync::Arc;
 
 type C = Complex<f64>;
 
-thread_local! {
-    static PLANNER: RefCell<FftPlanner<f64>> = RefCell::new(FftPlanner::new());
-    static REAL_PLANNER: RefCell<RealFftPlanner<f64>> = RefCell::new(RealFftPlanner::new());
+/// The full period on N = 2m instants θ_j = 2πj/N: any generator, any right-hand side.
+struct Full {
+    n: usize,
+    cot: Cot,
+    /// Samples of p, q and 2(pq' − p'q).
+    p: Vec<f64>,
+    q: Vec<f64>,
+    d: Vec<f64>,
+    r: Vec<f64>,
+    u: Vec<f64>,
+    v: Vec<f64>,
 }
 
-/// Complex coefficients (index k + H, k = −H..H) of a real series with `h` harmonics
-/// (series.rs layout: x̂₀ = x₀, x̂_{±k} = (c_k ∓ i s_k)/2).
-pub fn to_complex(x: &[f64], h: usize, out: &mut [C]) {
-    out[h] = C::new(x[0], 0.0);
-    for k in 1..=h {
-        let z = C::new(0.5 * x[series::ic(k)], -0.5 * x[series::is(h, k)]);
-        out[h + k] = z;
-        out[h - k] = z.conj();
-    }
-}
-
-/// The real series of Hermitian-symmetric complex coefficients (the real part of the
-/// function they describe, if they are not quite symmetric).
-pub fn from_complex(z: &[C], h: usize, out: &mut [f64]) {
-    out[0] = z[h].re;
-    for k in 1..=h {
-        // Average of the +k and conjugated −k entries: exact for symmetric input.
-        let v = 0.5 * (z[h + k] + z[h - k].conj());
-        out[series::ic(k)] = 2.0 * v.re;
-        out[series::is(h, k)] = -2.0 * v.im;
-    }
-}
-
-/// The Gohberg–Semencul inverse in real arithmetic, for a real ξ (T real: the symbol a is
-/// even in time, as on a time-symmetric orbit) applied to real coefficient vectors (even
-/// right-hand sides). The four kernels and every intermediate are then real sequences,
-/// so the six transforms of a solve are real FFTs of the same size, about half the work
-/// of complex ones.
-struct EvenGs {
-    fwd: Arc<dyn RealToComplex<f64>>,
-    inv: Arc<dyn ComplexToReal<f64>>,
-    scratch: Vec<C>,
-    /// Half spectra (N/2 + 1) of the kernels, scaled as GsInverse's.
-    corr1: Vec<C>,
-    corr2: Vec<C>,
-    conv1: Vec<C>,
-    conv2: Vec<C>,
-    b: Vec<f64>,
-    u1: Vec<f64>,
-    u2: Vec<f64>,
-    sb: Vec<C>,
-    s1: Vec<C>,
-    s2: Vec<C>,
-}
-
-impl EvenGs {
-    fn new(nfft: usize) -> EvenGs {
-        let (fwd, inv) = REAL_PLANNER.with(|p| {
-            let mut p = p.borrow_mut();
-            (p.plan_fft_forward(nfft), p.plan_fft_inverse(nfft))
-        });
-        let len = fwd.get_scratch_len().max(inv.get_scratch_len());
-        let spec = || vec![C::new(0.0, 0.0); nfft / 2 + 1];
-        EvenGs {
-            fwd,
-            inv,
-            scratch: vec![C::new(0.0, 0.0); len],
-            corr1: spec(),
-            corr2: spec(),
-            conv1: spec(),
-            conv2: spec(),
-            b: vec![0.0; nfft],
-            u1: vec![0.0; nfft],
-            u2: vec![0.0; nfft],
-            sb: spec(),
-            s1: spec(),
-            s2: spec(),
+impl Full {
+    fn new(m: usize) -> Full {
+        let n = 2 * m;
+        let z = || vec![0.0; n];
+        Full {
+            n,
+            cot: Cot::new(n),
+            p: z(),
+            q: z(),
+            d: z(),
+            r: z(),
+            u: z(),
+            v: z(),
         }
     }
 
-    /// b ← T⁻¹ b for real coefficient vectors b (length n ≤ N/2).
-    fn solve(&mut self, b: &mut [f64]) {
-        let n = b.len();
-        self.b[..n].copy_from_slice(b);
-        self.b[n..].fill(0.0);
-        let _ = self
-            .fwd
-            .process_with_scratch(&mut self.b, &mut self.sb, &mut self.scratch);
-        for ((s1, s2), (bb, (c1, c2))) in self
-            .s1
-            .iter_mut()
-            .zip(self.s2.iter_mut())
-            .zip(self.sb.iter().zip(self.corr1.iter().zip(&self.corr2)))
+    /// Samples of the series `x` (h harmonics, 2h < N) into `out`.
+    fn synth(&mut self, x: &[f64], h: usize, out: &mut [f64]) {
+        let s = &mut self.cot.spec;
+        s.fill(C::new(0.0, 0.0));
+        s[0] = C::new(x[0], 0.0);
+        for k in 1..=h {
+            s[k] = C::new(0.5 * x[ic(k)], -0.5 * x[is(h, k)]);
+        }
+        if self
+            .cot
+            .inv
+            .process_with_scratch(s, out, &mut self.cot.work)
+            .is_err()
         {
-            *s1 = bb * c1;
-            *s2 = bb * c2;
+            // Lengths are the plan's by construction; NaN reaches the callers' checks.
+            out.fill(f64::NAN);
         }
-        // The spectra of real sequences: their first (and, N even, last) entries are real
-        // up to the products' round-off, which the inverse transform wants exactly real.
-        for s in [&mut self.s1, &mut self.s2] {
-            s[0].im = 0.0;
-            if let Some(last) = s.last_mut() {
-                last.im = 0.0;
+    }
+
+    /// The series (h harmonics) of the samples `s` (clobbered) into `x`.
+    fn analyse(&mut self, s: &mut [f64], h: usize, x: &mut [f64]) {
+        let sp = &mut self.cot.spec;
+        if self
+            .cot
+            .fwd
+            .process_with_scratch(s, sp, &mut self.cot.work)
+            .is_err()
+        {
+            x.fill(f64::NAN);
+            return;
+        }
+        let nf = self.n as f64;
+        x[0] = sp[0].re / nf;
+        for k in 1..=h {
+            x[ic(k)] = 2.0 * sp[k].re / nf;
+            x[is(h, k)] = -2.0 * sp[k].im / nf;
+        }
+    }
+
+    fn solve(&mut self, x: &mut [f64], h: usize, scale: f64) {
+        let n = self.n;
+        let mut r = std::mem::take(&mut self.r);
+        self.synth(x, h, &mut r);
+        let (p, q, d) = (&self.p[..n], &self.q[..n], &self.d[..n]);
+        let (u, v) = (&mut self.u[..n], &mut self.v[..n]);
+        for j in 0..n {
+            u[j] = p[j] * r[j];
+            v[j] = q[j] * r[j];
+        }
+        let sp = self.cot.apply(u);
+        let sq = self.cot.apply(v);
+        // u = C p r, v = C q r; y into r.
+        for j in 0..n {
+            r[j] = scale * (p[j] * (sp - v[j]) + q[j] * (sq + u[j]) + d[j] * r[j]);
+        }
+        self.analyse(&mut r, h, x);
+        self.r = r;
+    }
+}
+
+/// The m midpoints θ_j = π(2j+1)/(2m) of half a period: a time-symmetric generator, its
+/// right-hand sides split into cosine and sine series. The samples of x and y are cosine
+/// or sine transforms of m points; C is applied once on the whole period to p r + q r,
+/// whose parts of either parity are p r and q r (of opposite parities), and whose image's
+/// parts are C p r and C q r (C exchanges parities).
+struct Half {
+    m: usize,
+    tr: CosineSampler,
+    ws: CosineScratch,
+    /// C on the N = 2m midpoints of the whole period.
+    cot: Cot,
+    /// Samples of p (even), q (odd) and 2(pq' − p'q) (even).
+    p: Vec<f64>,
+    q: Vec<f64>,
+    d: Vec<f64>,
+    r: Vec<f64>,
+    /// The whole period's samples (N).
+    w: Vec<f64>,
+    /// Coefficient buffer of m entries.
+    c: Vec<f64>,
+}
+
+/// Parity of a right-hand side on the half period.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Parity {
+    Even,
+    Odd,
+}
+
+impl Half {
+    fn new(m: usize) -> Half {
+        let tr = CosineSampler::new(m);
+        let ws = tr.scratch();
+        let z = || vec![0.0; m];
+        Half {
+            m,
+            tr,
+            ws,
+            cot: Cot::new(2 * m),
+            p: z(),
+            q: z(),
+            d: z(),
+            r: z(),
+            w: vec![0.0; 2 * m],
+            c: z(),
+        }
+    }
+
+    /// y from the samples r of a right-hand side of `parity` (in `self.r`, y written over
+    /// them), `scale` = 1/(κN).
+    fn apply(&mut self, parity: Parity, scale: f64) {
+        let m = self.m;
+        let n = 2 * m;
+        let (p, q, d, r) = (&self.p[..m], &self.q[..m], &self.d[..m], &mut self.r[..m]);
+        // p r + q r on the whole period: at −θ_j = θ_{N−1−j}, p r keeps or flips its sign
+        // with r and q r does the opposite.
+        let sign = match parity {
+            Parity::Even => 1.0,
+            Parity::Odd => -1.0,
+        };
+        {
+            let (lo, hi) = self.w.split_at_mut(m);
+            for j in 0..m {
+                let (pr, qr) = (p[j] * r[j], q[j] * r[j]);
+                lo[j] = pr + qr;
+                hi[m - 1 - j] = sign * (pr - qr);
             }
         }
-        let _ = self
-            .inv
-            .process_with_scratch(&mut self.s1, &mut self.u1, &mut self.scratch);
-        let _ = self
-            .inv
-            .process_with_scratch(&mut self.s2, &mut self.u2, &mut self.scratch);
-        self.u1[n..].fill(0.0);
-        self.u2[n..].fill(0.0);
-        let _ = self
-            .fwd
-            .process_with_scratch(&mut self.u1, &mut self.s1, &mut self.scratch);
-        let _ = self
-            .fwd
-            .process_with_scratch(&mut self.u2, &mut self.s2, &mut self.scratch);
-        for (o, ((u1, u2), (c1, c2))) in self.sb.iter_mut().zip(
-            self.s1
-                .iter()
-                .zip(&self.s2)
-                .zip(self.conv1.iter().zip(&self.conv2)),
-        ) {
-            *o = u1 * c1 - u2 * c2;
+        let sum = self.cot.apply(&mut self.w);
+        let (lo, hi) = self.w.split_at(m);
+        debug_assert_eq!(hi.len(), n - m);
+        for j in 0..m {
+            let (a, b) = (lo[j], hi[m - 1 - j]);
+            // The parts of C w even and odd in time at θ_j.
+            let (ev, od) = (0.5 * (a + b), 0.5 * (a - b));
+            r[j] = scale
+                * match parity {
+                    // C p r odd, C q r even; Σ q r = 0.
+                    Parity::Even => p[j] * (sum - ev) + q[j] * od + d[j] * r[j],
+                    // C p r even, C q r odd; Σ p r = 0.
+                    Parity::Odd => q[j] * (sum + ev) - p[j] * od + d[j] * r[j],
+                };
         }
-        self.sb[0].im = 0.0;
-        if let Some(last) = self.sb.last_mut() {
-            last.im = 0.0;
-        }
-        let _ = self
-            .inv
-            .process_with_scratch(&mut self.sb, &mut self.b, &mut self.scratch);
-        b.copy_from_slice(&self.b[..n]);
+    }
+
+    /// x ← T⁻¹ x_even, x_even the cosine part of x; x's sine coefficients set to zero.
+    fn solve_even(&mut self, x: &mut [f64], h: usize, scale: f64) {
+        self.c[0] = x[0];
+        self.c[1..=h].copy_from_slice(&x[1..=h]);
+        self.tr.cos_synth(&self.c[..=h], &mut self.r, &mut self.ws);
+        self.apply(Parity::Even, scale);
+        self.tr.cos_analyse(&self.r, &mut x[..=h], &mut self.ws);
+        x[h + 1..].fill(0.0);
+    }
+
+    /// x ← T⁻¹ x_odd, x_odd the sine part of x; x's mean and cosine coefficients set to zero.
+    fn solve_odd(&mut self, x: &mut [f64], h: usize, scale: f64) {
+        self.tr.sin_synth(&x[h + 1..], &mut self.r, &mut self.ws);
+        self.apply(Parity::Odd, scale);
+        self.tr.sin_analyse(&self.r, &mut x[h + 1..], &mut self.ws);
+        x[..=h].fill(0.0);
     }
 }
 
-/// The Gohberg–Semencul representation of T⁻¹ for one T (module doc).
-pub struct GsInverse {
-    h: usize,
-    n: usize,
-    nfft: usize,
-    fwd: Arc<dyn Fft<f64>>,
-    inv: Arc<dyn Fft<f64>>,
-    scratch: Vec<C>,
-    /// Spectra (scaled by 1/N, and the last two by 1/(N·ξ₀)) of the correlation kernels
-    /// of ξ̄ and ZJξ, and of the convolution kernels ξ and ZJξ̄.
-    corr1: Vec<C>,
-    corr2: Vec<C>,
-    conv1: Vec<C>,
-    conv2: Vec<C>,
-    b: Vec<C>,
-    u1: Vec<C>,
-    u2: Vec<C>,
-    /// The real form, made on the first real generator; `real` says whether the current
-    /// generator is one.
-    even: Option<Box<EvenGs>>,
-    real: bool,
+/// The circulant C on N equally spaced instants, by real FFTs.
+struct Cot {
+    fwd: Arc<dyn RealToComplex<f64>>,
+    inv: Arc<dyn ComplexToReal<f64>>,
+    spec: Vec<C>,
+    work: Vec<C>,
+    /// Its eigenvalues over N on the half spectrum: −i(N − 2k)/N (0 at k = 0 and N/2).
+    eig: Vec<f64>,
 }
 
-impl GsInverse {
-    /// For operators on series of `h` harmonics.
-    pub fn new(h: usize) -> GsInverse {
-        let n = series::len(h);
-        let nfft = series::fft_size_smooth(2 * n - 2);
-        let (fwd, inv) = PLANNER.with(|p| {
-            let mut p = p.borrow_mut();
-            (p.plan_fft_forward(nfft), p.plan_fft_inverse(nfft))
-        });
-        let len = fwd
-            .get_inplace_scratch_len()
-            .max(inv.get_inplace_scratch_len());
-        let z = || vec![C::new(0.0, 0.0); nfft];
-        GsInverse {
-            h,
-            n,
-            nfft,
+impl Cot {
+    fn new(n: usize) -> Cot {
+        let (fwd, inv) = series::real_fft_plans(n);
+        let work = vec![C::new(0.0, 0.0); fwd.get_scratch_len().max(inv.get_scratch_len())];
+        let nf = n as f64;
+        let eig = (0..=n / 2)
+            .map(|k| {
+                if k == 0 || 2 * k == n {
+                    0.0
+                } else {
+                    (nf - 2.0 * k as f64) / nf
+                }
+            })
+            .collect();
+        Cot {
             fwd,
             inv,
-            scratch: vec![C::new(0.0, 0.0); len],
-            corr1: z(),
-            corr2: z(),
-            conv1: z(),
-            conv2: z(),
-            b: z(),
-            u1: z(),
-            u2: z(),
-            even: None,
-            real: false,
+            spec: vec![C::new(0.0, 0.0); n / 2 + 1],
+            work,
+            eig,
         }
     }
 
-    /// Whether the current generator is real (T real), so that `solve_real` applies.
-    #[cfg(test)]
-    pub fn is_real(&self) -> bool {
-        self.real
-    }
-
-    /// Harmonics of the series the operator acts on.
-    pub fn harmonics(&self) -> usize {
-        self.h
-    }
-
-    /// Set ξ = T⁻¹e₀ (length 2H+1); false when ξ₀ vanishes or ξ is not finite (no
-    /// representation: the caller takes another route). `real`: the caller knows T to be
-    /// real (an even symbol), so that ξ is real in exact arithmetic; its imaginary part,
-    /// the error of the solves that gave ξ, is then dropped and the solves of real
-    /// right-hand sides take real FFTs (`solve_real`).
-    pub fn set_generator(&mut self, xi: &[C], real: bool) -> bool {
-        let (n, nf) = (self.n, self.nfft);
-        // A real generator is its real part (the rest is the error of the solves).
-        let xi_at = |k: usize| if real { C::new(xi[k].re, 0.0) } else { xi[k] };
-        let x0 = xi_at(0);
-        if x0.norm().partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
-            || xi.iter().any(|v| !(v.re.is_finite() && v.im.is_finite()))
+    /// v ← C v, the sum of v returned.
+    fn apply(&mut self, v: &mut [f64]) -> f64 {
+        if self
+            .fwd
+            .process_with_scratch(v, &mut self.spec, &mut self.work)
+            .is_err()
         {
+            // Lengths are the plan's by construction; NaN reaches the callers' checks.
+            v.fill(f64::NAN);
+            return f64::NAN;
+        }
+        let sum = self.spec[0].re;
+        for (s, &e) in self.spec.iter_mut().zip(&self.eig) {
+            // −i·e·(a + ib) = e·b − i·e·a
+            *s = C::new(e * s.im, -e * s.re);
+        }
+        if self
+            .inv
+            .process_with_scratch(&mut self.spec, v, &mut self.work)
+            .is_err()
+        {
+            v.fill(f64::NAN);
+        }
+        sum
+    }
+}
+
+/// T⁻¹ for one T, from its generator (module doc).
+pub struct ToeplitzInverse {
+    h: usize,
+    /// 1/(κN).
+    scale: f64,
+    /// The generator is time-symmetric: solves on the half period.
+    symmetric: bool,
+    full: Full,
+    half: Half,
+    /// Series buffers (derivatives of the generator, the two parts of a mixed solve).
+    work: Vec<f64>,
+    odd: Vec<f64>,
+}
+
+impl ToeplitzInverse {
+    /// For operators on series of `h` harmonics: N = 2m instants, m the smallest
+    /// 5-smooth number above h.
+    pub fn new(h: usize) -> ToeplitzInverse {
+        let mut m = h + 1;
+        while !series::is_5_smooth(m) {
+            m += 1;
+        }
+        ToeplitzInverse {
+            h,
+            scale: 0.0,
+            symmetric: false,
+            full: Full::new(m),
+            half: Half::new(m),
+            work: vec![0.0; series::len(h)],
+            odd: vec![0.0; series::len(h)],
+        }
+    }
+
+    /// Whether the generator is time-symmetric (`solve_even` and `solve_odd` apply).
+    pub fn is_symmetric(&self) -> bool {
+        self.symmetric
+    }
+
+    /// Set the generator from ξ_c = T⁻¹(2 cos Hθ) and ξ_s = T⁻¹(2 sin Hθ); false when κ
+    /// vanishes or a value is not finite (no representation: the caller takes another
+    /// route). `symmetric`: a is even in time and the caller has made ξ_c a cosine series
+    /// and ξ_s a sine series (their other parts are not read).
+    pub fn set_generator(&mut self, xi_c: &[f64], xi_s: &[f64], symmetric: bool) -> bool {
+        let h = self.h;
+        let kappa = xi_c[ic(h)] + xi_s[is(h, h)];
+        if !(kappa.is_finite() && kappa != 0.0) || xi_c.iter().chain(xi_s).any(|v| !v.is_finite()) {
             return false;
         }
-        let scale = 1.0 / nf as f64;
-        let zero = C::new(0.0, 0.0);
-        // Correlation u_i = Σ_{j≥i} g_{j−i} b_j is the cyclic convolution of b with the
-        // kernel w_0 = g_0, w_{N−k} = g_k.
-        self.corr1.fill(zero);
-        self.corr2.fill(zero);
-        self.conv1.fill(zero);
-        self.conv2.fill(zero);
-        // (ZJv)_0 = 0, (ZJv)_i = v_{n−i}.
-        for k in 0..n {
-            let g1 = xi_at(k).conj();
-            let g2 = if k == 0 { zero } else { xi_at(n - k) };
-            let pos = if k == 0 { 0 } else { nf - k };
-            self.corr1[pos] = g1 * scale;
-            self.corr2[pos] = g2 * scale;
-            self.conv1[k] = xi_at(k);
-            self.conv2[k] = if k == 0 { zero } else { xi_at(n - k).conj() };
-        }
-        let s = scale / x0;
-        for v in self.conv1.iter_mut().chain(self.conv2.iter_mut()) {
-            *v *= s;
-        }
-        self.real = real;
-        if self.real {
-            self.set_real_spectra();
-            return true;
-        }
-        for buf in [
-            &mut self.corr1,
-            &mut self.corr2,
-            &mut self.conv1,
-            &mut self.conv2,
-        ] {
-            self.fwd.process_with_scratch(buf, &mut self.scratch);
+        self.symmetric = symmetric;
+        if symmetric {
+            let hf = &mut self.half;
+            self.scale = 1.0 / (kappa * (2 * hf.m) as f64);
+            // p: the cosines of ξ_c; q: the sines of ξ_s; p' = −Σ k c_k sin kθ and
+            // q' = Σ k s_k cos kθ (series::deriv), into r and c for the moment.
+            hf.tr.cos_synth(&xi_c[..=h], &mut hf.p, &mut hf.ws);
+            hf.tr.sin_synth(&xi_s[h + 1..], &mut hf.q, &mut hf.ws);
+            series::deriv(xi_c, h, &mut self.work);
+            hf.tr.sin_synth(&self.work[h + 1..], &mut hf.r, &mut hf.ws);
+            series::deriv(xi_s, h, &mut self.work);
+            hf.tr.cos_synth(&self.work[..=h], &mut hf.c, &mut hf.ws);
+            for (((d, &p), &q), (&dp, &dq)) in
+                hf.d.iter_mut()
+                    .zip(&hf.p)
+                    .zip(&hf.q)
+                    .zip(hf.r.iter().zip(&hf.c))
+            {
+                *d = 2.0 * (p * dq - dp * q);
+            }
+        } else {
+            let fl = &mut self.full;
+            self.scale = 1.0 / (kappa * fl.n as f64);
+            let (mut p, mut q) = (std::mem::take(&mut fl.p), std::mem::take(&mut fl.q));
+            fl.synth(xi_c, h, &mut p);
+            fl.synth(xi_s, h, &mut q);
+            let (mut dp, mut dq) = (std::mem::take(&mut fl.u), std::mem::take(&mut fl.v));
+            series::deriv(xi_c, h, &mut self.work);
+            fl.synth(&self.work, h, &mut dp);
+            series::deriv(xi_s, h, &mut self.work);
+            fl.synth(&self.work, h, &mut dq);
+            for (((d, &p), &q), (&dp, &dq)) in
+                fl.d.iter_mut().zip(&p).zip(&q).zip(dp.iter().zip(&dq))
+            {
+                *d = 2.0 * (p * dq - dp * q);
+            }
+            (fl.p, fl.q, fl.u, fl.v) = (p, q, dp, dq);
         }
         true
     }
 
-    /// A real generator's kernels (already in `corr1`..`conv2`, before their transforms):
-    /// their half spectra by real FFTs, and the complex spectra as those half spectra's
-    /// Hermitian extensions, so both solves use the same real kernels.
-    fn set_real_spectra(&mut self) {
-        let nf = self.nfft;
-        let even = self.even.get_or_insert_with(|| Box::new(EvenGs::new(nf)));
-        let EvenGs {
-            fwd,
-            scratch,
-            corr1,
-            corr2,
-            conv1,
-            conv2,
-            b: work,
-            ..
-        } = &mut **even;
-        for (buf, half) in [
-            (&mut self.corr1, corr1),
-            (&mut self.corr2, corr2),
-            (&mut self.conv1, conv1),
-            (&mut self.conv2, conv2),
-        ] {
-            for (w, v) in work.iter_mut().zip(buf.iter()) {
-                *w = v.re;
-            }
-            // Lengths are the plan's by construction: no error can come back.
-            let _ = fwd.process_with_scratch(work, half, scratch);
-            buf[..half.len()].copy_from_slice(half);
-            for k in half.len()..nf {
-                buf[k] = buf[nf - k].conj();
-            }
-        }
-    }
-
-    /// b ← T⁻¹ b for a real coefficient vector b (length 2H+1) by real FFTs, when the
-    /// generator is real (`is_real`); false, b untouched, when it is not.
-    pub fn solve_real(&mut self, b: &mut [f64]) -> bool {
-        match self.even.as_mut() {
-            Some(even) if self.real => {
-                even.solve(b);
-                true
-            }
-            _ => false,
-        }
-    }
-
-    /// b ← T⁻¹ b (complex coefficients, length 2H+1).
-    pub fn solve_complex(&mut self, b: &mut [C]) {
-        let (n, zero) = (self.n, C::new(0.0, 0.0));
-        self.b[..n].copy_from_slice(b);
-        self.b[n..].fill(zero);
-        self.fwd
-            .process_with_scratch(&mut self.b, &mut self.scratch);
-        for ((u1, u2), (bb, (c1, c2))) in self
-            .u1
-            .iter_mut()
-            .zip(self.u2.iter_mut())
-            .zip(self.b.iter().zip(self.corr1.iter().zip(&self.corr2)))
-        {
-            *u1 = bb * c1;
-            *u2 = bb * c2;
-        }
-        self.inv
-            .process_with_scratch(&mut self.u1, &mut self.scratch);
-        self.inv
-            .process_with_scratch(&mut self.u2, &mut self.scratch);
-        self.u1[n..].fill(zero);
-        self.u2[n..].fill(zero);
-        self.fwd
-            .process_with_scratch(&mut self.u1, &mut self.scratch);
-        self.fwd
-            .process_with_scratch(&mut self.u2, &mut self.scratch);
-        for (o, ((u1, u2), (c1, c2))) in self.b.iter_mut().zip(
-            self.u1
-                .iter()
-                .zip(&self.u2)
-                .zip(self.conv1.iter().zip(&self.conv2)),
-        ) {
-            *o = u1 * c1 - u2 * c2;
-        }
-        self.inv
-            .process_with_scratch(&mut self.b, &mut self.scratch);
-        b.copy_from_slice(&self.b[..n]);
-    }
-}
-
-/// Real-series solves: `x ← A⁻¹ x` for A = Trunc_H(a·) in the series layout, through the
-/// complex coefficients.
-pub struct RealGs {
-    pub gs: GsInverse,
-    z: Vec<C>,
-    e: Vec<f64>,
-}
-
-impl RealGs {
-    pub fn new(h: usize) -> RealGs {
-        RealGs {
-            gs: GsInverse::new(h),
-            z: vec![C::new(0.0, 0.0); series::len(h)],
-            e: vec![0.0; series::len(h)],
-        }
-    }
-
-    /// Set the generator from the real solutions ξ_c = A⁻¹(2 cos Hθ) and
-    /// ξ_s = A⁻¹(2 sin Hθ): T⁻¹e₀ = (ξ̂_c − i ξ̂_s)/2 (e₀ = (2cos Hθ − i·2 sin Hθ)/2 in
-    /// complex coefficients is the harmonic −H alone).
-    /// `real`: the symbol is even in time (`GsInverse::set_generator`).
-    pub fn set_from_real(&mut self, xi_c: &[f64], xi_s: &[f64], real: bool) -> bool {
-        let h = self.gs.harmonics();
-        let n = series::len(h);
-        let mut zc = vec![C::new(0.0, 0.0); n];
-        to_complex(xi_c, h, &mut zc);
-        to_complex(xi_s, h, &mut self.z);
-        let mi = C::new(0.0, -1.0);
-        for (c, s) in zc.iter_mut().zip(&self.z) {
-            *c = 0.5 * (*c + mi * s);
-        }
-        self.gs.set_generator(&zc, real)
-    }
-
-    /// x ← A⁻¹ x (real series of H harmonics).
+    /// x ← T⁻¹ x (a real series of H harmonics).
     pub fn solve(&mut self, x: &mut [f64]) {
-        let h = self.gs.harmonics();
-        to_complex(x, h, &mut self.z);
-        self.gs.solve_complex(&mut self.z);
-        from_complex(&self.z, h, x);
+        let h = self.h;
+        if !self.symmetric {
+            return self.full.solve(x, h, self.scale);
+        }
+        let has_odd = (1..=h).any(|k| x[is(h, k)] != 0.0);
+        let has_even = x[0] != 0.0 || (1..=h).any(|k| x[ic(k)] != 0.0);
+        if has_odd && has_even {
+            self.odd.copy_from_slice(x);
+            self.half.solve_odd(&mut self.odd, h, self.scale);
+            self.half.solve_even(x, h, self.scale);
+            for k in 1..=h {
+                x[is(h, k)] = self.odd[is(h, k)];
+            }
+        } else if has_odd {
+            self.half.solve_odd(x, h, self.scale);
+        } else if has_even {
+            self.half.solve_even(x, h, self.scale);
+        }
     }
 
-    /// x ← A⁻¹ x_even, x_even the cosine part of x (its sine coefficients dropped), for a
-    /// real generator (`GsInverse::is_real`), by real FFTs: x̂_even is real and symmetric,
-    /// and so is T⁻¹x̂_even, whose sine part is zero. For the solves of a time-symmetric
-    /// branch, whose right-hand sides are even in exact arithmetic (contact.rs). Without a
-    /// real generator, `solve` of x_even.
+    /// x ← T⁻¹ x_even, x_even the cosine part of x (its sine coefficients dropped), for a
+    /// time-symmetric generator (T then maps cosine series to cosine series): for the
+    /// solves of a time-symmetric branch, whose right-hand sides are even in exact
+    /// arithmetic (contact.rs). Without one, `solve` of x_even.
     pub fn solve_even(&mut self, x: &mut [f64]) {
-        let h = self.gs.harmonics();
-        let e = &mut self.e;
-        e[h] = x[0];
-        for k in 1..=h {
-            let v = 0.5 * x[series::ic(k)];
-            e[h + k] = v;
-            e[h - k] = v;
-        }
-        let real = self.gs.solve_real(e);
-        for k in 1..=h {
-            x[series::is(h, k)] = 0.0;
-        }
-        if !real {
-            return self.solve(x);
-        }
-        x[0] = e[h];
-        for k in 1..=h {
-            x[series::ic(k)] = e[h + k] + e[h - k];
+        let h = self.h;
+        if self.symmetric {
+            self.half.solve_even(x, h, self.scale);
+        } else {
+            for k in 1..=h {
+                x[is(h, k)] = 0.0;
+            }
+            self.full.solve(x, h, self.scale);
         }
     }
 
-    /// x ← A⁻¹ x and y ← A⁻¹ y by one complex solve: A is real, so T maps the Hermitian
-    /// coefficient vectors of real series to Hermitian ones, and T⁻¹(x̂ + iŷ) splits into
-    /// its Hermitian part T⁻¹x̂ and i times its other part T⁻¹ŷ.
-    pub fn solve_pair(&mut self, x: &mut [f64], y: &mut [f64]) {
-        let h = self.gs.harmonics();
-        let z = &mut self.z;
-        let i = C::new(0.0, 1.0);
-        z[h] = C::new(x[0], y[0]);
-        for k in 1..=h {
-            let a = C::new(0.5 * x[series::ic(k)], -0.5 * x[series::is(h, k)]);
-            let b = C::new(0.5 * y[series::ic(k)], -0.5 * y[series::is(h, k)]);
-            z[h + k] = a + i * b;
-            z[h - k] = a.conj() + i * b.conj();
-        }
-        self.gs.solve_complex(z);
-        x[0] = z[h].re;
-        y[0] = z[h].im;
-        for k in 1..=h {
-            let (p, m) = (z[h + k], z[h - k].conj());
-            // Hermitian part (x̂_k) and the other part over i (ŷ_k).
-            let a = 0.5 * (p + m);
-            let b = (p - m) * C::new(0.0, -0.5);
-            x[series::ic(k)] = 2.0 * a.re;
-            x[series::is(h, k)] = -2.0 * a.im;
-            y[series::ic(k)] = 2.0 * b.re;
-            y[series::is(h, k)] = -2.0 * b.im;
+    /// x ← T⁻¹ x_odd, x_odd the sine part of x, as `solve_even` for the other parity.
+    pub fn solve_odd(&mut self, x: &mut [f64]) {
+        let h = self.h;
+        if self.symmetric {
+            self.half.solve_odd(x, h, self.scale);
+        } else {
+            x[0] = 0.0;
+            for k in 1..=h {
+                x[ic(k)] = 0.0;
+            }
+            self.full.solve(x, h, self.scale);
         }
     }
 }
@@ -474,175 +448,193 @@ mod tests {
         ((*seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5
     }
 
-    /// Dense T⁻¹ by Gauss–Jordan on complex numbers (the independent reference).
-    fn dense_solve(t: &[Vec<C>], b: &[C]) -> Vec<C> {
-        let n = b.len();
-        let mut a: Vec<Vec<C>> = t.to_vec();
+    /// x = A⁻¹ b for the dense column-major n × n matrix A (Gauss–Jordan with partial
+    /// pivoting: the independent reference).
+    fn dense_solve(a: &[f64], n: usize, b: &[f64]) -> Vec<f64> {
+        let mut m: Vec<Vec<f64>> = (0..n)
+            .map(|i| (0..n).map(|j| a[j * n + i]).collect())
+            .collect();
         let mut x = b.to_vec();
         for c in 0..n {
             let p = (c..n)
-                .max_by(|&i, &j| a[i][c].norm().total_cmp(&a[j][c].norm()))
+                .max_by(|&i, &j| m[i][c].abs().total_cmp(&m[j][c].abs()))
                 .unwrap();
-            a.swap(c, p);
+            m.swap(c, p);
             x.swap(c, p);
             for r in 0..n {
                 if r != c {
-                    let f = a[r][c] / a[c][c];
-                    let pivot_row = a[c].clone();
-                    for (ark, v) in a[r][c..n].iter_mut().zip(&pivot_row[c..n]) {
-                        *ark -= f * v;
+                    let f = m[r][c] / m[c][c];
+                    let row = m[c].clone();
+                    for (v, w) in m[r][c..].iter_mut().zip(&row[c..]) {
+                        *v -= f * w;
                     }
-                    let v = x[c];
-                    x[r] -= f * v;
+                    let xc = x[c];
+                    x[r] -= f * xc;
                 }
             }
         }
-        (0..n).map(|i| x[i] / a[i][i]).collect()
+        (0..n).map(|i| x[i] / m[i][i]).collect()
     }
 
-    /// The Gohberg–Semencul solve equals a dense solve of the Toeplitz matrix of a
-    /// positive symbol (to 1e-12 relative: both are direct, the matrix's condition number
-    /// is below 10, so round-off of either stays below 1e-13), and the real-series route
-    /// equals the truncated-product operator's dense inverse (series::mul_operator).
+    fn max_rel(got: &[f64], want: &[f64]) -> f64 {
+        let scale = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        got.iter()
+            .zip(want)
+            .fold(0.0f64, |m, (g, w)| m.max((g - w).abs()))
+            / scale
+    }
+
+    /// A positive symbol: 3 + small harmonics (sine ones unless `even`).
+    fn symbol(h: usize, even: bool, seed: &mut u64) -> Vec<f64> {
+        let mut a = vec![0.0; series::len(h)];
+        a[0] = 3.0;
+        for k in 1..=h {
+            let s = 0.4 / (1.0 + 0.1 * h as f64).sqrt();
+            a[ic(k)] = s * lcg(seed);
+            if !even {
+                a[is(h, k)] = s * lcg(seed);
+            }
+        }
+        a
+    }
+
+    /// The generator's two solutions from the dense operator.
+    fn inverse_for(a: &[f64], h: usize, even: bool) -> (ToeplitzInverse, Vec<f64>) {
+        let n = series::len(h);
+        let op = series::mul_operator(a, h, h, h);
+        let (mut ec, mut es) = (vec![0.0; n], vec![0.0; n]);
+        ec[ic(h)] = 2.0;
+        es[is(h, h)] = 2.0;
+        let mut xi_c = dense_solve(&op, n, &ec);
+        let mut xi_s = dense_solve(&op, n, &es);
+        if even {
+            // The parts a time-symmetric block keeps (contact.rs splits them exactly).
+            for k in 1..=h {
+                xi_c[is(h, k)] = 0.0;
+                xi_s[ic(k)] = 0.0;
+            }
+            xi_s[0] = 0.0;
+        }
+        let mut t = ToeplitzInverse::new(h);
+        assert!(t.set_generator(&xi_c, &xi_s, even));
+        (t, op)
+    }
+
+    /// The solves equal dense solves of the truncated-product operator (series::
+    /// mul_operator) of a positive symbol, to 1e-12 relative: both are direct, the
+    /// operator's condition number is below 10, so round-off of either stays below 1e-13.
+    /// General symbols on the whole period; even ones on the half period, for cosine, sine
+    /// and mixed right-hand sides. Up to H = 200 (sdnd122a's NB_HARM_NONL) and a size whose
+    /// m is not a power of two (H = 30: m = 32; H = 7: m = 8; H = 200: m = 216).
     #[test]
-    fn gohberg_semencul_solves_equal_dense_solves() {
+    fn solves_equal_dense_solves() {
         let mut seed = 3u64;
-        for h in [1usize, 2, 7, 30] {
-            let n = series::len(h);
-            // a = 3 + small harmonics: positive, T Hermitian positive definite.
-            let mut a = vec![0.0; n];
-            a[0] = 3.0;
-            for v in a[1..].iter_mut() {
-                *v = 0.4 * lcg(&mut seed) / (1.0 + 0.1 * h as f64).sqrt();
-            }
-            let mut ahat = vec![C::new(0.0, 0.0); n];
-            to_complex(&a, h, &mut ahat);
-            let coef = |m: i64| -> C {
-                let k = m.unsigned_abs() as usize;
-                if k > h {
-                    C::new(0.0, 0.0)
-                } else if m >= 0 {
-                    ahat[h + k]
-                } else {
-                    ahat[h - k]
-                }
-            };
-            let t: Vec<Vec<C>> = (0..n)
-                .map(|i| (0..n).map(|j| coef(i as i64 - j as i64)).collect())
-                .collect();
-            let mut e0 = vec![C::new(0.0, 0.0); n];
-            e0[0] = C::new(1.0, 0.0);
-            let xi = dense_solve(&t, &e0);
-            let mut gs = GsInverse::new(h);
-            assert!(gs.set_generator(&xi, false));
-            let b: Vec<C> = (0..n)
-                .map(|_| C::new(lcg(&mut seed), lcg(&mut seed)))
-                .collect();
-            let want = dense_solve(&t, &b);
-            let mut got = b.clone();
-            gs.solve_complex(&mut got);
-            let scale = want.iter().fold(0.0f64, |m, v| m.max(v.norm()));
-            let err = got
-                .iter()
-                .zip(&want)
-                .fold(0.0f64, |m, (g, w)| m.max((g - w).norm()));
-            assert!(err <= 1e-12 * scale, "h {h}: {err:e} vs {scale:e}");
-
-            // Real route against the dense real operator.
-            let op = series::mul_operator(&a, h, h, h);
-            let (mut xc, mut xs) = (vec![0.0; n], vec![0.0; n]);
-            xc[series::ic(h)] = 2.0;
-            xs[series::is(h, h)] = 2.0;
-            let real_dense = |rhs: &[f64]| -> Vec<f64> {
-                let tr: Vec<Vec<C>> = (0..n)
-                    .map(|i| (0..n).map(|j| C::new(op[j * n + i], 0.0)).collect())
-                    .collect();
-                let b: Vec<C> = rhs.iter().map(|&v| C::new(v, 0.0)).collect();
-                dense_solve(&tr, &b).iter().map(|v| v.re).collect()
-            };
-            xc = real_dense(&xc);
-            xs = real_dense(&xs);
-            let mut rg = RealGs::new(h);
-            assert!(rg.set_from_real(&xc, &xs, false));
-            let rhs: Vec<f64> = (0..n).map(|_| lcg(&mut seed)).collect();
-            let want = real_dense(&rhs);
-            let mut got = rhs.clone();
-            rg.solve(&mut got);
-            let scale = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            let err = got
-                .iter()
-                .zip(&want)
-                .fold(0.0f64, |m, (g, w)| m.max((g - w).abs()));
-            assert!(err <= 1e-12 * scale, "real h {h}: {err:e} vs {scale:e}");
-
-            // Two real solves by one complex one.
-            let rhs2: Vec<f64> = (0..n).map(|_| lcg(&mut seed)).collect();
-            let want2 = real_dense(&rhs2);
-            let (mut p, mut q) = (rhs.clone(), rhs2.clone());
-            rg.solve_pair(&mut p, &mut q);
-            for (got, want) in [(&p, &want), (&q, &want2)] {
-                let scale = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-                let err = got
-                    .iter()
-                    .zip(want.iter())
-                    .fold(0.0f64, |m, (g, w)| m.max((g - w).abs()));
-                assert!(err <= 1e-12 * scale, "pair h {h}: {err:e} vs {scale:e}");
-            }
-        }
-    }
-
-    /// An even symbol (a cosine series): T is real, and the real route's solves
-    /// (`solve_even`, and the complex one from the real generator) equal dense solves of
-    /// the truncated-product operator (to 1e-12 relative: the symbol is positive and its
-    /// condition number below 10, so either's round-off stays below 1e-13). Up to
-    /// H_nl 200, sdnd122a's size, so that the real FFTs of 810 points are exercised.
-    #[test]
-    fn even_symbol_real_route_equals_dense_solves() {
-        let mut seed = 11u64;
         for h in [1usize, 2, 7, 30, 200] {
             let n = series::len(h);
-            let mut a = vec![0.0; n];
-            a[0] = 3.0;
-            for k in 1..=h {
-                a[series::ic(k)] = 0.4 * lcg(&mut seed) / (1.0 + 0.1 * h as f64).sqrt();
+            for even in [false, true] {
+                let a = symbol(h, even, &mut seed);
+                let (mut t, op) = inverse_for(&a, h, even);
+                assert_eq!(t.is_symmetric(), even);
+                let rhs: Vec<f64> = (0..n).map(|_| lcg(&mut seed)).collect();
+                let want = dense_solve(&op, n, &rhs);
+                let mut got = rhs.clone();
+                t.solve(&mut got);
+                let e = max_rel(&got, &want);
+                assert!(e <= 1e-12, "h {h} even {even}: {e:e}");
+                if even {
+                    let mut cos_part = rhs.clone();
+                    let mut sin_part = rhs.clone();
+                    for k in 1..=h {
+                        cos_part[is(h, k)] = 0.0;
+                        sin_part[ic(k)] = 0.0;
+                    }
+                    sin_part[0] = 0.0;
+                    let mut got = rhs.clone();
+                    t.solve_even(&mut got);
+                    let e = max_rel(&got, &dense_solve(&op, n, &cos_part));
+                    assert!(e <= 1e-12, "even part h {h}: {e:e}");
+                    assert!((1..=h).all(|k| got[is(h, k)] == 0.0));
+                    let mut got = rhs.clone();
+                    t.solve_odd(&mut got);
+                    let e = max_rel(&got, &dense_solve(&op, n, &sin_part));
+                    assert!(e <= 1e-12, "odd part h {h}: {e:e}");
+                    assert!(got[0] == 0.0 && (1..=h).all(|k| got[ic(k)] == 0.0));
+                }
             }
-            let op = series::mul_operator(&a, h, h, h);
-            let tr: Vec<Vec<C>> = (0..n)
-                .map(|i| (0..n).map(|j| C::new(op[j * n + i], 0.0)).collect())
-                .collect();
-            let real_dense = |rhs: &[f64]| -> Vec<f64> {
-                let b: Vec<C> = rhs.iter().map(|&v| C::new(v, 0.0)).collect();
-                dense_solve(&tr, &b).iter().map(|v| v.re).collect()
-            };
-            let (mut xc, mut xs) = (vec![0.0; n], vec![0.0; n]);
-            xc[series::ic(h)] = 2.0;
-            xs[series::is(h, h)] = 2.0;
-            let mut rg = RealGs::new(h);
-            assert!(rg.set_from_real(&real_dense(&xc), &real_dense(&xs), true));
-            assert!(rg.gs.is_real());
-            let rhs: Vec<f64> = (0..n).map(|_| lcg(&mut seed)).collect();
-            let mut even = rhs.clone();
-            for k in 1..=h {
-                even[series::is(h, k)] = 0.0;
-            }
-            let max_err = |got: &[f64], want: &[f64]| {
-                let scale = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-                let err = got
-                    .iter()
-                    .zip(want)
-                    .fold(0.0f64, |m, (g, w)| m.max((g - w).abs()));
-                err / scale
-            };
-            let mut got = rhs.clone();
-            rg.solve(&mut got);
-            let e = max_err(&got, &real_dense(&rhs));
-            assert!(e <= 1e-12, "complex route, h {h}: {e:e}");
-            // solve_even drops the sine part of its right-hand side.
-            let mut got = rhs.clone();
-            rg.solve_even(&mut got);
-            let e = max_err(&got, &real_dense(&even));
-            assert!(e <= 1e-12, "real route, h {h}: {e:e}");
-            assert!((1..=h).all(|k| got[series::is(h, k)] == 0.0));
         }
+    }
+
+    /// An indefinite T (a symbol that changes sign, as off the physical root of a law):
+    /// κ is then of either sign and the formula holds all the same.
+    #[test]
+    fn an_indefinite_operator_is_inverted_too() {
+        let h = 12;
+        let n = series::len(h);
+        let mut a = vec![0.0; n];
+        a[0] = 0.3;
+        a[ic(1)] = 1.0;
+        a[is(h, 2)] = 0.2;
+        let (mut t, op) = inverse_for(&a, h, false);
+        let mut seed = 5u64;
+        let rhs: Vec<f64> = (0..n).map(|_| lcg(&mut seed)).collect();
+        let mut got = rhs.clone();
+        t.solve(&mut got);
+        let e = max_rel(&got, &dense_solve(&op, n, &rhs));
+        assert!(e <= 1e-11, "{e:e}");
+    }
+
+    /// No representation without a usable generator.
+    #[test]
+    fn a_vanishing_corner_is_refused() {
+        let h = 3;
+        let mut t = ToeplitzInverse::new(h);
+        let z = vec![0.0; series::len(h)];
+        assert!(!t.set_generator(&z, &z, false));
+        let mut nan = z.clone();
+        nan[ic(h)] = f64::NAN;
+        assert!(!t.set_generator(&nan, &z, true));
+    }
+}
+
+#[cfg(test)]
+mod timing {
+    use super::*;
+    #[test]
+    #[ignore]
+    fn time_solves() {
+        let h = 200;
+        let n = series::len(h);
+        let mut xi_c = vec![0.0; n];
+        let mut xi_s = vec![0.0; n];
+        for k in 0..=h {
+            xi_c[ic(k)] = 1.0 / (1.0 + k as f64);
+        }
+        for k in 1..=h {
+            xi_s[is(h, k)] = 0.5 / (1.0 + k as f64);
+        }
+        let mut t = ToeplitzInverse::new(h);
+        assert!(t.set_generator(&xi_c, &xi_s, true));
+        let mut x: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();
+        let reps = 20000;
+        let t0 = std::time::Instant::now();
+        for _ in 0..reps {
+            t.solve_even(&mut x);
+            x[0] += 1.0;
+        }
+        println!(
+            "even {:.3} us",
+            t0.elapsed().as_secs_f64() / reps as f64 * 1e6
+        );
+        let mut t = ToeplitzInverse::new(h);
+        assert!(t.set_generator(&xi_c, &xi_s, false));
+        let t0 = std::time::Instant::now();
+        for _ in 0..reps {
+            t.solve(&mut x);
+            x[0] += 1.0;
+        }
+        println!(
+            "full {:.3} us",
+            t0.elapsed().as_secs_f64() / reps as f64 * 1e6
+        );
     }
 }
