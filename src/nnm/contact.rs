@@ -386,6 +386,12 @@ impl Preconditioned for Pointwise {
     }
 }
 
+/// The weight of W's column `col` in the sum `toeplitz_w` checks: between 1 and 2, none
+/// equal to another.
+fn column_weight(col: usize) -> f64 {
+    1.0 + (0.618_033_988_749_895 * (col + 1) as f64).fract()
+}
+
 /// Samples at t_j and t_{N−j} (`ns` samples of blocks of `len`, sample-major) set to
 /// their mean: the even part of a function of time.
 fn symmetrise_samples(v: &mut [f64], ns: usize, len: usize) {
@@ -482,6 +488,9 @@ pub struct ContactBlock {
     gs: Option<ToeplitzInverse>,
     xi: [Vec<f64>; 2],
     res: Vec<f64>,
+    /// Weighted sums of W's right-hand sides and solutions (the check of `toeplitz_w`).
+    res_b: Vec<f64>,
+    res_x: Vec<f64>,
     /// The Toeplitz route's inverse passed its check on every column of W at the first
     /// try (`toeplitz_w`): further solves of this factorisation are not checked.
     trusted: bool,
@@ -537,6 +546,16 @@ impl ContactBlock {
                 [Vec::new(), Vec::new()]
             },
             res: vec![0.0; d],
+            res_b: if method == Method::Toeplitz {
+                vec![0.0; d]
+            } else {
+                Vec::new()
+            },
+            res_x: if method == Method::Toeplitz {
+                vec![0.0; d]
+            } else {
+                Vec::new()
+            },
             trusted: false,
             symmetric: false,
             w: try_zeroed(d * m, "the contact coupling W")?,
@@ -660,51 +679,99 @@ impl ContactBlock {
         // A_fu into W from the series of J_u (exact, J_u has at most H_nl harmonics),
         // then solved in place: no transform per column.
         self.fill_coupling();
-        let refinements = self.counters.refinements;
-        let (nl, hl) = (self.n_coef_lin, self.pw.h_lin);
+        // Every column solved, then one weighted sum of them checked: the columns spread
+        // over every harmonic, so their sum checks the inverse as well as each of them
+        // would (weights unequal, so that no two columns' errors can cancel by symmetry).
+        // Only when that check fails is each column checked, and refined, on its own.
+        self.res_b.fill(0.0);
+        self.res_x.fill(0.0);
         for col in 0..self.m {
             let mut x = std::mem::take(&mut self.x);
             self.b.copy_from_slice(&self.w[col * d..(col + 1) * d]);
+            self.clean_column(col);
+            x.copy_from_slice(&self.b);
+            let parity = self.column_parity(col);
             let Some(gs) = self.gs.as_mut() else {
                 return Ok(false);
             };
-            if self.symmetric {
-                // J_u is even: a displacement cosine (or the mean) drives an even column,
-                // a sine an odd one; the other part of the column is round-off, dropped
-                // here so that the column is checked against what was solved.
-                let even = col % nl <= hl;
-                for k in 1..=hn {
-                    if even {
-                        self.b[series::is(hn, k)] = 0.0;
-                    } else {
-                        self.b[series::ic(k)] = 0.0;
-                    }
-                }
-                if !even {
-                    self.b[0] = 0.0;
-                }
-                x.copy_from_slice(&self.b);
-                if even {
-                    gs.solve_even(&mut x);
-                } else {
-                    gs.solve_odd(&mut x);
-                }
-            } else {
-                x.copy_from_slice(&self.b);
-                gs.solve(&mut x);
+            match parity {
+                Some(true) => gs.solve_even(&mut x),
+                Some(false) => gs.solve_odd(&mut x),
+                None => gs.solve(&mut x),
             }
-            let ok = self.toeplitz_refine(&mut x)?;
+            let wt = column_weight(col);
+            for ((sb, sx), (b, xv)) in self
+                .res_b
+                .iter_mut()
+                .zip(self.res_x.iter_mut())
+                .zip(self.b.iter().zip(&x))
+            {
+                *sb += wt * b;
+                *sx += wt * xv;
+            }
             self.w[col * d..(col + 1) * d].copy_from_slice(&x);
             self.x = x;
+        }
+        self.b.copy_from_slice(&self.res_b);
+        let sum_x = std::mem::take(&mut self.res_x);
+        let passed = self.toeplitz_check(&sum_x);
+        self.res_x = sum_x;
+        if passed {
+            // W's columns are the check of this inverse: the series' solves with it are
+            // not checked again (`solve`).
+            self.trusted = self.m >= 2;
+            return Ok(true);
+        }
+        // Each column on its own, against its right-hand side (A_fu's column again).
+        let solutions = self.w.clone();
+        self.fill_coupling();
+        for col in 0..self.m {
+            self.b.copy_from_slice(&self.w[col * d..(col + 1) * d]);
+            self.clean_column(col);
+            let mut x = solutions[col * d..(col + 1) * d].to_vec();
+            let ok = self.toeplitz_refine(&mut x)?;
+            self.w[col * d..(col + 1) * d].copy_from_slice(&x);
             if !ok {
                 return Ok(false);
             }
         }
-        // W's columns (right-hand sides spread over every harmonic) are the check of this
-        // inverse: when all of them passed at the first try, the series' solves with the
-        // same inverse are not checked again (`solve`).
-        self.trusted = self.m >= 2 && self.counters.refinements == refinements;
         Ok(true)
+    }
+
+    /// On a time-symmetric block, whether column `col` of A_fu is even (a displacement
+    /// cosine or the mean: Some(true)) or odd (a sine); None on any other block.
+    fn column_parity(&self, col: usize) -> Option<bool> {
+        self.symmetric
+            .then(|| col % self.n_coef_lin <= self.pw.h_lin)
+    }
+
+    /// A column of A_fu in `b`, on a time-symmetric block, without its part of the other
+    /// parity (round-off: J_u is even), so that it is checked against what was solved.
+    fn clean_column(&mut self, col: usize) {
+        let hn = self.pw.h_nonl;
+        match self.column_parity(col) {
+            Some(true) => self.b[hn + 1..].fill(0.0),
+            Some(false) => self.b[..=hn].fill(0.0),
+            None => {}
+        }
+    }
+
+    /// Whether x solves A_ff x = b (`self.b`) to the Krylov solves' residual test.
+    fn toeplitz_check(&mut self, x: &[f64]) -> bool {
+        self.pw.use_inverse = false;
+        self.pw.mul(x, &mut self.res);
+        for (r, b) in self.res.iter_mut().zip(&self.b) {
+            *r = b - *r;
+        }
+        let nr = gmres::norm(&self.res);
+        nr.is_finite()
+            && gmres::converged(
+                nr,
+                gmres::norm(&self.b),
+                self.pw.bound,
+                gmres::norm(x),
+                KRYLOV_RTOL,
+            )
     }
 
     /// The two generator solutions of a time-symmetric block by one Krylov solve: A_ff

@@ -94,6 +94,8 @@ fn run(
     let mut orientation = Orientation::new(settings.direction < 0, travel);
     // (energy, frequency) of every branch end, for the no-progress guard.
     let mut ends: Vec<(f64, f64)> = Vec::new();
+    // The frequency defect of the corrected end of the previous branch, the next start.
+    let mut start_defect = None;
     for b in 1..=settings.n_branches {
         let mut series = series_step(
             &sys,
@@ -117,6 +119,7 @@ fn run(
             newton_iterations,
             tangent,
             step_retries,
+            end_defect,
         } = correct_branch(
             &sys,
             solver.as_mut(),
@@ -125,6 +128,7 @@ fn run(
             law_check.as_ref(),
             &mut series,
             &x0,
+            start_defect,
             b,
         )?;
         let at_floor = points.last().is_some_and(|p| p.at_floor);
@@ -134,6 +138,7 @@ fn run(
         let stall = no_progress(&ends, control.stall_branches);
         // NB_PAS_MAN ≥ 1 (system::validate): the last point is the corrected end.
         let x_start = std::mem::replace(&mut x0, x_end);
+        start_defect = end_defect;
         // The next branch starts from the corrected end point with this branch's end tangent
         // as border: factor that tangent now, and compare the sign of its determinant with
         // the one at the start of this branch. A failure belongs to the next branch: this

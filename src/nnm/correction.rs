@@ -77,6 +77,8 @@ struct BranchPoints {
     /// How far the Newton correction moved the end, relative to the step: ‖x_end − x̂‖ /
     /// ‖x̂ − x0‖, x̂ the series' prediction (0 when the prediction needed no correction).
     correction_ratio: f64,
+    /// The end's frequency defect (root_check.rs), once `jumped_off` has computed it.
+    end_defect: Option<f64>,
 }
 
 fn branch_points_of(
@@ -161,6 +163,7 @@ fn branch_points_of(
         branch_points.push(p);
     }
     Ok(Ok(BranchPoints {
+        end_defect: None,
         points: branch_points,
         x_end,
         newton_iterations,
@@ -187,6 +190,9 @@ pub(super) struct CorrectedBranch {
     pub newton_iterations: usize,
     pub tangent: Vec<f64>,
     pub step_retries: usize,
+    /// The end's frequency defect when the root check computed it: the next branch's
+    /// `start_defect`.
+    pub end_defect: Option<f64>,
 }
 
 /// The points of branch `b` from `series` at `x0`. A failed correction, or a corrected end off
@@ -211,10 +217,14 @@ pub(super) fn correct_branch(
     law_check: Option<&PostProcessor>,
     series: &mut anm::Series,
     x0: &[f64],
+    start_defect: Option<f64>,
     b: usize,
 ) -> Result<CorrectedBranch> {
     let defect_at_start = match control.root_jump_max {
-        Some(_) if !sys.shocks.is_empty() => Some(frequency_defect(sys, x0)?),
+        Some(_) if !sys.shocks.is_empty() => match start_defect {
+            Some(d) => Some(d),
+            None => Some(frequency_defect(sys, x0)?),
+        },
         _ => None,
     };
     let mut step_retries = 0;
@@ -227,6 +237,7 @@ pub(super) fn correct_branch(
         x_end,
         newton_iterations,
         tangent,
+        end_defect,
         ..
     } = loop {
         let attempt =
@@ -238,8 +249,8 @@ pub(super) fn correct_branch(
                 .map_or(Ok(done), Err)
             });
         match attempt {
-            Ok(done) => {
-                let jump = jumped_off(sys, control, defect_at_start, &done)?;
+            Ok(mut done) => {
+                let jump = jumped_off(sys, control, defect_at_start, &mut done)?;
                 if jump.is_some() && step_retries < control.retries_max {
                     if jumped.is_none() {
                         jumped = Some((done, series.a_max, step_retries));
@@ -290,6 +301,7 @@ pub(super) fn correct_branch(
         newton_iterations,
         tangent,
         step_retries,
+        end_defect,
     })
 }
 
@@ -314,7 +326,7 @@ fn jumped_off(
     sys: &System,
     control: &StepControl,
     defect_at_start: Option<f64>,
-    done: &BranchPoints,
+    done: &mut BranchPoints,
 ) -> Result<Option<Jump>> {
     if control
         .correction_ratio_max
@@ -326,5 +338,6 @@ fn jumped_off(
         return Ok(None);
     };
     let end = frequency_defect(sys, &done.x_end)?;
+    done.end_defect = Some(end);
     Ok((end > max.max(ROOT_JUMP_RATIO * start)).then_some(Jump::Root))
 }

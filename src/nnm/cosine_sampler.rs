@@ -15,7 +15,7 @@
 //! `series::Sampler`): the offset of the grid by half a step changes no alias, since none
 //! reaches a retained harmonic.
 
-use super::series::{ic, is_5_smooth, len, real_fft_plans};
+use super::series::{is_5_smooth, len, real_fft_plans};
 use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealToComplex};
 use std::f64::consts::PI;
@@ -261,7 +261,7 @@ fn smooth_at_least(need: usize) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::nnm::series::{self, is};
+    use crate::nnm::series::{self, ic, is};
 
     fn midpoint(n: usize, j: usize) -> f64 {
         PI * (2 * j + 1) as f64 / (2 * n) as f64

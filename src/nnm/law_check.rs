@@ -114,7 +114,7 @@ impl LawCheck {
                 for (v, s) in uj.iter_mut().zip(&ut) {
                     *v = s[j];
                 }
-                let (f_law, _) = shock.law.eval(&uj)?;
+                let f_law = shock.law.force(&uj)?;
                 for (fs, fl) in ft.iter().zip(&f_law) {
                     own = own.max((fs[j] - fl).abs() / shock.scale);
                     peak = peak.max(fl.abs() / shock.scale);

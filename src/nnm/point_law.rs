@@ -87,6 +87,32 @@ impl PointLaw {
         }
     }
 
+    /// Force components at displacement `u`, without their Jacobian and without
+    /// allocating (the first `n_comp` entries; the law check samples it at every instant).
+    pub fn force(&self, u: &[f64]) -> Result<[f64; 2]> {
+        let comp = |i: usize| {
+            u.get(i)
+                .copied()
+                .ok_or_else(|| Error::internal("contact law component missing"))
+        };
+        match self.law {
+            ShockLaw::Plan => Ok([
+                super::laws::plan_force(comp(0)? - self.gap, self.alpha, self.eta),
+                0.0,
+            ]),
+            ShockLaw::BiPlan => Ok([biplan(comp(0)?, self.alpha, self.gap, self.eta)?.0, 0.0]),
+            ShockLaw::Cercle { origin } => {
+                let (dx, dy) = (comp(0)? - origin[0], comp(1)? - origin[1]);
+                let r = dx.hypot(dy);
+                let (f, _) = biplan(r, self.alpha, self.gap, self.eta)?;
+                if r == 0.0 {
+                    return Ok([0.0, 0.0]);
+                }
+                Ok([f * dx / r, f * dy / r])
+            }
+        }
+    }
+
     /// Force components and their Jacobian (row-major n_comp × n_comp) at displacement `u`.
     pub fn eval(&self, u: &[f64]) -> Result<(Vec<f64>, Vec<f64>)> {
         let comp = |i: usize| {

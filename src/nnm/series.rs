@@ -60,67 +60,20 @@ pub fn eval(x: &[f64], h: usize, theta: f64) -> f64 {
     v
 }
 
-#[derive(Clone, Copy)]
-enum Kind {
-    Cos,
-    Sin,
-}
-
-/// out += v·cos(jθ) for a signed harmonic j (truncated to hout).
-fn add_cos(out: &mut [f64], hout: usize, j: i64, v: f64) {
-    let k = j.unsigned_abs() as usize;
-    if k <= hout {
-        out[k] += v;
+/// The complex coefficients x̂_k (k = −h..h, index k + h) of a real series: x̂_0 = x_0,
+/// x̂_{±k} = (c_k ∓ i s_k)/2.
+fn complex_coefficients(x: &[f64], h: usize) -> Vec<Complex<f64>> {
+    let mut z = vec![Complex::new(x[0], 0.0); len(h)];
+    for k in 1..=h {
+        let v = Complex::new(0.5 * x[ic(k)], -0.5 * x[is(h, k)]);
+        z[h + k] = v;
+        z[h - k] = v.conj();
     }
+    z
 }
 
-/// out += v·sin(jθ) for a signed harmonic j (truncated to hout).
-fn add_sin(out: &mut [f64], hout: usize, j: i64, v: f64) {
-    let k = j.unsigned_abs() as usize;
-    if k != 0 && k <= hout {
-        out[hout + k] += if j < 0 { -v } else { v };
-    }
-}
-
-/// out += v · trig_a(kθ) · trig_b(mθ)  (cos 0 = 1 stands for the mean).
-fn acc_prod(out: &mut [f64], hout: usize, ka: Kind, k: usize, kb: Kind, m: usize, v: f64) {
-    let (k, m) = (k as i64, m as i64);
-    let hv = 0.5 * v;
-    match (ka, kb) {
-        (Kind::Cos, Kind::Cos) => {
-            add_cos(out, hout, k - m, hv);
-            add_cos(out, hout, k + m, hv);
-        }
-        (Kind::Cos, Kind::Sin) => {
-            add_sin(out, hout, k + m, hv);
-            add_sin(out, hout, k - m, -hv);
-        }
-        (Kind::Sin, Kind::Cos) => {
-            add_sin(out, hout, k + m, hv);
-            add_sin(out, hout, k - m, hv);
-        }
-        (Kind::Sin, Kind::Sin) => {
-            add_cos(out, hout, k - m, hv);
-            add_cos(out, hout, k + m, -hv);
-        }
-    }
-}
-
-fn add_kind(out: &mut [f64], hout: usize, kind: Kind, j: usize, v: f64) {
-    match kind {
-        Kind::Cos => add_cos(out, hout, j as i64, v),
-        Kind::Sin => add_sin(out, hout, j as i64, v),
-    }
-}
-
-/// Terms of a series as (kind, harmonic, value); the mean is (Cos, 0, x0).
-fn terms(x: &[f64], h: usize) -> impl Iterator<Item = (Kind, usize, f64)> + '_ {
-    std::iter::once((Kind::Cos, 0, x[0]))
-        .chain((1..=h).map(move |k| (Kind::Cos, k, x[ic(k)])))
-        .chain((1..=h).map(move |k| (Kind::Sin, k, x[is(h, k)])))
-}
-
-/// out += scale · trunc_hout(a·b) by the trigonometric product formulas.
+/// out += scale · trunc_hout(a·b), by the convolution of the complex coefficients
+/// (ĉ_n = Σ_k â_k b̂_{n−k}, n = 0..hout; the negative n are the conjugates).
 pub fn mul_conv_acc(
     a: &[f64],
     ha: usize,
@@ -130,21 +83,20 @@ pub fn mul_conv_acc(
     scale: f64,
     out: &mut [f64],
 ) {
-    for (ka, k, va) in terms(a, ha) {
-        if va == 0.0 {
-            continue;
+    let (za, zb) = (complex_coefficients(a, ha), complex_coefficients(b, hb));
+    let (ha_i, hb_i) = (ha as i64, hb as i64);
+    for n in 0..=hout.min(ha + hb) {
+        let ni = n as i64;
+        let (lo, hi) = ((-ha_i).max(ni - hb_i), ha_i.min(ni + hb_i));
+        let mut c = Complex::new(0.0, 0.0);
+        for k in lo..=hi {
+            c += za[(k + ha_i) as usize] * zb[(ni - k + hb_i) as usize];
         }
-        for (kb, m, vb) in terms(b, hb) {
-            if vb == 0.0 || (k.abs_diff(m) > hout) {
-                continue;
-            }
-            let v = scale * va * vb;
-            match (k == 0, m == 0) {
-                (true, true) => out[0] += v,
-                (true, false) => add_kind(out, hout, kb, m, v),
-                (false, true) => add_kind(out, hout, ka, k, v),
-                (false, false) => acc_prod(out, hout, ka, k, kb, m, v),
-            }
+        if n == 0 {
+            out[0] += scale * c.re;
+        } else {
+            out[ic(n)] += 2.0 * scale * c.re;
+            out[is(hout, n)] -= 2.0 * scale * c.im;
         }
     }
 }

@@ -329,6 +329,7 @@ impl ToeplitzInverse {
     }
 
     /// Whether the generator is time-symmetric (`solve_even` and `solve_odd` apply).
+    #[cfg(test)]
     pub fn is_symmetric(&self) -> bool {
         self.symmetric
     }
