@@ -369,6 +369,22 @@ pub struct System {
     /// exact as `products` is, at about half its cost.
     cosine: CosineSampler,
     cosine_scratch: RefCell<CosineScratch>,
+    /// The buffers of `quad_sum_cached`, made once (it runs at every order of every
+    /// series).
+    quad_work: RefCell<QuadWork>,
+}
+
+/// The buffers of `System::quad_sum_cached`.
+struct QuadWork {
+    /// Structural sums (n·(2H_l+1) each) and one derivative (2H_l+1).
+    su: Vec<f64>,
+    sv: Vec<f64>,
+    w: Vec<f64>,
+    d: Vec<f64>,
+    /// One equation's coefficients (2H_nl+1), and the sampled products of one shock's
+    /// equations (the largest n_own times the full grid).
+    c: Vec<f64>,
+    acc: Vec<f64>,
 }
 
 /// Validate the problem and settings against each other (keyword-named errors).
@@ -503,6 +519,16 @@ impl System {
         let scratch = RefCell::new(products.scratch());
         let cosine = CosineSampler::for_products(hn);
         let cosine_scratch = RefCell::new(cosine.scratch());
+        let nnl = lay.n * lay.n_coef_lin;
+        let max_own = shocks.iter().map(|sh| sh.eqs.n_own).max().unwrap_or(0);
+        let quad_work = RefCell::new(QuadWork {
+            su: vec![0.0; nnl],
+            sv: vec![0.0; nnl],
+            w: vec![0.0; nnl],
+            d: vec![0.0; lay.n_coef_lin],
+            c: vec![0.0; lay.n_coef_nonl],
+            acc: vec![0.0; max_own * products.n().max(cosine.n())],
+        });
         Ok(System {
             lay,
             k: ScaledEntries::from_faer(&problem.k, 1.0 / scaling.stiffness),
@@ -515,6 +541,7 @@ impl System {
             scratch,
             cosine,
             cosine_scratch,
+            quad_work,
         })
     }
 
@@ -609,34 +636,36 @@ impl System {
         // Structural rows: Ω_a D U_b (rows of U) and M (Ω_a D V_b + γ_a V_b) (rows of V),
         // linear in b: D Σ Ω_a U_b and M (D Σ Ω_a V_b + Σ γ_a V_b), one derivative each.
         let nnl = n * nl;
-        let mut su = vec![0.0; nnl];
-        let mut sv = vec![0.0; nnl];
-        let mut w = vec![0.0; nnl];
-        for (a, b) in pairs {
-            let (om, ga) = (a[lay.omega()], a[lay.gamma()]);
-            let (ub, vb) = (&b[lay.u(0)..lay.u(0) + nnl], &b[lay.v(0)..lay.v(0) + nnl]);
-            for (x, v) in su.iter_mut().zip(ub) {
-                *x += om * v;
+        {
+            let mut work = self.quad_work.borrow_mut();
+            let QuadWork { su, sv, w, d, .. } = &mut *work;
+            su.fill(0.0);
+            sv.fill(0.0);
+            w.fill(0.0);
+            for (a, b) in pairs {
+                let (om, ga) = (a[lay.omega()], a[lay.gamma()]);
+                let (ub, vb) = (&b[lay.u(0)..lay.u(0) + nnl], &b[lay.v(0)..lay.v(0) + nnl]);
+                for (x, v) in su.iter_mut().zip(ub) {
+                    *x += om * v;
+                }
+                for ((y, z), v) in sv.iter_mut().zip(w.iter_mut()).zip(vb) {
+                    *y += om * v;
+                    *z += ga * v;
+                }
             }
-            for ((y, z), v) in sv.iter_mut().zip(w.iter_mut()).zip(vb) {
-                *y += om * v;
-                *z += ga * v;
+            for i in 0..n {
+                let r = i * nl..(i + 1) * nl;
+                series::deriv(&su[r.clone()], hl, d);
+                for (o, v) in out[lay.u(i)..lay.u(i) + nl].iter_mut().zip(d.iter()) {
+                    *o += v;
+                }
+                series::deriv(&sv[r.clone()], hl, d);
+                for (o, v) in w[r].iter_mut().zip(d.iter()) {
+                    *o += v;
+                }
             }
+            self.m.mul_blocks(w, nl, &mut out[lay.v(0)..lay.v(0) + nnl]);
         }
-        let mut d = vec![0.0; nl];
-        for i in 0..n {
-            let r = i * nl..(i + 1) * nl;
-            series::deriv(&su[r.clone()], hl, &mut d);
-            for (o, v) in out[lay.u(i)..lay.u(i) + nl].iter_mut().zip(&d) {
-                *o += v;
-            }
-            series::deriv(&sv[r.clone()], hl, &mut d);
-            for (o, v) in w[r].iter_mut().zip(&d) {
-                *o += v;
-            }
-        }
-        self.m
-            .mul_blocks(&w, nl, &mut out[lay.v(0)..lay.v(0) + nnl]);
         if self.shocks.is_empty() {
             return;
         }
@@ -645,12 +674,13 @@ impl System {
         // 0.41 s for 40 branches of sdnd122a, release). Samples on the cosine grid serve
         // only together (one time-symmetric series); any other mix is sampled afresh.
         let owned: Vec<(Samples, Option<Samples>)>;
+        let owned_pairs: Vec<(&Samples, &Samples)>;
         let uniform = |c: &[(&Samples, &Samples)]| {
             let g = c.first().map_or(Grid::Full, |p| p.0.grid);
             c.iter().all(|(a, b)| a.grid == g && b.grid == g)
         };
-        let cache: Vec<(&Samples, &Samples)> = match cache {
-            Some(c) if uniform(c) => c.to_vec(),
+        let cache: &[(&Samples, &Samples)] = match cache {
+            Some(c) if uniform(c) => c,
             _ => {
                 // A pair (x, x) (the residual) is sampled once.
                 owned = pairs
@@ -660,21 +690,24 @@ impl System {
                         (self.samples(a), (!same).then(|| self.samples(b)))
                     })
                     .collect();
-                owned
+                owned_pairs = owned
                     .iter()
                     .map(|(a, b)| (a, b.as_ref().unwrap_or(a)))
-                    .collect()
+                    .collect();
+                &owned_pairs
             }
         };
         let grid = cache.first().map_or(Grid::Full, |p| p.0.grid);
         let ns = self.grid_len(grid);
-        let mut c = vec![0.0; lay.n_coef_nonl];
+        let mut work = self.quad_work.borrow_mut();
+        let QuadWork { c, acc, .. } = &mut *work;
         let mut ws = self.scratch.borrow_mut();
         let mut cws = self.cosine_scratch.borrow_mut();
         for (k, sh) in self.shocks.iter().enumerate() {
             let nv = sh.vars.len();
-            let mut acc = vec![0.0; sh.eqs.n_own * ns];
-            for (sa, sb) in &cache {
+            let acc = &mut acc[..sh.eqs.n_own * ns];
+            acc.fill(0.0);
+            for (sa, sb) in cache {
                 let (ra, rb) = (&sa.shocks[k], &sb.shocks[k]);
                 for (gi, g) in sh.groups.iter().enumerate() {
                     let xa = &ra[g.a * ns..(g.a + 1) * ns];
@@ -686,11 +719,11 @@ impl System {
             }
             for (e, s) in acc.chunks_exact_mut(ns).enumerate() {
                 match grid {
-                    Grid::Full => self.products.analyse_with(s, lay.h_nonl, &mut c, &mut ws),
-                    Grid::Cosine => self.cosine.analyse_with(s, lay.h_nonl, &mut c, &mut cws),
+                    Grid::Full => self.products.analyse_with(s, lay.h_nonl, c, &mut ws),
+                    Grid::Cosine => self.cosine.analyse_with(s, lay.h_nonl, c, &mut cws),
                 }
                 let o = sh.offset + e * lay.n_coef_nonl;
-                for (y, v) in out[o..o + lay.n_coef_nonl].iter_mut().zip(&c) {
+                for (y, v) in out[o..o + lay.n_coef_nonl].iter_mut().zip(c.iter()) {
                     *y += v;
                 }
             }

@@ -149,7 +149,7 @@ struct Half {
     r: Vec<f64>,
     /// The whole period's samples (N).
     w: Vec<f64>,
-    /// Coefficient buffer of m entries.
+    /// A second buffer of m samples (the generator's derivatives, `set_generator`).
     c: Vec<f64>,
 }
 
@@ -218,9 +218,8 @@ impl Half {
 
     /// x ← T⁻¹ x_even, x_even the cosine part of x; x's sine coefficients set to zero.
     fn solve_even(&mut self, x: &mut [f64], h: usize, scale: f64) {
-        self.c[0] = x[0];
-        self.c[1..=h].copy_from_slice(&x[1..=h]);
-        self.tr.cos_synth(&self.c[..=h], &mut self.r, &mut self.ws);
+        // The cosine part of the layout, [x_0, c_1..c_H], is the plain coefficients.
+        self.tr.cos_synth(&x[..=h], &mut self.r, &mut self.ws);
         self.apply(Parity::Even, scale);
         self.tr.cos_analyse(&self.r, &mut x[..=h], &mut self.ws);
         x[h + 1..].fill(0.0);
