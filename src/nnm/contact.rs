@@ -31,7 +31,8 @@
 
 use super::dense_lu::{try_zeroed, DenseLu};
 use super::gmres::{self, Gmres, Preconditioned};
-use super::laws::Var;
+use super::laws::{LawEqs, Var};
+use super::parity_block::{Parity, ParityBlock};
 use super::series::{self, FftScratch, Sampler};
 use super::system::{is_cosine_series, Layout, ShockSys};
 use super::toeplitz::ToeplitzInverse;
@@ -233,44 +234,14 @@ impl Pointwise {
             self.sampler
                 .synth_with(&x0[o..o + lay.n_coef_lin], lay.h_lin, dst, &mut self.ws);
         }
-        let slot = |v: Var| match v {
-            Var::Own(k) => k,
-            Var::U(c) => no + c,
-        };
-        self.jac.fill(0.0);
-        self.jac_u.fill(0.0);
-        // d(coef·a·b)/da = coef·b, d/db = coef·a (a = b gives 2·coef·a).
-        for t in &sh.eqs.quad {
-            for (wrt, other) in [(t.a, t.b), (t.b, t.a)] {
-                let src = slot(other) * ns;
-                match wrt {
-                    Var::Own(k) => {
-                        for j in 0..ns {
-                            self.jac[j * no * no + t.eq * no + k] += t.coef * self.xs[src + j];
-                        }
-                    }
-                    Var::U(c) => {
-                        for j in 0..ns {
-                            self.jac_u[j * no * nc + t.eq * nc + c] += t.coef * self.xs[src + j];
-                        }
-                    }
-                }
-            }
-        }
-        for l in &sh.eqs.lin {
-            match l.var {
-                Var::Own(k) => {
-                    for j in 0..ns {
-                        self.jac[j * no * no + l.eq * no + k] += l.coef;
-                    }
-                }
-                Var::U(c) => {
-                    for j in 0..ns {
-                        self.jac_u[j * no * nc + l.eq * nc + c] += l.coef;
-                    }
-                }
-            }
-        }
+        jacobians(
+            &sh.eqs,
+            &self.xs,
+            ns,
+            (no, nc),
+            &mut self.jac,
+            &mut self.jac_u,
+        );
         if even {
             symmetrise_samples(&mut self.jac, ns, no * no);
             symmetrise_samples(&mut self.jac_u, ns, no * nc);
@@ -386,6 +357,57 @@ impl Preconditioned for Pointwise {
     }
 }
 
+/// J(t) (sample-major [t][e·n_own + k]) and J_u(t) ([t][e·n_comp + c]) from the law's
+/// terms at the samples `xs` of its variables (variable-major [var][t]: the `no` own
+/// unknowns, then the `nc` displacement components), `ns` instants.
+pub(super) fn jacobians(
+    eqs: &LawEqs,
+    xs: &[f64],
+    ns: usize,
+    (no, nc): (usize, usize),
+    jac: &mut [f64],
+    jac_u: &mut [f64],
+) {
+    let slot = |v: Var| match v {
+        Var::Own(k) => k,
+        Var::U(c) => no + c,
+    };
+    jac.fill(0.0);
+    jac_u.fill(0.0);
+    // d(coef·a·b)/da = coef·b, d/db = coef·a (a = b gives 2·coef·a).
+    for t in &eqs.quad {
+        for (wrt, other) in [(t.a, t.b), (t.b, t.a)] {
+            let src = &xs[slot(other) * ns..(slot(other) + 1) * ns];
+            match wrt {
+                Var::Own(k) => {
+                    for (j, x) in src.iter().enumerate() {
+                        jac[j * no * no + t.eq * no + k] += t.coef * x;
+                    }
+                }
+                Var::U(c) => {
+                    for (j, x) in src.iter().enumerate() {
+                        jac_u[j * no * nc + t.eq * nc + c] += t.coef * x;
+                    }
+                }
+            }
+        }
+    }
+    for l in &eqs.lin {
+        match l.var {
+            Var::Own(k) => {
+                for j in 0..ns {
+                    jac[j * no * no + l.eq * no + k] += l.coef;
+                }
+            }
+            Var::U(c) => {
+                for j in 0..ns {
+                    jac_u[j * no * nc + l.eq * nc + c] += l.coef;
+                }
+            }
+        }
+    }
+}
+
 /// The weight of W's column `col` in the sum `toeplitz_w` checks: between 1 and 2, none
 /// equal to another.
 fn column_weight(col: usize) -> f64 {
@@ -483,6 +505,11 @@ pub struct ContactBlock {
     pw: Pointwise,
     gmres: Gmres,
     dense: DenseLu,
+    /// On a time-symmetric point of the Toeplitz route, the block restricted to cosine or
+    /// sine series and the Krylov workspaces of the two generator solves.
+    parity: Option<ParityBlock>,
+    gmres_even: Gmres,
+    gmres_odd: Gmres,
     /// The Toeplitz route's inverse (laws with one own unknown), its two generator
     /// solutions and the residual of a checked solve.
     gs: Option<ToeplitzInverse>,
@@ -527,6 +554,7 @@ impl ContactBlock {
             // Block Toeplitz (several own unknowns) has no scalar formula: Krylov.
             method = Method::Krylov;
         }
+        let toeplitz = n_own == 1 && method == Method::Toeplitz;
         Ok(ContactBlock {
             shock,
             method,
@@ -538,6 +566,17 @@ impl ContactBlock {
             pw: Pointwise::new(sh, lay, ns),
             gmres: Gmres::new(d, KRYLOV_CYCLE, KRYLOV_CYCLES),
             dense: DenseLu::default(),
+            parity: toeplitz.then(|| ParityBlock::new(lay.h_nonl, n_comp)),
+            gmres_even: Gmres::new(
+                if toeplitz { lay.h_nonl + 1 } else { 0 },
+                KRYLOV_CYCLE,
+                KRYLOV_CYCLES,
+            ),
+            gmres_odd: Gmres::new(
+                if toeplitz { lay.h_nonl } else { 0 },
+                KRYLOV_CYCLE,
+                KRYLOV_CYCLES,
+            ),
             gs: (n_own == 1 && method == Method::Toeplitz)
                 .then(|| ToeplitzInverse::new(lay.h_nonl)),
             xi: if method == Method::Toeplitz {
@@ -586,7 +625,15 @@ impl ContactBlock {
     pub fn factor(&mut self, sh: &ShockSys, lay: &Layout, x0: &[f64]) -> Result<()> {
         self.counters.factorisations += 1;
         self.symmetric = self.method == Method::Toeplitz && lay.is_time_symmetric(x0);
-        let singular_at = self.pw.linearise(sh, lay, x0, self.symmetric).err();
+        let mut singular_at = self.pw.linearise(sh, lay, x0, self.symmetric).err();
+        if self.symmetric {
+            // The generator solves' operators, on the half period (parity_block.rs).
+            if let Some(pb) = self.parity.as_mut() {
+                if !pb.linearise(sh, lay, x0) {
+                    singular_at = singular_at.or(Some(0));
+                }
+            }
+        }
         self.active = self.method;
         self.trusted = false;
         if self.method == Method::Toeplitz {
@@ -774,44 +821,44 @@ impl ContactBlock {
             )
     }
 
-    /// The two generator solutions of a time-symmetric block by one Krylov solve: A_ff
-    /// (j even) maps cosine series to cosine series and sine series to sine series, so the
-    /// solution for 2 cos Hθ + 2 sin Hθ is ξ_c + ξ_s, its cosine and sine parts. The
-    /// tolerance is divided by √2 so that each part's residual meets KRYLOV_RTOL relative
-    /// to its own right-hand side, as two solves would. Ok(false) as `toeplitz_w`.
+    /// The two generator solutions of a time-symmetric block: A_ff (j even) maps cosine
+    /// series to cosine series and sine series to sine series, so ξ_c = A_ff⁻¹(2 cos Hθ)
+    /// is a cosine series and ξ_s = A_ff⁻¹(2 sin Hθ) a sine series, each one Krylov solve
+    /// of the block restricted to its parity on the half period (parity_block.rs), from the
+    /// previous factorisation's generator (a nearby block). Ok(false) as `toeplitz_w`.
     fn symmetric_generators(&mut self) -> Result<bool> {
         let hn = self.pw.h_nonl;
-        self.b.fill(0.0);
-        self.b[series::ic(hn)] = 2.0;
-        self.b[series::is(hn, hn)] = 2.0;
-        // From the previous factorisation's generators (a nearby block), their parts.
-        let mut x = std::mem::take(&mut self.x);
-        for (i, v) in x.iter_mut().enumerate() {
-            *v = if i <= hn {
-                self.xi[0][i]
-            } else {
-                self.xi[1][i]
+        let Some(pb) = self.parity.as_mut() else {
+            return Ok(false);
+        };
+        let mut failure = None;
+        for parity in [Parity::Even, Parity::Odd] {
+            let dim = pb.dim(parity);
+            let (b, x) = (&mut self.res_b[..dim], &mut self.res_x[..dim]);
+            // 2 cos Hθ is the last cosine coefficient, 2 sin Hθ the last sine one.
+            b.fill(0.0);
+            b[dim - 1] = 2.0;
+            let (xi, gmres) = match parity {
+                Parity::Even => (&mut self.xi[0][..=hn], &mut self.gmres_even),
+                Parity::Odd => (&mut self.xi[1][hn + 1..], &mut self.gmres_odd),
             };
-        }
-        let out = self.gmres.solve_from(
-            &mut self.pw,
-            &self.b,
-            &mut x,
-            KRYLOV_RTOL * std::f64::consts::FRAC_1_SQRT_2,
-        );
-        for (i, v) in x.iter().enumerate() {
-            let (c, s) = if i <= hn { (*v, 0.0) } else { (0.0, *v) };
-            self.xi[0][i] = c;
-            self.xi[1][i] = s;
-        }
-        self.x = x;
-        match out {
-            Ok(krylov) => {
-                self.counters.krylov_iterations += krylov.iterations;
-                Ok(true)
+            x.copy_from_slice(xi);
+            match gmres.solve_from(pb.select(parity), b, x, KRYLOV_RTOL) {
+                Ok(krylov) => self.counters.krylov_iterations += krylov.iterations,
+                Err(f) => {
+                    failure = Some(f);
+                    break;
+                }
             }
-            Err(f) if self.d > DENSE_MAX_DIM => Err(self.krylov_error(f)),
-            Err(_) => Ok(false),
+            xi.copy_from_slice(x);
+        }
+        // The other parts of the generators are zero.
+        self.xi[0][hn + 1..].fill(0.0);
+        self.xi[1][..=hn].fill(0.0);
+        match failure {
+            None => Ok(true),
+            Some(f) if self.d > DENSE_MAX_DIM => Err(self.krylov_error(f)),
+            Some(_) => Ok(false),
         }
     }
 

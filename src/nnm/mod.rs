@@ -47,6 +47,7 @@ mod linear_solver;
 mod newton;
 mod orbit;
 mod pade;
+mod parity_block;
 mod point;
 mod point_law;
 mod post;
