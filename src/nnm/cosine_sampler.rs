@@ -26,8 +26,9 @@ pub struct CosineSampler {
     n: usize,
     fwd: Arc<dyn RealToComplex<f64>>,
     inv: Arc<dyn ComplexToReal<f64>>,
-    /// e^{−iπk/(2n)}, k = 0..=n.
-    twiddle: Vec<Complex<f64>>,
+    /// e^{−iπk/(2n)}, k = 0..=n, as real and imaginary parts (loops over them vectorise).
+    tw_re: Vec<f64>,
+    tw_im: Vec<f64>,
 }
 
 /// What one transform needs besides its input and output (`CosineSampler::scratch`).
@@ -47,17 +48,18 @@ impl CosineSampler {
     /// 2n > 3H (`for_products`).
     pub fn new(n: usize) -> Self {
         let (fwd, inv) = real_fft_plans(n);
-        let twiddle = (0..=n)
+        let (tw_re, tw_im) = (0..=n)
             .map(|k| {
                 let (s, c) = (PI * k as f64 / (2 * n) as f64).sin_cos();
-                Complex::new(c, -s)
+                (c, -s)
             })
-            .collect();
+            .unzip();
         CosineSampler {
             n,
             fwd,
             inv,
-            twiddle,
+            tw_re,
+            tw_im,
         }
     }
 
@@ -164,10 +166,16 @@ impl CosineSampler {
     fn synth_g(&self, out: &mut [f64], ws: &mut CosineScratch) {
         let n = self.n;
         let g = &ws.g;
-        for (k, (v, tw)) in ws.spec.iter_mut().zip(&self.twiddle).enumerate() {
-            // conj(tw)·(g_k − i g_{n−k})
-            let (a, b) = (g[k], g[n - k]);
-            *v = Complex::new(tw.re * a - tw.im * b, -tw.re * b - tw.im * a);
+        let half = n / 2;
+        // conj(tw_k)·(g_k − i g_{n−k}), k = 0..=n/2.
+        for ((((v, &a), &b), &tr), &ti) in ws.spec[..=half]
+            .iter_mut()
+            .zip(&g[..=half])
+            .zip(g[n - half..=n].iter().rev())
+            .zip(&self.tw_re[..=half])
+            .zip(&self.tw_im[..=half])
+        {
+            *v = Complex::new(tr * a - ti * b, -tr * b - ti * a);
         }
         // V_0 and (n even) V_{n/2} are real in exact arithmetic: the inverse FFT needs them
         // exactly so.
@@ -202,15 +210,24 @@ impl CosineSampler {
         }
         let two_n = 2.0 / n as f64;
         let half = n / 2;
-        let (c, spec, tw) = (&mut ws.coefs, &ws.spec, &self.twiddle);
+        let (c, spec) = (&mut ws.coefs, &ws.spec);
         c[0] = spec[0].re / n as f64;
-        for k in 1..=half {
-            c[k] = two_n * (tw[k].re * spec[k].re - tw[k].im * spec[k].im);
+        for (((o, z), &tr), &ti) in c[1..=half]
+            .iter_mut()
+            .zip(&spec[1..=half])
+            .zip(&self.tw_re[1..=half])
+            .zip(&self.tw_im[1..=half])
+        {
+            *o = two_n * (tr * z.re - ti * z.im);
         }
         // V_k = conj(V_{n−k}) beyond n/2.
-        for k in half + 1..n {
-            let z = spec[n - k];
-            c[k] = two_n * (tw[k].re * z.re + tw[k].im * z.im);
+        for (((o, z), &tr), &ti) in c[half + 1..n]
+            .iter_mut()
+            .zip(spec[1..n - half].iter().rev())
+            .zip(&self.tw_re[half + 1..n])
+            .zip(&self.tw_im[half + 1..n])
+        {
+            *o = two_n * (tr * z.re + ti * z.im);
         }
         true
     }
@@ -220,32 +237,31 @@ impl CosineSampler {
 /// (every odd sample negated).
 fn reorder(s: &[f64], alternate: bool, v: &mut [f64]) {
     let n = v.len();
-    for (d, &x) in v.iter_mut().zip(s.iter().step_by(2)) {
-        *d = x;
-    }
     let odd = if alternate { -1.0 } else { 1.0 };
-    for (d, &x) in v[n.div_ceil(2)..]
+    let (lo, hi) = v.split_at_mut(n.div_ceil(2));
+    for ((a, b), pair) in lo
         .iter_mut()
-        .rev()
-        .zip(s.iter().skip(1).step_by(2))
+        .zip(hi.iter_mut().rev())
+        .zip(s.chunks_exact(2))
     {
-        *d = odd * x;
+        *a = pair[0];
+        *b = odd * pair[1];
+    }
+    if n % 2 == 1 {
+        lo[n / 2] = s[n - 1];
     }
 }
 
 /// The inverse of `reorder`.
 fn unorder(v: &[f64], s: &mut [f64]) {
     let n = v.len();
-    for (d, &x) in s.iter_mut().step_by(2).zip(v) {
-        *d = x;
+    let (lo, hi) = v.split_at(n.div_ceil(2));
+    for ((pair, &a), &b) in s.chunks_exact_mut(2).zip(lo).zip(hi.iter().rev()) {
+        pair[0] = a;
+        pair[1] = b;
     }
-    for (d, &x) in s
-        .iter_mut()
-        .skip(1)
-        .step_by(2)
-        .zip(v[n.div_ceil(2)..].iter().rev())
-    {
-        *d = x;
+    if n % 2 == 1 {
+        s[n - 1] = lo[n / 2];
     }
 }
 
