@@ -242,10 +242,9 @@ impl Runner<'_> {
         // without it (TEST_*, DEFI_MATERIAU...) reports at the ordinary level.
         let info = args.int("INFO").unwrap_or(1);
         let mut tests = Vec::new();
-        // Every concept given to the operator must still be what it was computed from.
-        for used in concept_arguments(args) {
-            store.check_dependencies(&used)?;
-        }
+        // Every concept given to the operator must still be what it was computed from
+        // (checked in the operator's transaction).
+        let used = concept_arguments(args);
         let started = Instant::now();
         let mut ctx = OpContext::new(store, &call.op, &mut *self.out, &self.units, &mut tests);
         ctx.result = call.result.as_deref();
@@ -257,7 +256,7 @@ impl Runner<'_> {
         ctx.alarms_are_errors = self.alarms_are_errors;
         ctx.tole_machine = self.tole_machine;
         ctx.progress = self.progress;
-        let outcome = ops::run_in_transaction(op_fn, &mut ctx, args);
+        let outcome = ops::run_checked_in_transaction(op_fn, &mut ctx, args, &used);
         let created = std::mem::take(&mut ctx.created);
         let value = ctx.value.take();
         let deferred = ctx.deferred_error.take();

@@ -195,6 +195,19 @@ fn catalogs_parse_and_are_consistent() {
 }
 
 #[test]
+fn embedded_json_reads_as_the_toml() {
+    // A run reads the JSON build.rs made of each catalog: it must give exactly what the
+    // TOML says (floats, integers, lists and defaults included), for every file.
+    for (i, (file, text)) in files().iter().enumerate() {
+        let json = super::embedded::JSON[i].unwrap_or_else(|| panic!("{file}: no JSON"));
+        let from_json: OperatorDef = serde_json::from_str(json).unwrap();
+        assert_eq!(from_json, parse(file, text).unwrap(), "{file}");
+        assert_eq!(super::parse_embedded(i).unwrap(), from_json, "{file}");
+    }
+    assert_eq!(super::embedded::JSON.len(), files().len());
+}
+
+#[test]
 fn consistency_check_catches_bad_catalogs() {
     // A broken catalog run through the same checks as the embedded ones.
     let text = r#"

@@ -66,7 +66,17 @@ impl<'a> LineIndex<'a> {
         let end = floor_char(self.text, end.clamp(start, self.text.len()));
         let line = self.starts.partition_point(|&s| s <= start).max(1);
         let line_start = self.starts.get(line - 1).copied().unwrap_or(0);
-        let col = self.chars_before(start) - self.chars_before(line_start) + 1;
+        // Near the line start (every span of an ordinary file) counting the few characters
+        // before it is cheaper than two checkpoint lookups, each counting up to
+        // CHECKPOINT_BYTES; far along a long line the checkpoints bound the work.
+        let col = if start - line_start <= CHECKPOINT_BYTES {
+            self.text
+                .get(line_start..start)
+                .map_or(0, |s| s.chars().count())
+                + 1
+        } else {
+            self.chars_before(start) - self.chars_before(line_start) + 1
+        };
         Span {
             start,
             end,

@@ -215,8 +215,25 @@ pub type OpFn = fn(&mut OpContext<'_>, &Args) -> Result<()>;
 /// (the database left as it was) when it or the commit fails. The interpreter, the test
 /// harness and the integration tests all run operators through this.
 pub fn run_in_transaction(f: OpFn, ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    run_checked_in_transaction(f, ctx, args, &[])
+}
+
+/// [`run_in_transaction`], refusing first, in the same transaction, a concept of `used`
+/// that something it was computed from no longer matches ([`Store::check_dependencies`]).
+/// Inside the transaction the checks read under the lock the operator takes anyway; each
+/// one outside would lock and unlock the file (and look for a journal) on its own.
+pub fn run_checked_in_transaction(
+    f: OpFn,
+    ctx: &mut OpContext<'_>,
+    args: &Args,
+    used: &[String],
+) -> Result<()> {
     ctx.store.begin_op()?;
-    let outcome = f(ctx, args).and_then(|()| ctx.store.commit_op());
+    let outcome = used
+        .iter()
+        .try_for_each(|c| ctx.store.check_dependencies(c))
+        .and_then(|()| f(ctx, args))
+        .and_then(|()| ctx.store.commit_op());
     if outcome.is_err() {
         ctx.store.rollback_op();
     }

@@ -16,7 +16,7 @@
 
 use super::Store;
 use crate::error::{Error, Result};
-use rusqlite::{params, OptionalExtension};
+use rusqlite::params;
 
 pub(super) const SCHEMA: &str = "
 CREATE TABLE IF NOT EXISTS concept_generations (
@@ -34,20 +34,17 @@ CREATE TABLE IF NOT EXISTS concept_deps (
 impl Store {
     /// Give `name` a new generation (a registration, or a change in place).
     pub fn new_generation(&self, name: &str) -> Result<i64> {
-        let last: Option<String> = self
-            .conn()
-            .query_row(
-                "SELECT value FROM meta WHERE key = 'last_generation'",
-                [],
-                |r| r.get(0),
-            )
-            .optional()?;
+        let last: Option<String> = self.row(
+            "SELECT value FROM meta WHERE key = 'last_generation'",
+            [],
+            |r| r.get(0),
+        )?;
         let next = last.and_then(|v| v.parse::<i64>().ok()).unwrap_or(0) + 1;
-        self.conn().execute(
+        self.exec(
             "INSERT OR REPLACE INTO meta(key, value) VALUES ('last_generation', ?1)",
             params![next.to_string()],
         )?;
-        self.conn().execute(
+        self.exec(
             "INSERT OR REPLACE INTO concept_generations(name, generation) VALUES (?1, ?2)",
             params![name, next],
         )?;
@@ -60,14 +57,11 @@ impl Store {
         if self.concept_type(name)?.is_none() {
             return Ok(None);
         }
-        let g: Option<i64> = self
-            .conn()
-            .query_row(
-                "SELECT generation FROM concept_generations WHERE name = ?1",
-                params![name],
-                |r| r.get(0),
-            )
-            .optional()?;
+        let g: Option<i64> = self.row(
+            "SELECT generation FROM concept_generations WHERE name = ?1",
+            params![name],
+            |r| r.get(0),
+        )?;
         Ok(Some(g.unwrap_or(0)))
     }
 
@@ -78,7 +72,7 @@ impl Store {
                 "{concept} depends on {depends_on}, which is not a concept"
             ))
         })?;
-        self.conn().execute(
+        self.exec(
             "INSERT OR REPLACE INTO concept_deps(concept, depends_on, generation) VALUES (?1, ?2, ?3)",
             params![concept, depends_on, g],
         )?;
@@ -87,7 +81,7 @@ impl Store {
 
     /// Give `to` the dependencies of `from` (a copy of a concept refers to what it did).
     pub fn copy_dependencies(&self, from: &str, to: &str) -> Result<()> {
-        self.conn().execute(
+        self.exec(
             "INSERT OR REPLACE INTO concept_deps(concept, depends_on, generation)
              SELECT ?2, depends_on, generation FROM concept_deps WHERE concept = ?1",
             params![from, to],
@@ -97,7 +91,7 @@ impl Store {
 
     /// The recorded dependencies of `concept`: (depends_on, generation).
     pub fn dependencies(&self, concept: &str) -> Result<Vec<(String, i64)>> {
-        let mut stmt = self.conn().prepare(
+        let mut stmt = self.conn().prepare_cached(
             "SELECT depends_on, generation FROM concept_deps WHERE concept = ?1 ORDER BY rowid",
         )?;
         let rows = stmt.query_map(params![concept], |r| Ok((r.get(0)?, r.get(1)?)))?;
@@ -137,9 +131,8 @@ impl Store {
 
     /// Forget what `name` records (its generation and its dependencies): it is deleted.
     pub(super) fn drop_dependency_data(&self, name: &str) -> Result<()> {
-        self.conn()
-            .execute("DELETE FROM concept_deps WHERE concept = ?1", params![name])?;
-        self.conn().execute(
+        self.exec("DELETE FROM concept_deps WHERE concept = ?1", params![name])?;
+        self.exec(
             "DELETE FROM concept_generations WHERE name = ?1",
             params![name],
         )?;

@@ -31,11 +31,13 @@ pub fn save_layout(store: &Store, concept: &str, layout: &Layout) -> Result<()> 
 
 /// The layout of `concept`, `None` for a result written without one.
 pub fn load_layout(store: &Store, concept: &str) -> Result<Option<Layout>> {
-    let n: i64 = store.conn().query_row(
-        "SELECT COUNT(*) FROM concept_data WHERE concept = ?1 AND key = ?2",
-        params![concept, KEY],
-        |r| r.get(0),
-    )?;
+    let n: i64 = store
+        .row(
+            "SELECT COUNT(*) FROM concept_data WHERE concept = ?1 AND key = ?2",
+            params![concept, KEY],
+            |r| r.get(0),
+        )?
+        .unwrap_or(0);
     if n == 0 {
         return Ok(None);
     }
@@ -46,7 +48,7 @@ pub fn load_layout(store: &Store, concept: &str) -> Result<Option<Layout>> {
 pub fn stored_fields(store: &Store, concept: &str) -> Result<Vec<&'static str>> {
     let mut stmt = store
         .conn()
-        .prepare("SELECT name FROM table_columns WHERE concept = ?1")?;
+        .prepare_cached("SELECT name FROM table_columns WHERE concept = ?1")?;
     let names: Vec<String> = stmt
         .query_map(params![concept], |r| r.get(0))?
         .collect::<rusqlite::Result<_>>()?;

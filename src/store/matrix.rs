@@ -4,7 +4,7 @@
 //! - in `concept_data`: the numbering's mesh/model (key `numbering`) and, for a matrix, its
 //!   numbering name, kind and eliminated DOFs (key `matrix`).
 
-use super::Store;
+use super::{Schema, Store};
 use crate::error::{Error, Result};
 use crate::model::numbering::NumberedDof;
 use crate::model::{AssembledMatrix, Cmp, DofNumbering, MatrixKind};
@@ -30,8 +30,7 @@ CREATE TABLE IF NOT EXISTS matrix_entries (
 ";
 
 pub fn ensure_schema(store: &Store) -> Result<()> {
-    store.conn().execute_batch(SCHEMA)?;
-    Ok(())
+    store.ensure_schema(Schema::Matrix, SCHEMA)
 }
 
 #[derive(Serialize, Deserialize)]
@@ -55,12 +54,11 @@ struct MatrixMeta {
 /// Remove the rows a numbering or matrix concept owns (called by `Store::delete_concept`).
 pub fn drop_data(store: &Store, name: &str) -> Result<()> {
     ensure_schema(store)?;
-    let c = store.conn();
-    c.execute(
+    store.exec(
         "DELETE FROM dof_numbering WHERE numbering = ?1",
         params![name],
     )?;
-    c.execute(
+    store.exec(
         "DELETE FROM matrix_entries WHERE matrix = ?1",
         params![name],
     )?;
@@ -70,7 +68,7 @@ pub fn drop_data(store: &Store, name: &str) -> Result<()> {
 pub fn save_numbering(store: &Store, name: &str, num: &DofNumbering) -> Result<()> {
     ensure_schema(store)?;
     drop_data(store, name)?;
-    let mut stmt = store.conn().prepare(
+    let mut stmt = store.conn().prepare_cached(
         "INSERT INTO dof_numbering(numbering, idx, node, cmp, eliminated) VALUES (?1, ?2, ?3, ?4, ?5)",
     )?;
     for (i, d) in num.dofs.iter().enumerate() {
@@ -90,7 +88,7 @@ pub fn save_numbering(store: &Store, name: &str, num: &DofNumbering) -> Result<(
 pub fn load_numbering(store: &Store, name: &str) -> Result<DofNumbering> {
     ensure_schema(store)?;
     let meta: NumberingMeta = store.get_json(name, "numbering")?;
-    let mut stmt = store.conn().prepare(
+    let mut stmt = store.conn().prepare_cached(
         "SELECT node, cmp, eliminated FROM dof_numbering WHERE numbering = ?1 ORDER BY idx",
     )?;
     let rows = stmt.query_map(params![name], |r| {
@@ -122,9 +120,9 @@ pub fn load_numbering(store: &Store, name: &str) -> Result<DofNumbering> {
 pub fn save_matrix(store: &Store, name: &str, m: &AssembledMatrix, numbering: &str) -> Result<()> {
     ensure_schema(store)?;
     drop_data(store, name)?;
-    let mut stmt = store
-        .conn()
-        .prepare("INSERT INTO matrix_entries(matrix, row, col, value) VALUES (?1, ?2, ?3, ?4)")?;
+    let mut stmt = store.conn().prepare_cached(
+        "INSERT INTO matrix_entries(matrix, row, col, value) VALUES (?1, ?2, ?3, ?4)",
+    )?;
     for &(r, c, v) in &m.triplets {
         stmt.execute(params![name, r as i64, c as i64, v])?;
     }
@@ -157,7 +155,7 @@ pub fn load_matrix(store: &Store, name: &str) -> Result<AssembledMatrix> {
     let meta: MatrixMeta = store.get_json(name, "matrix")?;
     let numbering = load_numbering(store, &meta.numbering)?;
     let n = numbering.len();
-    let mut stmt = store.conn().prepare(
+    let mut stmt = store.conn().prepare_cached(
         "SELECT row, col, value FROM matrix_entries WHERE matrix = ?1 ORDER BY row, col",
     )?;
     let rows = stmt.query_map(params![name], |r| {

@@ -11,10 +11,10 @@
 //!
 //! [`load_mesh`] rebuilds exactly the [`Mesh`] that [`save_mesh`] wrote.
 
-use super::Store;
+use super::{Schema, Store};
 use crate::error::{Error, Result};
 use crate::mesh::{Cell, CellKind, Group, Mesh, Node};
-use rusqlite::{params, Connection, OptionalExtension};
+use rusqlite::params;
 use std::collections::HashMap;
 
 const SCHEMA: &str = "
@@ -56,47 +56,44 @@ CREATE TABLE IF NOT EXISTS mesh_groups (
 ";
 
 /// Create the mesh tables if they are not there yet.
-pub fn ensure_schema(conn: &Connection) -> Result<()> {
-    conn.execute_batch(SCHEMA)?;
-    Ok(())
+pub fn ensure_schema(store: &Store) -> Result<()> {
+    store.ensure_schema(Schema::Mesh, SCHEMA)
 }
 
 /// Delete every row of mesh `name` (nothing happens if the tables do not exist yet).
-pub fn delete_mesh(conn: &Connection, name: &str) -> Result<()> {
-    let exists: i64 = conn.query_row(
+pub fn delete_mesh(store: &Store, name: &str) -> Result<()> {
+    let exists: Option<i64> = store.row(
         "SELECT count(*) FROM sqlite_master WHERE type='table' AND name='meshes'",
         [],
         |r| r.get(0),
     )?;
-    if exists == 0 {
+    if exists.unwrap_or(0) == 0 {
         return Ok(());
     }
-    for table in [
-        "mesh_groups",
-        "mesh_group_defs",
-        "mesh_cells",
-        "mesh_nodes",
-        "meshes",
+    for sql in [
+        "DELETE FROM mesh_groups WHERE mesh = ?1",
+        "DELETE FROM mesh_group_defs WHERE mesh = ?1",
+        "DELETE FROM mesh_cells WHERE mesh = ?1",
+        "DELETE FROM mesh_nodes WHERE mesh = ?1",
+        "DELETE FROM meshes WHERE mesh = ?1",
     ] {
-        conn.execute(
-            &format!("DELETE FROM {table} WHERE mesh = ?1"),
-            params![name],
-        )?;
+        store.exec(sql, params![name])?;
     }
     Ok(())
 }
 
 /// Save `mesh` as concept `name` (registered beforehand), replacing any previous rows.
 pub fn save_mesh(store: &Store, name: &str, mesh: &Mesh) -> Result<()> {
-    let conn = store.conn();
-    ensure_schema(conn)?;
-    delete_mesh(conn, name)?;
-    conn.execute(
+    ensure_schema(store)?;
+    delete_mesh(store, name)?;
+    store.exec(
         "INSERT INTO meshes(mesh, dim) VALUES (?1, ?2)",
         params![name, mesh.dim as i64],
     )?;
-    let mut stmt = conn
-        .prepare("INSERT INTO mesh_nodes(mesh, idx, name, x, y, z) VALUES (?1,?2,?3,?4,?5,?6)")?;
+    let conn = store.conn();
+    let mut stmt = conn.prepare_cached(
+        "INSERT INTO mesh_nodes(mesh, idx, name, x, y, z) VALUES (?1,?2,?3,?4,?5,?6)",
+    )?;
     for (i, n) in mesh.nodes.iter().enumerate() {
         let [x, y, z] = n.coords;
         stmt.execute(params![name, i as i64, n.name, x, y, z])?;
@@ -108,8 +105,9 @@ pub fn save_mesh(store: &Store, name: &str, mesh: &Mesh) -> Result<()> {
             ))
         })
     };
-    let mut stmt = conn
-        .prepare("INSERT INTO mesh_cells(mesh, idx, name, type, nodes) VALUES (?1,?2,?3,?4,?5)")?;
+    let mut stmt = conn.prepare_cached(
+        "INSERT INTO mesh_cells(mesh, idx, name, type, nodes) VALUES (?1,?2,?3,?4,?5)",
+    )?;
     for (i, c) in mesh.cells.iter().enumerate() {
         let nodes = c
             .nodes
@@ -132,15 +130,16 @@ pub fn save_mesh(store: &Store, name: &str, mesh: &Mesh) -> Result<()> {
 }
 
 fn save_groups<'m>(
-    conn: &Connection,
+    conn: &rusqlite::Connection,
     mesh: &str,
     kind: &str,
     groups: &'m [Group],
     member_name: impl Fn(usize) -> Result<&'m str>,
 ) -> Result<()> {
-    let mut def =
-        conn.prepare("INSERT INTO mesh_group_defs(mesh, kind, gidx, name) VALUES (?1,?2,?3,?4)")?;
-    let mut mem = conn.prepare(
+    let mut def = conn.prepare_cached(
+        "INSERT INTO mesh_group_defs(mesh, kind, gidx, name) VALUES (?1,?2,?3,?4)",
+    )?;
+    let mut mem = conn.prepare_cached(
         "INSERT INTO mesh_groups(mesh, kind, name, pos, member_idx, member) VALUES (?1,?2,?3,?4,?5,?6)",
     )?;
     for (gi, g) in groups.iter().enumerate() {
@@ -170,15 +169,13 @@ fn to_index(name: &str, v: i64, what: &str) -> Result<usize> {
 
 /// Rebuild mesh `name` from its rows.
 pub fn load_mesh(store: &Store, name: &str) -> Result<Mesh> {
+    ensure_schema(store)?;
     let conn = store.conn();
-    ensure_schema(conn)?;
-    let dim: Option<i64> = conn
-        .query_row(
-            "SELECT dim FROM meshes WHERE mesh = ?1",
-            params![name],
-            |r| r.get(0),
-        )
-        .optional()?;
+    let dim: Option<i64> = store.row(
+        "SELECT dim FROM meshes WHERE mesh = ?1",
+        params![name],
+        |r| r.get(0),
+    )?;
     let dim = dim.ok_or_else(|| Error::store(format!("no mesh named {name} in the store")))?;
     let mut mesh = Mesh {
         dim: to_index(name, dim, "dimension")?,
@@ -186,7 +183,7 @@ pub fn load_mesh(store: &Store, name: &str) -> Result<Mesh> {
     };
 
     let mut stmt =
-        conn.prepare("SELECT name, x, y, z FROM mesh_nodes WHERE mesh = ?1 ORDER BY idx")?;
+        conn.prepare_cached("SELECT name, x, y, z FROM mesh_nodes WHERE mesh = ?1 ORDER BY idx")?;
     let rows = stmt.query_map(params![name], |r| {
         Ok(Node {
             name: r.get(0)?,
@@ -201,8 +198,8 @@ pub fn load_mesh(store: &Store, name: &str) -> Result<Mesh> {
         .map(|(i, n)| (n.name.as_str(), i))
         .collect();
 
-    let mut stmt =
-        conn.prepare("SELECT name, type, nodes FROM mesh_cells WHERE mesh = ?1 ORDER BY idx")?;
+    let mut stmt = conn
+        .prepare_cached("SELECT name, type, nodes FROM mesh_cells WHERE mesh = ?1 ORDER BY idx")?;
     let rows = stmt.query_map(params![name], |r| {
         Ok((
             r.get::<_, String>(0)?,
@@ -242,13 +239,19 @@ pub fn load_mesh(store: &Store, name: &str) -> Result<Mesh> {
     Ok(mesh)
 }
 
-fn load_groups(conn: &Connection, mesh: &str, kind: &str, count: usize) -> Result<Vec<Group>> {
-    let mut stmt = conn
-        .prepare("SELECT name FROM mesh_group_defs WHERE mesh = ?1 AND kind = ?2 ORDER BY gidx")?;
+fn load_groups(
+    conn: &rusqlite::Connection,
+    mesh: &str,
+    kind: &str,
+    count: usize,
+) -> Result<Vec<Group>> {
+    let mut stmt = conn.prepare_cached(
+        "SELECT name FROM mesh_group_defs WHERE mesh = ?1 AND kind = ?2 ORDER BY gidx",
+    )?;
     let names = stmt
         .query_map(params![mesh, kind], |r| r.get::<_, String>(0))?
         .collect::<rusqlite::Result<Vec<_>>>()?;
-    let mut stmt = conn.prepare(
+    let mut stmt = conn.prepare_cached(
         "SELECT member_idx FROM mesh_groups WHERE mesh = ?1 AND kind = ?2 AND name = ?3 ORDER BY pos",
     )?;
     let mut out = Vec::with_capacity(names.len());

@@ -7,8 +7,8 @@
 //! - `concept_data(concept, 'mnl_setup')`: harmonics, numbering and shocks of the run.
 
 use crate::error::{Error, Result};
-use crate::store::Store;
-use rusqlite::{params, OptionalExtension};
+use crate::store::{Schema, Store};
+use rusqlite::params;
 use serde::{Deserialize, Serialize};
 
 const SCHEMA: &str = "
@@ -66,17 +66,17 @@ pub struct MnlSetup {
 }
 
 pub fn ensure_schema(store: &Store) -> Result<()> {
-    store.conn().execute_batch(SCHEMA)?;
-    Ok(())
+    store.ensure_schema(Schema::Mnl, SCHEMA)
 }
 
 pub fn drop_data(store: &Store, name: &str) -> Result<()> {
     ensure_schema(store)?;
-    for t in ["mnl_points", "mnl_fourier", "mnl_floquet"] {
-        store.conn().execute(
-            &format!("DELETE FROM {t} WHERE concept = ?1"),
-            params![name],
-        )?;
+    for sql in [
+        "DELETE FROM mnl_points WHERE concept = ?1",
+        "DELETE FROM mnl_fourier WHERE concept = ?1",
+        "DELETE FROM mnl_floquet WHERE concept = ?1",
+    ] {
+        store.exec(sql, params![name])?;
     }
     Ok(())
 }
@@ -244,14 +244,11 @@ impl<'a> PointWriter<'a> {
 /// The stored unknown vector of row `nume_ordre`, if any.
 pub fn load_point(store: &Store, name: &str, nume_ordre: i64) -> Result<Option<Vec<f64>>> {
     ensure_schema(store)?;
-    let row: Option<(i64, Vec<u8>)> = store
-        .conn()
-        .query_row(
-            "SELECT n, x FROM mnl_points WHERE concept = ?1 AND NUME_ORDRE = ?2",
-            params![name, nume_ordre],
-            |r| Ok((r.get(0)?, r.get(1)?)),
-        )
-        .optional()?;
+    let row: Option<(i64, Vec<u8>)> = store.row(
+        "SELECT n, x FROM mnl_points WHERE concept = ?1 AND NUME_ORDRE = ?2",
+        params![name, nume_ordre],
+        |r| Ok((r.get(0)?, r.get(1)?)),
+    )?;
     match row {
         None => Ok(None),
         Some((n, blob)) => {
@@ -289,12 +286,11 @@ pub fn save_multipliers(
     multipliers: &[(f64, f64)],
 ) -> Result<()> {
     ensure_schema(store)?;
-    let conn = store.conn();
-    conn.execute(
+    store.exec(
         "DELETE FROM mnl_floquet WHERE concept = ?1 AND NUME_ORDRE = ?2",
         params![name, nume_ordre],
     )?;
-    let mut stmt = conn.prepare_cached(
+    let mut stmt = store.conn().prepare_cached(
         "INSERT INTO mnl_floquet(concept, NUME_ORDRE, NUME_MULT, PARTIE_REELLE, PARTIE_IMAG, MODULE)
          VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
     )?;
@@ -316,18 +312,17 @@ pub fn save_multipliers(
 pub fn copy_data(store: &Store, from: &str, to: &str) -> Result<()> {
     ensure_schema(store)?;
     save_setup(store, to, &load_setup(store, from)?)?;
-    let conn = store.conn();
-    conn.execute(
+    store.exec(
         "INSERT INTO mnl_points(concept, NUME_ORDRE, omega, n, x)
          SELECT ?2, NUME_ORDRE, omega, n, x FROM mnl_points WHERE concept = ?1",
         params![from, to],
     )?;
-    conn.execute(
+    store.exec(
         "INSERT INTO mnl_fourier(concept, NUME_ORDRE, NOEUD, NOM_CMP, HARM, COEF_C, COEF_S)
          SELECT ?2, NUME_ORDRE, NOEUD, NOM_CMP, HARM, COEF_C, COEF_S FROM mnl_fourier WHERE concept = ?1",
         params![from, to],
     )?;
-    conn.execute(
+    store.exec(
         "INSERT INTO mnl_floquet(concept, NUME_ORDRE, NUME_MULT, PARTIE_REELLE, PARTIE_IMAG, MODULE)
          SELECT ?2, NUME_ORDRE, NUME_MULT, PARTIE_REELLE, PARTIE_IMAG, MODULE FROM mnl_floquet WHERE concept = ?1",
         params![from, to],

@@ -24,8 +24,9 @@ pub mod study_file;
 pub mod table;
 
 use crate::error::{Error, Result};
-use rusqlite::{params, Connection, OptionalExtension};
+use rusqlite::{params, Connection, OptionalExtension, Params};
 use serde::{de::DeserializeOwned, Serialize};
+use std::cell::Cell;
 use std::path::{Path, PathBuf};
 
 /// Version of the schema written by this build. Bump it when the layout changes.
@@ -34,6 +35,8 @@ pub const SCHEMA_VERSION: i64 = 1;
 pub struct Store {
     conn: Connection,
     path: Option<PathBuf>,
+    /// The typed-table schemas ([`Schema`]) known to exist on this connection, one bit each.
+    schemas: Cell<u32>,
     /// The run's exclusive lock on the study (none for in-memory and read-only stores).
     /// Declared after `conn` so that the connection closes before the lock is released.
     _lock: Option<study_file::StudyLock>,
@@ -49,6 +52,24 @@ pub struct ConceptInfo {
     pub line: i64,
     pub created_at: String,
 }
+
+/// The schemas of the typed submodules. Each is a batch of `CREATE ... IF NOT EXISTS`
+/// statements run on first use ([`Store::ensure_schema`]): a study only gets the tables it
+/// uses, and a study written by an older aster-nl gets the ones it lacks when POURSUITE
+/// first needs them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Schema {
+    Table = 1,
+    Mesh = 2,
+    Matrix = 4,
+    Modes = 8,
+    Mnl = 16,
+}
+
+/// Statements kept prepared per connection. Every fixed statement of the store fits (a run
+/// uses about sixty), so none is parsed twice; the SQL of a table concept (its name is in
+/// the text) passes through once per save and evicts the least recently used.
+const STATEMENT_CACHE: usize = 128;
 
 const CORE_SCHEMA: &str = "
 CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
@@ -99,12 +120,7 @@ impl Store {
                 ))
             })?;
         }
-        let conn = Connection::open(path)?;
-        let store = Store {
-            conn,
-            path: Some(path.to_path_buf()),
-            _lock: Some(lock),
-        };
+        let store = Store::with(Connection::open(path)?, Some(path), Some(lock));
         store.init_schema()?;
         Ok(store)
     }
@@ -120,12 +136,7 @@ impl Store {
         let lock = study_file::StudyLock::acquire(path, purpose)?;
         study_file::check_openable(path)?;
         study_file::check_writable(path)?;
-        let conn = Connection::open(path)?;
-        let store = Store {
-            conn,
-            path: Some(path.to_path_buf()),
-            _lock: Some(lock),
-        };
+        let store = Store::with(Connection::open(path)?, Some(path), Some(lock));
         store.check_schema()?;
         // A study written before dependencies were recorded gets the tables now.
         store.conn.execute_batch(deps::SCHEMA)?;
@@ -138,24 +149,26 @@ impl Store {
         use rusqlite::OpenFlags;
         study_file::check_openable(path)?;
         let conn = Connection::open_with_flags(path, OpenFlags::SQLITE_OPEN_READ_ONLY)?;
-        let store = Store {
-            conn,
-            path: Some(path.to_path_buf()),
-            _lock: None,
-        };
+        let store = Store::with(conn, Some(path), None);
         store.check_schema()?;
         Ok(store)
     }
 
     /// A store that lives in memory (tests, `check`).
     pub fn in_memory() -> Result<Store> {
-        let store = Store {
-            conn: Connection::open_in_memory()?,
-            path: None,
-            _lock: None,
-        };
+        let store = Store::with(Connection::open_in_memory()?, None, None);
         store.init_schema()?;
         Ok(store)
+    }
+
+    fn with(conn: Connection, path: Option<&Path>, lock: Option<study_file::StudyLock>) -> Store {
+        conn.set_prepared_statement_cache_capacity(STATEMENT_CACHE);
+        Store {
+            conn,
+            path: path.map(Path::to_path_buf),
+            schemas: Cell::new(0),
+            _lock: lock,
+        }
     }
 
     pub fn path(&self) -> Option<&Path> {
@@ -165,6 +178,40 @@ impl Store {
     /// The underlying connection, for the typed submodules of `store`.
     pub fn conn(&self) -> &Connection {
         &self.conn
+    }
+
+    /// Run `sql` (a batch of `CREATE ... IF NOT EXISTS`) unless this connection already
+    /// did for `which`: running it again per call would parse every statement of the batch
+    /// each time. [`Store::rollback_op`] forgets them all, since a rollback may have
+    /// undone the creation.
+    pub(crate) fn ensure_schema(&self, which: Schema, sql: &str) -> Result<()> {
+        let bit = which as u32;
+        if self.schemas.get() & bit == 0 {
+            self.conn.execute_batch(sql)?;
+            self.schemas.set(self.schemas.get() | bit);
+        }
+        Ok(())
+    }
+
+    /// Execute one statement of fixed text, prepared once per connection (SQLite's
+    /// statement cache) instead of per call. Not for SQL that names a table concept: each
+    /// such text is used once and would only evict the fixed statements.
+    pub(crate) fn exec<P: Params>(&self, sql: &str, params: P) -> Result<usize> {
+        Ok(self.conn.prepare_cached(sql)?.execute(params)?)
+    }
+
+    /// The first row of a cached statement of fixed text (see [`Store::exec`]), if any.
+    pub(crate) fn row<T, P: Params>(
+        &self,
+        sql: &str,
+        params: P,
+        f: impl FnOnce(&rusqlite::Row<'_>) -> rusqlite::Result<T>,
+    ) -> Result<Option<T>> {
+        Ok(self
+            .conn
+            .prepare_cached(sql)?
+            .query_row(params, f)
+            .optional()?)
     }
 
     fn init_schema(&self) -> Result<()> {
@@ -243,17 +290,19 @@ impl Store {
 
     /// Start the transaction of one operator.
     pub fn begin_op(&self) -> Result<()> {
-        self.conn.execute_batch("BEGIN IMMEDIATE")?;
+        self.exec("BEGIN IMMEDIATE", [])?;
         Ok(())
     }
     pub fn commit_op(&self) -> Result<()> {
-        self.conn.execute_batch("COMMIT")?;
+        self.exec("COMMIT", [])?;
         Ok(())
     }
     /// Undo everything the failed operator wrote. Errors here are ignored on purpose: the
     /// rollback is already the error path, and SQLite rolls back on its own if it can't.
     pub fn rollback_op(&self) {
         let _ = self.conn.execute_batch("ROLLBACK");
+        // The operator may have created typed tables: they are gone with the rest.
+        self.schemas.set(0);
     }
 
     /// Record a new concept (or replace the record of a concept with the same name, as
@@ -275,7 +324,7 @@ impl Store {
             }
             self.delete_concept(name)?;
         }
-        self.conn.execute(
+        self.exec(
             "INSERT INTO concepts(name, type, operator, file, line) VALUES (?1, ?2, ?3, ?4, ?5)",
             params![name, ty, operator, file, line as i64],
         )?;
@@ -284,22 +333,20 @@ impl Store {
     }
 
     pub fn concept_type(&self, name: &str) -> Result<Option<String>> {
-        // Cached: tables look up every text cell of every row (save_table), and a statement
-        // prepared per call costs more than the lookup.
-        Ok(self
-            .conn
-            .prepare_cached("SELECT type FROM concepts WHERE name = ?1")?
-            .query_row(params![name], |r| r.get(0))
-            .optional()?)
+        self.row(
+            "SELECT type FROM concepts WHERE name = ?1",
+            params![name],
+            |r| r.get(0),
+        )
     }
 
     /// The operator that created concept `name`, if it exists.
     pub fn concept_operator(&self, name: &str) -> Result<Option<String>> {
-        Ok(self
-            .conn
-            .prepare_cached("SELECT operator FROM concepts WHERE name = ?1")?
-            .query_row(params![name], |r| r.get(0))
-            .optional()?)
+        self.row(
+            "SELECT operator FROM concepts WHERE name = ?1",
+            params![name],
+            |r| r.get(0),
+        )
     }
 
     pub fn concepts(&self) -> Result<Vec<ConceptInfo>> {
@@ -324,10 +371,8 @@ impl Store {
     pub fn delete_concept(&self, name: &str) -> Result<()> {
         self.drop_typed_data(name)?;
         self.drop_dependency_data(name)?;
-        self.conn
-            .execute("DELETE FROM concept_data WHERE concept = ?1", params![name])?;
-        self.conn
-            .execute("DELETE FROM concepts WHERE name = ?1", params![name])?;
+        self.exec("DELETE FROM concept_data WHERE concept = ?1", params![name])?;
+        self.exec("DELETE FROM concepts WHERE name = ?1", params![name])?;
         Ok(())
     }
 
@@ -336,7 +381,7 @@ impl Store {
     fn drop_typed_data(&self, name: &str) -> Result<()> {
         table::drop_table_data(self, name)?;
         matrix::drop_data(self, name)?;
-        mesh::delete_mesh(&self.conn, name)?;
+        mesh::delete_mesh(self, name)?;
         modes::drop_data(self, name)?;
         mnl::drop_data(self, name)?;
         Ok(())
@@ -345,7 +390,7 @@ impl Store {
     /// Store a serde payload under (concept, key).
     pub fn put_json<T: Serialize>(&self, concept: &str, key: &str, value: &T) -> Result<()> {
         let json = serde_json::to_string(value)?;
-        self.conn.execute(
+        self.exec(
             "INSERT OR REPLACE INTO concept_data(concept, key, json) VALUES (?1, ?2, ?3)",
             params![concept, key, json],
         )?;
@@ -354,14 +399,11 @@ impl Store {
 
     /// Read a serde payload stored under (concept, key).
     pub fn get_json<T: DeserializeOwned>(&self, concept: &str, key: &str) -> Result<T> {
-        let json: Option<String> = self
-            .conn
-            .query_row(
-                "SELECT json FROM concept_data WHERE concept = ?1 AND key = ?2",
-                params![concept, key],
-                |r| r.get(0),
-            )
-            .optional()?;
+        let json: Option<String> = self.row(
+            "SELECT json FROM concept_data WHERE concept = ?1 AND key = ?2",
+            params![concept, key],
+            |r| r.get(0),
+        )?;
         let json = json
             .ok_or_else(|| Error::store(format!("concept {concept} has no stored '{key}' data")))?;
         Ok(serde_json::from_str(&json)?)
@@ -417,6 +459,72 @@ mod tests {
         s.rollback_op();
         let names: Vec<String> = s.concepts().unwrap().into_iter().map(|c| c.name).collect();
         assert_eq!(names, vec!["A".to_string()]);
+    }
+
+    fn has_table(s: &Store, name: &str) -> bool {
+        s.conn()
+            .query_row(
+                "SELECT count(*) FROM sqlite_master WHERE type='table' AND name=?1",
+                params![name],
+                |r| r.get::<_, i64>(0),
+            )
+            .unwrap()
+            > 0
+    }
+
+    #[test]
+    fn a_rolled_back_schema_is_created_again() {
+        // The first operator to use the MODE_NON_LINE tables fails: its rollback removes
+        // them, and the next operator must not take them as created.
+        let s = Store::in_memory().unwrap();
+        s.begin_op().unwrap();
+        s.register_concept("MNL", "table_container", "MODE_NON_LINE", "x.comm", 1)
+            .unwrap();
+        mnl::save_point(&s, "MNL", 1, 2.0, &[1.0]).unwrap();
+        assert!(has_table(&s, "mnl_points"));
+        s.rollback_op();
+        assert!(!has_table(&s, "mnl_points"));
+        s.begin_op().unwrap();
+        s.register_concept("MNL", "table_container", "MODE_NON_LINE", "x.comm", 2)
+            .unwrap();
+        mnl::save_point(&s, "MNL", 1, 2.0, &[1.0]).unwrap();
+        s.commit_op().unwrap();
+        assert_eq!(mnl::load_point(&s, "MNL", 1).unwrap(), Some(vec![1.0]));
+    }
+
+    #[test]
+    fn poursuite_of_a_study_without_typed_tables_creates_them() {
+        // A study whose runs never used the table and MODE_NON_LINE tables (or was written
+        // before they existed): a POURSUITE store creates them on first use, once.
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("s.db");
+        {
+            let s = Store::create(&p).unwrap();
+            s.begin_op().unwrap();
+            s.register_concept("A", "fonction_sdaster", "DEFI_FONCTION", "x.comm", 1)
+                .unwrap();
+            s.commit_op().unwrap();
+            assert!(!has_table(&s, "table_meta") && !has_table(&s, "mnl_points"));
+        }
+        let s = Store::open(&p).unwrap();
+        s.begin_op().unwrap();
+        s.register_concept("T", "table_sdaster", "CREA_TABLE", "y.comm", 1)
+            .unwrap();
+        let mut t = crate::table::Table::new("t");
+        t.add_column("X", crate::table::ColKind::R).unwrap();
+        t.push_row(vec![crate::table::Cell::R(1.5)]).unwrap();
+        table::save_table(&s, "T", &t).unwrap();
+        s.register_concept("MNL", "table_container", "MODE_NON_LINE", "y.comm", 2)
+            .unwrap();
+        mnl::save_point(&s, "MNL", 1, 2.0, &[3.0]).unwrap();
+        mnl::save_point(&s, "MNL", 2, 2.0, &[4.0]).unwrap();
+        s.commit_op().unwrap();
+        assert_eq!(table::load_table(&s, "T").unwrap(), t);
+        assert_eq!(mnl::load_point(&s, "MNL", 2).unwrap(), Some(vec![4.0]));
+        drop(s);
+        // And the next run reads them without creating anything.
+        let s = Store::open(&p).unwrap();
+        assert_eq!(mnl::load_point(&s, "MNL", 1).unwrap(), Some(vec![3.0]));
     }
 
     #[test]

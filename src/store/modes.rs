@@ -8,7 +8,7 @@
 use crate::error::{Error, Result};
 use crate::model::modes::{Mode, ModeMeca};
 use crate::model::numbering::DofNumbering;
-use crate::store::Store;
+use crate::store::{Schema, Store};
 use rusqlite::params;
 
 const SCHEMA: &str = "
@@ -34,18 +34,13 @@ CREATE TABLE IF NOT EXISTS mode_shapes (
 ";
 
 pub fn ensure_schema(store: &Store) -> Result<()> {
-    store.conn().execute_batch(SCHEMA)?;
-    Ok(())
+    store.ensure_schema(Schema::Modes, SCHEMA)
 }
 
 pub fn drop_data(store: &Store, name: &str) -> Result<()> {
     ensure_schema(store)?;
-    store
-        .conn()
-        .execute("DELETE FROM modes WHERE concept = ?1", params![name])?;
-    store
-        .conn()
-        .execute("DELETE FROM mode_shapes WHERE concept = ?1", params![name])?;
+    store.exec("DELETE FROM modes WHERE concept = ?1", params![name])?;
+    store.exec("DELETE FROM mode_shapes WHERE concept = ?1", params![name])?;
     Ok(())
 }
 
@@ -55,11 +50,11 @@ pub fn save_modes(store: &Store, name: &str, modes: &ModeMeca) -> Result<()> {
     store.put_json(name, "numbering", &modes.numbering)?;
     store.put_json(name, "numbering_name", &modes.numbering_name)?;
     let conn = store.conn();
-    let mut row = conn.prepare(
+    let mut row = conn.prepare_cached(
         "INSERT INTO modes(concept, NUME_ORDRE, FREQ, OMEGA2, MASS_GENE, RIGI_GENE, LABEL)
          VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)",
     )?;
-    let mut val = conn.prepare(
+    let mut val = conn.prepare_cached(
         "INSERT INTO mode_shapes(concept, NUME_ORDRE, dof, NOEUD, NOM_CMP, value)
          VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
     )?;
@@ -100,7 +95,7 @@ pub fn load_modes(store: &Store, name: &str) -> Result<ModeMeca> {
     let numbering: DofNumbering = store.get_json(name, "numbering")?;
     let numbering_name: String = store.get_json(name, "numbering_name")?;
     let conn = store.conn();
-    let mut rows = conn.prepare(
+    let mut rows = conn.prepare_cached(
         "SELECT NUME_ORDRE, FREQ, OMEGA2, MASS_GENE, RIGI_GENE, LABEL FROM modes
          WHERE concept = ?1 ORDER BY NUME_ORDRE",
     )?;
@@ -117,7 +112,7 @@ pub fn load_modes(store: &Store, name: &str) -> Result<ModeMeca> {
             })
         })?
         .collect::<rusqlite::Result<_>>()?;
-    let mut vals = conn.prepare(
+    let mut vals = conn.prepare_cached(
         "SELECT dof, value FROM mode_shapes WHERE concept = ?1 AND NUME_ORDRE = ?2 ORDER BY dof",
     )?;
     for m in &mut modes {

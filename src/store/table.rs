@@ -17,10 +17,11 @@
 //! other non-table SQL object of the file, nor start with `sqlite_`: such names are
 //! refused with a clear error.
 
-use super::Store;
+use super::{Schema, Store};
 use crate::error::{Error, Result};
 use crate::table::{Cell, ColKind, Column, Table};
-use rusqlite::{params, types::Value as SqlValue, OptionalExtension};
+use rusqlite::{params, types::Value as SqlValue};
+use std::collections::HashMap;
 
 /// Internal tables of the store (present or future): no table concept may take these names.
 pub const INTERNAL_TABLES: &[&str] = &[
@@ -68,8 +69,7 @@ CREATE INDEX IF NOT EXISTS table_links_concept ON table_links(concept);
 ";
 
 fn ensure_schema(store: &Store) -> Result<()> {
-    store.conn().execute_batch(SCHEMA)?;
-    Ok(())
+    store.ensure_schema(Schema::Table, SCHEMA)
 }
 
 /// `"name"` with inner quotes doubled: any concept or parameter name is a safe identifier.
@@ -79,13 +79,11 @@ pub fn quote_ident(name: &str) -> String {
 
 fn is_table_concept(store: &Store, name: &str) -> Result<bool> {
     Ok(store
-        .conn()
-        .query_row(
+        .row(
             "SELECT 1 FROM table_meta WHERE concept = ?1",
             params![name],
             |_| Ok(()),
-        )
-        .optional()?
+        )?
         .is_some())
 }
 
@@ -108,14 +106,11 @@ pub fn check_table_name(store: &Store, name: &str) -> Result<()> {
         return Err(clash(format!("the store keeps its own table '{t}'")));
     }
     ensure_schema(store)?;
-    let other: Option<String> = store
-        .conn()
-        .query_row(
-            "SELECT name FROM sqlite_master WHERE name = ?1 COLLATE NOCASE",
-            params![name],
-            |r| r.get(0),
-        )
-        .optional()?;
+    let other: Option<String> = store.row(
+        "SELECT name FROM sqlite_master WHERE name = ?1 COLLATE NOCASE",
+        params![name],
+        |r| r.get(0),
+    )?;
     if let Some(o) = other {
         // The only SQL object a table concept may meet is its own earlier version.
         let own = o == name && is_table_concept(store, name)?;
@@ -134,6 +129,17 @@ fn sql_type(kind: ColKind) -> &'static str {
         ColKind::I => "INTEGER",
         ColKind::K => "TEXT",
     }
+}
+
+/// A cell as SQLite binds it (borrowed: the text is not copied).
+fn sql_value(c: &Cell) -> rusqlite::types::ToSqlOutput<'_> {
+    use rusqlite::types::{ToSqlOutput, ValueRef};
+    ToSqlOutput::Borrowed(match c {
+        Cell::Null => ValueRef::Null,
+        Cell::R(r) => ValueRef::Real(*r),
+        Cell::I(v) => ValueRef::Integer(*v),
+        Cell::K(s) => ValueRef::Text(s.as_bytes()),
+    })
 }
 
 /// The name under which the rowid stays reachable (a column may shadow `rowid`).
@@ -189,12 +195,12 @@ pub fn save_table(store: &Store, concept: &str, t: &Table) -> Result<()> {
         .map(|c| format!("{} {}", quote_ident(&c.name), sql_type(c.kind)))
         .collect();
     conn.execute_batch(&format!("CREATE TABLE {table} ({})", cols.join(", ")))?;
-    conn.execute(
+    store.exec(
         "INSERT INTO table_meta(concept, title) VALUES (?1, ?2)",
         params![concept, t.title],
     )?;
     for (pos, c) in t.columns.iter().enumerate() {
-        conn.execute(
+        store.exec(
             "INSERT INTO table_columns(concept, position, name, kind) VALUES (?1, ?2, ?3, ?4)",
             params![concept, pos as i64, c.name, c.kind.name()],
         )?;
@@ -207,23 +213,29 @@ pub fn save_table(store: &Store, concept: &str, t: &Table) -> Result<()> {
             names.join(", "),
             marks.join(", ")
         ))?;
-        let mut link = conn.prepare(
+        let mut link = conn.prepare_cached(
             "INSERT INTO table_links(concept, row, \"column\", target) VALUES (?1, ?2, ?3, ?4)",
         )?;
+        // Whether a text names a concept, asked once per distinct text: a time history
+        // repeats the same node and component names on every row, and no concept is
+        // created or removed while the rows are written.
+        let mut names_concept: HashMap<&str, bool> = HashMap::new();
         for (i, row) in t.rows.iter().enumerate() {
-            let vals: Vec<SqlValue> = row
-                .iter()
-                .map(|c| match c {
-                    Cell::Null => SqlValue::Null,
-                    Cell::R(r) => SqlValue::Real(*r),
-                    Cell::I(v) => SqlValue::Integer(*v),
-                    Cell::K(s) => SqlValue::Text(s.clone()),
-                })
-                .collect();
-            ins.execute(rusqlite::params_from_iter(vals))?;
+            ins.execute(rusqlite::params_from_iter(row.iter().map(sql_value)))?;
             for (c, col) in row.iter().zip(&t.columns) {
                 if let Cell::K(s) = c {
-                    if s != concept && store.concept_type(s)?.is_some() {
+                    if s == concept {
+                        continue;
+                    }
+                    let is_concept = match names_concept.get(s.as_str()) {
+                        Some(&known) => known,
+                        None => {
+                            let known = store.concept_type(s)?.is_some();
+                            names_concept.insert(s, known);
+                            known
+                        }
+                    };
+                    if is_concept {
                         link.execute(params![concept, i as i64, col.name, s])?;
                     }
                 }
@@ -250,17 +262,16 @@ pub fn save_table(store: &Store, concept: &str, t: &Table) -> Result<()> {
 pub fn load_table(store: &Store, concept: &str) -> Result<Table> {
     ensure_schema(store)?;
     let conn = store.conn();
-    let title: Option<String> = conn
-        .query_row(
-            "SELECT title FROM table_meta WHERE concept = ?1",
-            params![concept],
-            |r| r.get(0),
-        )
-        .optional()?;
+    let title: Option<String> = store.row(
+        "SELECT title FROM table_meta WHERE concept = ?1",
+        params![concept],
+        |r| r.get(0),
+    )?;
     let title = title
         .ok_or_else(|| Error::store(format!("{concept} is not a table stored in this database")))?;
-    let mut stmt =
-        conn.prepare("SELECT name, kind FROM table_columns WHERE concept = ?1 ORDER BY position")?;
+    let mut stmt = conn.prepare_cached(
+        "SELECT name, kind FROM table_columns WHERE concept = ?1 ORDER BY position",
+    )?;
     let raw: Vec<(String, String)> = stmt
         .query_map(params![concept], |r| Ok((r.get(0)?, r.get(1)?)))?
         .collect::<rusqlite::Result<_>>()?;
@@ -327,7 +338,7 @@ pub struct Link {
 /// The cells of `concept` that name other concepts, in row order.
 pub fn links(store: &Store, concept: &str) -> Result<Vec<Link>> {
     ensure_schema(store)?;
-    let mut stmt = store.conn().prepare(
+    let mut stmt = store.conn().prepare_cached(
         "SELECT row, \"column\", target FROM table_links WHERE concept = ?1 ORDER BY row, rowid",
     )?;
     let v = stmt
@@ -376,11 +387,12 @@ pub fn drop_table_data(store: &Store, concept: &str) -> Result<()> {
 fn drop_sql(store: &Store, concept: &str) -> Result<()> {
     let conn = store.conn();
     conn.execute_batch(&format!("DROP TABLE IF EXISTS {}", quote_ident(concept)))?;
-    for t in ["table_meta", "table_columns", "table_links"] {
-        conn.execute(
-            &format!("DELETE FROM {t} WHERE concept = ?1"),
-            params![concept],
-        )?;
+    for sql in [
+        "DELETE FROM table_meta WHERE concept = ?1",
+        "DELETE FROM table_columns WHERE concept = ?1",
+        "DELETE FROM table_links WHERE concept = ?1",
+    ] {
+        store.exec(sql, params![concept])?;
     }
     Ok(())
 }
