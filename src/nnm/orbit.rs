@@ -43,9 +43,9 @@ pub fn time_history(
         .map(|j| 2.0 * std::f64::consts::PI * j as f64 / (n_inst - 1) as f64)
         .collect();
     let samp = |s: &[f64], h: usize, f: f64| {
-        th.iter()
-            .map(|&t| f * series::eval(s, h, t))
-            .collect::<Vec<f64>>()
+        let mut v = series::eval_uniform(s, h, n_inst - 1);
+        v.iter_mut().for_each(|y| *y *= f);
+        v
     };
     let displacement = (0..lay.n)
         .map(|i| {

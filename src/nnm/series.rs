@@ -60,6 +60,30 @@ pub fn eval(x: &[f64], h: usize, theta: f64) -> f64 {
     v
 }
 
+/// Values at θ_j = 2πj/n for j = 0..=n (one period, both ends): each cos kθ_j and sin kθ_j
+/// is read from one table of n angles (kj mod n), so the cost is n sin/cos and
+/// (n + 1)·h products instead of (n + 1)·h sin/cos (REST_MODE_NONL's time histories).
+pub fn eval_uniform(x: &[f64], h: usize, n: usize) -> Vec<f64> {
+    let step = 2.0 * std::f64::consts::PI / n as f64;
+    let table: Vec<(f64, f64)> = (0..n).map(|m| (m as f64 * step).sin_cos()).collect();
+    (0..=n)
+        .map(|j| {
+            let mut v = x[0];
+            let mut m = 0;
+            for k in 1..=h {
+                // m = k·j mod n, advanced by j at each harmonic.
+                m += j % n;
+                if m >= n {
+                    m -= n;
+                }
+                let (s, c) = table[m];
+                v += x[ic(k)] * c + x[is(h, k)] * s;
+            }
+            v
+        })
+        .collect()
+}
+
 /// The complex coefficients x̂_k (k = −h..h, index k + h) of a real series: x̂_0 = x_0,
 /// x̂_{±k} = (c_k ∓ i s_k)/2.
 fn complex_coefficients(x: &[f64], h: usize) -> Vec<Complex<f64>> {
@@ -365,6 +389,23 @@ mod tests {
             }
         }
         out
+    }
+
+    #[test]
+    fn uniform_evaluation_matches_pointwise() {
+        let h = 37;
+        let x: Vec<f64> = (0..len(h))
+            .map(|i| (0.7 * i as f64).sin() / (1.0 + i as f64))
+            .collect();
+        for n in [1usize, 2, 5, 16, 255] {
+            let v = eval_uniform(&x, h, n);
+            assert_eq!(v.len(), n + 1);
+            for (j, &vj) in v.iter().enumerate() {
+                let t = 2.0 * std::f64::consts::PI * j as f64 / n as f64;
+                // Both sum the same 2h + 1 products; only the angles' round-off differs.
+                assert!((vj - eval(&x, h, t)).abs() < 1e-13, "n {n} j {j}");
+            }
+        }
     }
 
     #[test]

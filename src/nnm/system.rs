@@ -707,15 +707,9 @@ impl System {
             let nv = sh.vars.len();
             let acc = &mut acc[..sh.eqs.n_own * ns];
             acc.fill(0.0);
-            for (sa, sb) in cache {
-                let (ra, rb) = (&sa.shocks[k], &sb.shocks[k]);
-                for (gi, g) in sh.groups.iter().enumerate() {
-                    let xa = &ra[g.a * ns..(g.a + 1) * ns];
-                    let gb = &rb[(nv + gi) * ns..(nv + gi + 1) * ns];
-                    for ((o, p), q) in acc[g.eq * ns..(g.eq + 1) * ns].iter_mut().zip(xa).zip(gb) {
-                        *o += p * q;
-                    }
-                }
+            for (gi, g) in sh.groups.iter().enumerate() {
+                let row = &mut acc[g.eq * ns..(g.eq + 1) * ns];
+                accumulate_products(row, cache, k, g.a * ns, (nv + gi) * ns);
             }
             for (e, s) in acc.chunks_exact_mut(ns).enumerate() {
                 match grid {
@@ -916,6 +910,42 @@ impl System {
 /// Number of unknowns of `x` for this problem and these settings.
 pub fn unknown_count(problem: &Problem, settings: &Settings) -> usize {
     Layout::of(problem, settings).0.n_unk
+}
+
+/// row += Σ_pairs a·b, a the samples at `ia` of each pair's first member (shock `k`), b
+/// those at `ib` of its second, row.len() samples each.
+fn accumulate_products<'s>(
+    row: &mut [f64],
+    pairs: &[(&'s Samples, &'s Samples)],
+    k: usize,
+    ia: usize,
+    ib: usize,
+) {
+    let ns = row.len();
+    let factors = |p: &(&'s Samples, &'s Samples)| -> (&'s [f64], &'s [f64]) {
+        let (a, b) = (&p.0.shocks[k], &p.1.shocks[k]);
+        (&a[ia..ia + ns], &b[ib..ib + ns])
+    };
+    // Four products per pass: the row is loaded and stored a quarter as often (the ANM's
+    // right-hand sides sum up to NB_ORDRE_MAN pairs).
+    let mut quads = pairs.chunks_exact(4);
+    for q in &mut quads {
+        let [(a0, b0), (a1, b1), (a2, b2), (a3, b3)] = [
+            factors(&q[0]),
+            factors(&q[1]),
+            factors(&q[2]),
+            factors(&q[3]),
+        ];
+        for (i, o) in row.iter_mut().enumerate() {
+            *o += (a0[i] * b0[i] + a1[i] * b1[i]) + (a2[i] * b2[i] + a3[i] * b3[i]);
+        }
+    }
+    for pair in quads.remainder() {
+        let (a, b) = factors(pair);
+        for ((o, p), q) in row.iter_mut().zip(a).zip(b) {
+            *o += p * q;
+        }
+    }
 }
 
 #[cfg(test)]

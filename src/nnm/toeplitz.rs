@@ -193,26 +193,35 @@ impl Half {
         };
         {
             let (lo, hi) = self.w.split_at_mut(m);
-            for j in 0..m {
-                let (pr, qr) = (p[j] * r[j], q[j] * r[j]);
-                lo[j] = pr + qr;
-                hi[m - 1 - j] = sign * (pr - qr);
+            // hi runs backwards (θ_{N−1−j}); zipped iterators let the loop vectorise.
+            let pq = p.iter().zip(q).zip(r.iter());
+            for ((l, h), ((&pj, &qj), &rj)) in lo.iter_mut().zip(hi.iter_mut().rev()).zip(pq) {
+                let (pr, qr) = (pj * rj, qj * rj);
+                *l = pr + qr;
+                *h = sign * (pr - qr);
             }
         }
         let sum = self.cot.apply(&mut self.w);
         let (lo, hi) = self.w.split_at(m);
         debug_assert_eq!(hi.len(), n - m);
-        for j in 0..m {
-            let (a, b) = (lo[j], hi[m - 1 - j]);
-            // The parts of C w even and odd in time at θ_j.
-            let (ev, od) = (0.5 * (a + b), 0.5 * (a - b));
-            r[j] = scale
-                * match parity {
-                    // C p r odd, C q r even; Σ q r = 0.
-                    Parity::Even => p[j] * (sum - ev) + q[j] * od + d[j] * r[j],
-                    // C p r even, C q r odd; Σ p r = 0.
-                    Parity::Odd => q[j] * (sum + ev) - p[j] * od + d[j] * r[j],
-                };
+        let pqd = p.iter().zip(q).zip(d);
+        let ab = lo.iter().zip(hi.iter().rev());
+        // The parts of C w even and odd in time at θ_j, then y.
+        match parity {
+            // C p r odd, C q r even; Σ q r = 0.
+            Parity::Even => {
+                for ((rj, (&a, &b)), ((&pj, &qj), &dj)) in r.iter_mut().zip(ab).zip(pqd) {
+                    let (ev, od) = (0.5 * (a + b), 0.5 * (a - b));
+                    *rj = scale * (pj * (sum - ev) + qj * od + dj * *rj);
+                }
+            }
+            // C p r even, C q r odd; Σ p r = 0.
+            Parity::Odd => {
+                for ((rj, (&a, &b)), ((&pj, &qj), &dj)) in r.iter_mut().zip(ab).zip(pqd) {
+                    let (ev, od) = (0.5 * (a + b), 0.5 * (a - b));
+                    *rj = scale * (qj * (sum + ev) - pj * od + dj * *rj);
+                }
+            }
         }
     }
 
