@@ -18,13 +18,15 @@
 //!   factorisation. If a Krylov solve stagnates (J(t) singular somewhere, off the physical
 //!   root of a law) the block falls back to the dense route when that fits in memory.
 //! - **Toeplitz** (laws with one own unknown, e.g. PLAN): A_ff is then a Toeplitz matrix
-//!   in complex coefficients, and its inverse is the Gohberg–Semencul product of
-//!   triangular Toeplitz factors built from one column of the inverse (toeplitz.rs). That
-//!   column comes from two Krylov solves per factorisation; every further solve (W's
-//!   columns, the right-hand sides) is then six complex FFTs, exact to round-off. W's
-//!   columns are checked by their residuals (refined, or handed to GMRES, if the check
-//!   fails); when all pass at the first try, the right-hand sides' solves with the same
-//!   inverse are taken unchecked, else each is checked too.
+//!   in complex coefficients, and every solve with it follows exactly from one column of
+//!   its inverse by a Toeplitz Bezoutian formula (toeplitz.rs). That column comes from two
+//!   Krylov solves per factorisation (one per parity on the half period for a
+//!   time-symmetric block, parity_block.rs); every further solve (W's columns, the
+//!   right-hand sides) is then six real FFTs of about 2H_nl points, exact to round-off.
+//!   W's columns are checked together by the residual of one weighted sum of them, and
+//!   each on its own (refined, or handed to GMRES) only if that fails; when the check
+//!   passes at the first try, the right-hand sides' solves with the same inverse are taken
+//!   unchecked, else each is checked too.
 //!
 //! The structure sees the block only through W = A_ff⁻¹ A_fu (m = n_comp·(2H_l+1)
 //! columns: one solve each per factorisation) and one solve A_ff⁻¹ r_f per right-hand side.
@@ -68,7 +70,14 @@ const FFT_FLOPS: f64 = 2.5;
 pub const KRYLOV_PENALTY: f64 = 4.0;
 
 /// Toeplitz: two Krylov solves, then per solve six complex FFTs of N' ≥ 2nn − 1 (twice a
-/// real one's flops) and one operator application (the residual check).
+/// real one's flops) and one operator application (the residual check). These are the
+/// costs of the Gohberg–Semencul solves the route used before its Bezoutian form, about
+/// twice what a solve now costs; they are kept on purpose: the route is measured 2–10×
+/// faster than the dense LU from H_nl 10 to 160 (`aster-nl bench --only routes`), but on
+/// stiff stops it leaves AMOR_FICTIF one to two orders above what the dense LU leaves
+/// (tests/hard_cases.rs: 2.4e-8 against ≤ 1e-9 on the 20-mass chain, 9.9e-11 against
+/// ≤ 1e-12 at RIGI_NOR = 1e8), so the crossover stays where these constants put it
+/// (docs/performance.md, fifth round).
 pub fn cost(method: Method, n_own: usize, nn: usize, ns: usize, solves: usize) -> f64 {
     let d = (n_own * nn) as f64;
     let s = solves as f64;
@@ -208,7 +217,7 @@ impl Pointwise {
     /// the first sample where J(t) is singular. `even`: X0 is time-symmetric, so J and J_u
     /// are even in time in exact arithmetic; their samples at t and −t are set to their
     /// mean, which makes the operator exactly real in complex coefficients (the real
-    /// Gohberg–Semencul route, toeplitz.rs, is then an inverse of the operator its solves
+    /// Toeplitz route, toeplitz.rs, is then an inverse of the operator its solves
     /// are checked against, not of a neighbour one round-off away).
     fn linearise(
         &mut self,
@@ -891,7 +900,7 @@ impl ContactBlock {
         self.toeplitz_refine(x)
     }
 
-    /// `x`, a solution of A_ff x = b (`self.b`) by the Gohberg–Semencul inverse, checked by
+    /// `x`, a solution of A_ff x = b (`self.b`) by the Toeplitz route's inverse, checked by
     /// the Krylov solves' residual test and refined if needed (`toeplitz_solve`).
     fn toeplitz_refine(&mut self, x: &mut [f64]) -> Result<bool> {
         let nb = gmres::norm(&self.b);

@@ -1,4 +1,4 @@
-//! Measured cost of the two routes of a contact block (contact.rs) against NB_HARM_NONL,
+//! Measured cost of the routes of a contact block (contact.rs) against NB_HARM_NONL,
 //! for `aster-nl bench`: where the cost model's choice lands against the measured
 //! crossover.
 
@@ -20,6 +20,11 @@ pub struct RouteRow {
     pub dense_s: f64,
     pub krylov_s: f64,
     pub krylov_iterations: f64,
+    /// The Toeplitz route (laws with one own unknown): at the point as made (a sine part
+    /// in U: the whole period), and at the same point made time-symmetric (the half
+    /// period).
+    pub toeplitz_s: Option<f64>,
+    pub toeplitz_symmetric_s: Option<f64>,
     pub model_choice: Method,
 }
 
@@ -90,13 +95,13 @@ pub fn contact_route_timings(h_values: &[usize], solves: usize) -> Result<Vec<Ro
             let rhs: Vec<f64> = (0..sh.eqs.n_own * lay.n_coef_nonl)
                 .map(|i| ((i * 7919) % 101) as f64 / 101.0 - 0.5)
                 .collect();
-            let time = |m: Method| -> Result<(f64, f64)> {
+            let time = |m: Method, x: &[f64]| -> Result<(f64, f64)> {
                 let mut block = ContactBlock::new(sh, 0, &lay, solves, Some(m))?;
                 let mut best = f64::INFINITY;
                 let repeats = if h >= 320 { 2 } else { 5 };
                 for _ in 0..repeats {
                     let t = Instant::now();
-                    block.factor(sh, &lay, &x)?;
+                    block.factor(sh, &lay, x)?;
                     let mut r = rhs.clone();
                     for _ in 0..solves {
                         r.copy_from_slice(&rhs);
@@ -109,8 +114,20 @@ pub fn contact_route_timings(h_values: &[usize], solves: usize) -> Result<Vec<Ro
                     / (c.solves + c.factorisations * block.dims().1).max(1) as f64;
                 Ok((best, per_solve))
             };
-            let (dense_s, _) = time(Method::Dense)?;
-            let (krylov_s, krylov_iterations) = time(Method::Krylov)?;
+            let (dense_s, _) = time(Method::Dense, &x)?;
+            let (krylov_s, krylov_iterations) = time(Method::Krylov, &x)?;
+            let (toeplitz_s, toeplitz_symmetric_s) = if sh.eqs.n_own == 1 {
+                // Without the other DOF's sine part, U and the contact unknowns are even.
+                let mut even = x.clone();
+                even[lay.u(1)..lay.u(1) + lay.n_coef_lin].fill(0.0);
+                debug_assert!(lay.is_time_symmetric(&even) && !lay.is_time_symmetric(&x));
+                (
+                    Some(time(Method::Toeplitz, &x)?.0),
+                    Some(time(Method::Toeplitz, &even)?.0),
+                )
+            } else {
+                (None, None)
+            };
             let ns = series::fft_size_smooth(3 * h);
             rows.push(RouteRow {
                 law: name,
@@ -118,6 +135,8 @@ pub fn contact_route_timings(h_values: &[usize], solves: usize) -> Result<Vec<Ro
                 dense_s,
                 krylov_s,
                 krylov_iterations,
+                toeplitz_s,
+                toeplitz_symmetric_s,
                 model_choice: contact::choose(
                     sh.eqs.n_own,
                     lay.n_coef_nonl,
