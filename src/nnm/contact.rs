@@ -185,8 +185,6 @@ struct Pointwise {
     /// Bound of ‖A_ff‖₂ (√2·max_t ‖J(t)‖_F: the coefficient norm is within √2 of the
     /// time-L² norm in which a multiplication operator's norm is max |J|).
     bound: f64,
-    /// Which product `mul` applies.
-    use_inverse: bool,
 }
 
 impl Pointwise {
@@ -209,7 +207,6 @@ impl Pointwise {
             xs: vec![0.0; ns * (n_own + n_comp)],
             ys: vec![0.0; ns * n_own],
             bound: 0.0,
-            use_inverse: false,
         }
     }
 
@@ -269,8 +266,8 @@ impl Pointwise {
         Ok(())
     }
 
-    /// y = Trunc(M(t)·x(t)), M = J or J⁻¹ (`use_inverse`); x, y: n_own series of H_nl.
-    fn mul(&mut self, x: &[f64], y: &mut [f64]) {
+    /// y = Trunc(M(t)·x(t)), M = J or (`inverse`) J⁻¹; x, y: n_own series of H_nl.
+    fn mul(&mut self, x: &[f64], y: &mut [f64], inverse: bool) {
         let (ns, no, nn, hn) = (self.ns, self.n_own, self.n_coef_nonl, self.h_nonl);
         for k in 0..no {
             self.sampler.synth_with(
@@ -280,11 +277,7 @@ impl Pointwise {
                 &mut self.ws,
             );
         }
-        let m = if self.use_inverse {
-            &self.inv
-        } else {
-            &self.jac
-        };
+        let m = if inverse { &self.inv } else { &self.jac };
         if no == 1 {
             for ((y, x), a) in self.ys.iter_mut().zip(&self.xs[..ns]).zip(m) {
                 *y = a * x;
@@ -353,13 +346,10 @@ impl Pointwise {
 
 impl Preconditioned for Pointwise {
     fn apply(&mut self, x: &[f64], y: &mut [f64]) {
-        self.use_inverse = false;
-        self.mul(x, y);
+        self.mul(x, y, false);
     }
     fn precondition(&mut self, x: &[f64], y: &mut [f64]) {
-        self.use_inverse = true;
-        self.mul(x, y);
-        self.use_inverse = false;
+        self.mul(x, y, true);
     }
     fn norm_bound(&self) -> f64 {
         self.bound
@@ -814,8 +804,7 @@ impl ContactBlock {
 
     /// Whether x solves A_ff x = b (`self.b`) to the Krylov solves' residual test.
     fn toeplitz_check(&mut self, x: &[f64]) -> bool {
-        self.pw.use_inverse = false;
-        self.pw.mul(x, &mut self.res);
+        self.pw.mul(x, &mut self.res, false);
         for (r, b) in self.res.iter_mut().zip(&self.b) {
             *r = b - *r;
         }
@@ -906,8 +895,7 @@ impl ContactBlock {
         let nb = gmres::norm(&self.b);
         let a_norm = self.pw.bound;
         for refinement in 0..3 {
-            self.pw.use_inverse = false;
-            self.pw.mul(x, &mut self.res);
+            self.pw.mul(x, &mut self.res, false);
             for (r, b) in self.res.iter_mut().zip(&self.b) {
                 *r = b - *r;
             }

@@ -38,7 +38,6 @@ pub(super) struct ParityBlock {
     /// Bound of the operator's norm (√2·max |j|, as the whole-period one).
     bound: f64,
     parity: Parity,
-    use_inverse: bool,
 }
 
 impl ParityBlock {
@@ -59,7 +58,6 @@ impl ParityBlock {
             s: vec![0.0; n],
             bound: 0.0,
             parity: Parity::Even,
-            use_inverse: false,
         }
     }
 
@@ -100,9 +98,10 @@ impl ParityBlock {
         self
     }
 
-    /// y = Trunc(m(t)·x(t)), m = j or 1/j, x and y series of the selected parity.
-    fn mul(&mut self, x: &[f64], y: &mut [f64]) {
-        let m = if self.use_inverse { &self.inv } else { &self.j };
+    /// y = Trunc(m(t)·x(t)), m = j or (`inverse`) 1/j, x and y series of the selected
+    /// parity.
+    fn mul(&mut self, x: &[f64], y: &mut [f64], inverse: bool) {
+        let m = if inverse { &self.inv } else { &self.j };
         match self.parity {
             Parity::Even => self.tr.cos_synth(x, &mut self.s, &mut self.ws),
             Parity::Odd => self.tr.sin_synth(x, &mut self.s, &mut self.ws),
@@ -119,13 +118,10 @@ impl ParityBlock {
 
 impl Preconditioned for ParityBlock {
     fn apply(&mut self, x: &[f64], y: &mut [f64]) {
-        self.use_inverse = false;
-        self.mul(x, y);
+        self.mul(x, y, false);
     }
     fn precondition(&mut self, x: &[f64], y: &mut [f64]) {
-        self.use_inverse = true;
-        self.mul(x, y);
-        self.use_inverse = false;
+        self.mul(x, y, true);
     }
     fn norm_bound(&self) -> f64 {
         self.bound
