@@ -5,6 +5,7 @@
 //! Every other operator goes through [`crate::ops::lookup`].
 
 use crate::args::Args;
+use crate::bench::measure;
 use crate::catalog;
 use crate::error::{Error, Result};
 use crate::lang::{self, Env, Host, Source};
@@ -29,14 +30,25 @@ pub struct RunOptions {
     pub tole_machine: Option<f64>,
 }
 
+/// The time one operator call took, as Code_Aster reports it per command: CPU (user +
+/// system, this process) and elapsed.
+#[derive(Debug, Clone)]
+pub struct OperatorTime {
+    pub operator: String,
+    /// The concept it produced ("" for none).
+    pub result: String,
+    pub cpu: Duration,
+    pub elapsed: Duration,
+}
+
 /// What a run did, for the FIN summary and the exit code.
 #[derive(Debug, Default)]
 pub struct RunSummary {
     /// Concepts created, in order: (name, type, operator).
     pub created: Vec<(String, String, String)>,
     pub tests: Vec<TestOutcome>,
-    /// Wall time per operator call: (operator, result name, time).
-    pub timings: Vec<(String, String, Duration)>,
+    /// Time per operator call, in order.
+    pub timings: Vec<OperatorTime>,
     /// Database used, if any was opened.
     pub db: Option<PathBuf>,
     /// The error that stopped the run, if any.
@@ -206,17 +218,19 @@ impl Runner<'_> {
         if let Some(t) = self.tole_machine {
             text.push_str(&format!("{}\n", tole_machine_note(t)));
         }
-        text.push_str("time per operator:\n");
-        let mut per_op: BTreeMap<&str, (usize, Duration)> = BTreeMap::new();
-        for (op, _, t) in &s.timings {
-            let e = per_op.entry(op.as_str()).or_default();
+        text.push_str("time per operator (CPU: user + system; elapsed):\n");
+        let mut per_op: BTreeMap<&str, (usize, Duration, Duration)> = BTreeMap::new();
+        for t in &s.timings {
+            let e = per_op.entry(t.operator.as_str()).or_default();
             e.0 += 1;
-            e.1 += *t;
+            e.1 += t.cpu;
+            e.2 += t.elapsed;
         }
-        for (op, (n, t)) in per_op {
+        for (op, (n, cpu, wall)) in per_op {
             text.push_str(&format!(
-                "  {op:<18} {n:>4} call(s) {:>10.3} s\n",
-                t.as_secs_f64()
+                "  {op:<18} {n:>4} call(s)  CPU {:>9.4} s  elapsed {:>9.4} s\n",
+                cpu.as_secs_f64(),
+                wall.as_secs_f64()
             ));
         }
         if let Some(db) = &s.db {
@@ -246,6 +260,7 @@ impl Runner<'_> {
         // (checked in the operator's transaction).
         let used = concept_arguments(args);
         let started = Instant::now();
+        let cpu_started = measure::self_cpu();
         let mut ctx = OpContext::new(store, &call.op, &mut *self.out, &self.units, &mut tests);
         ctx.result = call.result.as_deref();
         ctx.reuse = call.reuse.as_ref().map(|c| c.name.as_str());
@@ -261,14 +276,16 @@ impl Runner<'_> {
         let value = ctx.value.take();
         let deferred = ctx.deferred_error.take();
         let elapsed = started.elapsed();
+        let cpu = Duration::from_secs_f64((measure::self_cpu() - cpu_started).max(0.0));
         // TEST_* lines are printed by the operators; keep the score even if it failed later.
         self.summary.tests.extend(tests);
         outcome?;
-        self.summary.timings.push((
-            call.op.clone(),
-            call.result.clone().unwrap_or_default(),
+        self.summary.timings.push(OperatorTime {
+            operator: call.op.clone(),
+            result: call.result.clone().unwrap_or_default(),
+            cpu,
             elapsed,
-        ));
+        });
         for (name, ty) in &created {
             self.summary
                 .created

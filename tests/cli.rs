@@ -66,6 +66,27 @@ fn cantilever_beam() {
     assert!(out.contains("tests: 5 OK, 0 NOOK"), "{out}");
 }
 
+/// The FIN summary gives each operator's CPU and elapsed time, as Code_Aster's per-command
+/// lines do: one line per operator that ran, with both figures as non-negative numbers.
+#[test]
+fn fin_summary_gives_cpu_and_elapsed_per_operator() {
+    let out = run_ok("beam_cantilever.comm");
+    assert!(
+        out.contains("time per operator (CPU: user + system; elapsed):"),
+        "{out}"
+    );
+    let line = out
+        .lines()
+        .find(|l| l.trim_start().starts_with("CALC_MODES ") && l.contains("call(s)"))
+        .unwrap_or_else(|| panic!("no CALC_MODES timing line:\n{out}"));
+    let words: Vec<&str> = line.split_whitespace().collect();
+    let after = |key: &str| -> f64 {
+        let i = words.iter().position(|w| *w == key).unwrap();
+        words[i + 1].parse().unwrap()
+    };
+    assert!(after("CPU") >= 0.0 && after("elapsed") >= 0.0, "{line}");
+}
+
 #[test]
 fn simply_supported_beam() {
     run_ok("beam_simply_supported.comm");
