@@ -202,6 +202,10 @@ impl Runner<'_> {
     }
 
     fn finish(&mut self) -> Result<Value> {
+        // The study on disk before the run says it is done (store::Durability).
+        if let Some(store) = self.store.as_mut() {
+            store.close()?;
+        }
         self.summary.finished = true;
         let s = &self.summary;
         let mut text = String::new();

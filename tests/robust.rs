@@ -701,3 +701,83 @@ fn an_unresolved_contact_force_is_said_to_make_the_rows_suspect() {
         assert!(out.contains(want), "{want} missing:\n{out}");
     }
 }
+
+// ---- durability of a new study (store::Durability::RunEnd) ----
+
+/// A new study is synced when its run ends, not at each commit: a run killed inside an
+/// operator must still leave every operator it committed, in a file SQLite reads whole
+/// (the kernel holds every write of the killed process, and the open operator's journal
+/// is rolled back when the study is next opened), and the study must continue.
+#[test]
+fn a_killed_run_keeps_the_operators_it_committed() {
+    use std::process::Stdio;
+    use std::time::{Duration, Instant};
+    let (dir, comm) = copy_case("sdnd122a");
+    // Long enough to be killed inside MODE_NON_LINE (seconds at the test profile).
+    let long = std::fs::read_to_string(&comm)
+        .unwrap()
+        .replace("NB_HARM_NONL=200", "NB_HARM_NONL=1000");
+    assert!(long.contains("NB_HARM_NONL=1000"), "the case changed");
+    std::fs::write(&comm, long).unwrap();
+    let db = dir.path().join("s.db");
+    let mut child = bin()
+        .arg("run")
+        .arg(&comm)
+        .arg("--db")
+        .arg(&db)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    // Kill it as soon as CALC_MODES has committed (the study is read as a user would,
+    // read-only, while the run writes it; a busy file is read again).
+    let committed = |db: &Path| -> bool {
+        let flags = rusqlite::OpenFlags::SQLITE_OPEN_READ_ONLY;
+        rusqlite::Connection::open_with_flags(db, flags)
+            .and_then(|c| {
+                c.query_row(
+                    "SELECT count(*) FROM concepts WHERE name = 'MODES'",
+                    [],
+                    |r| r.get::<_, i64>(0),
+                )
+            })
+            .is_ok_and(|n| n > 0)
+    };
+    let deadline = Instant::now() + Duration::from_secs(300);
+    while !committed(&db) {
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the run ended before it could be killed"
+        );
+        assert!(Instant::now() < deadline, "CALC_MODES never committed");
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let names = db_concepts(&db);
+    assert!(names.contains(&"MODES".to_string()), "{names:?}");
+    assert!(
+        !names.contains(&"MNL".to_string()),
+        "killed inside MODE_NON_LINE: its transaction must not be there ({names:?})"
+    );
+    let c = rusqlite::Connection::open(&db).unwrap();
+    let check: String = c
+        .query_row("PRAGMA integrity_check", [], |r| r.get(0))
+        .unwrap();
+    assert_eq!(check, "ok");
+    drop(c);
+    // The study continues from what was committed.
+    let more = dir.path().join("more.comm");
+    std::fs::write(
+        &more,
+        "POURSUITE()\n\
+         TEST_RESU(RESU=_F(RESULTAT=MODES, NUME_ORDRE=1, PARA='FREQ',\n\
+                   VALE_CALC=0.503292121, VALE_REFE=0.503292121,\n\
+                   REFERENCE='ANALYTIQUE', PRECISION=1.e-6))\n\
+         FIN()\n",
+    )
+    .unwrap();
+    let o = run_with_db(&more, &db, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(text(&o).contains("2 OK, 0 NOOK"), "{}", text(&o));
+}

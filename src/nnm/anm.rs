@@ -119,7 +119,12 @@ pub fn compute(
     } else {
         Grid::Full
     };
-    let mut samples = vec![sys.samples_on(&x1, grid)];
+    let sampled = |x: &[f64]| {
+        let mut s = sys.take_samples();
+        sys.samples_into(x, grid, &mut s);
+        s
+    };
+    let mut samples = vec![sampled(&x1)];
     let mut terms = vec![x1];
     for order in 2..=p.order {
         let mut rhs = vec![0.0; n];
@@ -142,11 +147,12 @@ pub fn compute(
                 "series term of order {order} is not finite"
             )));
         }
-        samples.push(sys.samples_on(&rhs, grid));
+        samples.push(sampled(&rhs));
         terms.push(rhs);
     }
     let last = terms.len();
     let mut a_max = step_length(sys, &terms, Some(&samples), p.prec);
+    sys.recycle_samples(samples);
     let mut bifurcation = None;
     if let Some(r) = geometric_ratio(&terms, p.bif_terms, p.bif_tol) {
         // Cochelin & Medale (2013): the tail is X_p ≈ X_N r^{p−N}; remove it from every

@@ -44,6 +44,7 @@ mod gmres;
 mod law_check;
 mod laws;
 mod linear_solver;
+mod low_synth;
 mod newton;
 mod orbit;
 mod pade;

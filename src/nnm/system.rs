@@ -8,12 +8,14 @@
 
 use super::cosine_sampler::{CosineSampler, CosineScratch};
 use super::laws::{self, LawEqs, ScaledLaw, Var};
+use super::low_synth::{self, LowSynth};
 use super::series::{self, FftScratch, Sampler};
 use super::{Problem, Settings, ShockLaw};
 use crate::error::{Error, Result};
 use faer::prelude::*;
 use faer::sparse::{SparseColMat, Triplet};
 use std::cell::RefCell;
+use std::f64::consts::PI;
 
 /// Size, relative to its block's largest coefficient, below which a coefficient that a
 /// time-symmetric X would not have counts as round-off (`Layout::is_time_symmetric`).
@@ -372,6 +374,12 @@ pub struct System {
     /// The buffers of `quad_sum_cached`, made once (it runs at every order of every
     /// series).
     quad_work: RefCell<QuadWork>,
+    /// The displacements' samples by direct sums (low_synth.rs) on the grids of the
+    /// products, when NB_HARM_LINE is small enough for them to be cheaper.
+    low_full: Option<LowSynth>,
+    low_cosine: Option<LowSynth>,
+    /// `Samples` of earlier series, their buffers reused by the next ones (`take_samples`).
+    samples_pool: RefCell<Vec<Samples>>,
 }
 
 /// The buffers of `System::quad_sum_cached`.
@@ -529,6 +537,15 @@ impl System {
             c: vec![0.0; lay.n_coef_nonl],
             acc: vec![0.0; max_own * products.n().max(cosine.n())],
         });
+        let hl = lay.h_lin;
+        let low_full = (2 * hl <= low_synth::MAX_ROWS_FULL).then(|| {
+            let n = products.n();
+            LowSynth::new(n, hl, |j| 2.0 * PI * j as f64 / n as f64)
+        });
+        let low_cosine = (hl <= low_synth::MAX_ROWS_HALF).then(|| {
+            let n = cosine.n();
+            LowSynth::cosines_only(n, hl, |j| PI * (2 * j + 1) as f64 / (2 * n) as f64)
+        });
         Ok(System {
             lay,
             k: ScaledEntries::from_faer(&problem.k, 1.0 / scaling.stiffness),
@@ -542,6 +559,9 @@ impl System {
             cosine,
             cosine_scratch,
             quad_work,
+            low_full,
+            low_cosine,
+            samples_pool: RefCell::new(Vec::new()),
         })
     }
 
@@ -579,43 +599,66 @@ impl System {
 
     /// Time samples of `x` on `grid` (`Grid::Cosine`: its cosine parts only).
     pub fn samples_on(&self, x: &[f64], grid: Grid) -> Samples {
+        let mut out = Samples::default();
+        self.samples_into(x, grid, &mut out);
+        out
+    }
+
+    /// [`System::samples_on`] into `out`, whose buffers are reused (no allocation once
+    /// they have their size).
+    pub fn samples_into(&self, x: &[f64], grid: Grid, out: &mut Samples) {
         let ns = self.grid_len(grid);
         let mut ws = self.scratch.borrow_mut();
         let mut cws = self.cosine_scratch.borrow_mut();
-        Samples {
-            grid,
-            shocks: self
-                .shocks
-                .iter()
-                .map(|sh| {
-                    let nv = sh.vars.len();
-                    let mut rows = vec![0.0; (nv + sh.groups.len()) * ns];
-                    let (vs, gs) = rows.split_at_mut(nv * ns);
-                    for (&v, o) in sh.vars.iter().zip(vs.chunks_exact_mut(ns)) {
-                        let (s, h) = self.var(x, sh, v);
-                        match grid {
-                            Grid::Full => self.products.synth_with(s, h, o, &mut ws),
-                            Grid::Cosine => self.cosine.synth_with(s, h, o, &mut cws),
+        let low = match grid {
+            Grid::Full => self.low_full.as_ref(),
+            Grid::Cosine => self.low_cosine.as_ref(),
+        };
+        out.grid = grid;
+        out.shocks.resize_with(self.shocks.len(), Vec::new);
+        for (sh, rows) in self.shocks.iter().zip(out.shocks.iter_mut()) {
+            let nv = sh.vars.len();
+            // Every row is written below (a group without terms is zeroed).
+            rows.resize((nv + sh.groups.len()) * ns, 0.0);
+            let (vs, gs) = rows.split_at_mut(nv * ns);
+            for (&v, o) in sh.vars.iter().zip(vs.chunks_exact_mut(ns)) {
+                let (s, h) = self.var(x, sh, v);
+                match (grid, low) {
+                    (_, Some(table)) if h <= table.h() => table.synth(s, h, o),
+                    (Grid::Full, _) => self.products.synth_with(s, h, o, &mut ws),
+                    (Grid::Cosine, _) => self.cosine.synth_with(s, h, o, &mut cws),
+                }
+            }
+            for (g, o) in sh.groups.iter().zip(gs.chunks_exact_mut(ns)) {
+                if g.b.is_empty() {
+                    o.fill(0.0);
+                }
+                for (k, &(b, coef)) in g.b.iter().enumerate() {
+                    let src = &vs[b * ns..(b + 1) * ns];
+                    if k == 0 {
+                        for (y, v) in o.iter_mut().zip(src) {
+                            *y = coef * v;
+                        }
+                    } else {
+                        for (y, v) in o.iter_mut().zip(src) {
+                            *y += coef * v;
                         }
                     }
-                    for (g, o) in sh.groups.iter().zip(gs.chunks_exact_mut(ns)) {
-                        for (k, &(b, coef)) in g.b.iter().enumerate() {
-                            let src = &vs[b * ns..(b + 1) * ns];
-                            if k == 0 {
-                                for (y, v) in o.iter_mut().zip(src) {
-                                    *y = coef * v;
-                                }
-                            } else {
-                                for (y, v) in o.iter_mut().zip(src) {
-                                    *y += coef * v;
-                                }
-                            }
-                        }
-                    }
-                    rows
-                })
-                .collect(),
+                }
+            }
         }
+    }
+
+    /// A `Samples` for [`System::samples_into`], with the buffers of an earlier one when
+    /// some were given back (`recycle_samples`): a series samples each of its terms, and
+    /// every branch has a series.
+    pub fn take_samples(&self) -> Samples {
+        self.samples_pool.borrow_mut().pop().unwrap_or_default()
+    }
+
+    /// Give buffers back for the next `take_samples`.
+    pub fn recycle_samples(&self, samples: impl IntoIterator<Item = Samples>) {
+        self.samples_pool.borrow_mut().extend(samples);
     }
 
     /// out (length n_eq) += Σ Q(a_i, b_i).

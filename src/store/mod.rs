@@ -11,6 +11,10 @@
 //!
 //! Each operator runs inside one transaction ([`Store::begin_op`] / [`Store::commit_op`] /
 //! [`Store::rollback_op`]): an operator that fails leaves the file exactly as before.
+//!
+//! Durability ([`Durability`], docs/store.md "Durability"): a study that DEBUT creates is
+//! synced to disk once, when its run ends; a study that POURSUITE continues, at every
+//! commit.
 
 pub mod deps;
 pub mod dyna_trans;
@@ -37,6 +41,8 @@ pub struct Store {
     path: Option<PathBuf>,
     /// The typed-table schemas ([`Schema`]) known to exist on this connection, one bit each.
     schemas: Cell<u32>,
+    /// When the file reaches the disk; `RunEnd` until [`Store::close`] has synced it.
+    durability: Durability,
     /// The run's exclusive lock on the study (none for in-memory and read-only stores).
     /// Declared after `conn` so that the connection closes before the lock is released.
     _lock: Option<study_file::StudyLock>,
@@ -65,6 +71,32 @@ pub(crate) enum Schema {
     Modes = 8,
     Mnl = 16,
 }
+
+/// When a study's writes are forced to the disk (`fsync`). Either way each operator is one
+/// transaction of SQLite's rollback journal: an operator that fails, and a run that is
+/// killed, leave the file as the last committed operator left it (the kernel has every
+/// write a killed process made). What the two differ in is an operating-system crash or a
+/// power cut during a run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Durability {
+    /// A new study (DEBUT): no sync per commit and the journal file kept between commits
+    /// (`synchronous = OFF`, `journal_mode = PERSIST`), one sync of the file and its
+    /// directory when the run ends ([`Store::close`]), the journal then removed. A crash
+    /// of the system during the run may leave the study unreadable; nothing older is at
+    /// stake (DEBUT has replaced it), and rerunning the command file rebuilds it. Measured
+    /// on sdnd122a: about 15 % of a run's CPU time is the per-commit syncs and the
+    /// journal's creation and removal (docs/performance.md, seventh round).
+    RunEnd,
+    /// A continued study (POURSUITE): SQLite's defaults (`synchronous = FULL`, the journal
+    /// deleted at each commit), so that a system crash during the run cannot take the
+    /// results of earlier runs with it.
+    EveryCommit,
+    /// Nothing to sync (in memory, read-only, or already closed).
+    None,
+}
+
+/// The pragmas of [`Durability::RunEnd`], set before the first transaction.
+const RUN_END_PRAGMAS: &str = "PRAGMA journal_mode = PERSIST; PRAGMA synchronous = OFF;";
 
 /// Statements kept prepared per connection. Every fixed statement of the store fits (a run
 /// uses about sixty), so none is parsed twice; the SQL of a table concept (its name is in
@@ -120,7 +152,9 @@ impl Store {
                 ))
             })?;
         }
-        let store = Store::with(Connection::open(path)?, Some(path), Some(lock));
+        let mut store = Store::with(Connection::open(path)?, Some(path), Some(lock));
+        store.conn.execute_batch(RUN_END_PRAGMAS)?;
+        store.durability = Durability::RunEnd;
         store.init_schema()?;
         Ok(store)
     }
@@ -163,12 +197,53 @@ impl Store {
 
     fn with(conn: Connection, path: Option<&Path>, lock: Option<study_file::StudyLock>) -> Store {
         conn.set_prepared_statement_cache_capacity(STATEMENT_CACHE);
+        let durability = match (path, &lock) {
+            (Some(_), Some(_)) => Durability::EveryCommit,
+            _ => Durability::None,
+        };
         Store {
             conn,
             path: path.map(Path::to_path_buf),
             schemas: Cell::new(0),
+            durability,
             _lock: lock,
         }
+    }
+
+    /// How this store's writes reach the disk.
+    pub fn durability(&self) -> Durability {
+        self.durability
+    }
+
+    /// End the run's use of the study: a [`Durability::RunEnd`] study is synced (the
+    /// database file and its directory) and its journal removed. Called when the run ends
+    /// (FIN, or the store dropped after an error); further calls do nothing.
+    pub fn close(&mut self) -> Result<()> {
+        if self.durability != Durability::RunEnd {
+            return Ok(());
+        }
+        self.durability = Durability::None;
+        let Some(path) = self.path.clone() else {
+            return Ok(());
+        };
+        if self.conn.is_autocommit() {
+            // Back to SQLite's defaults: the kept journal file is deleted, and anything
+            // written after this (nothing, in a run) is synced at its commit.
+            self.conn
+                .execute_batch("PRAGMA journal_mode = DELETE; PRAGMA synchronous = FULL;")?;
+        }
+        let sync = |p: &Path| std::fs::File::open(p).and_then(|f| f.sync_all());
+        sync(&path).map_err(|e| {
+            Error::store(format!("cannot sync the database {}: {e}", path.display()))
+        })?;
+        let dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        // The directory's entry of the new file (not every system lets one sync a
+        // directory: an error there is not the study's).
+        let _ = sync(&dir);
+        Ok(())
     }
 
     pub fn path(&self) -> Option<&Path> {
@@ -441,6 +516,14 @@ pub fn listing(store: &Store) -> Result<String> {
     Ok(text)
 }
 
+impl Drop for Store {
+    /// A run that ends without FIN, or on an error, still syncs what it committed (errors
+    /// are not reported here: the run's own error, if any, is the one to read).
+    fn drop(&mut self) {
+        let _ = self.close();
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -470,6 +553,92 @@ mod tests {
             )
             .unwrap()
             > 0
+    }
+
+    fn pragma(s: &Store, name: &str) -> String {
+        s.conn()
+            .query_row(&format!("PRAGMA {name}"), [], |r| {
+                r.get::<_, rusqlite::types::Value>(0)
+            })
+            .map(|v| match v {
+                rusqlite::types::Value::Text(t) => t,
+                rusqlite::types::Value::Integer(i) => i.to_string(),
+                other => format!("{other:?}"),
+            })
+            .unwrap()
+    }
+
+    fn journal_of(p: &Path) -> PathBuf {
+        study_file::journal_paths(p)[0].clone()
+    }
+
+    #[test]
+    fn a_new_study_is_synced_at_the_end_and_leaves_no_journal() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("s.db");
+        let mut s = Store::create(&p).unwrap();
+        assert_eq!(s.durability(), Durability::RunEnd);
+        assert_eq!(pragma(&s, "journal_mode"), "persist");
+        assert_eq!(pragma(&s, "synchronous"), "0");
+        s.begin_op().unwrap();
+        s.register_concept("A", "table_sdaster", "CREA_TABLE", "x.comm", 1)
+            .unwrap();
+        s.commit_op().unwrap();
+        // The journal is kept between commits (not created and deleted at each one).
+        assert!(journal_of(&p).exists());
+        s.close().unwrap();
+        assert!(
+            !journal_of(&p).exists(),
+            "the run's end removes the journal"
+        );
+        assert_eq!(s.durability(), Durability::None);
+        assert_eq!(pragma(&s, "journal_mode"), "delete");
+        assert_eq!(pragma(&s, "synchronous"), "2");
+        s.close().unwrap();
+        drop(s);
+        let again = Store::open(&p).unwrap();
+        let names: Vec<String> = again
+            .concepts()
+            .unwrap()
+            .into_iter()
+            .map(|c| c.name)
+            .collect();
+        assert_eq!(names, vec!["A".to_string()]);
+    }
+
+    #[test]
+    fn a_store_dropped_without_close_is_synced_too() {
+        // A run that stops on an error never reaches FIN: dropping the store does the same.
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("s.db");
+        {
+            let s = Store::create(&p).unwrap();
+            s.begin_op().unwrap();
+            s.register_concept("A", "table_sdaster", "CREA_TABLE", "x.comm", 1)
+                .unwrap();
+            s.commit_op().unwrap();
+            assert!(journal_of(&p).exists());
+        }
+        assert!(!journal_of(&p).exists());
+    }
+
+    #[test]
+    fn a_continued_study_keeps_every_commit_synced() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("s.db");
+        drop(Store::create(&p).unwrap());
+        let mut s = Store::open(&p).unwrap();
+        assert_eq!(s.durability(), Durability::EveryCommit);
+        assert_eq!(pragma(&s, "journal_mode"), "delete");
+        assert_eq!(pragma(&s, "synchronous"), "2");
+        s.begin_op().unwrap();
+        s.register_concept("B", "table_sdaster", "CREA_TABLE", "y.comm", 1)
+            .unwrap();
+        s.commit_op().unwrap();
+        assert!(!journal_of(&p).exists());
+        s.close().unwrap();
+        assert_eq!(s.durability(), Durability::EveryCommit);
+        assert_eq!(Store::in_memory().unwrap().durability(), Durability::None);
     }
 
     #[test]
