@@ -69,6 +69,11 @@ impl CosineSampler {
         Self::new(smooth_at_least(3 * h / 2 + 1))
     }
 
+    /// The sampler of the smallest 5-smooth n ≥ `need`.
+    pub fn at_least(need: usize) -> Self {
+        Self::new(smooth_at_least(need))
+    }
+
     pub fn n(&self) -> usize {
         self.n
     }
