@@ -16,6 +16,7 @@
 //! reaches a retained harmonic.
 
 use super::series::{is_5_smooth, len, real_fft_plans};
+use multiversion::multiversion;
 use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealToComplex};
 use std::f64::consts::PI;
@@ -150,7 +151,7 @@ impl CosineSampler {
             ws.g[n - 1 - i] = 0.5 * c;
         }
         self.synth_g(out, ws);
-        out.iter_mut().skip(1).step_by(2).for_each(|v| *v = -*v);
+        negate_odd_samples(out);
     }
 
     /// The sine coefficients [b_1..b_K] (K = b.len() ≤ n) of the samples `s` of an odd
@@ -171,17 +172,7 @@ impl CosineSampler {
     fn synth_g(&self, out: &mut [f64], ws: &mut CosineScratch) {
         let n = self.n;
         let g = &ws.g;
-        let half = n / 2;
-        // conj(tw_k)·(g_k − i g_{n−k}), k = 0..=n/2.
-        for ((((v, &a), &b), &tr), &ti) in ws.spec[..=half]
-            .iter_mut()
-            .zip(&g[..=half])
-            .zip(g[n - half..=n].iter().rev())
-            .zip(&self.tw_re[..=half])
-            .zip(&self.tw_im[..=half])
-        {
-            *v = Complex::new(tr * a - ti * b, -tr * b - ti * a);
-        }
+        twiddle_synth(&mut ws.spec, g, &self.tw_re, &self.tw_im, n);
         // V_0 and (n even) V_{n/2} are real in exact arithmetic: the inverse FFT needs them
         // exactly so.
         ws.spec[0].im = 0.0;
@@ -213,33 +204,64 @@ impl CosineSampler {
         {
             return false;
         }
-        let two_n = 2.0 / n as f64;
-        let half = n / 2;
-        let (c, spec) = (&mut ws.coefs, &ws.spec);
-        c[0] = spec[0].re / n as f64;
-        for (((o, z), &tr), &ti) in c[1..=half]
-            .iter_mut()
-            .zip(&spec[1..=half])
-            .zip(&self.tw_re[1..=half])
-            .zip(&self.tw_im[1..=half])
-        {
-            *o = two_n * (tr * z.re - ti * z.im);
-        }
-        // V_k = conj(V_{n−k}) beyond n/2.
-        for (((o, z), &tr), &ti) in c[half + 1..n]
-            .iter_mut()
-            .zip(spec[1..n - half].iter().rev())
-            .zip(&self.tw_re[half + 1..n])
-            .zip(&self.tw_im[half + 1..n])
-        {
-            *o = two_n * (tr * z.re + ti * z.im);
-        }
+        twiddle_analyse(&mut ws.coefs, &ws.spec, &self.tw_re, &self.tw_im, n);
         true
+    }
+}
+
+/// The spectrum of the inverse DCT from the G_k: conj(tw_k)·(g_k − i g_{n−k}),
+/// k = 0..=n/2 (`synth_g`).
+#[multiversion(targets("x86_64+avx+avx2+fma"))]
+fn twiddle_synth(spec: &mut [Complex<f64>], g: &[f64], tw_re: &[f64], tw_im: &[f64], n: usize) {
+    let half = n / 2;
+    for ((((v, &a), &b), &tr), &ti) in spec[..=half]
+        .iter_mut()
+        .zip(&g[..=half])
+        .zip(g[n - half..=n].iter().rev())
+        .zip(&tw_re[..=half])
+        .zip(&tw_im[..=half])
+    {
+        *v = Complex::new(tr * a - ti * b, -tr * b - ti * a);
+    }
+}
+
+/// The n cosine coefficients from the DFT V of the reordered samples: C_k/n for k = 0,
+/// 2C_k/n else, C_k = Re(e^{−iπk/(2n)} V_k) (`analyse_all`).
+#[multiversion(targets("x86_64+avx+avx2+fma"))]
+fn twiddle_analyse(c: &mut [f64], spec: &[Complex<f64>], tw_re: &[f64], tw_im: &[f64], n: usize) {
+    let two_n = 2.0 / n as f64;
+    let half = n / 2;
+    c[0] = spec[0].re / n as f64;
+    for (((o, z), &tr), &ti) in c[1..=half]
+        .iter_mut()
+        .zip(&spec[1..=half])
+        .zip(&tw_re[1..=half])
+        .zip(&tw_im[1..=half])
+    {
+        *o = two_n * (tr * z.re - ti * z.im);
+    }
+    // V_k = conj(V_{n−k}) beyond n/2.
+    for (((o, z), &tr), &ti) in c[half + 1..n]
+        .iter_mut()
+        .zip(spec[1..n - half].iter().rev())
+        .zip(&tw_re[half + 1..n])
+        .zip(&tw_im[half + 1..n])
+    {
+        *o = two_n * (tr * z.re + ti * z.im);
+    }
+}
+
+/// s_j ← (−1)^j s_j.
+#[multiversion(targets("x86_64+avx+avx2+fma"))]
+fn negate_odd_samples(s: &mut [f64]) {
+    for pair in s.chunks_exact_mut(2) {
+        pair[1] = -pair[1];
     }
 }
 
 /// Makhoul's order: v_j = s_{2j}, v_{n−1−j} = s_{2j+1}; with `alternate`, of (−1)^j s_j
 /// (every odd sample negated).
+#[multiversion(targets("x86_64+avx+avx2+fma"))]
 fn reorder(s: &[f64], alternate: bool, v: &mut [f64]) {
     let n = v.len();
     let odd = if alternate { -1.0 } else { 1.0 };
@@ -258,6 +280,7 @@ fn reorder(s: &[f64], alternate: bool, v: &mut [f64]) {
 }
 
 /// The inverse of `reorder`.
+#[multiversion(targets("x86_64+avx+avx2+fma"))]
 fn unorder(v: &[f64], s: &mut [f64]) {
     let n = v.len();
     let (lo, hi) = v.split_at(n.div_ceil(2));

@@ -80,13 +80,11 @@ pub fn energy_mean_ca(sys: &System, x: &[f64]) -> f64 {
     let ns = smp.n();
     let mut e = mean_quadratic_energy(sys, x);
     let mut u = vec![vec![0.0; ns]; 2];
+    let mut ws = smp.scratch();
     for sh in &sys.shocks {
         for (c, &d) in sh.dofs.iter().enumerate().take(2) {
-            smp.synth(
-                &x[lay.u(d)..lay.u(d) + lay.n_coef_lin],
-                lay.h_lin,
-                &mut u[c],
-            );
+            let coefs = &x[lay.u(d)..lay.u(d) + lay.n_coef_lin];
+            smp.synth_with(coefs, lay.h_lin, &mut u[c], &mut ws);
         }
         let pen = |d: f64| if d > 0.0 { 0.5 * sh.alpha * d * d } else { 0.0 };
         let total: f64 = (0..ns)

@@ -7,8 +7,8 @@
 //! leaves: ‖b − A x‖ ≤ rtol·‖b‖ + BACKWARD·ε·‖A‖·‖x‖, ‖A‖ an upper bound the operator
 //! supplies (and never above FLOOR_CAP·‖b‖). The workspace is allocated once for a dimension and a cycle length.
 
-use super::vector::dot;
 pub use super::vector::norm;
+use super::vector::{add_scaled, dot, sub_scaled};
 
 /// An operator and its preconditioner, applied to vectors of the workspace's dimension.
 pub trait Preconditioned {
@@ -171,10 +171,7 @@ impl Gmres {
             // x += P (V_k y).
             self.w.fill(0.0);
             for (j, &yj) in self.y[..k].iter().enumerate() {
-                let vj = &self.v[j * n..(j + 1) * n];
-                for (w, v) in self.w.iter_mut().zip(vj) {
-                    *w += yj * v;
-                }
+                add_scaled(&mut self.w, yj, &self.v[j * n..(j + 1) * n]);
             }
             op.precondition(&self.w, &mut self.z);
             for (xi, zi) in x.iter_mut().zip(&self.z) {
@@ -244,9 +241,7 @@ impl Gmres {
                     let vj = &self.v[j * n..(j + 1) * n];
                     let c = dot(&self.w, vj);
                     *hj += c;
-                    for (w, v) in self.w.iter_mut().zip(vj) {
-                        *w -= c * v;
-                    }
+                    sub_scaled(&mut self.w, c, vj);
                 }
             }
             let hn = norm(&self.w);

@@ -25,6 +25,7 @@ use crate::error::{Error, Result};
 use faer::prelude::*;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat, Triplet};
+use multiversion::multiversion;
 
 /// A factorisation of the bordered tangent of one system, and solves with it.
 pub trait TangentSolver {
@@ -156,21 +157,28 @@ impl StructuredSolver {
             }
             let w = self.contacts[s].w();
             for (c, &dof) in sh.dofs.iter().enumerate() {
-                for j in 0..nl {
-                    let du = self.red[dof * nl + j];
-                    if du == 0.0 {
-                        continue;
-                    }
-                    let col = &w[(c * nl + j) * d..(c * nl + j + 1) * d];
-                    for (fi, wi) in f.iter_mut().zip(col) {
-                        *fi -= wi * du;
-                    }
-                }
+                let cols = &w[c * nl * d..(c + 1) * nl * d];
+                subtract_columns(f, cols, &self.red[dof * nl..(dof + 1) * nl]);
             }
         }
         z[..nnl].copy_from_slice(&self.red[..nnl]);
         z[lay.omega()] = d_omega;
         z[lay.gamma()] = self.red[nnl + 1];
+    }
+}
+
+/// f −= Σ_j coefs[j]·cols[j] (columns of f.len(), column-major), in column order, zero
+/// coefficients skipped: δF = A_ff⁻¹ r_f − W δu (`expand`).
+#[multiversion(targets("x86_64+avx+avx2+fma"))]
+fn subtract_columns(f: &mut [f64], cols: &[f64], coefs: &[f64]) {
+    let d = f.len();
+    for (&c, col) in coefs.iter().zip(cols.chunks_exact(d)) {
+        if c == 0.0 {
+            continue;
+        }
+        for (fi, wi) in f.iter_mut().zip(col) {
+            *fi -= wi * c;
+        }
     }
 }
 

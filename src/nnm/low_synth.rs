@@ -13,6 +13,7 @@
 //! round-off.
 
 use super::series::{ic, is};
+use multiversion::multiversion;
 
 /// A table of cos kθ_j (and sin kθ_j) for k = 1..=h over n instants, row-major by k.
 pub struct LowSynth {
@@ -68,25 +69,21 @@ impl LowSynth {
         let n = self.n;
         debug_assert!(hx <= self.h && out.len() == n);
         out.fill(x[0]);
-        for k in 1..=hx {
-            let c = x[ic(k)];
-            if c != 0.0 {
-                let row = &self.cos[(k - 1) * n..k * n];
-                for (o, t) in out.iter_mut().zip(row) {
-                    *o += c * t;
-                }
-            }
+        add_rows(out, &self.cos[..hx * n], &x[ic(1)..=ic(hx)]);
+        if !self.sin.is_empty() {
+            add_rows(out, &self.sin[..hx * n], &x[is(hx, 1)..=is(hx, hx)]);
         }
-        if self.sin.is_empty() {
-            return;
-        }
-        for k in 1..=hx {
-            let s = x[is(hx, k)];
-            if s != 0.0 {
-                let row = &self.sin[(k - 1) * n..k * n];
-                for (o, t) in out.iter_mut().zip(row) {
-                    *o += s * t;
-                }
+    }
+}
+
+/// out += Σ_k coefs[k]·rows[k] (rows of out.len(), row-major), zero coefficients skipped.
+#[multiversion(targets("x86_64+avx+avx2+fma"))]
+fn add_rows(out: &mut [f64], rows: &[f64], coefs: &[f64]) {
+    let n = out.len();
+    for (&c, row) in coefs.iter().zip(rows.chunks_exact(n)) {
+        if c != 0.0 {
+            for (o, t) in out.iter_mut().zip(row) {
+                *o += c * t;
             }
         }
     }

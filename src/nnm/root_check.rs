@@ -36,13 +36,14 @@ pub(super) fn frequency_defect(sys: &System, x: &[f64]) -> Result<f64> {
     let ns = smp.n();
     let mut work_defect = 0.0;
     let mut work_law = 0.0;
+    let mut ws = smp.scratch();
+    let mut force = vec![0.0; ns];
     for sh in &sys.shocks {
         let u = shock_displacements(sys, sh, x);
         let own = laws::own_from_u(sh.law, sh.gap, sh.alpha, sh.eta, &u)?;
-        let mut force = vec![0.0; ns];
         for &(c, v) in &sh.eqs.forces {
             let o = sh.offset + v * lay.n_coef_nonl;
-            smp.synth(&x[o..o + lay.n_coef_nonl], lay.h_nonl, &mut force);
+            smp.synth_with(&x[o..o + lay.n_coef_nonl], lay.h_nonl, &mut force, &mut ws);
             for ((&f, &p), &uc) in force.iter().zip(&own[v]).zip(&u[c]) {
                 work_defect += (f - p) * uc;
                 work_law += p * uc;

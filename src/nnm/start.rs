@@ -63,11 +63,13 @@ pub(super) fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
 pub(super) fn shock_displacements(sys: &System, sh: &ShockSys, x: &[f64]) -> Vec<Vec<f64>> {
     let lay = sys.lay;
     let smp = sys.sampler();
+    let mut ws = smp.scratch();
     sh.dofs
         .iter()
         .map(|&d| {
             let mut s = vec![0.0; smp.n()];
-            smp.synth(&x[lay.u(d)..lay.u(d) + lay.n_coef_lin], lay.h_lin, &mut s);
+            let u = &x[lay.u(d)..lay.u(d) + lay.n_coef_lin];
+            smp.synth_with(u, lay.h_lin, &mut s, &mut ws);
             s
         })
         .collect()

@@ -10,10 +10,12 @@ use super::cosine_sampler::{CosineSampler, CosineScratch};
 use super::laws::{self, LawEqs, ScaledLaw, Var};
 use super::low_synth::{self, LowSynth};
 use super::series::{self, FftScratch, Sampler};
+use super::vector;
 use super::{Problem, Settings, ShockLaw};
 use crate::error::{Error, Result};
 use faer::prelude::*;
 use faer::sparse::{SparseColMat, Triplet};
+use multiversion::multiversion;
 use std::cell::RefCell;
 use std::f64::consts::PI;
 
@@ -24,6 +26,7 @@ const SYMMETRY_ROUND_OFF: f64 = 1e-13;
 
 /// Whether the sine part of the series `x` (h harmonics) is round-off: at most
 /// SYMMETRY_ROUND_OFF times its largest coefficient (a zero series is one).
+#[multiversion(targets("x86_64+avx+avx2+fma"))]
 pub fn is_cosine_series(x: &[f64], h: usize) -> bool {
     let big = x.iter().fold(0.0f64, |m, a| m.max(a.abs()));
     (1..=h).all(|k| x[series::is(h, k)].abs() <= SYMMETRY_ROUND_OFF * big)
@@ -636,13 +639,9 @@ impl System {
                 for (k, &(b, coef)) in g.b.iter().enumerate() {
                     let src = &vs[b * ns..(b + 1) * ns];
                     if k == 0 {
-                        for (y, v) in o.iter_mut().zip(src) {
-                            *y = coef * v;
-                        }
+                        vector::scaled(o, coef, src);
                     } else {
-                        for (y, v) in o.iter_mut().zip(src) {
-                            *y += coef * v;
-                        }
+                        vector::add_scaled(o, coef, src);
                     }
                 }
             }
@@ -957,6 +956,7 @@ pub fn unknown_count(problem: &Problem, settings: &Settings) -> usize {
 
 /// row += Σ_pairs a·b, a the samples at `ia` of each pair's first member (shock `k`), b
 /// those at `ib` of its second, row.len() samples each.
+#[multiversion(targets("x86_64+avx+avx2+fma"))]
 fn accumulate_products<'s>(
     row: &mut [f64],
     pairs: &[(&'s Samples, &'s Samples)],

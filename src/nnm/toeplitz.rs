@@ -36,6 +36,7 @@
 
 use super::cosine_sampler::{CosineSampler, CosineScratch};
 use super::series::{self, ic, is};
+use multiversion::multiversion;
 use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealToComplex};
 use std::sync::Arc;
@@ -193,36 +194,12 @@ impl Half {
         };
         {
             let (lo, hi) = self.w.split_at_mut(m);
-            // hi runs backwards (θ_{N−1−j}); zipped iterators let the loop vectorise.
-            let pq = p.iter().zip(q).zip(r.iter());
-            for ((l, h), ((&pj, &qj), &rj)) in lo.iter_mut().zip(hi.iter_mut().rev()).zip(pq) {
-                let (pr, qr) = (pj * rj, qj * rj);
-                *l = pr + qr;
-                *h = sign * (pr - qr);
-            }
+            spread_products(lo, hi, p, q, r, sign);
         }
         let sum = self.cot.apply(&mut self.w);
         let (lo, hi) = self.w.split_at(m);
         debug_assert_eq!(hi.len(), n - m);
-        let pqd = p.iter().zip(q).zip(d);
-        let ab = lo.iter().zip(hi.iter().rev());
-        // The parts of C w even and odd in time at θ_j, then y.
-        match parity {
-            // C p r odd, C q r even; Σ q r = 0.
-            Parity::Even => {
-                for ((rj, (&a, &b)), ((&pj, &qj), &dj)) in r.iter_mut().zip(ab).zip(pqd) {
-                    let (ev, od) = (0.5 * (a + b), 0.5 * (a - b));
-                    *rj = scale * (pj * (sum - ev) + qj * od + dj * *rj);
-                }
-            }
-            // C p r even, C q r odd; Σ p r = 0.
-            Parity::Odd => {
-                for ((rj, (&a, &b)), ((&pj, &qj), &dj)) in r.iter_mut().zip(ab).zip(pqd) {
-                    let (ev, od) = (0.5 * (a + b), 0.5 * (a - b));
-                    *rj = scale * (qj * (sum + ev) - pj * od + dj * *rj);
-                }
-            }
-        }
+        combine_halves(r, lo, hi, p, q, d, sum, scale, parity == Parity::Even);
     }
 
     /// x ← T⁻¹ x_even, x_even the cosine part of x; x's sine coefficients set to zero.
@@ -240,6 +217,59 @@ impl Half {
         self.apply(Parity::Odd, scale);
         self.tr.sin_analyse(&self.r, &mut x[h + 1..], &mut self.ws);
         x[..=h].fill(0.0);
+    }
+}
+
+/// p r + q r on the whole period from the half period's samples (`Half::apply`): at
+/// −θ_j = θ_{N−1−j}, p r keeps or flips its sign with r (`sign`) and q r does the
+/// opposite. `hi` runs backwards; zipped iterators let the loop vectorise.
+#[multiversion(targets("x86_64+avx+avx2+fma"))]
+fn spread_products(lo: &mut [f64], hi: &mut [f64], p: &[f64], q: &[f64], r: &[f64], sign: f64) {
+    let pq = p.iter().zip(q).zip(r.iter());
+    for ((l, h), ((&pj, &qj), &rj)) in lo.iter_mut().zip(hi.iter_mut().rev()).zip(pq) {
+        let (pr, qr) = (pj * rj, qj * rj);
+        *l = pr + qr;
+        *h = sign * (pr - qr);
+    }
+}
+
+/// y on the half period from C w (`lo`, and `hi` backwards): the parts of C w even and
+/// odd in time at θ_j, then the Bezoutian formula (module doc). `even`: C p r odd, C q r
+/// even and Σ q r = 0; else C p r even, C q r odd and Σ p r = 0.
+#[allow(clippy::too_many_arguments)]
+#[multiversion(targets("x86_64+avx+avx2+fma"))]
+fn combine_halves(
+    r: &mut [f64],
+    lo: &[f64],
+    hi: &[f64],
+    p: &[f64],
+    q: &[f64],
+    d: &[f64],
+    sum: f64,
+    scale: f64,
+    even: bool,
+) {
+    let pqd = p.iter().zip(q).zip(d);
+    let ab = lo.iter().zip(hi.iter().rev());
+    if even {
+        for ((rj, (&a, &b)), ((&pj, &qj), &dj)) in r.iter_mut().zip(ab).zip(pqd) {
+            let (ev, od) = (0.5 * (a + b), 0.5 * (a - b));
+            *rj = scale * (pj * (sum - ev) + qj * od + dj * *rj);
+        }
+    } else {
+        for ((rj, (&a, &b)), ((&pj, &qj), &dj)) in r.iter_mut().zip(ab).zip(pqd) {
+            let (ev, od) = (0.5 * (a + b), 0.5 * (a - b));
+            *rj = scale * (qj * (sum + ev) - pj * od + dj * *rj);
+        }
+    }
+}
+
+/// −i·e_k·V_k for every k of a half spectrum (C's eigenvalues, `Cot::apply`).
+#[multiversion(targets("x86_64+avx+avx2+fma"))]
+fn rotate_spectrum(spec: &mut [C], eig: &[f64]) {
+    for (s, &e) in spec.iter_mut().zip(eig) {
+        // −i·e·(a + ib) = e·b − i·e·a
+        *s = C::new(e * s.im, -e * s.re);
     }
 }
 
@@ -288,10 +318,7 @@ impl Cot {
             return f64::NAN;
         }
         let sum = self.spec[0].re;
-        for (s, &e) in self.spec.iter_mut().zip(&self.eig) {
-            // −i·e·(a + ib) = e·b − i·e·a
-            *s = C::new(e * s.im, -e * s.re);
-        }
+        rotate_spectrum(&mut self.spec, &self.eig);
         if self
             .inv
             .process_with_scratch(&mut self.spec, v, &mut self.work)

@@ -6,8 +6,18 @@
 //! keep several additions in flight: about four times faster on the 400–1000-long vectors
 //! of GMRES's Gram–Schmidt and the series, and the rounding error bound is that of
 //! a sum of n/8 terms instead of n.
+//!
+//! These loops, and the other hot loops of the engine (the transforms' twiddles, the
+//! Toeplitz route's pointwise formulas, the sampled products), are compiled twice: for any
+//! x86-64 and for processors with AVX2 and FMA, the version chosen once at run time
+//! (`multiversion`). Rust never contracts a product and a sum into one FMA on its own, so
+//! both versions round alike: the results are the same to the last bit (measured on every
+//! table of sdnd122a), only the speed differs (docs/performance.md, seventh round).
+
+use multiversion::multiversion;
 
 /// Σ a_i b_i over the common length.
+#[multiversion(targets("x86_64+avx+avx2+fma"))]
 pub fn dot(a: &[f64], b: &[f64]) -> f64 {
     let n = a.len().min(b.len());
     let (a, b) = (&a[..n], &b[..n]);
@@ -35,6 +45,30 @@ pub fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// these sums are reassociated, so they keep their order.
 pub fn dot_in_order(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// y ← y − c·x over the common length (Gram–Schmidt, the series' kernel correction).
+#[multiversion(targets("x86_64+avx+avx2+fma"))]
+pub fn sub_scaled(y: &mut [f64], c: f64, x: &[f64]) {
+    for (yi, xi) in y.iter_mut().zip(x) {
+        *yi -= c * xi;
+    }
+}
+
+/// y ← y + c·x over the common length.
+#[multiversion(targets("x86_64+avx+avx2+fma"))]
+pub fn add_scaled(y: &mut [f64], c: f64, x: &[f64]) {
+    for (yi, xi) in y.iter_mut().zip(x) {
+        *yi += c * xi;
+    }
+}
+
+/// y ← c·x over the common length.
+#[multiversion(targets("x86_64+avx+avx2+fma"))]
+pub fn scaled(y: &mut [f64], c: f64, x: &[f64]) {
+    for (yi, xi) in y.iter_mut().zip(x) {
+        *yi = c * xi;
+    }
 }
 
 /// Euclidean norm.
