@@ -84,8 +84,9 @@ pub enum Durability {
     /// directory when the run ends ([`Store::close`]), the journal then removed. A crash
     /// of the system during the run may leave the study unreadable; nothing older is at
     /// stake (DEBUT has replaced it), and rerunning the command file rebuilds it. Measured
-    /// on sdnd122a: about 15 % of a run's CPU time is the per-commit syncs and the
-    /// journal's creation and removal (docs/performance.md, seventh round).
+    /// on sdnd122a: the per-commit syncs and the journal's creation and removal are 7 %
+    /// (quiet machine) to 16 % (loaded) of a run's CPU time (docs/performance.md, seventh
+    /// round).
     RunEnd,
     /// A continued study (POURSUITE): SQLite's defaults (`synchronous = FULL`, the journal
     /// deleted at each commit), so that a system crash during the run cannot take the
