@@ -21,11 +21,11 @@ use super::reduced::{Linearisation, ReducedSystem};
 use super::series;
 use super::system::System;
 use super::vector::dot_in_order as dot;
+use super::vector::sub_scaled;
 use crate::error::{Error, Result};
 use faer::prelude::*;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat, Triplet};
-use multiversion::multiversion;
 
 /// A factorisation of the bordered tangent of one system, and solves with it.
 pub trait TangentSolver {
@@ -169,15 +169,10 @@ impl StructuredSolver {
 
 /// f −= Σ_j coefs[j]·cols[j] (columns of f.len(), column-major), in column order, zero
 /// coefficients skipped: δF = A_ff⁻¹ r_f − W δu (`expand`).
-#[multiversion(targets("x86_64+avx+avx2+fma"))]
 fn subtract_columns(f: &mut [f64], cols: &[f64], coefs: &[f64]) {
-    let d = f.len();
-    for (&c, col) in coefs.iter().zip(cols.chunks_exact(d)) {
-        if c == 0.0 {
-            continue;
-        }
-        for (fi, wi) in f.iter_mut().zip(col) {
-            *fi -= wi * c;
+    for (&c, col) in coefs.iter().zip(cols.chunks_exact(f.len())) {
+        if c != 0.0 {
+            sub_scaled(f, c, col);
         }
     }
 }

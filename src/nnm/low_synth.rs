@@ -13,7 +13,7 @@
 //! round-off.
 
 use super::series::{ic, is};
-use multiversion::multiversion;
+use super::vector::add_scaled;
 
 /// A table of cos kθ_j (and sin kθ_j) for k = 1..=h over n instants, row-major by k.
 pub struct LowSynth {
@@ -77,14 +77,10 @@ impl LowSynth {
 }
 
 /// out += Σ_k coefs[k]·rows[k] (rows of out.len(), row-major), zero coefficients skipped.
-#[multiversion(targets("x86_64+avx+avx2+fma"))]
 fn add_rows(out: &mut [f64], rows: &[f64], coefs: &[f64]) {
-    let n = out.len();
-    for (&c, row) in coefs.iter().zip(rows.chunks_exact(n)) {
+    for (&c, row) in coefs.iter().zip(rows.chunks_exact(out.len())) {
         if c != 0.0 {
-            for (o, t) in out.iter_mut().zip(row) {
-                *o += c * t;
-            }
+            add_scaled(out, c, row);
         }
     }
 }

@@ -573,6 +573,14 @@ mod tests {
         study_file::journal_paths(p)[0].clone()
     }
 
+    /// One operator that creates table concept `name`, committed.
+    fn commit_one_concept(s: &Store, name: &str) {
+        s.begin_op().unwrap();
+        s.register_concept(name, "table_sdaster", "CREA_TABLE", "x.comm", 1)
+            .unwrap();
+        s.commit_op().unwrap();
+    }
+
     #[test]
     fn a_new_study_is_synced_at_the_end_and_leaves_no_journal() {
         let dir = tempfile::tempdir().unwrap();
@@ -581,10 +589,7 @@ mod tests {
         assert_eq!(s.durability(), Durability::RunEnd);
         assert_eq!(pragma(&s, "journal_mode"), "persist");
         assert_eq!(pragma(&s, "synchronous"), "0");
-        s.begin_op().unwrap();
-        s.register_concept("A", "table_sdaster", "CREA_TABLE", "x.comm", 1)
-            .unwrap();
-        s.commit_op().unwrap();
+        commit_one_concept(&s, "A");
         // The journal is kept between commits (not created and deleted at each one).
         assert!(journal_of(&p).exists());
         s.close().unwrap();
@@ -614,10 +619,7 @@ mod tests {
         let p = dir.path().join("s.db");
         {
             let s = Store::create(&p).unwrap();
-            s.begin_op().unwrap();
-            s.register_concept("A", "table_sdaster", "CREA_TABLE", "x.comm", 1)
-                .unwrap();
-            s.commit_op().unwrap();
+            commit_one_concept(&s, "A");
             assert!(journal_of(&p).exists());
         }
         assert!(!journal_of(&p).exists());
@@ -632,10 +634,7 @@ mod tests {
         assert_eq!(s.durability(), Durability::EveryCommit);
         assert_eq!(pragma(&s, "journal_mode"), "delete");
         assert_eq!(pragma(&s, "synchronous"), "2");
-        s.begin_op().unwrap();
-        s.register_concept("B", "table_sdaster", "CREA_TABLE", "y.comm", 1)
-            .unwrap();
-        s.commit_op().unwrap();
+        commit_one_concept(&s, "B");
         assert!(!journal_of(&p).exists());
         s.close().unwrap();
         assert_eq!(s.durability(), Durability::EveryCommit);
