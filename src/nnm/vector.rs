@@ -47,7 +47,7 @@ pub fn dot_in_order(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-/// y ← y − c·x over the common length (GMRES's Gram–Schmidt).
+/// y ← y − c·x over the common length (GMRES's Gram–Schmidt, the expansion δF = q − W δu).
 #[multiversion(targets("x86_64+avx+avx2+fma"))]
 pub fn sub_scaled(y: &mut [f64], c: f64, x: &[f64]) {
     for (yi, xi) in y.iter_mut().zip(x) {
