@@ -50,6 +50,12 @@ impl DeterminantWatch {
         self.sign = self.sign.map(|s| -s);
     }
 
+    /// The unknowns were re-expressed in other units (rescale.rs): the probe, factorised in
+    /// the old ones, is made again when next needed. The sign itself is unchanged.
+    pub(super) fn units_changed(&mut self) {
+        self.probe = None;
+    }
+
     /// The branch from `x_start` along `series` has ended with sign `end_sign`: flag its first
     /// point past a sign change, if there is one; the end sign becomes the next start's.
     #[allow(clippy::too_many_arguments)]

@@ -8,6 +8,7 @@ use super::bifurcation::DeterminantWatch;
 use super::correction::{correct_branch, CorrectedBranch};
 use super::point::to_scaled;
 use super::report::{branch_report, in_branch, no_progress, stalled};
+use super::rescale;
 use super::series_step::{series_step, Orientation};
 use super::solver_kind::make_solver;
 use super::system::System;
@@ -19,6 +20,9 @@ pub struct Outcome {
     /// A failed correction (or any numerical failure) stops the run; the points computed
     /// before it are kept.
     pub error: Option<Error>,
+    /// Why the run ended before NB_BRANCHE although nothing failed (the homogeneous limit
+    /// of its stops, rescale.rs); None when it ran its branches or was stopped otherwise.
+    pub limit: Option<String>,
 }
 
 /// Continue `settings.n_branches` branches from `start`; `on_branch` is called after each.
@@ -54,8 +58,22 @@ pub fn continue_controlled(
     on_branch: &mut dyn FnMut(&BranchReport, &[Point]) -> bool,
 ) -> Outcome {
     let mut points = Vec::new();
-    let error = run(problem, settings, control, start, on_branch, &mut points).err();
-    Outcome { points, error }
+    let mut limit = None;
+    let error = run(
+        problem,
+        settings,
+        control,
+        start,
+        on_branch,
+        &mut points,
+        &mut limit,
+    )
+    .err();
+    Outcome {
+        points,
+        error,
+        limit,
+    }
 }
 
 fn run(
@@ -65,8 +83,9 @@ fn run(
     start_state: StartState,
     on_branch: &mut dyn FnMut(&BranchReport, &[Point]) -> bool,
     out: &mut Vec<Point>,
+    limit: &mut Option<String>,
 ) -> Result<()> {
-    let sys = System::new(problem, settings, start_state.scaling, start_state.ref_dof)?;
+    let mut sys = System::new(problem, settings, start_state.scaling, start_state.ref_dof)?;
     if start_state.x.len() != sys.lay.n_unk {
         return Err(Error::internal("start state does not match the problem"));
     }
@@ -182,7 +201,28 @@ fn run(
             ));
         }
         end_factor.map_err(|e| in_branch(e, b + 1))?;
-        orientation.continue_along(tangent);
+        match rescale::rescaled(&sys, &x0) {
+            // The motion has outgrown the length unit: the next branch runs in a unit of
+            // its own size (rescale.rs), its start and border re-expressed and factorised.
+            Some(scaling) => {
+                if let Some(why) = rescale::homogeneous_limit(problem, &scaling, b) {
+                    *limit = Some(why);
+                    break;
+                }
+                let next = System::new(problem, settings, scaling, sys.ref_dof)?;
+                x0 = rescale::convert(&sys, &next, &x0);
+                let border = rescale::convert_direction(&sys, &next, &tangent);
+                orientation.units_changed(&sys, &next);
+                sys = next;
+                solver = make_solver(&sys, settings, kind)?;
+                solver
+                    .factor(&sys, &x0, &border)
+                    .map_err(|e| in_branch(e, b + 1))?;
+                det.units_changed();
+                orientation.continue_along(border);
+            }
+            None => orientation.continue_along(tangent),
+        }
     }
     Ok(())
 }

@@ -24,7 +24,7 @@ pub(super) fn off_the_law(
 ) -> Result<Option<Error>> {
     if let (Some(max), Some(check)) = (control.law_defect_max, law_check) {
         let (absolute, defect) = check.law_defects(&end.x)?;
-        end.law_defect = Some(absolute);
+        end.law_defect = Some((absolute, defect));
         if defect.is_nan() || defect > max {
             return Ok(Some(
                 Error::numerical(format!(

@@ -88,15 +88,10 @@ impl LawCheck {
         })
     }
 
-    /// Largest |f_series(t) − f_law(u(t))| / (α·JEU) over the shocks and the instants; 0
-    /// without shocks. `u`: displacement coefficients of each DOF; `contact`: per shock,
-    /// its contact unknowns (the layout of `Point::x`, physical units).
-    pub fn defect(&self, u: &[Vec<f64>], contact: &[Vec<Vec<f64>>]) -> Result<f64> {
-        Ok(self.defects(u, contact)?.0)
-    }
-
-    /// The defect of [`LawCheck::defect`], and the same relative to the force the law
-    /// carries: per shock its defect over max(α·JEU, the largest |f_law(u(t))|), the worst
+    /// Largest |f_series(t) − f_law(u(t))| / (α·JEU) over the shocks and the instants (0
+    /// without shocks; `u`: displacement coefficients of each DOF; `contact`: per shock,
+    /// its contact unknowns, the layout of `Point::x`, physical units), and the same
+    /// relative to the force the law carries: per shock its defect over max(α·JEU, the largest |f_law(u(t))|), the worst
     /// over the shocks. Far into a stop (amplitudes of many JEU) the force is many α·JEU and
     /// a truncated force series misses it by a defect of O(1) α·JEU that is small beside it;
     /// on a non-physical root the series misses the law by the law's own size.

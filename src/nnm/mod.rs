@@ -56,6 +56,7 @@ mod problem;
 mod quadrature;
 mod reduced;
 mod report;
+mod rescale;
 mod resolution;
 mod root_check;
 mod route_timing;

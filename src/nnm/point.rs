@@ -31,10 +31,11 @@ pub struct Point {
     /// The correction was accepted at the round-off floor (newton.rs), not below
     /// PREC_NEWTON.
     pub at_floor: bool,
-    /// ECART_LOI_CHOC (`PostProcessor::law_defects`), when the run has already checked this
-    /// point against its contact law (the branch ends, StepControl::law_defect_max): the
-    /// table takes it instead of sampling the law a second time.
-    pub law_defect: Option<f64>,
+    /// ECART_LOI_CHOC and the same relative to the force the law carries
+    /// (`PostProcessor::law_defects`), when the run has already checked this point against
+    /// its contact law (the branch ends, StepControl::law_defect_max): the table takes them
+    /// instead of sampling the law a second time.
+    pub law_defect: Option<(f64, f64)>,
 }
 
 /// Physical value of each unknown per scaled unit.

@@ -102,6 +102,10 @@ pub struct RowOutputs {
     /// Largest |f_series(t) − f_law(u(t))| / (RIGI_NOR·JEU) over the shocks and over
     /// 2(2H_nl+1) instants of one period; 0 without shocks (ECART_LOI_CHOC).
     pub law_defect: f64,
+    /// `law_defect` relative to the force the law carries (`LawCheck::defects`): what the
+    /// run's guard and alarm compare, so that a row far into a stop, whose force is many
+    /// RIGI_NOR·JEU, is judged by its relative accuracy.
+    pub law_defect_relative: f64,
 }
 
 /// Post-processing of the points of one problem, built once per operator call.
@@ -124,18 +128,19 @@ impl PostProcessor {
 
     /// `row`, with the law defect taken from `known` when the run has computed it already
     /// (`Point::law_defect`, from `law_defects` on the same `x`).
-    pub fn row_with_defect(&self, x: &[f64], known: Option<f64>) -> Result<RowOutputs> {
+    pub fn row_with_defect(&self, x: &[f64], known: Option<(f64, f64)>) -> Result<RowOutputs> {
         self.unknowns.check(x)?;
         let displacement = self.unknowns.displacement_unchecked(x);
         let contact = self.unknowns.contact_unchecked(x);
-        let law_defect = match known {
+        let (law_defect, law_defect_relative) = match known {
             Some(d) => d,
-            None => self.check.defect(&displacement, &contact)?,
+            None => self.check.defects(&displacement, &contact)?,
         };
         Ok(RowOutputs {
             displacement,
             contact,
             law_defect,
+            law_defect_relative,
         })
     }
 

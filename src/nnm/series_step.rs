@@ -35,6 +35,17 @@ impl Orientation {
         self.prev_tangent = Some(tangent);
     }
 
+    /// The unknowns are re-expressed from the units of `from` to those of `to`
+    /// (rescale.rs): so are the directions the orientation compares with.
+    pub(super) fn units_changed(&mut self, from: &System, to: &System) {
+        for t in [&mut self.travel, &mut self.prev_tangent]
+            .into_iter()
+            .flatten()
+        {
+            *t = super::rescale::convert_direction(from, to, t);
+        }
+    }
+
     /// ±1: the sign X_1 must take at `x0`.
     fn sign(&self, sys: &System, x0: &[f64], x1: &[f64]) -> f64 {
         let ahead = match (&self.prev_tangent, &self.travel) {

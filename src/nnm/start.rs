@@ -381,6 +381,15 @@ pub(super) fn system_for_point(
         .max_by(|&a, &b| amp(a).total_cmp(&amp(b)))
         .unwrap_or(0);
     let scaling = Scaling::new(problem, amp(p), p)?;
+    // A row far up a branch is restarted in the length unit the run had rescaled to
+    // (rescale.rs), or its correction would meet the round-off the rescaling avoids.
+    let scaling = match amp(p) / scaling.length > super::rescale::RESCALE_AT {
+        true => Scaling {
+            length: amp(p),
+            ..scaling
+        },
+        false => scaling,
+    };
     let amps: Vec<f64> = (0..n).map(amp).collect();
     System::new(problem, settings, scaling, phase_dof(&amps))
 }

@@ -8,6 +8,7 @@
 use crate::args::Args;
 use crate::error::{Error, ErrorKind, Result};
 use crate::nnm::{self, Point, Problem, Settings, StartState};
+use crate::ops::common::mnl_end;
 use crate::ops::common::mnl_exact_law;
 use crate::ops::common::mnl_problem::{engine_shock, row_of, shocks_from_cara_choc};
 use crate::ops::common::mnl_restart;
@@ -285,10 +286,12 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         let order = first_order + j as i64;
         let out = post.row_with_defect(&p.x, p.law_defect)?;
         let defect = out.law_defect;
-        if defect > nnm::LAW_DEFECT_ALARM {
+        // Judged relative to the force the law carries (as ECART_LOI_CHOC_MAXI): far into
+        // a stop the force is many RIGI_NOR*JEU and so is a well-resolved defect.
+        if out.law_defect_relative > nnm::LAW_DEFECT_ALARM {
             suspect.push(order);
         }
-        worst_defect = worst_defect.max(defect);
+        worst_defect = worst_defect.max(out.law_defect_relative);
         let mut cells = row(&name, &cara_choc, order, ncoef, reprise, p, defect);
         if let Some(i) = exact_col {
             cells.insert(i, exact_cells.get(j).cloned().unwrap_or(Cell::Null));
@@ -307,7 +310,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             "MODE_NON_LINE_3",
             &format!(
                 "{} row(s) between NUME_ORDRE {first} and {last} satisfy their contact law in time only \
-                 to {:.2} x RIGI_NOR*JEU (column ECART_LOI_CHOC): either the force series is too poorly \
+                 to {:.3e} x max(RIGI_NOR*JEU, largest contact force) (column ECART_LOI_CHOC, divided \
+                 by that force in units of RIGI_NOR*JEU when it is larger): either the force series is too poorly \
                  resolved there (raise NB_HARM_NONL, and NB_HARM_LINE at high energy) or the branch has \
                  left the physical root of the regularised law; treat those rows as suspect",
                 suspect.len(),
@@ -339,16 +343,14 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     for w in nnm::resolution_warnings(&problem, &settings, &outcome.points) {
         ctx.alarm("MODE_NON_LINE_1", &w)?;
     }
-    if let Some(e) = outcome.error {
-        // Keep every branch computed so far (committed), then stop the run. The engine's
-        // own hint (what to change) is kept in front of the restart advice.
-        let keep = "the rows computed before the failure are stored; restart from the last one with ETAT_INIT=_F(MODE_NON_LINE=..., NUME_ORDRE=...)";
-        let hint = match &e.hint {
-            Some(h) => format!("{h}; {keep}"),
-            None => keep.to_string(),
-        };
-        ctx.deferred_error = Some(e.keyword("MODE_NON_LINE").hint(hint));
-    }
+    mnl_end::report(
+        ctx,
+        outcome.error,
+        outcome.limit.as_deref(),
+        &outcome.points,
+        settings.n_branches,
+        first_order,
+    )?;
     Ok(())
 }
 

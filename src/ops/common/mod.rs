@@ -4,6 +4,8 @@
 // Test support: operators run on an in-memory store with hand-built `Args`.
 #[cfg(test)]
 pub mod harness;
+// How a MODE_NON_LINE run that ended before NB_BRANCHE is reported (alarm or error).
+pub mod mnl_end;
 // MODE_NON_LINE's RESOLUTION/CORR_LOI_EXACTE: rows corrected on the exact law.
 pub mod mnl_exact_law;
 // MODE_NON_LINE restarts: the stored direction of travel.

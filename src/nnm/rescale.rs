@@ -1,0 +1,83 @@
+//! Lengths rescaled along the branch: once the motion outgrows the length unit by
+//! [`RESCALE_AT`], the unknowns are re-expressed in a unit of the motion's own size.
+//!
+//! Why: a piecewise-linear stop makes the problem homogeneous at large amplitude, but in
+//! units of the largest JEU the scaled displacements grow without bound while the law
+//! equations are quadratic in them. Round-off then grows like ε‖X‖² against a residual
+//! measured relative to ‖X‖: far up a branch (sdnd122a with NB_BRANCHE 400, amplitude
+//! 7e6 JEU) every correction stopped "at the round-off floor", the step-length safeguard
+//! halved the series step to nothing and the run stalled. Re-expressed in a length of the
+//! motion's size, every equation is of order one again and round-off stays relative.
+//!
+//! The laws are written for any length unit (laws.rs: the gap enters as s = JEU/length, the
+//! regularisation as PARA_REGUL·k_ref times powers of s), so a new unit changes no law,
+//! only the numbers that represent it. Stiffness, mass and pulsation units are kept: k_ref
+//! and m_ref fix the regularisation's meaning (system::Scaling::new).
+//!
+//! The determinant test survives a change of unit: unknowns and equations are both scaled
+//! by positive factors, and the new border is the old tangent scaled by the unknowns'
+//! factors, so the sign of the bordered tangent's determinant is unchanged (docs/nnm.md).
+
+use super::point::unit_factors;
+use super::system::{Scaling, System};
+use super::Problem;
+
+/// Scaled displacement amplitude (largest |coefficient| of U) above which the lengths are
+/// rescaled. Large enough that the branches of the testcases (sdnd122a reaches 134 JEU
+/// in its 105 branches) never rescale and keep their results to the bit; small enough that
+/// round-off stays about ε·RESCALE_AT relative (1e-13), far below PREC_NEWTON.
+pub(super) const RESCALE_AT: f64 = 1.0e3;
+
+/// The largest |coefficient| of the displacement block of `x` (scaled units).
+pub(super) fn motion_amplitude(sys: &System, x: &[f64]) -> f64 {
+    let nu = sys.lay.n * sys.lay.n_coef_lin;
+    x[..nu].iter().fold(0.0f64, |m, v| m.max(v.abs()))
+}
+
+/// The scaling whose length unit is the motion's amplitude, when `x` has outgrown the
+/// current unit by [`RESCALE_AT`]; None otherwise.
+pub(super) fn rescaled(sys: &System, x: &[f64]) -> Option<Scaling> {
+    let a = motion_amplitude(sys, x);
+    (a.is_finite() && a > RESCALE_AT).then(|| Scaling {
+        length: sys.scaling.length * a,
+        ..sys.scaling
+    })
+}
+
+/// `v` (a point or a direction in the units of `from`) in the units of `to`.
+pub(super) fn convert(from: &System, to: &System, v: &[f64]) -> Vec<f64> {
+    v.iter()
+        .zip(unit_factors(from))
+        .zip(unit_factors(to))
+        .map(|((x, f), t)| x * f / t)
+        .collect()
+}
+
+/// A direction `v` of `from` in the units of `to`, normed to 1 (a tangent, a border).
+pub(super) fn convert_direction(from: &System, to: &System, v: &[f64]) -> Vec<f64> {
+    let mut w = convert(from, to, v);
+    let n = w.iter().map(|a| a * a).sum::<f64>().sqrt();
+    if n > 0.0 && n.is_finite() {
+        w.iter_mut().for_each(|a| *a /= n);
+    }
+    w
+}
+
+/// Why the run ends after branch `b` when `scaling`'s length unit (the motion's amplitude)
+/// has outgrown the largest JEU by 1/ε: the gaps are then below the round-off of the
+/// motion, the stops are numerically gapless and the problem exactly homogeneous, so every
+/// further branch would only scale the same orbit (same frequency, ENERGIE ∝ amplitude²)
+/// until the numbers overflow. None while the gaps still count.
+pub(super) fn homogeneous_limit(problem: &Problem, scaling: &Scaling, b: usize) -> Option<String> {
+    let gap = problem.shocks.iter().map(|s| s.gap).fold(0.0f64, f64::max);
+    (!problem.shocks.is_empty() && gap < f64::EPSILON * scaling.length).then(|| {
+        format!(
+            "after branch {b} the motion's amplitude ({:.3e} m) exceeds the largest JEU \
+             ({gap:.3e} m) by more than 1/epsilon = {:.1e}: the gaps are below the round-off of \
+             the motion, the stops act as gapless and every further branch would only scale \
+             the same orbit (same FREQUENCE, ENERGIE growing as the amplitude squared)",
+            scaling.length,
+            1.0 / f64::EPSILON
+        )
+    })
+}
