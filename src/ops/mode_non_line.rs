@@ -339,6 +339,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     for w in nnm::resolution_warnings(&problem, &settings, &outcome.points) {
         ctx.alarm("MODE_NON_LINE_1", &w)?;
     }
+    // Internal resonances n:1 with a linear mode (nnm/resonance.rs).
+    if let Some(w) = nnm::resonance_alarm(&problem, &settings, &outcome.points, first_order)? {
+        ctx.alarm("MODE_NON_LINE_7", &w)?;
+    }
     if let Some(e) = outcome.error {
         // Keep every branch computed so far (committed), then stop the run. The engine's
         // own hint (what to change) is kept in front of the restart advice.
