@@ -58,6 +58,7 @@ mod reduced;
 mod report;
 mod rescale;
 mod resolution;
+mod resonance;
 mod root_check;
 mod route_timing;
 mod series;
@@ -74,6 +75,8 @@ mod vector;
 mod hard_tests;
 #[cfg(test)]
 mod reference;
+#[cfg(test)]
+mod resonance_tests;
 #[cfg(test)]
 mod solver_tests;
 #[cfg(test)]
@@ -93,6 +96,7 @@ pub use problem::{Problem, Settings, Shock, ShockLaw};
 pub use quadrature::{check_degenerate_pair, start_from_mode_pair, QUAD_FREQ_TOL};
 pub use report::BranchReport;
 pub use resolution::{resolution_warnings, tail_ratio};
+pub use resonance::resonance_alarm;
 pub use route_timing::{contact_route_timings, RouteRow};
 pub use solver_kind::SolverKind;
 pub(crate) use start::check_start;

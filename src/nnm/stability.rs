@@ -6,21 +6,31 @@
 //! from the identity (2n columns: δU(0), δV(0)) to give the monodromy matrix Φ(T). Its
 //! eigenvalues are the Floquet multipliers.
 //!
-//! Verdict: a conservative system always has a pair of multipliers at +1 (the time shift
-//! of the orbit and the direction along the family). They form a Jordan block, so an error ε
-//! in Φ splits them as 1 ± O(√ε), on the unit circle or along the real axis; the orbit of a
-//! truncated harmonic balance carries such an error (measured: |μ − 1| ≈ 0.17 with
-//! NB_HARM_LINE = 5 on sdnd122, 0.01 with 20, where the pair turned real at 1.0101 and would
-//! have failed TOLERANCE = 1e-2 on a stable orbit). The verdict therefore leaves that pair
-//! out: the two multipliers closest to +1 are taken as the trivial pair, and the orbit is
-//! STABLE when every other multiplier has |μ| ≤ 1 + TOLERANCE, INSTABLE otherwise (a 1-DOF
-//! system has no other multiplier: always STABLE). Near a stability change a nontrivial pair
-//! passes through +1 too; the rule still sees any multiplier farther from +1 than the trivial
-//! pair, so it can only miss an instability weaker than the trivial pair's own error, which
-//! `trivial_distance` (the larger distance to +1 of the two) reports. `orbit_defect`
-//! (‖Φ ẏ(0) − ẏ(0)‖/‖ẏ(0)‖, zero for an exact orbit and an exact integration, ẏ being a
-//! periodic solution of the variational equation) is a second accuracy indicator. Both shrink
-//! as NB_INST and the harmonics grow; `max_modulus` is kept over all multipliers.
+//! The trivial pair: a conservative system always has a pair of multipliers at +1 (the time
+//! shift of the orbit and the direction along the family). They form a Jordan block, so an
+//! error ε in Φ splits them as 1 ± O(√ε); the orbit of a truncated harmonic balance carries
+//! such an error (measured: |μ − 1| ≈ 0.17 with NB_HARM_LINE = 5 on sdnd122, 0.01 with 20).
+//! The verdict leaves that pair out by restricting Φ to the directions it does not live in
+//! (`reduce.rs`: the map Φ induces on ker ω(ẏ(0), ·) / span ẏ(0)); the 2n − 2 eigenvalues of
+//! that map are the nontrivial multipliers, with an error O(ε) rather than O(√ε), and no
+//! nontrivial multiplier can be mistaken for a trivial one. (Taking the two multipliers
+//! closest to +1 as the trivial pair, as before, flipped the verdict from row to row where a
+//! nontrivial real multiplier sat within the trivial pair's √ε of +1.) `trivial_distance`
+//! (the larger distance to +1 of the two eigenvalues of Φ closest to +1) still reports how
+//! far the pair is split.
+//!
+//! Verdict with its accuracy band: `orbit_defect` = ‖Φ ẏ(0) − ẏ(0)‖/‖ẏ(0)‖ (zero for an
+//! exact orbit and an exact integration, ẏ being a periodic solution of the variational
+//! equation) measures the error of Φ along the truncated orbit. A nontrivial pair leaves
+//! the unit circle through +1 (μ + 1/μ = s passes 2), and near there an error δs moves
+//! |μ| = 1 + x by δs/(2x): the verdict is ambiguous for x ≲ √δs. Measured against
+//! independent shooting multipliers (`shooting_tests.rs`), δs ≤ 2·orbit_defect, so the band
+//! is b = max(TOLERANCE, √(2·orbit_defect)). With μ_max the largest nontrivial modulus:
+//! INSTABLE when μ_max > 1 + b; STABLE when μ_max ≤ 1 + TOLERANCE (an elliptic pair stays
+//! on the unit circle under the error, since Φ stays symplectic along any orbit);
+//! INDETERMINE in between (raise NB_HARM_LINE of the branch, or NB_INST). A 1-DOF system has
+//! no nontrivial multiplier: always STABLE. Where √(2·orbit_defect) ≤ TOLERANCE this is the
+//! former rule on the reduced multipliers.
 //!
 //! Cost and limits: the monodromy is dense (2n × 2n) and propagated step by step, O(n³) per
 //! step (dense K_t·Y products and M solves; the contact only adds a low-rank term), so
@@ -29,7 +39,10 @@
 //! basis would be needed. M must be symmetric positive definite (a mass on every DOF).
 
 mod integrate;
+mod reduce;
 
+#[cfg(test)]
+mod shooting_tests;
 #[cfg(test)]
 mod tests;
 
@@ -49,34 +62,72 @@ pub enum Integrator {
     Rk4,
 }
 
+/// The verdict on one periodic solution (CALC_STABILITE's STABILITE).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Verdict {
+    Stable,
+    Unstable,
+    /// A nontrivial multiplier lies within the accuracy band of the unit circle.
+    Indeterminate,
+}
+
 /// Floquet multipliers of one periodic solution and the verdict.
 #[derive(Clone, Debug)]
 pub struct Floquet {
-    /// (re, im), by decreasing modulus.
+    /// (re, im), by decreasing modulus: every eigenvalue of Φ, the trivial pair included.
     pub multipliers: Vec<(f64, f64)>,
+    /// The 2n − 2 nontrivial multipliers (`reduce.rs`), by decreasing modulus.
+    pub nontrivial: Vec<(f64, f64)>,
     /// Over all multipliers, the trivial pair included.
     pub max_modulus: f64,
-    /// Over all multipliers but the trivial pair (1 when there is none: one DOF).
+    /// Over the nontrivial multipliers (1 when there is none: one DOF).
     pub max_nontrivial_modulus: f64,
     /// Larger distance to +1 of the two multipliers closest to +1 (the trivial pair).
     pub trivial_distance: f64,
     /// ‖Φ ẏ(0) − ẏ(0)‖/‖ẏ(0)‖ with ẏ = (U̇, Ü/ω): how periodic the linearised flow
     /// finds the orbit's own tangent (0 for an exact orbit and integration).
     pub orbit_defect: f64,
-    /// Every multiplier but the trivial pair has |μ| ≤ 1 + tolerance.
+    /// max(TOLERANCE, √(2·orbit_defect)): the accuracy band of the verdict above |μ| = 1.
+    pub band: f64,
+    pub verdict: Verdict,
+    /// `verdict == Verdict::Stable`.
     pub stable: bool,
 }
 
 impl Floquet {
-    /// Code_Aster's STABILITE value: 'STABLE' or 'INSTABLE'.
+    /// The STABILITE value: Code_Aster's 'STABLE' or 'INSTABLE', or aster-nl's 'INDETERMINE'.
     pub fn label(&self) -> &'static str {
-        if self.stable {
-            "STABLE"
-        } else {
-            "INSTABLE"
+        match self.verdict {
+            Verdict::Stable => "STABLE",
+            Verdict::Unstable => "INSTABLE",
+            Verdict::Indeterminate => "INDETERMINE",
         }
     }
 }
+
+/// The verdict from the largest nontrivial modulus, the orbit defect and TOLERANCE, with
+/// its band (module doc). A NaN defect gives an infinite band: never INSTABLE.
+pub fn verdict(max_nontrivial: f64, orbit_defect: f64, tolerance: f64) -> (Verdict, f64) {
+    let spread = if orbit_defect.is_nan() {
+        f64::INFINITY
+    } else {
+        (DEFECT_TO_TRACE * orbit_defect).sqrt()
+    };
+    let band = tolerance.max(spread);
+    let v = if max_nontrivial > 1.0 + band {
+        Verdict::Unstable
+    } else if max_nontrivial <= 1.0 + tolerance {
+        Verdict::Stable
+    } else {
+        Verdict::Indeterminate
+    };
+    (v, band)
+}
+
+/// Measured bound of the error of μ + 1/μ (nontrivial pair) per unit of orbit defect
+/// (`shooting_tests.rs`: at most 2.0 over the fold of testcases/stability_2dof.comm's system
+/// with NB_HARM_LINE 5, largest measured ratio 1.4–2.0).
+pub const DEFECT_TO_TRACE: f64 = 2.0;
 
 /// The orbit U(t) of a stored point, and its time derivatives, from its Fourier series.
 pub(crate) struct Orbit {
@@ -207,6 +258,14 @@ impl Linearised {
         Ok(kt)
     }
 
+    /// ẏ(0) = (U̇(0), Ü(0)): the orbit's tangent in the state space (δU, δV).
+    fn orbit_tangent(&self) -> Vec<f64> {
+        (0..self.n)
+            .map(|d| self.orbit.at(d, 1, 0.0))
+            .chain((0..self.n).map(|d| self.orbit.at(d, 2, 0.0)))
+            .collect()
+    }
+
     /// Contact forces of every shock at time t (per shock, per component): for checks.
     #[cfg(test)]
     pub fn forces(&self, t: f64) -> Result<Vec<Vec<f64>>> {
@@ -312,34 +371,36 @@ pub(crate) fn analyse(lin: &Linearised, phi: &Mat<f64>, tolerance: f64) -> Resul
     let mut multipliers: Vec<(f64, f64)> = eig.iter().map(|c| (c.re, c.im)).collect();
     multipliers.sort_by(|a, b| b.0.hypot(b.1).total_cmp(&a.0.hypot(a.1)));
     let max_modulus = multipliers.first().map(|m| m.0.hypot(m.1)).unwrap_or(0.0);
-    // (distance to +1, modulus), closest to +1 first: the first two are the trivial pair.
-    let mut by_dist: Vec<(f64, f64)> = multipliers
-        .iter()
-        .map(|m| ((m.0 - 1.0).hypot(m.1), m.0.hypot(m.1)))
-        .collect();
-    by_dist.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let trivial_distance = by_dist.iter().take(2).map(|d| d.0).fold(0.0, f64::max);
-    let max_nontrivial_modulus = match by_dist.len() {
-        0..=2 => 1.0,
-        _ => by_dist.iter().skip(2).map(|d| d.1).fold(0.0, f64::max),
+    let mut by_dist: Vec<f64> = multipliers.iter().map(|m| (m.0 - 1.0).hypot(m.1)).collect();
+    by_dist.sort_by(|a, b| a.total_cmp(b));
+    let trivial_distance = by_dist.iter().take(2).copied().fold(0.0, f64::max);
+    let nontrivial =
+        reduce::nontrivial_multipliers(phi, &lin.m, &lin.orbit_tangent(), lin.orbit.omega)?;
+    let max_nontrivial_modulus = nontrivial.first().map(|m| m.0.hypot(m.1)).unwrap_or(1.0);
+    let orbit_defect = orbit_defect(lin, phi);
+    // One DOF: no nontrivial multiplier, nothing can be unstable whatever the accuracy.
+    let (verdict, band) = if nontrivial.is_empty() {
+        (Verdict::Stable, tolerance)
+    } else {
+        verdict(max_nontrivial_modulus, orbit_defect, tolerance)
     };
     Ok(Floquet {
-        stable: max_nontrivial_modulus <= 1.0 + tolerance,
+        stable: verdict == Verdict::Stable,
+        verdict,
+        band,
         multipliers,
+        nontrivial,
         max_modulus,
         max_nontrivial_modulus,
         trivial_distance,
-        orbit_defect: orbit_defect(lin, phi),
+        orbit_defect,
     })
 }
 
 /// ‖Φ ẏ(0) − ẏ(0)‖/‖ẏ(0)‖, ẏ = (U̇, Ü/ω) (velocities and accelerations/ω share units).
 fn orbit_defect(lin: &Linearised, phi: &Mat<f64>) -> f64 {
     let (n, w) = (lin.n, lin.orbit.omega);
-    let y: Vec<f64> = (0..n)
-        .map(|d| lin.orbit.at(d, 1, 0.0))
-        .chain((0..n).map(|d| lin.orbit.at(d, 2, 0.0)))
-        .collect();
+    let y = lin.orbit_tangent();
     let scale = |i: usize| if i < n { 1.0 } else { 1.0 / w };
     let mut num = 0.0;
     let mut den = 0.0;

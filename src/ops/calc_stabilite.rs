@@ -1,11 +1,12 @@
 //! CALC_STABILITE: stability of the rows of a MODE_NON_LINE table from the Floquet
 //! multipliers of their periodic solutions (monodromy over one period of the regularised
-//! system). Fills STABILITE ('STABLE'/'INSTABLE') on the filtered rows and stores every
-//! multiplier in the SQL table `mnl_floquet`.
+//! system). Fills STABILITE ('STABLE'/'INSTABLE', or 'INDETERMINE' where a nontrivial
+//! multiplier is within the accuracy band of the unit circle: `nnm::stability`) on the
+//! filtered rows and stores every multiplier in the SQL table `mnl_floquet`.
 
 use crate::args::Args;
 use crate::error::{Error, Result};
-use crate::nnm::stability::{FloquetAnalyser, Integrator};
+use crate::nnm::stability::{FloquetAnalyser, Integrator, Verdict};
 use crate::ops::common::mnl_problem::{engine_problem, row_of};
 use crate::ops::{common::progress::Progress, OpContext};
 use crate::store::{matrix, mnl as mnl_store, table as table_store};
@@ -62,7 +63,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     )?;
     let analyser = FloquetAnalyser::new(&problem, &settings)?;
     let progress = Progress::new(ctx.progress, rows.len() as u64, "CALC_STABILITE", "rows");
-    let (mut stable, mut unstable) = (0usize, 0usize);
+    let (mut stable, mut unstable, mut undecided) = (0usize, 0usize, 0usize);
     // Rows whose monodromy does not map the orbit's own tangent onto itself within
     // TOLERANCE (orbit defect): their verdict cannot be trusted to TOLERANCE.
     let mut unreliable: Vec<(i64, f64)> = Vec::new();
@@ -77,11 +78,11 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             .floquet(&x, n_inst, integrator, tolerance)
             .map_err(|e| e.keyword(format!("CALC_STABILITE (row NUME_ORDRE={order})")))?;
         mnl_store::save_multipliers(ctx.store, &name, order, &f.multipliers)?;
-        let verdict = if f.stable { "STABLE" } else { "INSTABLE" };
-        if f.stable {
-            stable += 1;
-        } else {
-            unstable += 1;
+        let verdict = f.label();
+        match f.verdict {
+            Verdict::Stable => stable += 1,
+            Verdict::Unstable => unstable += 1,
+            Verdict::Indeterminate => undecided += 1,
         }
         table.rows[r][stab_col] = Cell::K(verdict.to_string());
         // A NaN defect counts as unreliable too.
@@ -90,10 +91,11 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         }
         if ctx.info >= 2 {
             ctx.say(&format!(
-                "  NUME_ORDRE {order:>5}: {verdict:<8} max |mu| (trivial pair excluded) {}  trivial pair at {} from +1  orbit defect {}",
+                "  NUME_ORDRE {order:>5}: {verdict:<11} max |mu| (trivial pair excluded) {}  trivial pair at {} from +1  orbit defect {}  band {}",
                 format_e(f.max_nontrivial_modulus, 6),
                 format_e(f.trivial_distance, 2),
-                format_e(f.orbit_defect, 2)
+                format_e(f.orbit_defect, 2),
+                format_e(f.band, 2)
             ))?;
         }
         progress.inc();
@@ -107,7 +109,12 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         )?;
     }
     ctx.say(&format!(
-        "CALC_STABILITE {name}: {stable} STABLE, {unstable} INSTABLE (TOLERANCE={tolerance:e}); multipliers: SELECT * FROM mnl_floquet WHERE concept='{name}'"
+        "CALC_STABILITE {name}: {stable} STABLE, {unstable} INSTABLE{} (TOLERANCE={tolerance:e}); multipliers: SELECT * FROM mnl_floquet WHERE concept='{name}'",
+        if undecided > 0 {
+            format!(", {undecided} INDETERMINE")
+        } else {
+            String::new()
+        }
     ))
 }
 
@@ -121,10 +128,11 @@ fn unreliable_message(rows: &[(i64, f64)], tolerance: f64) -> String {
     let more = if rows.len() > 10 { ", ..." } else { "" };
     format!(
         "{} row(s) (NUME_ORDRE {}{more}): the monodromy matrix maps the orbit's own velocity \
-         direction onto itself only to {} (> TOLERANCE = {tolerance:e}), so their verdict is \
-         not reliable to TOLERANCE. Raise SCHEMA_TEMPS/NB_INST (integration error) or compute \
-         the branch with a larger NB_HARM_LINE (orbit not resolved in time); the multipliers \
-         are in mnl_floquet.",
+         direction onto itself only to {} (> TOLERANCE = {tolerance:e}), so their multipliers \
+         are known only to about that much: a row is STABLE only when its orbit is accurate to \
+         TOLERANCE, INSTABLE when a multiplier lies beyond that band, INDETERMINE otherwise. \
+         Raise SCHEMA_TEMPS/NB_INST (integration error) or compute the branch with a larger \
+         NB_HARM_LINE (orbit not resolved in time); the multipliers are in mnl_floquet.",
         rows.len(),
         listed.join(", "),
         format_e(worst, 2)

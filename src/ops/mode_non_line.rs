@@ -343,6 +343,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     for w in nnm::resolution_warnings(&problem, &settings, &outcome.points) {
         ctx.alarm("MODE_NON_LINE_1", &w)?;
     }
+    // Internal resonances n:1 with a linear mode (nnm/resonance.rs).
+    if let Some(w) = nnm::resonance_alarm(&problem, &settings, &outcome.points, first_order)? {
+        ctx.alarm("MODE_NON_LINE_7", &w)?;
+    }
     mnl_end::report(
         ctx,
         outcome.error,

@@ -1,0 +1,320 @@
+//! Internal resonances along a branch: where n times the branch frequency crosses the
+//! frequency f_j of a linear mode j that the contact forces can drive (MODE_NON_LINE's alarm
+//! MODE_NON_LINE_7, docs/mode_non_line.md "Internal resonances").
+//!
+//! Near n·f = f_j harmonic n of the contact force drives mode j at its own frequency: the
+//! family of the starting mode meets the family that carries mode j at harmonic n, and the
+//! continuation may go on along either. The harmonic balance holds harmonic n only when
+//! NB_HARM_LINE ≥ n; with fewer it does not see the resonance and runs through it on its
+//! own truncated family, so two settings may follow different, equally real families.
+//!
+//! The rule (chosen so that it neither floods nor misses):
+//! - the linear modes are the generalized eigenpairs of the stored K and M, computed densely
+//!   (up to [`MAX_DENSE_DOFS`] DOFs; beyond, no check);
+//! - a pair (j, n) is met between two consecutive rows when n·f − f_j changes sign between
+//!   them (the row past the change is named), or at a row where |n·f − f_j| ≤ [`BAND`]·f_j
+//!   (a branch that locks onto the resonance without crossing it); n = 1 with the mode the
+//!   branch starts from (the mode nearest the first row's frequency) is the branch itself;
+//! - it is reported only if the contact can drive mode j at harmonic n at that row: n ≤
+//!   NB_HARM_NONL (the force is known to that harmonic) and the strength
+//!   s = c_j·|F_n|/(k_ref·A) ≥ [`STRENGTH_MIN`], with c_j the mode's largest component at the
+//!   shock DOFs over its largest component anywhere (0 for a mode the shocks cannot touch,
+//!   e.g. bending in the other plane), |F_n| the amplitude of harmonic n of the contact
+//!   force projected on mode j's shock components (normalised by c_j's norm), k_ref =
+//!   1/(K⁻¹)ₚₚ at the shock DOF and A the first-harmonic amplitude there. A harmonic the
+//!   force does not carry (the even ones of a symmetric BI_PLAN orbit) or a force still at its
+//!   regularisation level (before contact: s ≈ PARA_REGUL) is not reported;
+//! - one alarm per run lists the pairs met, strongest first, at most [`LISTED`] of them;
+//! - a pair met within [`BRANCH_POINT_ROWS`] rows of a row flagged BIFURCATION='OUI' is a
+//!   branch point between the two families and is said so.
+
+use super::{contact_coefficients, displacement_coefficients, Point, Problem, Settings, ShockLaw};
+use crate::error::{Error, Result};
+use faer::linalg::triangular_solve::{
+    solve_lower_triangular_in_place, solve_upper_triangular_in_place,
+};
+use faer::{Par, Side};
+
+/// Largest model (free DOFs) whose linear modes are computed densely for the check.
+pub const MAX_DENSE_DOFS: usize = 600;
+/// Relative distance |n·f − f_j|/f_j under which a row counts as on the resonance.
+pub const BAND: f64 = 1e-3;
+/// Smallest strength c_j·|F_n|/(k_ref·A) reported (module doc).
+pub const STRENGTH_MIN: f64 = 1e-3;
+/// Pairs listed in the alarm (the others are counted).
+pub const LISTED: usize = 8;
+/// Rows either side of a met pair searched for a BIFURCATION flag.
+pub const BRANCH_POINT_ROWS: usize = 2;
+
+/// A linear mode of (K, M): number (1-based, by increasing frequency), frequency (Hz) and
+/// shape on the free DOFs (mass-normalised).
+#[derive(Clone, Debug)]
+pub struct LinearMode {
+    pub number: usize,
+    pub frequency: f64,
+    pub shape: Vec<f64>,
+}
+
+/// An n:1 internal resonance met along the rows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Resonance {
+    pub mode: usize,
+    pub mode_frequency: f64,
+    pub order: usize,
+    /// Index (0-based) of the row where it is met.
+    pub row: usize,
+    pub energy: f64,
+    pub frequency: f64,
+    /// NB_HARM_LINE ≥ n: the harmonic balance can represent the resonance.
+    pub represented: bool,
+    pub strength: f64,
+    /// Index of a row flagged BIFURCATION within [`BRANCH_POINT_ROWS`] rows.
+    pub branch_point: Option<usize>,
+}
+
+/// Every linear mode of (K, M) by increasing frequency, or None for a model larger than
+/// [`MAX_DENSE_DOFS`] or whose M is not positive definite (a DOF without mass).
+pub fn linear_modes(problem: &Problem) -> Result<Option<Vec<LinearMode>>> {
+    let n = problem.k.nrows();
+    if n > MAX_DENSE_DOFS {
+        return Ok(None);
+    }
+    let kd = problem.k.to_dense();
+    let md = problem.m.to_dense();
+    // A DOF without mass has no linear mode of finite frequency to resonate with: no check.
+    let Ok(llt) = md.llt(Side::Lower) else {
+        return Ok(None);
+    };
+    let l = llt.L();
+    // C = L⁻¹ K L⁻ᵀ (symmetric; only its lower triangle is read).
+    let mut x = kd.clone();
+    solve_lower_triangular_in_place(l, x.as_mut(), Par::Seq);
+    let mut c = x.transpose().to_owned();
+    solve_lower_triangular_in_place(l, c.as_mut(), Par::Seq);
+    let eig = c
+        .self_adjoint_eigen(Side::Lower)
+        .map_err(|e| Error::numerical(format!("dense eigensolver failed: {e:?}")))?;
+    let mut y = eig.U().to_owned();
+    solve_upper_triangular_in_place(l.transpose(), y.as_mut(), Par::Seq);
+    let mut modes: Vec<LinearMode> = (0..n)
+        .map(|i| LinearMode {
+            number: 0,
+            frequency: eig.S()[i].max(0.0).sqrt() / (2.0 * std::f64::consts::PI),
+            shape: y.col_as_slice(i).to_vec(),
+        })
+        .collect();
+    modes.sort_by(|a, b| a.frequency.total_cmp(&b.frequency));
+    for (i, m) in modes.iter_mut().enumerate() {
+        m.number = i + 1;
+    }
+    Ok(Some(modes))
+}
+
+/// The force components of each shock and the DOFs they act on: (shock, unknown, DOF).
+fn force_components(problem: &Problem) -> Vec<(usize, usize, usize)> {
+    problem
+        .shocks
+        .iter()
+        .enumerate()
+        .flat_map(|(s, sh)| {
+            let comps = match sh.law {
+                ShockLaw::Cercle { .. } => 2,
+                _ => 1,
+            };
+            (0..comps.min(sh.dofs.len())).map(move |c| (s, c, sh.dofs[c]))
+        })
+        .collect()
+}
+
+/// The n:1 resonances met along `points` (module doc), in row order.
+pub fn internal_resonances(
+    problem: &Problem,
+    settings: &Settings,
+    points: &[Point],
+    modes: &[LinearMode],
+) -> Result<Vec<Resonance>> {
+    let comps = force_components(problem);
+    if points.is_empty() || comps.is_empty() || modes.is_empty() {
+        return Ok(Vec::new());
+    }
+    let f0 = points[0].frequency;
+    let own = modes
+        .iter()
+        .min_by(|a, b| {
+            (a.frequency - f0)
+                .abs()
+                .total_cmp(&(b.frequency - f0).abs())
+        })
+        .map(|m| m.number);
+    // k_ref = 1/(K⁻¹)ₚₚ = 1/Σ_j φ_j[p]²/ω_j² at each shock DOF (mass-normalised modes).
+    let k_ref: Vec<f64> = comps
+        .iter()
+        .map(|&(_, _, d)| {
+            let flex: f64 = modes
+                .iter()
+                .filter(|m| m.frequency > 0.0)
+                .map(|m| (m.shape[d] / (2.0 * std::f64::consts::PI * m.frequency)).powi(2))
+                .sum();
+            1.0 / flex
+        })
+        .collect();
+    let h_nl = settings.h_nonl;
+    let mut met: Vec<Resonance> = Vec::new();
+    for m in modes {
+        let largest = m.shape.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let at_shocks: Vec<f64> = comps.iter().map(|&(_, _, d)| m.shape[d]).collect();
+        let coupling = at_shocks.iter().fold(0.0f64, |a, v| a.max(v.abs())) / largest;
+        if coupling.is_nan() || coupling <= 1e-8 || m.frequency <= 0.0 {
+            continue;
+        }
+        let fj = m.frequency;
+        let mut seen: Vec<usize> = Vec::new();
+        for i in 0..points.len() {
+            let fi = points[i].frequency;
+            let prev = if i > 0 { points[i - 1].frequency } else { fi };
+            if fi.is_nan() || prev.is_nan() || fi <= 0.0 || prev <= 0.0 {
+                continue;
+            }
+            let (lo, hi) = (fi.min(prev), fi.max(prev));
+            // Orders whose n·f − f_j changes sign over [lo, hi], or sits in the band at fi.
+            let n_lo = ((fj / hi).ceil() as usize).max(1);
+            let n_hi = (fj / lo).floor() as usize;
+            let near = (fj / fi).round() as usize;
+            let mut orders: Vec<usize> = if i > 0 && n_lo <= n_hi {
+                (n_lo..=n_hi.min(h_nl)).collect()
+            } else {
+                Vec::new()
+            };
+            if near >= 1 && (near as f64 * fi - fj).abs() <= BAND * fj && !orders.contains(&near) {
+                orders.push(near);
+            }
+            for n in orders {
+                if n > h_nl || seen.contains(&n) || (n == 1 && Some(m.number) == own) {
+                    continue;
+                }
+                let strength = drive(
+                    problem, settings, &points[i], &comps, &at_shocks, coupling, &k_ref, n,
+                )?;
+                if strength < STRENGTH_MIN {
+                    continue;
+                }
+                seen.push(n);
+                let window = i.saturating_sub(BRANCH_POINT_ROWS)
+                    ..=(i + BRANCH_POINT_ROWS).min(points.len() - 1);
+                met.push(Resonance {
+                    mode: m.number,
+                    mode_frequency: fj,
+                    order: n,
+                    row: i,
+                    energy: points[i].energy,
+                    frequency: fi,
+                    represented: settings.h_lin >= n,
+                    strength,
+                    branch_point: window.into_iter().find(|&r| points[r].bifurcation),
+                });
+            }
+        }
+    }
+    met.sort_by(|a, b| a.row.cmp(&b.row).then(a.mode.cmp(&b.mode)));
+    Ok(met)
+}
+
+/// c_j·|F_n|/(k_ref·A) at one row (module doc), `coupling` = c_j.
+#[allow(clippy::too_many_arguments)]
+fn drive(
+    problem: &Problem,
+    settings: &Settings,
+    p: &Point,
+    comps: &[(usize, usize, usize)],
+    at_shocks: &[f64],
+    coupling: f64,
+    k_ref: &[f64],
+    n: usize,
+) -> Result<f64> {
+    let force = contact_coefficients(problem, settings, &p.x)?;
+    let disp = displacement_coefficients(problem, settings, &p.x)?;
+    let (h_nl, h_l) = (settings.h_nonl, settings.h_lin);
+    let norm = at_shocks.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let (mut c, mut s) = (0.0, 0.0);
+    let mut scale = 0.0f64;
+    for (k, &(sh, un, d)) in comps.iter().enumerate() {
+        let f = &force[sh][un];
+        let w = at_shocks[k] / norm;
+        c += w * f[n];
+        s += w * f[h_nl + n];
+        let u = &disp[d];
+        scale = scale.max(k_ref[k] * u[1].hypot(u[h_l + 1]));
+    }
+    Ok(if scale > 0.0 {
+        coupling * c.hypot(s) / scale
+    } else {
+        0.0
+    })
+}
+
+/// The alarm text for the resonances met along `points` (rows numbered from `first_order`),
+/// or None when there is none or the model is too large for the dense check.
+pub fn resonance_alarm(
+    problem: &Problem,
+    settings: &Settings,
+    points: &[Point],
+    first_order: i64,
+) -> Result<Option<String>> {
+    let Some(modes) = linear_modes(problem)? else {
+        return Ok(None);
+    };
+    let mut met = internal_resonances(problem, settings, points, &modes)?;
+    if met.is_empty() {
+        return Ok(None);
+    }
+    let total = met.len();
+    met.sort_by(|a, b| b.strength.total_cmp(&a.strength));
+    met.truncate(LISTED);
+    met.sort_by(|a, b| a.row.cmp(&b.row).then(a.mode.cmp(&b.mode)));
+    let h = settings.h_lin;
+    let lines: Vec<String> = met
+        .iter()
+        .map(|r| {
+            let order = first_order + r.row as i64;
+            let held = if r.represented {
+                format!("NB_HARM_LINE={h} >= {} holds it", r.order)
+            } else {
+                format!(
+                    "NB_HARM_LINE={h} < {} cannot represent it: the branch runs through it on \
+                     its truncated family",
+                    r.order
+                )
+            };
+            let bp = match r.branch_point {
+                Some(b) => format!(
+                    "; row {} is flagged BIFURCATION: a branch point between the family of the \
+                     starting mode and the family that carries mode {} at harmonic {}, the rows \
+                     after it may follow either",
+                    first_order + b as i64,
+                    r.mode,
+                    r.order
+                ),
+                None => String::new(),
+            };
+            format!(
+                "  {}:1 with linear mode {} ({:.6e} Hz) at NUME_ORDRE {order} (FREQUENCE \
+                 {:.6e} Hz, ENERGIE {:.6e} J, strength {:.1e}): {held}{bp}",
+                r.order, r.mode, r.mode_frequency, r.frequency, r.energy, r.strength
+            )
+        })
+        .collect();
+    let more = if total > met.len() {
+        format!("\n  ... and {} weaker one(s)", total - met.len())
+    } else {
+        String::new()
+    };
+    Ok(Some(format!(
+        "the branch meets {total} internal resonance(s) n:1 (n x FREQUENCE crosses the frequency \
+         of a linear mode the shocks drive, with harmonic n of the contact force):\n{}{more}\n\
+         Near such a point two families of periodic orbits meet; where NB_HARM_LINE < n the \
+         computed branch ignores the resonance, and a larger NB_HARM_LINE may follow the other \
+         family (check the rows past it with a larger NB_HARM_LINE, or by REST_MODE_NONL and a \
+         time integration)",
+        lines.join("\n")
+    )))
+}
