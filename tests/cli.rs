@@ -1001,3 +1001,87 @@ fn a_mode_non_line_name_given_again_drops_its_shock_table() {
         .unwrap();
     assert_eq!(tables, 0, "{out}");
 }
+
+/// Copies `files` of testcases/ into a fresh directory (so that pictures and databases land
+/// there) and runs the first one; returns the directory and the output.
+fn run_copied(files: &[&str]) -> (tempfile::TempDir, Output) {
+    let dir = tempfile::tempdir().unwrap();
+    for f in files {
+        std::fs::copy(case(f), dir.path().join(f)).unwrap();
+    }
+    let o = bin()
+        .arg("run")
+        .arg(dir.path().join(files[0]))
+        .output()
+        .unwrap();
+    (dir, o)
+}
+
+/// A PNG the run drew: decodes, at least 640 x 480, and not one colour.
+fn assert_picture(path: &Path) {
+    let png = image::open(path).unwrap().to_rgb8();
+    assert!(png.width() >= 640 && png.height() >= 480, "{path:?}");
+    let first = png.get_pixel(0, 0);
+    assert!(png.pixels().any(|p| p != first), "{path:?} is blank");
+}
+
+#[test]
+fn the_readme_showcase_ends_clean_checked_against_the_exact_curve() {
+    let (dir, o) = run_copied(&["nnm_wall.comm", "nnm_wall.mail"]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    // TEST_RESU of the linear mode, then five rows against the exact frequency.
+    assert!(out.contains("tests: 6 OK, 0 NOOK"), "{out}");
+    assert_eq!(out.matches(" OK   ANALYTIQUE").count(), 6, "{out}");
+    assert!(!out.contains("<A>"), "an alarm in the showcase:\n{out}");
+    assert_picture(&dir.path().join("nnm_wall.png"));
+}
+
+#[test]
+fn the_tutorial_file_checks_runs_clean_and_its_typo_example_says_what_the_tutorial_shows() {
+    let (dir, o) = run_copied(&["tutorial_chain.comm", "tutorial_chain.mail"]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert!(out.contains("tests: 4 OK, 0 NOOK"), "{out}");
+    assert!(
+        !out.contains("<A>"),
+        "an alarm in the tutorial's run:\n{out}"
+    );
+    assert_picture(&dir.path().join("tutorial_chain.png"));
+    let comm = dir.path().join("tutorial_chain.comm");
+    let o = bin().arg("check").arg(&comm).output().unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    // docs/tutorial.md, section 3: GROUP_NO='BOT' instead of 'BOUT'.
+    let src = std::fs::read_to_string(&comm).unwrap();
+    std::fs::write(&comm, src.replacen("GROUP_NO='BOUT'", "GROUP_NO='BOT'", 1)).unwrap();
+    let o = bin().arg("check").arg(&comm).output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    let tutorial =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/tutorial.md"))
+            .unwrap();
+    for line in [
+        "GROUP_NO 'BOT' is not in the mesh",
+        "did you mean 'BOUT'? the mesh has 3 GROUP_NO(s): ENCASTRE, MASSES, BOUT",
+    ] {
+        assert!(out.contains(line), "{line}:\n{out}");
+        assert!(tutorial.contains(line), "docs/tutorial.md lost: {line}");
+    }
+}
+
+#[test]
+fn the_readme_and_tutorial_commands_name_files_that_exist() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for doc in ["README.md", "docs/tutorial.md"] {
+        let text = std::fs::read_to_string(root.join(doc)).unwrap();
+        let mut named = 0;
+        for word in text.split_whitespace() {
+            let word = word.trim_matches(|c: char| "`,;:()".contains(c));
+            if word.starts_with("testcases/") && word.ends_with(".comm") {
+                assert!(root.join(word).is_file(), "{doc} names {word}");
+                named += 1;
+            }
+        }
+        assert!(named > 0, "{doc} names no command file");
+    }
+}

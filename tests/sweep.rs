@@ -540,3 +540,47 @@ fn slurm_sweep_gives_the_local_sweeps_database() {
     assert_eq!(o.status.code(), Some(3), "{}", text(&o));
     assert_eq!(check_merged(&local_out), from_slurm);
 }
+
+#[test]
+fn the_shipped_demo_reaches_far_into_contact_with_distinct_curves_and_no_alarm() {
+    // testcases/sweep/wall.toml as docs/sweeps.md runs it. Its earlier settings barely
+    // reached contact (every curve ended below 0.504 Hz, on top of one another).
+    let dir = tempfile::tempdir().unwrap();
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("testcases/sweep");
+    for f in ["wall.comm", "wall.mail", "wall.toml"] {
+        std::fs::copy(src.join(f), dir.path().join(f)).unwrap();
+    }
+    let o = bin()
+        .arg("sweep")
+        .arg(dir.path().join("wall.toml"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let out = dir.path().join("wall.sweep");
+    for entry in std::fs::read_dir(out.join("points")).unwrap() {
+        let log = std::fs::read_to_string(entry.unwrap().path().join("run.log")).unwrap();
+        assert!(!log.contains("<A>"), "{log}");
+    }
+    let merged = open_ro(&out.join("sweep.db"));
+    let per_point = rows(
+        &merged,
+        "SELECT JEU, RIGI_NOR, MIN(ENERGIE), MAX(ENERGIE), MAX(FREQUENCE) FROM MNL \
+         GROUP BY JEU, RIGI_NOR ORDER BY RIGI_NOR, JEU",
+        None,
+    );
+    assert_eq!(per_point.len(), 6);
+    let f_lin = 10f64.sqrt() / (2.0 * std::f64::consts::PI);
+    for p in &per_point {
+        let (jeu, e_min, e_max) = (real(&p[0]), real(&p[2]), real(&p[3]));
+        let contact = 0.5 * 10.0 * jeu * jeu;
+        // Each curve starts at first contact and goes ten times past it in energy.
+        assert!((e_min / contact - 1.0).abs() < 0.05, "{p:?}");
+        assert!(e_max > 10.0 * contact, "{p:?}");
+        // Well above the linear frequency: the stop shapes the curve.
+        assert!(real(&p[4]) > f_lin + 0.15, "{p:?}");
+    }
+    // The two contact stiffnesses end apart (toward 0.715 and 0.826 Hz).
+    let soft = real(&per_point[0][4]);
+    let stiff = real(&per_point[3][4]);
+    assert!(stiff - soft > 0.1, "{per_point:?}");
+}
