@@ -263,7 +263,8 @@ fn local_sweep_merges_every_run_and_lists_the_failed_points() {
     assert!(stderr.contains("8 to run"), "{}", text(&o));
     assert!(stderr.contains("[8/8]"), "{}", text(&o));
     let first = check_merged(&out);
-    assert_eq!(first.len(), 6 * 10, "10 branches x 6 points");
+    // One row per branch (NB_PAS_MAN=1), NB_BRANCHE of the template's.
+    assert_eq!(first.len(), 6 * 35, "35 branches x 6 points");
 
     // A rerun runs only the failed points; the others keep their outcome untouched.
     let ok_id = "JEU=0.01,RIGI_NOR=50.0";
@@ -280,9 +281,12 @@ fn local_sweep_merges_every_run_and_lists_the_failed_points() {
 
     // A change of the template reruns every point it changes (all of them).
     let t = dir.path().join("wall.comm");
-    let changed = std::fs::read_to_string(&t)
-        .unwrap()
-        .replace("NB_HARM_NONL=64", "NB_HARM_NONL=65");
+    let template = std::fs::read_to_string(&t).unwrap();
+    assert!(
+        template.contains("NB_HARM_NONL=100"),
+        "the template changed"
+    );
+    let changed = template.replace("NB_HARM_NONL=100", "NB_HARM_NONL=101");
     std::fs::write(&t, changed).unwrap();
     let o = bin().arg("sweep").arg(&study).output().unwrap();
     assert!(
