@@ -7,6 +7,7 @@
 use crate::args::Args;
 use crate::bench::measure;
 use crate::catalog;
+use crate::check_groups::MeshGroups;
 use crate::error::{Error, Result};
 use crate::lang::{self, Env, Host, Source};
 use crate::ops::{self, OpContext, TestOutcome, Units};
@@ -545,6 +546,8 @@ struct Checker {
     default_db: PathBuf,
     explicit_db: Option<PathBuf>,
     units: Units,
+    /// The meshes the file reads and the groups its calls create (GROUP_NO/GROUP_MA names).
+    groups: MeshGroups,
 }
 
 impl Checker {
@@ -560,6 +563,12 @@ impl Checker {
             Ok(store) => match store.concepts() {
                 Ok(list) => {
                     for c in list {
+                        if c.ty == "maillage_sdaster" {
+                            match crate::store::mesh::load_mesh(&store, &c.name) {
+                                Ok(m) => self.groups.add(&c.name, m),
+                                Err(_) => self.groups.give_up(),
+                            }
+                        }
                         self.from_db.push(c.name.clone());
                         self.concepts.insert(c.name, c.ty);
                     }
@@ -569,6 +578,7 @@ impl Checker {
             },
             Err(_) => {
                 self.names_unknown = true;
+                self.groups.give_up();
                 self.errors.push(
                     Error::validation(format!(
                         "no database to continue at {}: the concepts this file takes from an \
@@ -596,18 +606,36 @@ impl Checker {
                     .text("FORMAT")
                     .and_then(crate::mesh::MeshFormat::from_keyword);
                 let (Some(format), Some(unit)) = (format, args.int("UNITE")) else {
+                    self.groups.give_up();
                     return;
                 };
                 match ops::lire_maillage::resolve_file(&self.units, unit, format) {
                     Ok((path, _)) => {
                         if let Some(e) = mesh_file_problem(&path, format) {
+                            self.groups.give_up();
                             self.errors
                                 .push(at(e.keyword(format!("{}/FORMAT", call.op))));
+                            return;
+                        }
+                        // Read as the run reads it: its errors now, its groups for the
+                        // GROUP_NO/GROUP_MA names of later calls.
+                        match (
+                            crate::mesh::read_file(&path, format, args.text("NOM_MED")),
+                            &call.result,
+                        ) {
+                            (Ok(mesh), Some(name)) => self.groups.add(name, mesh),
+                            (Ok(_), None) => self.groups.give_up(),
+                            (Err(e), _) => {
+                                self.groups.give_up();
+                                self.errors.push(at(e));
+                            }
                         }
                     }
-                    Err(e) => self
-                        .errors
-                        .push(at(e.keyword(format!("{}/UNITE", call.op)))),
+                    Err(e) => {
+                        self.groups.give_up();
+                        self.errors
+                            .push(at(e.keyword(format!("{}/UNITE", call.op))))
+                    }
                 }
             }
             "MODE_NON_LINE" | "REST_MODE_NONL" | "CALC_STABILITE" => {
@@ -724,11 +752,27 @@ impl Host for Checker {
         // Nothing runs: the rows are known only when the file runs.
         Ok(Value::Unknown)
     }
+    fn recover(&mut self, error: &Error) -> bool {
+        // Every error of the file, in one pass: what failed is carried on as unknown. A
+        // loop body is checked once per item: its errors are reported once.
+        let seen = self
+            .errors
+            .iter()
+            .any(|e| e.message == error.message && e.location == error.location);
+        if !seen {
+            self.errors.push(error.clone());
+        }
+        true
+    }
     fn call(&mut self, call: CommandCall) -> Result<Value> {
         self.start(&call);
         match catalog::validate(&call, &self.file) {
             Ok(args) => {
                 self.static_checks(&call, &args);
+                self.groups.note_created(&call.op, &args);
+                for (e, span) in self.groups.unknown_names(&args) {
+                    self.errors.push(e.at(&self.file, span));
+                }
                 let outputs = catalog::get(&call.op)
                     .map(|def| co_outputs(&def.simp, &def.fact, &args))
                     .unwrap_or_default();
@@ -792,6 +836,7 @@ pub fn check_source(src: &Source, opts: CheckOptions) -> Vec<Error> {
         default_db: Path::new(&src.name).with_extension("db"),
         explicit_db: opts.db,
         units,
+        groups: MeshGroups::default(),
     };
     let mut env = Env::default();
     if let Err(e) = lang::execute(&program, src, &mut env, &mut checker) {

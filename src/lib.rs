@@ -14,7 +14,8 @@
 //! - [`table`], [`function`]: in-memory tables and functions (filters, sorts, interpolation).
 //! - [`plot`]: pictures (PNG, SVG), no SQL.
 //! - [`ops`]: one thin file per operator.
-//! - [`interp`]: runs a command file, one store transaction per operator.
+//! - [`interp`]: runs a command file, one store transaction per operator, or checks it
+//!   (`aster-nl check`); [`check_groups`]: the mesh groups a check knows.
 //! - [`bench`]: speed and memory of MODE_NON_LINE (`aster-nl bench`).
 //! - [`study`]: the measured accuracy-versus-time study of the engine (`aster-nl study`).
 //! - [`sweep`]: parametric sweeps, one `aster-nl run` process per point, local or Slurm,
@@ -29,6 +30,7 @@
 pub mod args;
 pub mod bench;
 pub mod catalog;
+pub mod check_groups;
 pub mod error;
 pub mod export;
 pub mod function;

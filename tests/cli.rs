@@ -207,6 +207,112 @@ fn check_carries_values_only_a_run_knows() {
     assert!(out.contains("TYPE_TEST") && out.contains("MAXI"), "{out}");
 }
 
+/// sdnd122a's one-DOF model as a port from Code_Aster might start: `(comm, mesh)` written
+/// into `dir`, the mesh beside the command file (read by `check` and by the run).
+fn port_of_sdnd122a(dir: &Path, body: &str) -> PathBuf {
+    let comm = dir.join("port.comm");
+    std::fs::copy(case("sdnd122a.mail"), dir.join("port.mail")).unwrap();
+    std::fs::write(&comm, body).unwrap();
+    comm
+}
+
+const PORT_HEAD: &str = "DEBUT()\n\
+     MAIL = LIRE_MAILLAGE(FORMAT='ASTER', UNITE=20)\n\
+     MODELE = AFFE_MODELE(MAILLAGE=MAIL, AFFE=_F(GROUP_MA=('M1', 'P2'), PHENOMENE='MECANIQUE', \
+     MODELISATION='DIS_T'))\n";
+
+const PORT_MATRICES: &str = "ASSEMBLAGE(MODELE=MODELE, CARA_ELEM=CARA, CHAR_CINE=CL, \
+     NUME_DDL=CO('NUMEDDL'), MATR_ASSE=(_F(MATRICE=CO('RIGIDITE'), OPTION='RIGI_MECA'), \
+     _F(MATRICE=CO('MASSE'), OPTION='MASS_MECA')))\n\
+     MODES = CALC_MODES(MATR_RIGI=RIGIDITE, MATR_MASS=MASSE, OPTION='BANDE', \
+     CALC_FREQ=_F(FREQ=(0.01, 10.)))\n";
+
+#[test]
+fn check_goes_past_unsupported_operators_and_unknown_names() {
+    // Before, `check` stopped at the first unknown (here MODEL, line 4): one error per try.
+    let dir = tempfile::tempdir().unwrap();
+    let body = format!(
+        "{PORT_HEAD}\
+         CARA = AFFE_CARA_ELEM(MODELE=MODEL, DISCRET=(_F(CARA='M_T_D_N', GROUP_MA='P2', VALE=1.0), \
+         _F(CARA='K_T_D_L', GROUP_MA='M1', VALE=(10., 0., 0.), REPERE='GLOBAL')))\n\
+         CL = AFFE_CHAR_CINE(MODELE=MODELE, MECA_IMPO=(_F(GROUP_NO='N1', DX=0., DY=0., DZ=0.), \
+         _F(GROUP_NO='NO2', DY=0., DZ=0.)))\n\
+         F = FORMULE(VALE='2.*X', NOM_PARA='X')\n\
+         {PORT_MATRICES}\
+         DYN = DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='PHYS', MATR_RIGI=RIGIDITE, FONC=F)\n\
+         MNL = MODE_NON_LINE(MATR_RIGI=RIGIDITE, MATR_MASS=MASSE, \
+         ETAT_INIT=_F(MODE_LINE=MODES, NUME_ORDRE=1), \
+         CHOC=_F(OBSTACLE='PLAN', GROUP_NO='N2', NOM_CMP='DX', JEU=-0.01, RIGI_NOR=50.), \
+         RESOLUTION=_F(METHODE='EHMAN', NB_HARM_LINE=5, NB_HARM_NONL=100, NB_PAS_MAN=1, \
+         NB_BRANCH=10))\n\
+         IMPR_RESU(FORMAT='MED', RESU=_F(RESULTAT=DYN))\n\
+         FIN()\n"
+    );
+    let comm = port_of_sdnd122a(dir.path(), &body);
+    let o = bin().arg("check").arg(&comm).output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    // The misspelt NB_BRANCH also leaves NB_BRANCHE missing: 8 errors in all.
+    assert!(out.contains("8 error(s)"), "{out}");
+    for expected in [
+        "port.comm:4:",
+        "name 'MODEL' is not defined",
+        "did you mean 'MODELE'?",
+        "port.comm:5:",
+        "GROUP_NO 'NO2' is not in the mesh",
+        "did you mean 'N2'? the mesh has 2 GROUP_NO(s): N1, N2",
+        "FORMULE is a Code_Aster operator that aster-nl does not support",
+        "DYNA_VIBRA is a Code_Aster operator that aster-nl does not support",
+        "MODE_NON_LINE/CHOC/JEU: expected a value > 0.0, got -0.01",
+        "unknown keyword NB_BRANCH",
+        "did you mean NB_BRANCHE?",
+        "missing mandatory keyword NB_BRANCHE",
+        "IMPR_RESU is a Code_Aster operator that aster-nl does not support",
+    ] {
+        assert!(out.contains(expected), "{expected}:\n{out}");
+    }
+}
+
+#[test]
+fn a_misspelt_group_is_found_by_check_and_by_the_run_with_the_groups_listed() {
+    let dir = tempfile::tempdir().unwrap();
+    let body = format!(
+        "{PORT_HEAD}\
+         CARA = AFFE_CARA_ELEM(MODELE=MODELE, DISCRET=(_F(CARA='M_T_D_N', GROUP_MA='P2', VALE=1.0), \
+         _F(CARA='K_T_D_L', GROUP_MA='M1', VALE=(10., 0., 0.), REPERE='GLOBAL')))\n\
+         CL = AFFE_CHAR_CINE(MODELE=MODELE, MECA_IMPO=(_F(GROUP_NO='N1', DX=0., DY=0., DZ=0.), \
+         _F(GROUP_NO='N2', DY=0., DZ=0.)))\n\
+         {PORT_MATRICES}\
+         MNL = MODE_NON_LINE(MATR_RIGI=RIGIDITE, MATR_MASS=MASSE, \
+         ETAT_INIT=_F(MODE_LINE=MODES, NUME_ORDRE=1), \
+         CHOC=_F(OBSTACLE='PLAN', GROUP_NO='NO2', NOM_CMP='DX', JEU=0.01, RIGI_NOR=50.), \
+         RESOLUTION=_F(METHODE='EHMAN', NB_HARM_LINE=5, NB_HARM_NONL=20, NB_PAS_MAN=1, \
+         NB_BRANCHE=2))\n\
+         FIN()\n"
+    );
+    let comm = port_of_sdnd122a(dir.path(), &body);
+    // `check` reads the mesh beside the file (before: OK, the name was invisible to it).
+    let o = bin().arg("check").arg(&comm).output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("1 error(s)"), "{out}");
+    assert!(out.contains("GROUP_NO 'NO2' is not in the mesh"), "{out}");
+    assert!(out.contains("MODE_NON_LINE/CHOC/GROUP_NO"), "{out}");
+    assert!(
+        out.contains("did you mean 'N2'? the mesh has 2 GROUP_NO(s): N1, N2"),
+        "{out}"
+    );
+    // The run's own error lists the groups and suggests (before: the message alone).
+    let o = run_with_db(&comm, dir.path().join("port.db"));
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("mesh MAIL has no GROUP_NO 'NO2'"), "{out}");
+    assert!(
+        out.contains("did you mean 'N2'? the mesh has 2 GROUP_NO(s): N1, N2"),
+        "{out}"
+    );
+}
+
 #[test]
 fn failed_operator_keeps_earlier_concepts() {
     let dir = tempfile::tempdir().unwrap();
@@ -894,4 +1000,88 @@ fn a_mode_non_line_name_given_again_drops_its_shock_table() {
         )
         .unwrap();
     assert_eq!(tables, 0, "{out}");
+}
+
+/// Copies `files` of testcases/ into a fresh directory (so that pictures and databases land
+/// there) and runs the first one; returns the directory and the output.
+fn run_copied(files: &[&str]) -> (tempfile::TempDir, Output) {
+    let dir = tempfile::tempdir().unwrap();
+    for f in files {
+        std::fs::copy(case(f), dir.path().join(f)).unwrap();
+    }
+    let o = bin()
+        .arg("run")
+        .arg(dir.path().join(files[0]))
+        .output()
+        .unwrap();
+    (dir, o)
+}
+
+/// A PNG the run drew: decodes, at least 640 x 480, and not one colour.
+fn assert_picture(path: &Path) {
+    let png = image::open(path).unwrap().to_rgb8();
+    assert!(png.width() >= 640 && png.height() >= 480, "{path:?}");
+    let first = png.get_pixel(0, 0);
+    assert!(png.pixels().any(|p| p != first), "{path:?} is blank");
+}
+
+#[test]
+fn the_readme_showcase_ends_clean_checked_against_the_exact_curve() {
+    let (dir, o) = run_copied(&["nnm_wall.comm", "nnm_wall.mail"]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    // TEST_RESU of the linear mode, then five rows against the exact frequency.
+    assert!(out.contains("tests: 6 OK, 0 NOOK"), "{out}");
+    assert_eq!(out.matches(" OK   ANALYTIQUE").count(), 6, "{out}");
+    assert!(!out.contains("<A>"), "an alarm in the showcase:\n{out}");
+    assert_picture(&dir.path().join("nnm_wall.png"));
+}
+
+#[test]
+fn the_tutorial_file_checks_runs_clean_and_its_typo_example_says_what_the_tutorial_shows() {
+    let (dir, o) = run_copied(&["tutorial_chain.comm", "tutorial_chain.mail"]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert!(out.contains("tests: 4 OK, 0 NOOK"), "{out}");
+    assert!(
+        !out.contains("<A>"),
+        "an alarm in the tutorial's run:\n{out}"
+    );
+    assert_picture(&dir.path().join("tutorial_chain.png"));
+    let comm = dir.path().join("tutorial_chain.comm");
+    let o = bin().arg("check").arg(&comm).output().unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    // docs/tutorial.md, section 3: GROUP_NO='BOT' instead of 'BOUT'.
+    let src = std::fs::read_to_string(&comm).unwrap();
+    std::fs::write(&comm, src.replacen("GROUP_NO='BOUT'", "GROUP_NO='BOT'", 1)).unwrap();
+    let o = bin().arg("check").arg(&comm).output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    let tutorial =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/tutorial.md"))
+            .unwrap();
+    for line in [
+        "GROUP_NO 'BOT' is not in the mesh",
+        "did you mean 'BOUT'? the mesh has 3 GROUP_NO(s): ENCASTRE, MASSES, BOUT",
+    ] {
+        assert!(out.contains(line), "{line}:\n{out}");
+        assert!(tutorial.contains(line), "docs/tutorial.md lost: {line}");
+    }
+}
+
+#[test]
+fn the_readme_and_tutorial_commands_name_files_that_exist() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for doc in ["README.md", "docs/tutorial.md"] {
+        let text = std::fs::read_to_string(root.join(doc)).unwrap();
+        let mut named = 0;
+        for word in text.split_whitespace() {
+            let word = word.trim_matches(|c: char| "`,;:()".contains(c));
+            if word.starts_with("testcases/") && word.ends_with(".comm") {
+                assert!(root.join(word).is_file(), "{doc} names {word}");
+                named += 1;
+            }
+        }
+        assert!(named > 0, "{doc} names no command file");
+    }
 }

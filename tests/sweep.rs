@@ -263,7 +263,8 @@ fn local_sweep_merges_every_run_and_lists_the_failed_points() {
     assert!(stderr.contains("8 to run"), "{}", text(&o));
     assert!(stderr.contains("[8/8]"), "{}", text(&o));
     let first = check_merged(&out);
-    assert_eq!(first.len(), 6 * 10, "10 branches x 6 points");
+    // One row per branch (NB_PAS_MAN=1), NB_BRANCHE of the template's.
+    assert_eq!(first.len(), 6 * 35, "35 branches x 6 points");
 
     // A rerun runs only the failed points; the others keep their outcome untouched.
     let ok_id = "JEU=0.01,RIGI_NOR=50.0";
@@ -280,9 +281,12 @@ fn local_sweep_merges_every_run_and_lists_the_failed_points() {
 
     // A change of the template reruns every point it changes (all of them).
     let t = dir.path().join("wall.comm");
-    let changed = std::fs::read_to_string(&t)
-        .unwrap()
-        .replace("NB_HARM_NONL=64", "NB_HARM_NONL=65");
+    let template = std::fs::read_to_string(&t).unwrap();
+    assert!(
+        template.contains("NB_HARM_NONL=100"),
+        "the template changed"
+    );
+    let changed = template.replace("NB_HARM_NONL=100", "NB_HARM_NONL=101");
     std::fs::write(&t, changed).unwrap();
     let o = bin().arg("sweep").arg(&study).output().unwrap();
     assert!(
@@ -539,4 +543,48 @@ fn slurm_sweep_gives_the_local_sweeps_database() {
     let o = output_within(cmd, Duration::from_secs(240));
     assert_eq!(o.status.code(), Some(3), "{}", text(&o));
     assert_eq!(check_merged(&local_out), from_slurm);
+}
+
+#[test]
+fn the_shipped_demo_reaches_far_into_contact_with_distinct_curves_and_no_alarm() {
+    // testcases/sweep/wall.toml as docs/sweeps.md runs it. Its earlier settings barely
+    // reached contact (every curve ended below 0.504 Hz, on top of one another).
+    let dir = tempfile::tempdir().unwrap();
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("testcases/sweep");
+    for f in ["wall.comm", "wall.mail", "wall.toml"] {
+        std::fs::copy(src.join(f), dir.path().join(f)).unwrap();
+    }
+    let o = bin()
+        .arg("sweep")
+        .arg(dir.path().join("wall.toml"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let out = dir.path().join("wall.sweep");
+    for entry in std::fs::read_dir(out.join("points")).unwrap() {
+        let log = std::fs::read_to_string(entry.unwrap().path().join("run.log")).unwrap();
+        assert!(!log.contains("<A>"), "{log}");
+    }
+    let merged = open_ro(&out.join("sweep.db"));
+    let per_point = rows(
+        &merged,
+        "SELECT JEU, RIGI_NOR, MIN(ENERGIE), MAX(ENERGIE), MAX(FREQUENCE) FROM MNL \
+         GROUP BY JEU, RIGI_NOR ORDER BY RIGI_NOR, JEU",
+        None,
+    );
+    assert_eq!(per_point.len(), 6);
+    let f_lin = 10f64.sqrt() / (2.0 * std::f64::consts::PI);
+    for p in &per_point {
+        let (jeu, e_min, e_max) = (real(&p[0]), real(&p[2]), real(&p[3]));
+        let contact = 0.5 * 10.0 * jeu * jeu;
+        // Each curve starts at first contact and goes ten times past it in energy.
+        assert!((e_min / contact - 1.0).abs() < 0.05, "{p:?}");
+        assert!(e_max > 10.0 * contact, "{p:?}");
+        // Well above the linear frequency: the stop shapes the curve.
+        assert!(real(&p[4]) > f_lin + 0.15, "{p:?}");
+    }
+    // The two contact stiffnesses end apart (toward 0.715 and 0.826 Hz).
+    let soft = real(&per_point[0][4]);
+    let stiff = real(&per_point[3][4]);
+    assert!(stiff - soft > 0.1, "{per_point:?}");
 }

@@ -18,6 +18,7 @@ pub fn execute(program: &Program, src: &Source, env: &mut Env, host: &mut dyn Ho
         host,
         steps: 0,
         work: 0,
+        stopped: false,
     };
     ev.block(&program.stmts)
 }
@@ -28,6 +29,9 @@ struct Evaluator<'a> {
     host: &'a mut dyn Host,
     steps: u64,
     work: u64,
+    /// A limit on statements or work was passed: no error is recovered any more, or a
+    /// runaway loop would report one error per statement.
+    stopped: bool,
 }
 
 /// Positional values (with their spans) and keywords of a call.
@@ -74,6 +78,7 @@ impl Evaluator<'_> {
         self.work += n as u64;
         let max_work = self.env.limits.max_work;
         if self.work > max_work {
+            self.stopped = true;
             return Err(self
                 .input(
                     format!("more than {max_work} list items or characters built"),
@@ -86,15 +91,52 @@ impl Evaluator<'_> {
 
     fn block(&mut self, stmts: &[Stmt]) -> Result<()> {
         for s in stmts {
-            self.stmt(s)?;
+            if let Err(e) = self.stmt(s) {
+                let e = e.at(self.file, s.span);
+                if self.stopped || !self.host.recover(&e) {
+                    return Err(e);
+                }
+                // Recorded by the host (`check`): what the statement would have bound is
+                // unknown, and the next statement is checked.
+                self.unknown_targets(s);
+            }
         }
         Ok(())
+    }
+
+    /// `Ok(Value::Unknown)` when the host records `e` and goes on (`check`), else `Err(e)`.
+    fn recovered(&mut self, e: Error) -> Result<Value> {
+        if self.stopped || !self.host.recover(&e) {
+            return Err(e);
+        }
+        Ok(Value::Unknown)
+    }
+
+    /// A call that cannot be made (an unsupported or unknown operator, an undefined
+    /// function): when the host goes on, its arguments are still evaluated for their own
+    /// errors and its result is unknown.
+    fn unknown_call(&mut self, e: Error, args: &[Arg]) -> Result<Value> {
+        let v = self.recovered(e)?;
+        self.args(args)?;
+        Ok(v)
+    }
+
+    /// Binds the names a failed statement would have bound to `Value::Unknown`.
+    fn unknown_targets(&mut self, s: &Stmt) {
+        match &s.kind {
+            StmtKind::Assign { target, .. } | StmtKind::For { var: target, .. } => {
+                let _ = self.bind_target(target, Value::Unknown, s.span);
+            }
+            StmtKind::AugAssign { target, .. } => self.env.bind(&target.text, Value::Unknown),
+            _ => {}
+        }
     }
 
     fn stmt(&mut self, s: &Stmt) -> Result<()> {
         self.steps += 1;
         let max_steps = self.env.limits.max_steps;
         if self.steps > max_steps {
+            self.stopped = true;
             return Err(self
                 .input(format!("more than {max_steps} statements executed"), s.span)
                 .hint("a loop is probably far too long"));
@@ -218,7 +260,7 @@ impl Evaluator<'_> {
     }
 
     /// The value of a bare name.
-    fn name_value(&self, n: &str, span: Span) -> Result<Value> {
+    fn name_value(&mut self, n: &str, span: Span) -> Result<Value> {
         if let Some(v) = self.env.vars.get(n) {
             return Ok(v.clone());
         }
@@ -244,7 +286,7 @@ impl Evaluator<'_> {
                 err = err.hint(h);
             }
         }
-        Err(err)
+        self.recovered(err)
     }
 
     fn eval(&mut self, e: &Expr) -> Result<Value> {
@@ -403,26 +445,28 @@ impl Evaluator<'_> {
             return self.operator(name, func.span, args, site);
         }
         if let Some(instead) = self.host.unsupported_operator(name) {
-            return Err(self
+            let err = self
                 .input(
                     format!("{name} is a Code_Aster operator that aster-nl does not support"),
                     func.span,
                 )
-                .hint(instead));
+                .hint(instead);
+            return self.unknown_call(err, args);
         }
         if is_upper_name(name) {
             let mut err = self.input(format!("unknown operator '{name}'"), func.span);
             if let Some(h) = did_you_mean(&suggestions(name, &self.host.operator_names())) {
                 err = err.hint(h);
             }
-            return Err(err);
+            return self.unknown_call(err, args);
         }
-        Err(self
+        let err = self
             .input(format!("name '{name}' is not defined"), func.span)
             .hint(
                 "functions available: the operators, math functions after `from math import *`, \
              and abs float int min max len range list tuple sum str round print",
-            ))
+            );
+        self.unknown_call(err, args)
     }
 
     /// Evaluates the arguments of a Python function: positional only.
@@ -467,11 +511,16 @@ impl Evaluator<'_> {
                 if m == "math" {
                     err = err.hint("add `import math` at the top of the file");
                 }
-                return Err(err);
+                return self.unknown_call(err, args);
             }
         }
         if attr.text == "EXTR_TABLE" {
-            if let Value::Concept(c) = self.eval(base)? {
+            let table = self.eval(base)?;
+            if matches!(table, Value::Unknown) {
+                // `check`: a table that only a run creates (or a name already reported).
+                return Ok(Value::Unknown);
+            }
+            if let Value::Concept(c) = table {
                 if is_table_type(&c.ty) {
                     let (pos, kws) = self.args(args)?;
                     if let Some(s) = pos.first().map(|p| p.1).or(kws.first().map(|k| k.span)) {
@@ -578,6 +627,8 @@ impl Evaluator<'_> {
             let k = kws.remove(i);
             match k.value {
                 Value::Concept(c) => reuse = Some(c),
+                // `check`: a concept already reported unknown; the call is still checked.
+                Value::Unknown => {}
                 v => {
                     return Err(self
                         .input(

@@ -167,6 +167,15 @@ pub trait Host {
         )))
     }
 
+    /// An error met while evaluating the file: `true` when the host has recorded it and
+    /// evaluation goes on with what failed taken as unknown ([`crate::value::Value::Unknown`]:
+    /// an undefined name, the result of an unsupported operator, the targets of a failed
+    /// statement), so that `aster-nl check` reports every error of a file in one pass;
+    /// `false` (a run) stops execution with it.
+    fn recover(&mut self, _error: &crate::error::Error) -> bool {
+        false
+    }
+
     /// Output of `print(...)` in the command file.
     fn print(&mut self, text: &str) {
         println!("{text}");

@@ -206,24 +206,47 @@ fn unknown<'a>(
         Some(Namesake::NodeGroup) => {
             format!("the mesh has a GROUP_NO named '{name}': give GROUP_NO='{name}'")
         }
-        None => {
-            let all: Vec<&str> = existing.collect();
-            let shown: Vec<&str> = all.iter().take(8).copied().collect();
-            if all.is_empty() {
-                format!("the mesh has no {what}")
-            } else {
-                format!(
-                    "the mesh has {} {what}(s): {}{}",
-                    all.len(),
-                    shown.join(", "),
-                    if all.len() > shown.len() { ", ..." } else { "" }
-                )
-            }
-        }
+        None => not_found_hint(name, what, existing),
     };
     Error::validation(format!("{what} '{name}' is not in the mesh"))
         .keyword(list.keyword.clone())
         .hint(hint)
+}
+
+/// Names of a kind listed in a hint: enough for the groups of a study's mesh, short enough
+/// for the nodes of a large one.
+const LISTED: usize = 20;
+
+/// The hint for `name`, a `what` (GROUP_NO, GROUP_MA, node, cell) the mesh does not have:
+/// "did you mean 'N2'?" when a name of the mesh is close (the one rule of
+/// [`crate::suggest`]), then the names of that kind the mesh has.
+pub fn not_found_hint<'a>(
+    name: &str,
+    what: &str,
+    existing: impl Iterator<Item = &'a str>,
+) -> String {
+    let all: Vec<&str> = existing.collect();
+    if all.is_empty() {
+        return format!("the mesh has no {what}");
+    }
+    let close = crate::suggest::closest(name, all.iter().copied());
+    let mean = match close.as_slice() {
+        [] => String::new(),
+        c => format!(
+            "did you mean {}? ",
+            c.iter()
+                .map(|n| format!("'{n}'"))
+                .collect::<Vec<_>>()
+                .join(" or ")
+        ),
+    };
+    let shown: Vec<&str> = all.iter().take(LISTED).copied().collect();
+    format!(
+        "{mean}the mesh has {} {what}(s): {}{}",
+        all.len(),
+        shown.join(", "),
+        if all.len() > shown.len() { ", ..." } else { "" }
+    )
 }
 
 #[cfg(test)]
@@ -303,6 +326,20 @@ mod tests {
         let e = cells_err("GROUP_MA", "NOPE");
         assert!(e.contains("the mesh has 1 GROUP_MA(s): LIAI"), "{e}");
         let e = nodes_err("NOEUD", "N9");
-        assert!(e.contains("the mesh has 2 node(s): N1, N2"), "{e}");
+        assert!(
+            e.contains("did you mean 'N1' or 'N2'? the mesh has 2 node(s): N1, N2"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_misspelt_group_is_suggested() {
+        let e = nodes_err("GROUP_NO", "MASSE");
+        assert!(
+            e.contains("did you mean 'MASSES'? the mesh has 1 GROUP_NO(s): MASSES"),
+            "{e}"
+        );
+        let e = cells_err("GROUP_MA", "LIAII");
+        assert!(e.contains("did you mean 'LIAI'?"), "{e}");
     }
 }

@@ -25,6 +25,11 @@ pub fn one_node_of_group(
     let g = m.node_group(group).ok_or_else(|| {
         Error::validation(format!("mesh {mesh} has no GROUP_NO '{group}'"))
             .keyword(kw_group.clone())
+            .hint(crate::mesh::select::not_found_hint(
+                group,
+                "GROUP_NO",
+                m.node_groups.iter().map(|g| g.name.as_str()),
+            ))
     })?;
     match g.members.as_slice() {
         [one] => m
@@ -103,5 +108,14 @@ mod tests {
         let e = one_node_of_group(&store, "MA", "NONE", why(), kw()).unwrap_err();
         assert_eq!(e.message, "mesh MA has no GROUP_NO 'NONE'");
         assert_eq!(e.keyword.as_deref(), Some("CHOC/GROUP_NO"));
+        assert_eq!(
+            e.hint.as_deref(),
+            Some("the mesh has 2 GROUP_NO(s): TIP, BOTH")
+        );
+        let e = one_node_of_group(&store, "MA", "TPI", why(), kw()).unwrap_err();
+        assert_eq!(
+            e.hint.as_deref(),
+            Some("did you mean 'TIP'? the mesh has 2 GROUP_NO(s): TIP, BOTH")
+        );
     }
 }
