@@ -895,3 +895,45 @@ fn a_mode_non_line_name_given_again_drops_its_shock_table() {
         .unwrap();
     assert_eq!(tables, 0, "{out}");
 }
+
+/// IMPR_TABLE(FORMAT='PNG') of a REST_MODE_NONL time history (a `dyna_trans`), as the
+/// README and IMPR_TABLE's catalog promise: `check` accepts it and the run draws the time
+/// history and, with COURBE='PHASE', the phase portrait (before, the run stopped on
+/// "HIST is a dyna_trans, not a table" after `check` had said OK). TEST_TABLE, whose
+/// catalog takes a `dyna_trans` as well, reads it too.
+#[test]
+fn impr_table_draws_a_rest_mode_nonl_history() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let head = &src[..src.find("FREQ = RECU_FONCTION").unwrap()];
+    let short = head
+        .replace("NB_HARM_NONL=200", "NB_HARM_NONL=40")
+        .replace("NB_BRANCHE=105", "NB_BRANCHE=3");
+    assert_ne!(short, head);
+    let comm = dir.path().join("hist.comm");
+    std::fs::write(
+        &comm,
+        format!(
+            "{short}\nHIST = REST_MODE_NONL(MODE_NON_LINE=MNL, NUME_ORDRE=3, NB_INST=64)\n\
+             IMPR_TABLE(TABLE=HIST, FORMAT='PNG', UNITE=31)\n\
+             IMPR_TABLE(TABLE=HIST, FORMAT='PNG', COURBE='PHASE', FICHIER='phase.png')\n\
+             TEST_TABLE(TABLE=HIST, NOM_PARA='NUME_ORDRE', TYPE_TEST='MAX', VALE_CALC_I=64)\n\
+             FIN()\n"
+        ),
+    )
+    .unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("hist.mail")).unwrap();
+    let o = bin().arg("check").arg(&comm).output().unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let o = run_with_db(&comm, dir.path().join("hist.db"));
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    // The time history: DEPL and VITE panels stacked; the phase portrait: one panel.
+    for (file, size) in [("fort.31.png", (1024, 1024)), ("phase.png", (1024, 768))] {
+        let img = image::open(dir.path().join(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+        assert_eq!((img.width(), img.height()), size, "{file}");
+    }
+    // 64 instants of the one free DOF (N2 DX): two panels, then one.
+    assert!(out.contains("(128 points)"), "{out}");
+    assert!(out.contains("(64 points)"), "{out}");
+}
