@@ -61,6 +61,8 @@ enum Command {
     /// List the concepts and SQL tables of a database.
     Tables { db: PathBuf },
     /// Speed and memory of MODE_NON_LINE, old and new side by side (docs/performance.md).
+    /// A developer's tool: hidden from `--help`, `aster-nl bench --help` describes it.
+    #[command(hide = true)]
     Bench {
         /// Small cases only, new binary only (a smoke run).
         #[arg(long)]
@@ -96,6 +98,9 @@ enum Command {
         dir: PathBuf,
     },
     /// Measure accuracy against time of MODE_NON_LINE settings (tables, CSV, plots).
+    /// A developer's tool (docs/accuracy.md): hidden from `--help`, `aster-nl study --help`
+    /// describes it.
+    #[command(hide = true)]
     Study {
         /// Grid of settings: small (a quick look) or full (the documented study).
         #[arg(long, value_enum, default_value = "small")]

@@ -937,3 +937,27 @@ fn impr_table_draws_a_rest_mode_nonl_history() {
     assert!(out.contains("(128 points)"), "{out}");
     assert!(out.contains("(64 points)"), "{out}");
 }
+/// `--help` lists the user's commands only: `bench` and `study` (developer tools, see
+/// docs/performance.md and docs/accuracy.md) are hidden but still run.
+#[test]
+fn help_hides_the_developer_tools() {
+    let o = bin().arg("--help").output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    let commands: Vec<&str> = out
+        .lines()
+        .filter(|l| l.starts_with("  ") && !l.trim_start().starts_with('-'))
+        .filter_map(|l| l.split_whitespace().next())
+        .collect();
+    for user in ["run", "check", "catalog", "tables", "sweep", "merge"] {
+        assert!(commands.contains(&user), "{user} missing:\n{out}");
+    }
+    for dev in ["bench", "study", "bench-case", "sweep-task"] {
+        assert!(!commands.contains(&dev), "{dev} listed:\n{out}");
+    }
+    for dev in ["bench", "study"] {
+        let o = bin().args([dev, "--help"]).output().unwrap();
+        assert_eq!(o.status.code(), Some(0), "{dev}: {}", text(&o));
+        assert!(text(&o).contains("Usage: aster-nl"), "{}", text(&o));
+    }
+}

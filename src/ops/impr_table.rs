@@ -36,7 +36,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             .map_err(|e| e.keyword("IMPR_TABLE/NOM_PARA"))?;
     }
     // Defaults are the catalog's (commands/IMPR_TABLE.toml), filled by the validation
-    // (SEPARATEUR too: ' ' for CSV as for TABLEAU, as Code_Aster).
+    // (SEPARATEUR too: ',' for CSV, ' ' for the text formats, as Code_Aster's TABLEAU).
     let fmt = FormatR::parse(args.req_text("FORMAT_R")?)?;
     let format = args.req_text("FORMAT")?;
     let separateur = args.req_text("SEPARATEUR")?;
