@@ -917,6 +917,7 @@ fn impr_table_draws_a_rest_mode_nonl_history() {
             "{short}\nHIST = REST_MODE_NONL(MODE_NON_LINE=MNL, NUME_ORDRE=3, NB_INST=64)\n\
              IMPR_TABLE(TABLE=HIST, FORMAT='PNG', UNITE=31)\n\
              IMPR_TABLE(TABLE=HIST, FORMAT='PNG', COURBE='PHASE', FICHIER='phase.png')\n\
+             IMPR_TABLE(TABLE=HIST, FORMAT='SVG', COURBE='PHASE', FICHIER='phase.svg')\n\
              TEST_TABLE(TABLE=HIST, NOM_PARA='NUME_ORDRE', TYPE_TEST='MAX', VALE_CALC_I=64)\n\
              FIN()\n"
         ),
@@ -936,6 +937,14 @@ fn impr_table_draws_a_rest_mode_nonl_history() {
     // 64 instants of the one free DOF (N2 DX): two panels, then one.
     assert!(out.contains("(128 points)"), "{out}");
     assert!(out.contains("(64 points)"), "{out}");
+    // One orbit, one curve: the dyna_trans's NUME_ORDRE numbers its instants, not orbits
+    // (a first version drew 64 one-point curves and a legend of 64 entries).
+    let svg = std::fs::read_to_string(dir.path().join("phase.svg")).unwrap();
+    assert!(
+        svg.contains("DEPL N2 DX (m)") && svg.contains("VITE N2 DX (m/s)"),
+        "{svg}"
+    );
+    assert!(!svg.contains("NUME_ORDRE 2"), "a legend entry per instant");
 }
 /// `--help` lists the user's commands only: `bench` and `study` (developer tools, see
 /// docs/performance.md and docs/accuracy.md) are hidden but still run.
@@ -960,4 +969,89 @@ fn help_hides_the_developer_tools() {
         assert_eq!(o.status.code(), Some(0), "{dev}: {}", text(&o));
         assert!(text(&o).contains("Usage: aster-nl"), "{}", text(&o));
     }
+}
+/// An older French study in Latin-1: read when its coding line says so (silently) or when it
+/// is not UTF-8 (with a note naming the first such byte); a file that declares UTF-8 but is
+/// not is an error at that byte. Before, every one was "stream did not contain valid UTF-8"
+/// with no line.
+#[test]
+fn latin1_command_files_are_read_or_refused_at_the_first_bad_byte() {
+    let dir = tempfile::tempdir().unwrap();
+    let utf8 = std::fs::read_to_string(case("tables_functions.comm")).unwrap();
+    // "# Résultats exacts : cœur du cas" in Latin-1 (é 0xE9) and Windows-1252 (œ 0x9C).
+    let comment = b"# R\xE9sultats exacts : c\x9Cur du cas\n";
+    let write = |name: &str, first: &[u8]| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, [first, comment, utf8.as_bytes()].concat()).unwrap();
+        path
+    };
+    let declared = write("declared.comm", b"# -*- coding: latin-1 -*-\n");
+    let undeclared = write("undeclared.comm", b"");
+    let wrong = write("wrong.comm", b"# -*- coding: utf-8 -*-\n");
+    let o = run_with_db(&declared, dir.path().join("a.db"));
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(!text(&o).contains("ENCODING_1"), "{}", text(&o));
+    for sub in ["check", "run"] {
+        let o = bin()
+            .args([sub, undeclared.to_str().unwrap(), "--db"])
+            .arg(dir.path().join(format!("{sub}.db")))
+            .output()
+            .unwrap();
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(0), "{sub}: {out}");
+        assert!(
+            out.contains("<A> <ENCODING_1>")
+                && out.contains("undeclared.comm:1:4: byte 0xE9 is not UTF-8")
+                && out.contains("coding: latin-1"),
+            "{sub}: {out}"
+        );
+        let o = bin()
+            .args([sub, wrong.to_str().unwrap(), "--db"])
+            .arg(dir.path().join(format!("w{sub}.db")))
+            .output()
+            .unwrap();
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{sub}: {out}");
+        assert!(out.contains("wrong.comm:2:4"), "{sub}: {out}");
+        assert!(out.contains("byte 0xE9 is not UTF-8"), "{sub}: {out}");
+    }
+}
+/// The export's result lines as Code_Aster honours them: `F mess` gets everything the run
+/// prints, `F resu` what IMPR_TABLE prints to its default unit 8, `R base` is where the
+/// database goes. A message file that is the command file is refused before anything
+/// runs, and the command file is left as it was.
+#[test]
+fn export_writes_the_message_and_results_files_and_the_base() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("tables_functions.comm"), dir.path().join("t.comm")).unwrap();
+    let export = dir.path().join("t.export");
+    std::fs::write(
+        &export,
+        "P actions make_etude\nF comm t.comm D 1\nF mess out/t.mess R 6\n\
+         F resu out/t.resu R 8\nR base out/base DC 0\n",
+    )
+    .unwrap();
+    let o = bin().arg("run").arg(&export).output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    let mess = std::fs::read_to_string(dir.path().join("out/t.mess")).unwrap();
+    assert!(mess.contains(" OK ") && mess.contains("FIN"), "{mess}");
+    assert_eq!(mess, String::from_utf8_lossy(&o.stdout));
+    let resu = std::fs::read_to_string(dir.path().join("out/t.resu")).unwrap();
+    assert!(
+        resu.contains("FREQUENCE") && resu.contains("ENERGIE"),
+        "{resu}"
+    );
+    // The tables went to the results file, not to the message file.
+    assert!(!mess.contains(&resu), "{mess}");
+    assert!(dir.path().join("out/base/t.db").is_file());
+    assert!(!dir.path().join("t.db").exists());
+
+    let bad = dir.path().join("bad.export");
+    std::fs::write(&bad, "F comm t.comm D 1\nF mess t.comm R 6\n").unwrap();
+    let before = std::fs::read(dir.path().join("t.comm")).unwrap();
+    let o = bin().arg("run").arg(&bad).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("the command file"), "{}", text(&o));
+    assert_eq!(std::fs::read(dir.path().join("t.comm")).unwrap(), before);
 }

@@ -16,6 +16,8 @@ pub mod mnl_problem;
 // One component of a dyna_trans by NOM_CHAM, NOEUD | GROUP_NO, NOM_CMP (TEST_RESU,
 // RECU_FONCTION).
 pub mod dyna_trans;
+// The stored results IMPR_RESU writes to MED, as nodal fields on their mesh.
+pub mod med_fields;
 // The node of NOEUD= or of a one-node GROUP_NO= (TEST_RESU, MODE_NON_LINE's CHOC).
 pub mod nodes;
 // Writing to logical units (UNITE); the files a run never writes over.
