@@ -146,6 +146,21 @@ fn draw(
             if !is_time_history(t) {
                 return Err(not_a(c, "time history", &HISTORY_COLUMNS, kw("COURBE")));
             }
+            // A dyna_trans numbers its instants with NUME_ORDRE: its rows are one orbit,
+            // one curve (a table of several rows' histories has one curve per NUME_ORDRE).
+            let one_orbit;
+            let t = if c.ty == "dyna_trans" {
+                let keep: Vec<String> = t
+                    .columns
+                    .iter()
+                    .map(|col| col.name.clone())
+                    .filter(|n| n != "NUME_ORDRE")
+                    .collect();
+                one_orbit = t.extract(&keep)?;
+                &one_orbit
+            } else {
+                t
+            };
             let (curves, what) = histories(t, args.text("NOEUD"), args.text("NOM_CMP"))
                 .map_err(|e| e.keyword(kw("NOEUD")))?;
             if kind == "PHASE" {
