@@ -946,6 +946,7 @@ fn impr_table_draws_a_rest_mode_nonl_history() {
     );
     assert!(!svg.contains("NUME_ORDRE 2"), "a legend entry per instant");
 }
+
 /// `--help` lists the user's commands only: `bench` and `study` (developer tools, see
 /// docs/performance.md and docs/accuracy.md) are hidden but still run.
 #[test]
@@ -970,6 +971,7 @@ fn help_hides_the_developer_tools() {
         assert!(text(&o).contains("Usage: aster-nl"), "{}", text(&o));
     }
 }
+
 /// An older French study in Latin-1: read when its coding line says so (silently) or when it
 /// is not UTF-8 (with a note naming the first such byte); a file that declares UTF-8 but is
 /// not is an error at that byte. Before, every one was "stream did not contain valid UTF-8"
@@ -1016,6 +1018,57 @@ fn latin1_command_files_are_read_or_refused_at_the_first_bad_byte() {
         assert!(out.contains("byte 0xE9 is not UTF-8"), "{sub}: {out}");
     }
 }
+
+/// MODE_NON_LINE writes the rows of each branch to a live file beside the study
+/// (docs/store.md, "Watching a running MODE_NON_LINE"): after the run it holds every row
+/// of the study's table, in order, marked DONE; a user's file of that name is left alone
+/// and the next name taken.
+#[test]
+fn mode_non_line_writes_a_live_file_a_reader_can_query() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let head = &src[..src.find("FREQ = RECU_FONCTION").unwrap()];
+    let short = head
+        .replace("NB_HARM_NONL=200", "NB_HARM_NONL=40")
+        .replace("NB_BRANCHE=105", "NB_BRANCHE=4");
+    let comm = dir.path().join("live.comm");
+    std::fs::write(&comm, format!("{short}\nFIN()\n")).unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("live.mail")).unwrap();
+    let mine = dir.path().join("live.MNL.live.db");
+    std::fs::write(&mine, "a user's notes").unwrap();
+    let db = dir.path().join("live.db");
+    let o = run_with_db(&comm, &db);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert_eq!(std::fs::read_to_string(&mine).unwrap(), "a user's notes");
+    let live = dir.path().join("live.MNL.live2.db");
+    assert!(out.contains("live.MNL.live2.db"), "{out}");
+    let study = rusqlite::Connection::open(&db).unwrap();
+    let want: Vec<(i64, f64, f64)> = study
+        .prepare("SELECT NUME_ORDRE, FREQUENCE, ENERGIE FROM MNL ORDER BY NUME_ORDRE")
+        .unwrap()
+        .query_map([], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)))
+        .unwrap()
+        .map(Result::unwrap)
+        .collect();
+    let c = rusqlite::Connection::open(&live).unwrap();
+    let got: Vec<(i64, f64, f64)> = c
+        .prepare("SELECT POINT, FREQUENCE, ENERGIE FROM MNL ORDER BY POINT")
+        .unwrap()
+        .query_map([], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)))
+        .unwrap()
+        .map(Result::unwrap)
+        .collect();
+    assert!(want.len() >= 4, "{want:?}");
+    assert_eq!(got, want);
+    let (branches, state): (i64, String) = c
+        .query_row("SELECT branches, state FROM aster_nl_live", [], |r| {
+            Ok((r.get(0)?, r.get(1)?))
+        })
+        .unwrap();
+    assert_eq!((branches, state.as_str()), (4, "DONE"));
+}
+
 /// The export's result lines as Code_Aster honours them: `F mess` gets everything the run
 /// prints, `F resu` what IMPR_TABLE prints to its default unit 8, `R base` is where the
 /// database goes. A message file that is the command file is refused before anything

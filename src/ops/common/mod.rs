@@ -4,6 +4,8 @@
 // Test support: operators run on an in-memory store with hand-built `Args`.
 #[cfg(test)]
 pub mod harness;
+// MODE_NON_LINE's live view: the rows of each branch in a side file while it runs.
+pub mod live;
 // MODE_NON_LINE's RESOLUTION/CORR_LOI_EXACTE: rows corrected on the exact law.
 pub mod mnl_exact_law;
 // MODE_NON_LINE restarts: the stored direction of travel.
