@@ -439,16 +439,10 @@ fn started_at() -> String {
 /// Run a command file. Errors that stop the run are in `RunSummary::error`; the
 /// `Err` case is reserved for failures before anything ran (unreadable file).
 pub fn run_file(path: &Path, opts: RunOptions, out: &mut dyn Write) -> Result<RunSummary> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        Error::new(
-            crate::error::ErrorKind::Io,
-            format!("cannot read {}: {e}", path.display()),
-        )
-    })?;
-    let src = Source {
-        name: path.display().to_string(),
-        text,
-    };
+    let (src, note) = Source::read(path)?;
+    if let Some(note) = note {
+        writeln!(out, "<A> <ENCODING_1> {note}")?;
+    }
     let default_db = opts.db.clone().unwrap_or_else(|| path.with_extension("db"));
     let mut units = opts.units;
     units.comm_file.get_or_insert_with(|| path.to_path_buf());

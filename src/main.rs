@@ -61,6 +61,8 @@ enum Command {
     /// List the concepts and SQL tables of a database.
     Tables { db: PathBuf },
     /// Speed and memory of MODE_NON_LINE, old and new side by side (docs/performance.md).
+    /// A developer's tool: hidden from `--help`, `aster-nl bench --help` describes it.
+    #[command(hide = true)]
     Bench {
         /// Small cases only, new binary only (a smoke run).
         #[arg(long)]
@@ -96,6 +98,9 @@ enum Command {
         dir: PathBuf,
     },
     /// Measure accuracy against time of MODE_NON_LINE settings (tables, CSV, plots).
+    /// A developer's tool (docs/accuracy.md): hidden from `--help`, `aster-nl study --help`
+    /// describes it.
+    #[command(hide = true)]
     Study {
         /// Grid of settings: small (a quick look) or full (the documented study).
         #[arg(long, value_enum, default_value = "small")]
@@ -234,19 +239,43 @@ fn run(
         Ok(u) => u,
         Err(e) => return fail(&e, None),
     };
+    let mut db = db;
+    let mut mess_path = None;
     let comm = if file.extension().is_some_and(|e| e == "export") {
         match export::read_export(file) {
             Ok(exp) => {
                 units
                     .protected
                     .push((file.to_path_buf(), "the export file of the run".into()));
-                for (n, p) in exp.units {
+                for (n, p) in &exp.units {
                     units.protected.push((
                         p.clone(),
                         format!("the input file of unit {n} in the export"),
                     ));
-                    units.map.entry(n).or_insert(p);
+                    units.map.entry(*n).or_insert(p.clone());
                 }
+                // The result files the export names (F resu is unit 8); --unit wins.
+                for (n, p) in &exp.results {
+                    units.map.entry(*n).or_insert(p.clone());
+                }
+                // R base: the database (its directory created), unless --db says otherwise.
+                if db.is_none() {
+                    if let Some(base) = exp.database() {
+                        if let Some(dir) = base.parent().filter(|d| !d.as_os_str().is_empty()) {
+                            if let Err(e) = std::fs::create_dir_all(dir) {
+                                return fail(
+                                    &Error::new(
+                                        ErrorKind::Io,
+                                        format!("cannot create {} (R base): {e}", dir.display()),
+                                    ),
+                                    None,
+                                );
+                            }
+                        }
+                        db = Some(base);
+                    }
+                }
+                mess_path = exp.mess.clone();
                 exp.comm
             }
             Err(e) => return fail(&e, None),
@@ -255,33 +284,56 @@ fn run(
         file.to_path_buf()
     };
     units.comm_file = Some(comm.clone());
+    // The files the export asks the run to write from scratch: the message file and the
+    // results file (unit 8, which IMPR_TABLE appends to). Never one of the run's inputs,
+    // its database or another SQLite file.
+    let fresh = [mess_path.clone(), units.map.get(&8).cloned()];
+    for p in fresh.iter().flatten() {
+        if let Err(e) = export::prepare_result_file(&units, p, db.as_deref(), &comm) {
+            return fail(&e, None);
+        }
+    }
+    let mess = match mess_path.as_deref().map(std::fs::File::create).transpose() {
+        Ok(f) => f,
+        Err(e) => {
+            return fail(
+                &Error::new(ErrorKind::Io, format!("cannot write the message file: {e}")),
+                None,
+            )
+        }
+    };
+    let mut out = export::Tee::new(std::io::stdout(), mess);
     let opts = RunOptions {
         db,
         units,
         progress: std::io::stderr().is_terminal(),
         tole_machine,
     };
-    let mut stdout = std::io::stdout();
-    let summary = match interp::run_file(&comm, opts, &mut stdout) {
+    let summary = match interp::run_file(&comm, opts, &mut out) {
         Ok(s) => s,
-        Err(e) => return fail(&e, None),
+        Err(e) => {
+            out.also_to_file(&lang::render_plain(&e, None));
+            return fail(&e, None);
+        }
     };
     if let Some(e) = &summary.error {
-        let src = std::fs::read_to_string(&comm).ok().map(|text| Source {
-            name: comm.display().to_string(),
-            text,
-        });
+        let src = Source::read(&comm).ok().map(|(src, _)| src);
         eprintln!("{}", lang::render(e, src.as_ref()));
+        out.also_to_file(&lang::render_plain(e, src.as_ref()));
         if let Some(db) = &summary.db {
-            eprintln!(
+            let line = format!(
                 "the run stopped; every concept created before the failing command is kept in {}",
                 db.display()
             );
+            eprintln!("{line}");
+            out.also_to_file(&line);
         }
         return ExitCode::from(EXIT_ERROR);
     }
     if summary.nook_count() > 0 {
-        eprintln!("{} test(s) NOOK", summary.nook_count());
+        let line = format!("{} test(s) NOOK", summary.nook_count());
+        eprintln!("{line}");
+        out.also_to_file(&line);
         return ExitCode::from(EXIT_NOOK);
     }
     ExitCode::SUCCESS
@@ -305,21 +357,14 @@ fn check(file: &Path, db: Option<PathBuf>, unit_specs: &[String]) -> ExitCode {
     } else {
         file.to_path_buf()
     };
-    let text = match std::fs::read_to_string(&file) {
-        Ok(t) => t,
-        Err(e) => {
-            return fail(
-                &Error::new(
-                    ErrorKind::Io,
-                    format!("cannot read {}: {e}", file.display()),
-                ),
-                None,
-            )
+    let src = match Source::read(&file) {
+        Ok((src, note)) => {
+            if let Some(note) = note {
+                println!("<A> <ENCODING_1> {note}");
+            }
+            src
         }
-    };
-    let src = Source {
-        name: file.display().to_string(),
-        text,
+        Err(e) => return fail(&e, None),
     };
     units.comm_file = Some(file.clone());
     let errors = interp::check_source(&src, interp::CheckOptions { db, units });

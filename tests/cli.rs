@@ -1085,3 +1085,216 @@ fn the_readme_and_tutorial_commands_name_files_that_exist() {
         assert!(named > 0, "{doc} names no command file");
     }
 }
+
+/// IMPR_TABLE(FORMAT='PNG') of a REST_MODE_NONL time history (a `dyna_trans`), as the
+/// README and IMPR_TABLE's catalog promise: `check` accepts it and the run draws the time
+/// history and, with COURBE='PHASE', the phase portrait (before, the run stopped on
+/// "HIST is a dyna_trans, not a table" after `check` had said OK). TEST_TABLE, whose
+/// catalog takes a `dyna_trans` as well, reads it too.
+#[test]
+fn impr_table_draws_a_rest_mode_nonl_history() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let head = &src[..src.find("FREQ = RECU_FONCTION").unwrap()];
+    let short = head
+        .replace("NB_HARM_NONL=200", "NB_HARM_NONL=40")
+        .replace("NB_BRANCHE=105", "NB_BRANCHE=3");
+    assert_ne!(short, head);
+    let comm = dir.path().join("hist.comm");
+    std::fs::write(
+        &comm,
+        format!(
+            "{short}\nHIST = REST_MODE_NONL(MODE_NON_LINE=MNL, NUME_ORDRE=3, NB_INST=64)\n\
+             IMPR_TABLE(TABLE=HIST, FORMAT='PNG', UNITE=31)\n\
+             IMPR_TABLE(TABLE=HIST, FORMAT='PNG', COURBE='PHASE', FICHIER='phase.png')\n\
+             IMPR_TABLE(TABLE=HIST, FORMAT='SVG', COURBE='PHASE', FICHIER='phase.svg')\n\
+             TEST_TABLE(TABLE=HIST, NOM_PARA='NUME_ORDRE', TYPE_TEST='MAX', VALE_CALC_I=64)\n\
+             FIN()\n"
+        ),
+    )
+    .unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("hist.mail")).unwrap();
+    let o = bin().arg("check").arg(&comm).output().unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let o = run_with_db(&comm, dir.path().join("hist.db"));
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    // The time history: DEPL and VITE panels stacked; the phase portrait: one panel.
+    for (file, size) in [("fort.31.png", (1024, 1024)), ("phase.png", (1024, 768))] {
+        let img = image::open(dir.path().join(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+        assert_eq!((img.width(), img.height()), size, "{file}");
+    }
+    // 64 instants of the one free DOF (N2 DX): two panels, then one.
+    assert!(out.contains("(128 points)"), "{out}");
+    assert!(out.contains("(64 points)"), "{out}");
+    // One orbit, one curve: the dyna_trans's NUME_ORDRE numbers its instants, not orbits
+    // (a first version drew 64 one-point curves and a legend of 64 entries).
+    let svg = std::fs::read_to_string(dir.path().join("phase.svg")).unwrap();
+    assert!(
+        svg.contains("DEPL N2 DX (m)") && svg.contains("VITE N2 DX (m/s)"),
+        "{svg}"
+    );
+    assert!(!svg.contains("NUME_ORDRE 2"), "a legend entry per instant");
+}
+
+/// `--help` lists the user's commands only: `bench` and `study` (developer tools, see
+/// docs/performance.md and docs/accuracy.md) are hidden but still run.
+#[test]
+fn help_hides_the_developer_tools() {
+    let o = bin().arg("--help").output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    let commands: Vec<&str> = out
+        .lines()
+        .filter(|l| l.starts_with("  ") && !l.trim_start().starts_with('-'))
+        .filter_map(|l| l.split_whitespace().next())
+        .collect();
+    for user in ["run", "check", "catalog", "tables", "sweep", "merge"] {
+        assert!(commands.contains(&user), "{user} missing:\n{out}");
+    }
+    for dev in ["bench", "study", "bench-case", "sweep-task"] {
+        assert!(!commands.contains(&dev), "{dev} listed:\n{out}");
+    }
+    for dev in ["bench", "study"] {
+        let o = bin().args([dev, "--help"]).output().unwrap();
+        assert_eq!(o.status.code(), Some(0), "{dev}: {}", text(&o));
+        assert!(text(&o).contains("Usage: aster-nl"), "{}", text(&o));
+    }
+}
+
+/// An older French study in Latin-1: read when its coding line says so (silently) or when it
+/// is not UTF-8 (with a note naming the first such byte); a file that declares UTF-8 but is
+/// not is an error at that byte. Before, every one was "stream did not contain valid UTF-8"
+/// with no line.
+#[test]
+fn latin1_command_files_are_read_or_refused_at_the_first_bad_byte() {
+    let dir = tempfile::tempdir().unwrap();
+    let utf8 = std::fs::read_to_string(case("tables_functions.comm")).unwrap();
+    // "# Résultats exacts : cœur du cas" in Latin-1 (é 0xE9) and Windows-1252 (œ 0x9C).
+    let comment = b"# R\xE9sultats exacts : c\x9Cur du cas\n";
+    let write = |name: &str, first: &[u8]| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, [first, comment, utf8.as_bytes()].concat()).unwrap();
+        path
+    };
+    let declared = write("declared.comm", b"# -*- coding: latin-1 -*-\n");
+    let undeclared = write("undeclared.comm", b"");
+    let wrong = write("wrong.comm", b"# -*- coding: utf-8 -*-\n");
+    let o = run_with_db(&declared, dir.path().join("a.db"));
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(!text(&o).contains("ENCODING_1"), "{}", text(&o));
+    for sub in ["check", "run"] {
+        let o = bin()
+            .args([sub, undeclared.to_str().unwrap(), "--db"])
+            .arg(dir.path().join(format!("{sub}.db")))
+            .output()
+            .unwrap();
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(0), "{sub}: {out}");
+        assert!(
+            out.contains("<A> <ENCODING_1>")
+                && out.contains("undeclared.comm:1:4: byte 0xE9 is not UTF-8")
+                && out.contains("coding: latin-1"),
+            "{sub}: {out}"
+        );
+        let o = bin()
+            .args([sub, wrong.to_str().unwrap(), "--db"])
+            .arg(dir.path().join(format!("w{sub}.db")))
+            .output()
+            .unwrap();
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{sub}: {out}");
+        assert!(out.contains("wrong.comm:2:4"), "{sub}: {out}");
+        assert!(out.contains("byte 0xE9 is not UTF-8"), "{sub}: {out}");
+    }
+}
+
+/// MODE_NON_LINE writes the rows of each branch to a live file beside the study
+/// (docs/store.md, "Watching a running MODE_NON_LINE"): after the run it holds every row
+/// of the study's table, in order, marked DONE; a user's file of that name is left alone
+/// and the next name taken.
+#[test]
+fn mode_non_line_writes_a_live_file_a_reader_can_query() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let head = &src[..src.find("FREQ = RECU_FONCTION").unwrap()];
+    let short = head
+        .replace("NB_HARM_NONL=200", "NB_HARM_NONL=40")
+        .replace("NB_BRANCHE=105", "NB_BRANCHE=4");
+    let comm = dir.path().join("live.comm");
+    std::fs::write(&comm, format!("{short}\nFIN()\n")).unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("live.mail")).unwrap();
+    let mine = dir.path().join("live.MNL.live.db");
+    std::fs::write(&mine, "a user's notes").unwrap();
+    let db = dir.path().join("live.db");
+    let o = run_with_db(&comm, &db);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert_eq!(std::fs::read_to_string(&mine).unwrap(), "a user's notes");
+    let live = dir.path().join("live.MNL.live2.db");
+    assert!(out.contains("live.MNL.live2.db"), "{out}");
+    let study = rusqlite::Connection::open(&db).unwrap();
+    let want: Vec<(i64, f64, f64)> = study
+        .prepare("SELECT NUME_ORDRE, FREQUENCE, ENERGIE FROM MNL ORDER BY NUME_ORDRE")
+        .unwrap()
+        .query_map([], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)))
+        .unwrap()
+        .map(Result::unwrap)
+        .collect();
+    let c = rusqlite::Connection::open(&live).unwrap();
+    let got: Vec<(i64, f64, f64)> = c
+        .prepare("SELECT POINT, FREQUENCE, ENERGIE FROM MNL ORDER BY POINT")
+        .unwrap()
+        .query_map([], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)))
+        .unwrap()
+        .map(Result::unwrap)
+        .collect();
+    assert!(want.len() >= 4, "{want:?}");
+    assert_eq!(got, want);
+    let (branches, state): (i64, String) = c
+        .query_row("SELECT branches, state FROM aster_nl_live", [], |r| {
+            Ok((r.get(0)?, r.get(1)?))
+        })
+        .unwrap();
+    assert_eq!((branches, state.as_str()), (4, "DONE"));
+}
+
+/// The export's result lines as Code_Aster honours them: `F mess` gets everything the run
+/// prints, `F resu` what IMPR_TABLE prints to its default unit 8, `R base` is where the
+/// database goes. A message file that is the command file is refused before anything
+/// runs, and the command file is left as it was.
+#[test]
+fn export_writes_the_message_and_results_files_and_the_base() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("tables_functions.comm"), dir.path().join("t.comm")).unwrap();
+    let export = dir.path().join("t.export");
+    std::fs::write(
+        &export,
+        "P actions make_etude\nF comm t.comm D 1\nF mess out/t.mess R 6\n\
+         F resu out/t.resu R 8\nR base out/base DC 0\n",
+    )
+    .unwrap();
+    let o = bin().arg("run").arg(&export).output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    let mess = std::fs::read_to_string(dir.path().join("out/t.mess")).unwrap();
+    assert!(mess.contains(" OK ") && mess.contains("FIN"), "{mess}");
+    assert_eq!(mess, String::from_utf8_lossy(&o.stdout));
+    let resu = std::fs::read_to_string(dir.path().join("out/t.resu")).unwrap();
+    assert!(
+        resu.contains("FREQUENCE") && resu.contains("ENERGIE"),
+        "{resu}"
+    );
+    // The tables went to the results file, not to the message file.
+    assert!(!mess.contains(&resu), "{mess}");
+    assert!(dir.path().join("out/base/t.db").is_file());
+    assert!(!dir.path().join("t.db").exists());
+
+    let bad = dir.path().join("bad.export");
+    std::fs::write(&bad, "F comm t.comm D 1\nF mess t.comm R 6\n").unwrap();
+    let before = std::fs::read(dir.path().join("t.comm")).unwrap();
+    let o = bin().arg("run").arg(&bad).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("the command file"), "{}", text(&o));
+    assert_eq!(std::fs::read(dir.path().join("t.comm")).unwrap(), before);
+}

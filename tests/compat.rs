@@ -273,15 +273,15 @@ fn check_knows_the_rows_of_a_stored_table() {
 #[test]
 fn code_aster_operators_we_do_not_implement_say_so() {
     let (code, out, _d) = run_text(
-        "DEBUT()\nIMPR_RESU(FORMAT='RESULTAT', RESU=_F(RESULTAT=MODES))\nFIN()\n",
+        "DEBUT()\nINFO_MODE(MATR_RIGI=K, MATR_MASS=M, FREQ=(0., 10.))\nFIN()\n",
         &[],
     );
     assert_eq!(code, Some(2), "{out}");
     assert!(
-        out.contains("IMPR_RESU is a Code_Aster operator that aster-nl does not support"),
+        out.contains("INFO_MODE is a Code_Aster operator that aster-nl does not support"),
         "{out}"
     );
-    assert!(out.contains("SQLite"), "{out}");
+    assert!(out.contains("CALC_MODES prints the frequencies"), "{out}");
     let (code, out) = check_text("DEBUT()\nDEFI_FICHIER(UNITE=38)\nFIN()\n", &[]);
     assert_eq!(code, Some(2), "{out}");
     assert!(

@@ -80,7 +80,6 @@ pub fn operator_names() -> Vec<&'static str> {
 /// Code_Aster operators that aster-nl does not implement, with what to do instead: a
 /// file using one gets a clear error naming it, not "unknown operator".
 const UNSUPPORTED: &[(&str, &str)] = &[
-    ("IMPR_RESU", "every result is in the SQLite database (`aster-nl tables DB`, docs/store.md); IMPR_TABLE prints tables"),
     ("DEFI_FICHIER", "map logical units with --unit N=FILE or the F lines of a .export"),
     ("INFO_MODE", "CALC_MODES prints the frequencies it finds"),
     ("NORM_MODE", "CALC_MODES normalises with its NORM_MODE keyword"),

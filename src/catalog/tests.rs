@@ -1647,3 +1647,39 @@ fn output_units_and_ordre_grandeur_are_bounded_in_the_catalog() {
     let a = validate(&test(vec![]), FILE).expect("valid");
     assert_eq!(a.real("ORDRE_GRANDEUR"), Some(1.0));
 }
+
+/// Every INFO keyword says what 1 and 2 print, and an operator whose source never reads
+/// its INFO level (`ctx.info`, `args.int("INFO")`) says it has no effect: the docs once
+/// promised "verbosity" where both levels printed the same.
+#[test]
+fn info_keywords_say_what_each_level_prints() {
+    let ops_dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/ops");
+    let mut documented = 0;
+    for op in operator_names() {
+        let Some(info) = get(op).and_then(|d| d.simp.iter().find(|s| s.name == "INFO")) else {
+            continue;
+        };
+        assert!(!info.doc.is_empty(), "{op}: INFO has no doc");
+        // MODE_ITER_SIMULT is CALC_MODES with the older syntax.
+        let file = if op == "MODE_ITER_SIMULT" {
+            "CALC_MODES"
+        } else {
+            op
+        };
+        let src = std::fs::read_to_string(ops_dir.join(format!("{}.rs", file.to_lowercase())))
+            .unwrap_or_default();
+        let reads_info = src.contains("ctx.info") || src.contains("int(\"INFO\")");
+        let no_effect = info.doc.starts_with("No effect");
+        assert!(
+            reads_info || no_effect,
+            "{op}: its INFO doc promises output the operator never prints: {}",
+            info.doc
+        );
+        assert!(
+            !(reads_info && no_effect),
+            "{op}: INFO changes what it prints, its doc says no effect"
+        );
+        documented += 1;
+    }
+    assert!(documented > 20, "only {documented} INFO keywords");
+}

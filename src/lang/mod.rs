@@ -25,6 +25,7 @@ pub mod ast;
 mod blocks;
 mod builtins;
 pub mod diag;
+pub mod encoding;
 mod eval;
 mod parser;
 mod scan;
@@ -49,6 +50,21 @@ impl Source {
             name: name.into(),
             text: text.into(),
         }
+    }
+
+    /// The command file at `path`, decoded as [`encoding`] says (UTF-8, or Latin-1 when the
+    /// file declares it or is not UTF-8), with the note to print when the encoding was
+    /// guessed.
+    pub fn read(path: &std::path::Path) -> Result<(Source, Option<String>)> {
+        let name = path.display().to_string();
+        let bytes = std::fs::read(path).map_err(|e| {
+            crate::error::Error::new(
+                crate::error::ErrorKind::Io,
+                format!("cannot read {name}: {e}"),
+            )
+        })?;
+        let decoded = encoding::decode(&bytes, &name)?;
+        Ok((Source::new(name, decoded.text), decoded.note))
     }
 }
 

@@ -5,6 +5,7 @@ pub mod check;
 pub mod edit;
 pub mod gmsh;
 pub mod med;
+pub mod med_write;
 pub mod select;
 pub mod transform;
 

@@ -8,6 +8,7 @@ use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::function::Function;
+use crate::plot::units::{is_component, with_unit};
 use crate::plot::{xy_plot, LineStyle, Marker, Series, XyPlot};
 use crate::store::function::load_function;
 use crate::table::print::{tableau, FormatR};
@@ -167,8 +168,14 @@ fn draw(ctx: &mut OpContext<'_>, args: &Args, pic: &Picture) -> Result<()> {
         let cv = curve(ctx, c)?;
         // The axes are named after the first curve's parameter and result.
         if spec.series.is_empty() {
-            spec.x_label = cv.para.clone();
-            spec.y_label = cv.resu.clone();
+            // With units where the name says them (INST (s), FREQUENCE (Hz)); a component
+            // (DX of a RECU_FONCTION) may be a displacement, a velocity or an acceleration.
+            spec.x_label = with_unit(&cv.para, &cv.para, None);
+            spec.y_label = if is_component(&cv.resu) {
+                cv.resu.clone()
+            } else {
+                with_unit(&cv.resu, &cv.resu, None)
+            };
         }
         spec.series.push(series(c, cv));
     }

@@ -36,7 +36,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             .map_err(|e| e.keyword("IMPR_TABLE/NOM_PARA"))?;
     }
     // Defaults are the catalog's (commands/IMPR_TABLE.toml), filled by the validation
-    // (SEPARATEUR too: ' ' for CSV as for TABLEAU, as Code_Aster).
+    // (SEPARATEUR too: ',' for CSV, ' ' for the text formats, as Code_Aster's TABLEAU).
     let fmt = FormatR::parse(args.req_text("FORMAT_R")?)?;
     let format = args.req_text("FORMAT")?;
     let separateur = args.req_text("SEPARATEUR")?;
@@ -146,6 +146,21 @@ fn draw(
             if !is_time_history(t) {
                 return Err(not_a(c, "time history", &HISTORY_COLUMNS, kw("COURBE")));
             }
+            // A dyna_trans numbers its instants with NUME_ORDRE: its rows are one orbit,
+            // one curve (a table of several rows' histories has one curve per NUME_ORDRE).
+            let one_orbit;
+            let t = if c.ty == "dyna_trans" {
+                let keep: Vec<String> = t
+                    .columns
+                    .iter()
+                    .map(|col| col.name.clone())
+                    .filter(|n| n != "NUME_ORDRE")
+                    .collect();
+                one_orbit = t.extract(&keep)?;
+                &one_orbit
+            } else {
+                t
+            };
             let (curves, what) = histories(t, args.text("NOEUD"), args.text("NOM_CMP"))
                 .map_err(|e| e.keyword(kw("NOEUD")))?;
             if kind == "PHASE" {

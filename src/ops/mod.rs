@@ -30,6 +30,7 @@ pub mod defi_materiau;
 pub mod detruire;
 pub mod extr_table;
 pub mod impr_fonction;
+pub mod impr_resu;
 pub mod impr_table;
 pub mod lire_maillage;
 pub mod mode_iter_simult;
@@ -254,6 +255,7 @@ pub const OPERATORS: &[(&str, OpFn)] = &[
     ("EXTR_TABLE", extr_table::run),
     ("IMPR_FONCTION", impr_fonction::run),
     ("IMPR_TABLE", impr_table::run),
+    ("IMPR_RESU", impr_resu::run),
     ("RECU_FONCTION", recu_fonction::run),
     ("TEST_FONCTION", test_fonction::run),
     ("TEST_TABLE", test_table::run),

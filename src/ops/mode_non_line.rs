@@ -170,8 +170,11 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     );
     let mut stopped_by: Option<String> = None;
     let mut bound_error: Option<Error> = None;
+    // The rows of each branch, readable in a live file while the operator runs.
+    let mut live = crate::ops::common::live::LiveView::start(ctx, &name)?;
     let outcome = nnm::continue_controlled(&problem, &settings, control, start, &mut |rep, pts| {
         progress.inc();
+        live.branch(rep.branch, pts);
         if info >= 1 {
             lines.push(format!(
                 "  branch {:>4}: {:>3} pts  freq {:.6e} .. {:.6e} Hz  energy {:.6e} .. {:.6e}  a_max {:.3e}  newton {:>2}  bifurcation {}{}{}",
@@ -205,6 +208,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         }
     });
     progress.finish();
+    live.finish(ctx, outcome.error.is_none() && bound_error.is_none())?;
     if let Some(e) = bound_error {
         return Err(e);
     }

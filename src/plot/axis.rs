@@ -53,6 +53,9 @@ pub struct Axis {
     pub minor: Vec<f64>,
     /// Spacing of the major ticks (data units on a linear axis), to choose label digits.
     step: f64,
+    /// A log axis too short for its mantissas (fewer than three labels): its ticks are
+    /// multiples of this data step, labelled as a linear axis's.
+    fine: Option<f64>,
 }
 
 /// About 5 to 10 labelled ticks read well at 1024 pixels.
@@ -85,9 +88,10 @@ impl Axis {
 
     /// Label of the tick at plotting coordinate `u`.
     pub fn label(&self, u: f64) -> String {
-        match self.scale {
-            Scale::Lin => lin_label(u, self.step),
-            Scale::Log => log_label(u),
+        match (self.scale, self.fine) {
+            (Scale::Lin, _) => lin_label(u, self.step),
+            (Scale::Log, Some(step)) => lin_label(Scale::Log.to_data(u), step),
+            (Scale::Log, None) => log_label(u),
         }
     }
 }
@@ -137,6 +141,7 @@ fn lin_axis(lo: f64, hi: f64) -> Axis {
         major: multiples(lo, hi, step),
         minor: multiples(lo, hi, minor_step),
         step,
+        fine: None,
     }
 }
 
@@ -171,6 +176,25 @@ fn log_axis(lo: f64, hi: f64) -> Axis {
         // Too many minor lines to read: keep the decades only.
         minor = multiples(lo, hi, 1.0);
     }
+    // Fewer than three labels (a range inside one or two mantissa steps, such as the top
+    // of a branch, 8.9 to 9.6 J): round values in data units instead, as a linear axis
+    // labels them, so that the reader can still read a value off the axis.
+    let mut fine = None;
+    if major.len() < 3 {
+        let (a, b) = (Scale::Log.to_data(lo), Scale::Log.to_data(hi));
+        let step = nice_step((b - a) / TARGET_TICKS);
+        major = multiples(a, b, step)
+            .into_iter()
+            .filter(|v| *v > 0.0)
+            .map(f64::log10)
+            .collect();
+        minor = multiples(a, b, step / 2.0)
+            .into_iter()
+            .filter(|v| *v > 0.0)
+            .map(f64::log10)
+            .collect();
+        fine = Some(step);
+    }
     Axis {
         scale: Scale::Log,
         lo,
@@ -178,6 +202,7 @@ fn log_axis(lo: f64, hi: f64) -> Axis {
         major,
         minor,
         step: every,
+        fine,
     }
 }
 
@@ -280,6 +305,28 @@ mod tests {
         let a = Axis::new(Scale::Log, 2f64.log10(), 8f64.log10(), false);
         let labels: Vec<String> = a.major.iter().map(|&u| a.label(u)).collect();
         assert_eq!(labels, ["2", "3", "4", "5", "6", "7", "8"]);
+    }
+
+    #[test]
+    fn short_log_range_inside_one_mantissa_step_gets_round_labels() {
+        // 8.9 .. 9.6 J (the top of a branch): no mantissa 2..9 or decade inside but 9;
+        // before, the axis had the single label "9". Now steps of 0.2 (0.7 / 6 rounded up
+        // to 1, 2 or 5 times a power of ten); 9.6 / 0.2 is 47.999... in binary, so the
+        // last tick is 9.4.
+        let a = Axis::new(Scale::Log, 8.9f64.log10(), 9.6f64.log10(), false);
+        let labels: Vec<String> = a.major.iter().map(|&u| a.label(u)).collect();
+        assert_eq!(labels, ["9.0", "9.2", "9.4"]);
+        // 1.2e-5 .. 1.5e-5: steps of 5e-7 in scientific notation (1.2e-5 / 5e-7 comes
+        // back from the log as 24.000...01, so the first tick is 1.25e-5).
+        let b = Axis::new(Scale::Log, 1.2e-5f64.log10(), 1.5e-5f64.log10(), false);
+        let labels: Vec<String> = b.major.iter().map(|&u| b.label(u)).collect();
+        assert_eq!(
+            labels,
+            ["1.25e-5", "1.30e-5", "1.35e-5", "1.40e-5", "1.45e-5", "1.50e-5"]
+        );
+        // Two decades keep their decade labels.
+        let c = Axis::new(Scale::Log, -2.0, 0.0, false);
+        assert_eq!(c.fine, None);
     }
 
     #[test]

@@ -14,6 +14,7 @@ pub mod data;
 mod draw;
 pub mod nnm;
 pub mod tables;
+pub mod units;
 
 pub use axis::Scale;
 pub use nnm::{

@@ -7,6 +7,7 @@
 //! - Time history (displacement and velocity against time, stacked) and phase portrait
 //!   (velocity against displacement) of a REST_MODE_NONL time history.
 
+use super::units::with_unit;
 use super::{
     stacked, xy_plot, ImageFormat, LegendPosition, LineStyle, Marker, PlotSummary, Scale, Series,
     XyPlot, DEFAULT_SIZE,
@@ -62,6 +63,9 @@ pub struct FePoint {
     pub freq: f64,
     pub stability: Stability,
     pub bifurcation: bool,
+    /// NUME_REPRISE: the run that computed the row. A `reuse=` restart appends a run that
+    /// starts elsewhere on the family (often back at low energy): the curve breaks there.
+    pub reprise: i64,
 }
 
 /// Frequency against energy (log), in row order.
@@ -78,16 +82,21 @@ pub fn frequency_energy(
 pub fn frequency_energy_spec(rows: &[FePoint], title: &str) -> XyPlot {
     let mut series = Vec::new();
     let mut labelled = Vec::new();
-    // Runs of equal stability; each run starts at the last point of the previous one so
-    // the curve stays continuous, the joining segment taking the new run's style.
+    // Runs of equal stability and NUME_REPRISE. A run of new stability starts at the last
+    // point of the previous one so the curve stays continuous, the joining segment taking
+    // the new run's style; a run of a new NUME_REPRISE does not (no chord between the end
+    // of one computation and the start of the next).
     let mut start = 0;
     while start < rows.len() {
-        let kind = rows[start].stability;
+        let (kind, reprise) = (rows[start].stability, rows[start].reprise);
         let end = rows[start..]
             .iter()
-            .position(|r| r.stability != kind)
+            .position(|r| r.stability != kind || r.reprise != reprise)
             .map_or(rows.len(), |n| start + n);
-        let from = start.saturating_sub(1);
+        let from = match start.checked_sub(1) {
+            Some(prev) if rows[prev].reprise == reprise => prev,
+            _ => start,
+        };
         let run = &rows[from..end];
         let label = if labelled.contains(&kind) {
             ""
@@ -164,10 +173,11 @@ pub fn time_history(
 
 /// The two panels of [`time_history`].
 pub fn time_history_specs(curves: &[History], title: &str, what: &str) -> [XyPlot; 2] {
+    let cmp = what.split_whitespace().last();
     let panel = |y: fn(&History) -> &Vec<f64>, name: &str, title: &str| XyPlot {
         title: title.to_string(),
-        x_label: "INST".into(),
-        y_label: format!("{name} {what}").trim().to_string(),
+        x_label: with_unit("INST", "INST", None),
+        y_label: with_unit(&format!("{name} {what}"), name, cmp),
         series: curves
             .iter()
             .map(|h| Series::new(&h.label, h.inst.clone(), y(h).clone()))
@@ -193,10 +203,11 @@ pub fn phase_portrait(
 
 /// The plot of [`phase_portrait`].
 pub fn phase_portrait_spec(curves: &[History], title: &str, what: &str) -> XyPlot {
+    let cmp = what.split_whitespace().last();
     XyPlot {
         title: title.to_string(),
-        x_label: format!("DEPL {what}").trim().to_string(),
-        y_label: format!("VITE {what}").trim().to_string(),
+        x_label: with_unit(&format!("DEPL {what}"), "DEPL", cmp),
+        y_label: with_unit(&format!("VITE {what}"), "VITE", cmp),
         series: curves
             .iter()
             .map(|h| Series::new(&h.label, h.depl.clone(), h.vite.clone()))

@@ -10,6 +10,7 @@
 //! Empty cells become NaN, which the drawing skips and counts.
 
 use super::nnm::{FePoint, History, Stability};
+use super::units::{unit, with_unit};
 use super::{Series, XyPlot};
 use crate::error::{Error, Result};
 use crate::table::{Cell, Table};
@@ -40,6 +41,8 @@ fn text(row: &[Cell], j: usize) -> &str {
 pub fn fe_points(t: &Table) -> Result<Vec<FePoint>> {
     let (e, f) = (t.req_col("ENERGIE")?, t.req_col("FREQUENCE")?);
     let (s, b) = (t.req_col("STABILITE")?, t.req_col("BIFURCATION")?);
+    // A table without NUME_REPRISE (one built by hand) is one run.
+    let reprise = t.col("NUME_REPRISE");
     Ok(t.rows
         .iter()
         .map(|r| FePoint {
@@ -47,6 +50,10 @@ pub fn fe_points(t: &Table) -> Result<Vec<FePoint>> {
             freq: real(r, f),
             stability: Stability::parse(text(r, s)),
             bifurcation: text(r, b).trim() == "OUI",
+            reprise: reprise
+                .and_then(|j| r.get(j))
+                .and_then(Cell::as_f64)
+                .map_or(0, |v| v as i64),
         })
         .collect())
 }
@@ -168,12 +175,16 @@ pub fn columns_plot(t: &Table, x: &str, ys: &[String]) -> Result<XyPlot> {
             ))
         })
         .collect::<Result<Vec<_>>>()?;
+    // The y axis is named when it holds one column, or several of one unit.
+    let y_unit = ys.iter().map(|y| unit(y, None)).collect::<Vec<_>>();
     Ok(XyPlot {
-        x_label: x.to_string(),
-        y_label: if ys.len() == 1 {
-            ys.join("")
-        } else {
-            String::new()
+        x_label: with_unit(x, x, None),
+        y_label: match ys {
+            [y] => with_unit(y, y, None),
+            _ if y_unit.windows(2).all(|w| w[0] == w[1]) => {
+                y_unit[0].map_or_else(String::new, |u| format!("({u})"))
+            }
+            _ => String::new(),
         },
         series,
         ..XyPlot::default()
@@ -274,7 +285,8 @@ mod tests {
         let spec = columns_plot(&t, "NUME_ORDRE", &["FREQ".into()]).unwrap();
         assert_eq!(spec.series[0].x, vec![1.0, 2.0, 3.0]);
         assert_eq!(spec.series[0].y, vec![12.5, -40.0, 25.0]);
-        assert_eq!(spec.y_label, "FREQ");
+        // With its unit (before: "FREQ").
+        assert_eq!(spec.y_label, "FREQ (Hz)");
         let err = columns_plot(&t, "NUME_ORDRE", &["NOM_SD".into()]).unwrap_err();
         assert!(err.message.contains("holds texts"), "{err}");
         assert!(columns_plot(&t, "NUME_ORDRE", &[]).is_err());

@@ -220,6 +220,7 @@ pub(crate) fn synthetic_fe() -> Vec<FePoint> {
                 freq: 0.5033 * (1.0 + energy.powf(0.3)),
                 stability,
                 bifurcation: i == 25 || i == 35,
+                reprise: 0,
             }
         })
         .collect()
@@ -291,7 +292,8 @@ fn time_history_and_phase_portrait() {
     assert_eq!(sum.points, 130);
     has_texts(
         &svg_texts(&th),
-        &["history", "DEPL N2 DX", "VITE N2 DX", "INST"],
+        // With their units (before: "DEPL N2 DX", "INST").
+        &["history", "DEPL N2 DX (m)", "VITE N2 DX (m/s)", "INST (s)"],
     );
     let ph = dir.path().join("ph.png");
     phase_portrait(&[orbit()], "phase", "N2 DX", &ph, ImageFormat::Png).unwrap();
@@ -299,4 +301,37 @@ fn time_history_and_phase_portrait() {
     let th_png = dir.path().join("th.png");
     time_history(&[orbit()], "history", "N2 DX", &th_png, ImageFormat::Png).unwrap();
     assert_eq!(png_size(&th_png), (1024, 1024));
+}
+
+/// After a `reuse=` restart the table holds a second run (NUME_REPRISE 1) that starts back
+/// at low energy: the curve breaks there instead of drawing a chord from the end of the
+/// first run (8.9 J) to the start of the second (0.018 J), while a change of stability
+/// inside one run stays joined.
+#[test]
+fn frequency_energy_breaks_where_nume_reprise_changes() {
+    let point = |energy: f64, stability, reprise| FePoint {
+        energy,
+        freq: 0.5 + 0.01 * energy.ln().max(0.0),
+        stability,
+        bifurcation: false,
+        reprise,
+    };
+    let rows = vec![
+        point(0.01, Stability::Stable, 0),
+        point(1.0, Stability::Stable, 0),
+        point(8.9, Stability::Unstable, 0),
+        point(0.018, Stability::Unstable, 1),
+        point(0.5, Stability::Unstable, 1),
+    ];
+    let spec = nnm::frequency_energy_spec(&rows, "restart");
+    // Stable run, unstable run of reprise 0 (joined to the stable one), reprise 1.
+    assert_eq!(spec.series.len(), 3);
+    assert_eq!(spec.series[1].x, vec![1.0, 8.9]);
+    assert_eq!(spec.series[2].x, vec![0.018, 0.5]);
+    assert_eq!(spec.series[2].repeats, 0);
+    // No series holds both 8.9 and 0.018: no chord.
+    assert!(spec
+        .series
+        .iter()
+        .all(|s| !(s.x.contains(&8.9) && s.x.contains(&0.018))));
 }

@@ -19,6 +19,7 @@
 pub mod deps;
 pub mod dyna_trans;
 pub mod function;
+pub mod live;
 pub mod matrix;
 pub mod mesh;
 pub mod mnl;

@@ -6,6 +6,8 @@
 pub mod harness;
 // How a MODE_NON_LINE run that ended before NB_BRANCHE is reported (alarm or error).
 pub mod mnl_end;
+// MODE_NON_LINE's live view: the rows of each branch in a side file while it runs.
+pub mod live;
 // MODE_NON_LINE's RESOLUTION/CORR_LOI_EXACTE: rows corrected on the exact law.
 pub mod mnl_exact_law;
 // MODE_NON_LINE restarts: the stored direction of travel.
@@ -18,6 +20,8 @@ pub mod mnl_problem;
 // One component of a dyna_trans by NOM_CHAM, NOEUD | GROUP_NO, NOM_CMP (TEST_RESU,
 // RECU_FONCTION).
 pub mod dyna_trans;
+// The stored results IMPR_RESU writes to MED, as nodal fields on their mesh.
+pub mod med_fields;
 // The node of NOEUD= or of a one-node GROUP_NO= (TEST_RESU, MODE_NON_LINE's CHOC).
 pub mod nodes;
 // Writing to logical units (UNITE); the files a run never writes over.

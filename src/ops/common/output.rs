@@ -1,5 +1,6 @@
-//! Writing to Code_Aster logical units (UNITE): 6 and 8 are the run's output, any other
-//! unit the file mapped in `ctx.units`, else `fort.N` beside the command file. Successive
+//! Writing to Code_Aster logical units (UNITE): 6 is the run's output, 8 the results file
+//! when one is mapped (a .export's `F resu`) else the run's output, any other unit the
+//! file mapped in `ctx.units`, else `fort.N` beside the command file. Successive
 //! prints to one unit append, as Code_Aster's do.
 
 use crate::error::{Error, Result};
@@ -50,7 +51,9 @@ pub fn check_output_path(units: &Units, path: &Path) -> Result<()> {
 
 /// Write `text` to unit `unite`.
 pub fn write_unit(ctx: &mut OpContext<'_>, unite: i64, text: &str) -> Result<()> {
-    if unite == 6 || unite == 8 {
+    // 8 is Code_Aster's results file: the file a .export's `F resu` line (or --unit 8=)
+    // maps, else the run's output, as 6 (the message file) always is.
+    if unite == 6 || (unite == 8 && !ctx.units.map.contains_key(&8)) {
         ctx.out.write_all(text.as_bytes())?;
         return Ok(());
     }

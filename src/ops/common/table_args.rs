@@ -10,8 +10,11 @@ use crate::table::sort::{sort, Ordre};
 use crate::table::{Cell, Table};
 use crate::value::{ConceptRef, Value};
 
-/// Concept types that are tables.
-pub const TABLE_TYPES: &[&str] = &["table_sdaster", "table_container"];
+/// Concept types stored as a table (`store::table`): the tables, and the time history of
+/// a `dyna_trans` (REST_MODE_NONL), whose rows are one table as well. Which of them an
+/// operator takes is its catalog's business (IMPR_TABLE, TEST_TABLE and RECU_FONCTION
+/// take a `dyna_trans`; CALC_TABLE and EXTR_TABLE do not), checked by the validation.
+pub const TABLE_TYPES: &[&str] = &["table_sdaster", "table_container", "dyna_trans"];
 
 fn items(v: Option<&Value>) -> Vec<&Value> {
     match v {

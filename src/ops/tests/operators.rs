@@ -203,6 +203,25 @@ fn impr_table_to_stdout_and_to_a_unit() {
         text,
         "NUME_ORDRE;FREQ;NOM\n2;2.50000E+00;b\n3;3.50000E+00;c\n"
     );
+    // Without SEPARATEUR a CSV is comma-separated (the catalog's default for CSV; it was
+    // TABLEAU's space), while TABLEAU keeps Code_Aster's space.
+    let path = dir.path().join("tab2.csv");
+    h.units.map.insert(30, path.clone());
+    let a = args(
+        "IMPR_TABLE",
+        vec![
+            ("TABLE", table("TAB")),
+            ("UNITE", i(30)),
+            ("FORMAT", k("CSV")),
+        ],
+        vec![],
+    );
+    h.run("IMPR_TABLE", None, None, &a).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(
+        text.starts_with("NUME_ORDRE,FREQ,NOM\n") && text.contains("\n2,2.50000E+00,b\n"),
+        "{text}"
+    );
 }
 
 /// FORMAT='ASTER' is the TABLEAU block between Code_Aster's markers with a line of types;

@@ -201,8 +201,8 @@ fn impr_table_draws_time_histories_and_phase_portraits() {
     has_texts(
         &svg_texts(&dir.path().join("ph.svg")),
         &[
-            "DEPL N2 DY",
-            "VITE N2 DY",
+            "DEPL N2 DY (m)",
+            "VITE N2 DY (m/s)",
             "NUME_ORDRE 1",
             "NUME_ORDRE 2",
             "TH",
@@ -323,7 +323,8 @@ fn impr_fonction_draws_functions_and_point_lists() {
     // Axis names from the function; legend: F's name and the given LEGENDE.
     has_texts(
         &svg_texts(&out),
-        &["spectrum", "FREQ", "ACCE", "F", "measured"],
+        // Axis names with their units (before: "FREQ", "ACCE").
+        &["spectrum", "FREQ (Hz)", "ACCE (m/s²)", "F", "measured"],
     );
     // PNG beside the command file.
     let a = args(
