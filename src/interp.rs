@@ -355,6 +355,12 @@ impl Host for Runner<'_> {
         })
     }
 
+    fn warn(&mut self, id: &str, text: &str) {
+        if !self.ignored_alarms.iter().any(|a| a == id) {
+            let _ = writeln!(self.out, "<A> <{id}> {text}");
+        }
+    }
+
     fn table_contents(&mut self, table: &ConceptRef) -> Result<Value> {
         let t = crate::store::table::load_table(self.store()?, &table.name)?;
         let rows = t
@@ -438,12 +444,7 @@ fn started_at() -> String {
 /// Run a command file. Errors that stop the run are in `RunSummary::error`; the
 /// `Err` case is reserved for failures before anything ran (unreadable file).
 pub fn run_file(path: &Path, opts: RunOptions, out: &mut dyn Write) -> Result<RunSummary> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        Error::new(
-            crate::error::ErrorKind::Io,
-            format!("cannot read {}: {e}", path.display()),
-        )
-    })?;
+    let text = crate::text_file::read(path, "the command file")?;
     let src = Source {
         name: path.display().to_string(),
         text,

@@ -305,17 +305,9 @@ fn check(file: &Path, db: Option<PathBuf>, unit_specs: &[String]) -> ExitCode {
     } else {
         file.to_path_buf()
     };
-    let text = match std::fs::read_to_string(&file) {
+    let text = match aster_nl::text_file::read(&file, "the command file") {
         Ok(t) => t,
-        Err(e) => {
-            return fail(
-                &Error::new(
-                    ErrorKind::Io,
-                    format!("cannot read {}: {e}", file.display()),
-                ),
-                None,
-            )
-        }
+        Err(e) => return fail(&e, None),
     };
     let src = Source {
         name: file.display().to_string(),
