@@ -26,6 +26,7 @@ mod blocks;
 mod builtins;
 pub mod diag;
 mod eval;
+pub mod extent;
 mod parser;
 mod scan;
 
@@ -73,8 +74,19 @@ pub fn run(src: &Source, env: &mut Env, host: &mut dyn Host) -> Result<()> {
 pub struct Limits {
     /// Most statements run (loop bodies count once per iteration).
     pub max_steps: u64,
-    /// Most list items and text characters built by `+`, `*` and builtins.
+    /// Most list items and text characters built by literals, `+`, `*` and builtins, over
+    /// the whole run.
     pub max_work: u64,
+    /// Most items one value may hold, counted at every level of nesting
+    /// ([`extent::Extent`]): checked as the value is built, before it is kept.
+    pub max_value_items: u64,
+    /// Deepest nesting of lists (and `_F`) in one value.
+    pub max_depth: usize,
+    /// Most operator calls one run makes (each is a transaction, milliseconds at least).
+    pub max_operator_calls: u64,
+    /// A `for` loop whose iterations times the operator calls of its body exceed this is
+    /// announced before it starts.
+    pub warn_operator_calls: u64,
 }
 
 impl Default for Limits {
@@ -82,6 +94,10 @@ impl Default for Limits {
         Limits {
             max_steps: 10_000_000,
             max_work: 100_000_000,
+            max_value_items: 10_000_000,
+            max_depth: 100,
+            max_operator_calls: 100_000,
+            warn_operator_calls: 10_000,
         }
     }
 }
@@ -165,6 +181,12 @@ pub trait Host {
             "the contents of table {} are not available here",
             table.name
         )))
+    }
+
+    /// An alarm of the language itself (`id`, e.g. `RESSOURCES_2`: a loop of many operator
+    /// calls), before the statement it is about runs.
+    fn warn(&mut self, id: &str, text: &str) {
+        eprintln!("<A> <{id}> {text}");
     }
 
     /// Output of `print(...)` in the command file.
