@@ -7,8 +7,9 @@
 
 use crate::value::Value;
 
-/// The size of a value: `items` counts every list, item, text byte and table cell at every
-/// level (saturating, never overflowing); `depth` is 0 for a scalar, 1 for a flat list.
+/// The size of a value: `items` counts every list, item, text byte, table cell and keyword
+/// (with its name's bytes) at every level (saturating, never overflowing); `depth` is 0 for
+/// a scalar, 1 for a flat list.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Extent {
     pub items: u64,
@@ -60,7 +61,14 @@ pub fn extent(v: &Value) -> Extent {
             depth: 0,
         },
         Value::Seq(items) => Extent::list_of(items.iter().map(extent)),
-        Value::Fact(kws) => Extent::list_of(kws.iter().map(|k| extent(&k.value))),
+        // A keyword carries its name (a string of its own) besides its value.
+        Value::Fact(kws) => Extent::list_of(kws.iter().map(|k| {
+            let v = extent(&k.value);
+            Extent {
+                items: v.items.saturating_add(1 + k.name.len() as u64),
+                depth: v.depth,
+            }
+        })),
         Value::Table(t) => Extent {
             items: t
                 .rows

@@ -93,8 +93,8 @@ impl Default for Limits {
     fn default() -> Self {
         Limits {
             max_steps: 10_000_000,
-            max_work: 100_000_000,
-            max_value_items: 10_000_000,
+            max_work: 50_000_000,
+            max_value_items: 2_000_000,
             max_depth: 100,
             max_operator_calls: 100_000,
             warn_operator_calls: 10_000,
