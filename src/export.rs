@@ -49,8 +49,7 @@ impl Export {
 }
 
 pub fn read_export(path: &Path) -> Result<Export> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| Error::input(format!("cannot read {}: {e}", path.display())))?;
+    let text = crate::text_file::read(path, "the export file")?;
     parse_export(&text, path)
 }
 

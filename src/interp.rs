@@ -356,6 +356,12 @@ impl Host for Runner<'_> {
         })
     }
 
+    fn warn(&mut self, id: &str, text: &str) {
+        if !self.ignored_alarms.iter().any(|a| a == id) {
+            let _ = writeln!(self.out, "<A> <{id}> {text}");
+        }
+    }
+
     fn table_contents(&mut self, table: &ConceptRef) -> Result<Value> {
         let t = crate::store::table::load_table(self.store()?, &table.name)?;
         let rows = t

@@ -47,4 +47,5 @@ pub mod study;
 pub mod suggest;
 pub mod sweep;
 pub mod table;
+pub mod text_file;
 pub mod value;

@@ -6,6 +6,13 @@
 //! Code_Aster's names are upper case and users type `info=` as often as `INFO=`.
 //! Closeness: at most one edit per three characters (at least one), so long Code_Aster names
 //! with two or three typos are still found while short names do not match everything.
+//! Bounded by length: a name longer than [`MAX_NAME`] gets no suggestion, and a candidate
+//! whose length alone puts it too far is not compared, so that a hostile 70,000-character
+//! name costs nothing (the distance is quadratic in the lengths).
+
+/// The longest name suggestions are searched for (Code_Aster's names are 8 to 16
+/// characters; Python variables of a command file rarely pass 30).
+pub const MAX_NAME: usize = 64;
 
 /// Edits (insert, delete, substitute, swap of neighbours) between two names, case-insensitive.
 pub fn distance(a: &str, b: &str) -> usize {
@@ -34,9 +41,15 @@ pub fn distance(a: &str, b: &str) -> usize {
 /// Up to three candidates close to `name`, closest first (ties in the candidates' order of
 /// sorting); a candidate differing only in case always counts as close.
 pub fn closest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> Vec<&'a str> {
-    let limit = (name.chars().count() / 3).max(1);
+    let len = name.chars().count();
+    if len > MAX_NAME {
+        return Vec::new();
+    }
+    let limit = (len / 3).max(1);
     let mut scored: Vec<(usize, &str)> = candidates
         .into_iter()
+        // Every edit changes the length by one at most: a far length is a far name.
+        .filter(|c| c.len() <= 4 * (MAX_NAME + limit) && c.chars().count().abs_diff(len) <= limit)
         .map(|c| (distance(name, c), c))
         .filter(|(d, _)| *d <= limit)
         .collect();
@@ -76,5 +89,21 @@ mod tests {
         assert!(closest("ZZZZZZZZZ", c).is_empty());
         // A short name is not close to every short name.
         assert!(closest("XY", ["AB", "CD"]).is_empty());
+    }
+
+    #[test]
+    fn long_names_are_not_compared() {
+        // Two 1,000-character names one edit apart: compared, they would be "close" (and a
+        // 70,000-character pair would take 4.9e9 steps); past MAX_NAME none is searched.
+        let defined = "A".repeat(1000);
+        let typed = format!("{}B", "A".repeat(999));
+        assert!(closest(&typed, [defined.as_str()]).is_empty());
+        assert_eq!(
+            closest("MATR_RIGU", [defined.as_str(), "MATR_RIGI"]),
+            vec!["MATR_RIGI"]
+        );
+        let at_bound = "A".repeat(MAX_NAME);
+        let near = format!("{}B", "A".repeat(MAX_NAME - 1));
+        assert_eq!(closest(&near, [at_bound.as_str()]), vec![at_bound.as_str()]);
     }
 }

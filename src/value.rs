@@ -108,6 +108,33 @@ impl Value {
     }
 }
 
+impl Value {
+    /// The value as the file would write it, cut after about 100 characters ("…"): what a
+    /// message shows, however long the list is (formatting stops there, it is not built
+    /// whole and then cut).
+    pub fn brief(&self) -> String {
+        use fmt::Write;
+        const MAX: usize = 100;
+        struct Bounded(String);
+        impl fmt::Write for Bounded {
+            fn write_str(&mut self, s: &str) -> fmt::Result {
+                for c in s.chars() {
+                    if self.0.len() >= MAX {
+                        return Err(fmt::Error);
+                    }
+                    self.0.push(c);
+                }
+                Ok(())
+            }
+        }
+        let mut out = Bounded(String::new());
+        match write!(out, "{self}") {
+            Ok(()) => out.0,
+            Err(_) => format!("{}…", out.0),
+        }
+    }
+}
+
 impl fmt::Display for Value {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

@@ -597,3 +597,364 @@ fn the_in_process_harness_reports_a_panic_and_a_hang() {
     );
     assert!(matches!(hang, Ending::Finding(ref w) if w.contains("hang")));
 }
+
+// ---- issue 35: the families the first campaign missed ----
+
+/// A command file of one of the generated families: values that grow by doubling or by
+/// nesting, very long names, huge list literals given to keywords. Each ends with operator
+/// calls that use what it built, so that `check` and `run` carry the values into
+/// validation, messages and the store.
+fn generated(rng: &mut Rng) -> (String, &'static str) {
+    let n = |rng: &mut Rng, top: usize| 1 + rng.below(top);
+    let use_x =
+        "T = CREA_TABLE(TITRE=x, LISTE=_F(PARA='X', LISTE_R=x))\nprint(x)\nIMPR_TABLE(TABLE=T)\n";
+    match rng.below(9) {
+        0 => (
+            format!("DEBUT()\nx = (1.0,)\nfor i in range({}):\n    x = (x, x)\n{use_x}FIN()\n", n(rng, 64)),
+            "growth: x = (x, x)",
+        ),
+        1 => (
+            format!("DEBUT()\nx = [0.5]\nfor i in range({}):\n    x = x + x\ny = sum(x)\n{use_x}FIN()\n", n(rng, 64)),
+            "growth: x = x + x",
+        ),
+        2 => (
+            format!("DEBUT()\nx = [0]\nfor i in range({}):\n    x = [x]\n{use_x}FIN()\n", n(rng, 300_000)),
+            "growth: x = [x]",
+        ),
+        3 => (
+            format!(
+                "DEBUT()\nx = 'ab'\nfor i in range({}):\n    x = x * {}\n    x = str((x, x))\n{use_x}FIN()\n",
+                n(rng, 40),
+                n(rng, 9)
+            ),
+            "growth: texts",
+        ),
+        4 => (
+            format!("DEBUT()\nx = _F(A=1)\nfor i in range({}):\n    x = _F(A=x, B=x)\n{use_x}FIN()\n", n(rng, 300)),
+            "growth: _F(A=x, B=x)",
+        ),
+        5 => (
+            format!(
+                "DEBUT()\nx = [1.0] * {}\nfor i in range({}):\n    n = len(x) + len(list(x))\n{use_x}FIN()\n",
+                n(rng, 1_000_000),
+                n(rng, 100_000)
+            ),
+            "growth: a long list read in a loop",
+        ),
+        6 => {
+            // A very long undefined name beside a similar defined one.
+            let len = n(rng, 100_000);
+            let defined = "N".repeat(len);
+            let typed = format!("{}M", "N".repeat(len.saturating_sub(1)));
+            let op = if rng.below(2) == 0 { "CREA_TABLEE" } else { "X" };
+            (
+                format!("{defined} = 1\nx = {typed}\nT = {op}{}(LISTE=1)\n", "Q".repeat(len)),
+                "long names",
+            )
+        }
+        7 => {
+            let kw = rng.pick(&[
+                "MATR_ELEM", "NUME_DDL", "GROUP_NO", "NOEUD", "TITRE", "LISTE_R", "VALE", "CHOC",
+                "TOUT", "INFO", "NB_INST",
+            ]);
+            let item = rng.pick(&["0.0", "'A'", "1", "_F(X=1)", "None", "(1, 2)"]);
+            let op = rng.pick(&["ASSE_MATRICE", "DEFI_GROUP", "CREA_TABLE", "MODE_NON_LINE", "DEFI_FONCTION"]);
+            (
+                format!("DEBUT()\nA = {op}({kw}=[{item}]*10**{})\nFIN()\n", rng.below(8)),
+                "huge list literals",
+            )
+        }
+        _ => {
+            // A literal list written out in the file.
+            let items = n(rng, 200_000);
+            let list = vec!["0.0"; items].join(", ");
+            (
+                format!("DEBUT()\nA = ASSE_MATRICE(MATR_ELEM=[{list}], NUME_DDL=({list}))\nFIN()\n"),
+                "huge list literals (written out)",
+            )
+        }
+    }
+}
+
+/// Byte mutations of a binary file (MED/HDF5): flips, overwritten ranges, truncations,
+/// duplicated and deleted blocks.
+fn mutate_bytes(rng: &mut Rng, bytes: &[u8]) -> Vec<u8> {
+    let mut out = bytes.to_vec();
+    for _ in 0..1 + rng.below(4) {
+        let len = out.len().max(1);
+        match rng.below(6) {
+            0 | 1 => {
+                let i = rng.below(len).min(out.len().saturating_sub(1));
+                if let Some(b) = out.get_mut(i) {
+                    *b ^= 1 << rng.below(8);
+                }
+            }
+            2 => {
+                let a = rng.below(len);
+                for i in a..(a + 1 + rng.below(64)).min(out.len()) {
+                    out[i] = rng.next() as u8;
+                }
+            }
+            3 => out.truncate(rng.below(len)),
+            4 => {
+                let a = rng.below(len).min(out.len());
+                let b = (a + rng.below(512)).min(out.len());
+                let block = out[a..b].to_vec();
+                let at = rng.below(len).min(out.len());
+                out.splice(at..at, block);
+            }
+            _ => {
+                let a = rng.below(len).min(out.len());
+                let b = (a + rng.below(512)).min(out.len());
+                out.drain(a..b);
+            }
+        }
+    }
+    out
+}
+
+/// A file of the user's beside the study, as it was before a run: its kind and bytes
+/// (a link: its target's path and the target's bytes).
+#[derive(Debug, PartialEq)]
+enum Kept {
+    File(Vec<u8>),
+    Link(PathBuf, Vec<u8>),
+}
+
+fn kept(p: &Path) -> Option<Kept> {
+    let m = std::fs::symlink_metadata(p).ok()?;
+    if m.file_type().is_symlink() {
+        let t = std::fs::read_link(p).ok()?;
+        let bytes = std::fs::read(&t).unwrap_or_default();
+        return Some(Kept::Link(t, bytes));
+    }
+    std::fs::read(p).ok().map(Kept::File)
+}
+
+fn mkfifo(p: &Path) {
+    let c = std::ffi::CString::new(p.to_str().unwrap()).unwrap();
+    // SAFETY: mkfifo on a NUL-terminated path of the campaign's directory.
+    unsafe { libc::mkfifo(c.as_ptr(), 0o600) };
+}
+
+/// The families through the binary, each case in a fresh directory:
+/// - generated command files (growth, long names, huge literals) through `check` and `run`;
+/// - FIFOs, devices and directories as the command file, a mesh unit, an output unit,
+///   FICHIER and `--db`;
+/// - files of the user's beside the study (`.lock`, `-journal`, `-wal`, `-shm`, links to a
+///   file of the user's) before DEBUT and POURSUITE: every one must be left as it was.
+///
+/// Each must end by itself with 0, 1 or 2 under the memory limit, and `check` must not
+/// print more than a megabyte. `FUZZ_FAMILIES` sets the count (CI: a few seconds).
+#[test]
+fn hostile_families_never_crash_hang_or_touch_a_users_file() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let seed = env_usize("FUZZ_SEED", 11) as u64;
+    let n_cases = env_usize("FUZZ_FAMILIES", 24);
+    let mut rng = Rng(0x5851_F42D_4C95_7F2D ^ seed.wrapping_mul(0x1000_0000_01B3));
+    let work = tempfile::tempdir().unwrap();
+    let mut c = Campaign {
+        findings_dir: root.join("target/fuzz-findings/families"),
+        findings: Vec::new(),
+        counts: [0; 3],
+    };
+    let table_comm = "DEBUT()\nT = CREA_TABLE(LISTE=_F(PARA='X', LISTE_R=(1., 2.)))\n\
+                      IMPR_TABLE(TABLE=T, UNITE=30)\nIMPR_TABLE(TABLE=T, FORMAT='PNG', NOM_PARA=('X', 'X'), FICHIER='out.png')\nFIN()\n";
+    let mut per_family: std::collections::BTreeMap<&str, usize> = Default::default();
+    for i in 0..n_cases {
+        let dir = work.path().join(format!("c{i}"));
+        std::fs::create_dir_all(&dir).unwrap();
+        let family = i % 3;
+        match family {
+            0 => {
+                let (text, name) = generated(&mut rng);
+                *per_family.entry(name).or_default() += 1;
+                std::fs::write(dir.join("g.comm"), &text).unwrap();
+                let cmd = if rng.below(2) == 0 { "check" } else { "run" };
+                let e = run_child(&dir, &[cmd, "g.comm"], Duration::from_secs(120));
+                c.record(&format!("{cmd} ({name})"), "g.comm", &text, e);
+            }
+            1 => {
+                // A special file in one of the places a user names a file.
+                let special = match rng.below(4) {
+                    0 => {
+                        mkfifo(&dir.join("sp"));
+                        "sp"
+                    }
+                    1 => "/dev/zero",
+                    2 => "/dev/null",
+                    _ => {
+                        std::fs::create_dir_all(dir.join("sp")).unwrap();
+                        "sp"
+                    }
+                };
+                std::fs::write(dir.join("t.comm"), table_comm).unwrap();
+                let fichier = table_comm.replace("'out.png'", &format!("'{special}'"));
+                std::fs::write(dir.join("f.comm"), &fichier).unwrap();
+                std::fs::write(
+                    dir.join("m.comm"),
+                    "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='ASTER', UNITE=20)\nFIN()\n",
+                )
+                .unwrap();
+                let unit30 = format!("30={special}");
+                let unit20 = format!("20={special}");
+                let how: Vec<&str> = match rng.below(6) {
+                    0 => vec!["run", special],
+                    1 => vec!["check", special],
+                    2 => vec!["run", "t.comm", "--unit", &unit30],
+                    3 => vec!["run", "f.comm"],
+                    4 => vec!["run", "m.comm", "--unit", &unit20],
+                    _ => vec!["run", "t.comm", "--db", special],
+                };
+                *per_family.entry("special files").or_default() += 1;
+                let e = run_child(&dir, &how, Duration::from_secs(60));
+                c.record(&format!("{how:?}"), "t.comm", table_comm, e);
+            }
+            _ => {
+                // Files of the user's beside the study, then DEBUT (or POURSUITE of a
+                // study made first).
+                let poursuite = rng.below(2) == 0;
+                std::fs::write(dir.join("t.comm"), table_comm).unwrap();
+                if poursuite {
+                    let _ = run_child(
+                        &dir,
+                        &["run", "t.comm", "--db", "s.db"],
+                        Duration::from_secs(60),
+                    );
+                }
+                std::fs::write(dir.join("precious.txt"), b"precious").unwrap();
+                let mut placed = Vec::new();
+                for suffix in [".lock", "-journal", "-wal", "-shm"] {
+                    let p = dir.join(format!("s.db{suffix}"));
+                    match rng.below(4) {
+                        0 => std::fs::write(&p, format!("user's {suffix}")).unwrap(),
+                        1 => std::os::unix::fs::symlink(dir.join("precious.txt"), &p).unwrap(),
+                        2 => std::os::unix::fs::symlink(dir.join("nowhere"), &p).unwrap(),
+                        _ => continue,
+                    }
+                    placed.push(p);
+                }
+                let before: Vec<Option<Kept>> = placed.iter().map(|p| kept(p)).collect();
+                let comm = if poursuite { "p.comm" } else { "t.comm" };
+                std::fs::write(dir.join("p.comm"), "POURSUITE()\nFIN()\n").unwrap();
+                *per_family.entry("files beside the study").or_default() += 1;
+                let e = run_child(
+                    &dir,
+                    &["run", comm, "--db", "s.db"],
+                    Duration::from_secs(60),
+                );
+                let after: Vec<Option<Kept>> = placed.iter().map(|p| kept(p)).collect();
+                let e = match e {
+                    Ending::Ok if before != after || dir.join("nowhere").exists() => Ending::Finding(
+                        format!("a file of the user's changed: {placed:?}\nbefore {before:?}\nafter {after:?}"),
+                    ),
+                    e => e,
+                };
+                c.record(
+                    &format!("run {comm} beside {placed:?}"),
+                    comm,
+                    table_comm,
+                    e,
+                );
+            }
+        }
+        c.counts[0] += 1;
+        c.progress();
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+    println!(
+        "fuzz families (seed {seed}): {} cases {per_family:?}; {} finding(s)",
+        c.counts[0],
+        c.findings.len()
+    );
+    assert!(
+        c.findings.is_empty(),
+        "{} finding(s):\n{}",
+        c.findings.len(),
+        c.findings.join("\n")
+    );
+}
+
+/// Binary MED meshes, byte-mutated, through the MED reader in process (`FUZZ_INPROC_MED`)
+/// and through `run` (`FUZZ_MED_RUNS`): no panic, no hang, no abort.
+#[test]
+fn mutated_med_meshes_never_crash_or_hang() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let seed = env_usize("FUZZ_SEED", 11) as u64;
+    let n_inproc = env_usize("FUZZ_INPROC_MED", 300);
+    let n_runs = env_usize("FUZZ_MED_RUNS", 6);
+    let mut rng = Rng(0x9E6C_63D0_676A_9A99 ^ seed.wrapping_mul(0x1000_0000_01B3));
+    let mut meds = files(&root.join("testcases"), &["med"]);
+    meds.extend(files(&root.join("testcases/meshes"), &["med"]));
+    assert!(!meds.is_empty());
+    let originals: Vec<(String, Vec<u8>)> = meds
+        .iter()
+        .map(|p| {
+            (
+                p.file_name().unwrap().to_string_lossy().into_owned(),
+                std::fs::read(p).unwrap(),
+            )
+        })
+        .collect();
+    let work = tempfile::tempdir().unwrap();
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let mut c = Campaign {
+        findings_dir: root.join("target/fuzz-findings/med"),
+        findings: Vec::new(),
+        counts: [0; 3],
+    };
+    for i in 0..n_inproc {
+        let (name, bytes) = &originals[i % originals.len()];
+        let mutant = mutate_bytes(&mut rng, bytes);
+        let path = work.path().join(format!("m{}.med", i % 8));
+        std::fs::write(&path, &mutant).unwrap();
+        let p = path.clone();
+        let e = in_process(
+            move || {
+                let _ = aster_nl::mesh::med::read_file(&p, None);
+            },
+            Duration::from_secs(30),
+        );
+        c.record(
+            "med (in process)",
+            name,
+            &String::from_utf8_lossy(&mutant),
+            e,
+        );
+        c.counts[2] += 1;
+        c.progress();
+    }
+    std::panic::set_hook(hook);
+    let dir = work.path().join("run");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("m.comm"),
+        "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\nFIN()\n",
+    )
+    .unwrap();
+    for i in 0..n_runs {
+        let (name, bytes) = &originals[i % originals.len()];
+        let mutant = mutate_bytes(&mut rng, bytes);
+        std::fs::write(dir.join("m.med"), &mutant).unwrap();
+        let _ = std::fs::remove_file(dir.join("m.db"));
+        let e = run_child(
+            &dir,
+            &["run", "m.comm", "--unit", "20=m.med"],
+            Duration::from_secs(60),
+        );
+        c.record("run (med)", name, &String::from_utf8_lossy(&mutant), e);
+        c.counts[2] += 1;
+        c.progress();
+    }
+    println!(
+        "fuzz med (seed {seed}): {n_inproc} in process, {n_runs} runs; {} finding(s)",
+        c.findings.len()
+    );
+    assert!(
+        c.findings.is_empty(),
+        "{} finding(s):\n{}",
+        c.findings.len(),
+        c.findings.join("\n")
+    );
+}

@@ -781,3 +781,449 @@ fn a_killed_run_keeps_the_operators_it_committed() {
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     assert!(text(&o).contains("2 OK, 0 NOOK"), "{}", text(&o));
 }
+
+// ---- issue 35: the second hostile campaign ----
+
+/// `aster-nl ARGS...` under `sh -c 'ulimit -v KB; exec ...'` in `dir`, stopped after
+/// `timeout` (a hang is a failure of the test, not a stuck CI).
+fn limited_run(dir: &Path, limit_kb: u64, args: &[&str], timeout: std::time::Duration) -> Output {
+    use std::process::Stdio;
+    let mut child = Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit -v {limit_kb}; exec \"$0\" \"$@\""))
+        .arg(env!("CARGO_BIN_EXE_aster-nl"))
+        .args(args)
+        .current_dir(dir)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Both pipes read on threads, so that a chatty child never blocks on a full pipe.
+    let drain = |pipe: Option<Box<dyn std::io::Read + Send>>| {
+        std::thread::spawn(move || {
+            let mut bytes = Vec::new();
+            if let Some(mut p) = pipe {
+                use std::io::Read;
+                let _ = p.read_to_end(&mut bytes);
+            }
+            bytes
+        })
+    };
+    let stdout = drain(child.stdout.take().map(|p| Box::new(p) as _));
+    let stderr = drain(child.stderr.take().map(|p| Box::new(p) as _));
+    let started = std::time::Instant::now();
+    let status = loop {
+        if let Some(st) = child.try_wait().unwrap() {
+            break st;
+        }
+        if started.elapsed() > timeout {
+            child.kill().unwrap();
+            child.wait().unwrap();
+            panic!("{args:?}: no end after {timeout:?} (hang)");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    };
+    Output {
+        status,
+        stdout: stdout.join().unwrap(),
+        stderr: stderr.join().unwrap(),
+    }
+}
+
+fn mkfifo(p: &Path) {
+    let c = std::ffi::CString::new(p.to_str().unwrap()).unwrap();
+    // SAFETY: mkfifo on a NUL-terminated path of a test directory.
+    assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+}
+
+/// Rows 1 and 2: a `study.db.lock` of the user's, or a link there, is refused, named and
+/// left as it was (it was overwritten and deleted; the link's target overwritten).
+#[test]
+fn a_lock_path_that_is_not_ours_is_refused_and_left_alone() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let db = dir.path().join("study.db");
+    let lock = dir.path().join("study.db.lock");
+    std::fs::write(&lock, "my own notes\n").unwrap();
+    let o = run_with_db(&comm, &db, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("study.db.lock"), "{out}");
+    assert!(out.contains("not a lock file of aster-nl"), "{out}");
+    assert_eq!(std::fs::read_to_string(&lock).unwrap(), "my own notes\n");
+    assert!(!db.exists(), "nothing was created");
+
+    std::fs::remove_file(&lock).unwrap();
+    let target = dir.path().join("precious.txt");
+    std::fs::write(&target, "precious").unwrap();
+    std::os::unix::fs::symlink(&target, &lock).unwrap();
+    let o = run_with_db(&comm, &db, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("symbolic link"), "{out}");
+    assert_eq!(std::fs::read_to_string(&target).unwrap(), "precious");
+    assert!(std::fs::symlink_metadata(&lock)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+}
+
+/// Row 3: a `study.db-journal` of the user's beside a study that does not exist yet is
+/// not deleted (SQLite took it for a stale journal); a link there is never written through.
+#[test]
+fn a_journal_path_that_is_not_ours_is_refused_and_left_alone() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let db = dir.path().join("study.db");
+    let journal = dir.path().join("study.db-journal");
+    std::fs::write(&journal, "a file of mine").unwrap();
+    let o = run_with_db(&comm, &db, &[]);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("study.db-journal"), "{out}");
+    assert_eq!(std::fs::read_to_string(&journal).unwrap(), "a file of mine");
+    std::fs::remove_file(&journal).unwrap();
+    // Beside our own study, a link at the journal's path is refused too.
+    assert_eq!(run_with_db(&comm, &db, &[]).status.code(), Some(0));
+    let target = dir.path().join("precious.txt");
+    std::fs::write(&target, "precious").unwrap();
+    std::os::unix::fs::symlink(&target, &journal).unwrap();
+    let cont = dir.path().join("cont.comm");
+    std::fs::write(&cont, "POURSUITE()\nFIN()\n").unwrap();
+    for c in [&comm, &cont] {
+        let o = run_with_db(c, &db, &[]);
+        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+        assert!(text(&o).contains("symbolic link"), "{}", text(&o));
+    }
+    assert_eq!(std::fs::read_to_string(&target).unwrap(), "precious");
+}
+
+/// Row 4: a study whose run was killed (`kill -9`) at any moment, inside an operator
+/// included, is recognised: `tables` reads it, DEBUT replaces it, POURSUITE continues it.
+/// (Killed inside an operator, the study has a hot journal; a read-only look could not
+/// roll it back and took the study for a file without the schema marker.)
+#[test]
+fn a_study_killed_at_any_point_is_readable_replaceable_and_continuable() {
+    use std::process::Stdio;
+    use std::time::{Duration, Instant};
+    let (dir, comm) = copy_case("sdnd122a");
+    let long = std::fs::read_to_string(&comm)
+        .unwrap()
+        .replace("NB_HARM_NONL=200", "NB_HARM_NONL=1000");
+    std::fs::write(&comm, long).unwrap();
+    let (_quick_dir, quick) = copy_case("chain_fixed_fixed");
+    let committed = |db: &Path, name: &str| -> bool {
+        let flags = rusqlite::OpenFlags::SQLITE_OPEN_READ_ONLY;
+        rusqlite::Connection::open_with_flags(db, flags)
+            .and_then(|c| {
+                c.query_row(
+                    "SELECT count(*) FROM concepts WHERE name = ?1",
+                    [name],
+                    |r| r.get::<_, i64>(0),
+                )
+            })
+            .is_ok_and(|n| n > 0)
+    };
+    // Kill points: a few moments after the start (DEBUT, LIRE_MAILLAGE, the model
+    // operators), then as soon as each of these concepts is committed (the next operator
+    // is running: CALC_MODES, then MODE_NON_LINE).
+    let mut points: Vec<(Option<u64>, Option<&str>)> = [0u64, 5, 20, 60, 150]
+        .iter()
+        .map(|&ms| (Some(ms), None))
+        .collect();
+    points.extend([
+        (None, Some("MAIL")),
+        (None, Some("RIGIDITE")),
+        (None, Some("MODES")),
+    ]);
+    let mut hot = 0;
+    for (i, (delay, after)) in points.into_iter().enumerate() {
+        let db = dir.path().join(format!("k{i}.db"));
+        let mut child = bin()
+            .arg("run")
+            .arg(&comm)
+            .arg("--db")
+            .arg(&db)
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        if let Some(ms) = delay {
+            std::thread::sleep(Duration::from_millis(ms));
+        }
+        if let Some(name) = after {
+            let deadline = Instant::now() + Duration::from_secs(300);
+            while !committed(&db, name) {
+                assert!(child.try_wait().unwrap().is_none(), "ended before {name}");
+                assert!(Instant::now() < deadline, "{name} never committed");
+                std::thread::sleep(Duration::from_millis(1));
+            }
+        }
+        child.kill().unwrap();
+        child.wait().unwrap();
+        if !db.exists() {
+            continue; // killed before DEBUT created anything
+        }
+        let journal = dir.path().join(format!("k{i}.db-journal"));
+        hot += usize::from(journal.exists() && std::fs::metadata(&journal).unwrap().len() > 0);
+        let before = std::fs::read(&db).unwrap();
+        let o = bin().arg("tables").arg(&db).output().unwrap();
+        assert_eq!(o.status.code(), Some(0), "kill {i}: tables: {}", text(&o));
+        if let Some(name) = after {
+            assert!(text(&o).contains(name), "kill {i}: {}", text(&o));
+        }
+        assert_eq!(
+            std::fs::read(&db).unwrap(),
+            before,
+            "tables wrote the study"
+        );
+        if i % 2 == 0 {
+            // Continued: SQLite rolls the journal back, the committed concepts are there.
+            let more = dir.path().join("more.comm");
+            std::fs::write(&more, "POURSUITE()\nFIN()\n").unwrap();
+            let o = run_with_db(&more, &db, &[]);
+            assert_eq!(
+                o.status.code(),
+                Some(0),
+                "kill {i}: POURSUITE: {}",
+                text(&o)
+            );
+        }
+        // Replaced by a new study.
+        let o = run_with_db(&quick, &db, &[]);
+        assert_eq!(o.status.code(), Some(0), "kill {i}: DEBUT: {}", text(&o));
+        assert!(db_concepts(&db).contains(&"MAIL".to_string()));
+        assert!(!journal.exists());
+    }
+    assert!(
+        hot >= 2,
+        "only {hot} kill(s) left a hot journal: the test lost its point"
+    );
+}
+
+/// Row 5 and a minor point: outputs and inputs must be regular files. A FIFO as a unit, as
+/// FICHIER, as the command file or as the sweep's study file is refused at once instead of
+/// blocking forever; `/dev/zero` as the command file is refused before it is read.
+#[test]
+fn fifos_and_devices_are_refused_as_inputs_and_outputs() {
+    use std::time::Duration;
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("pipe");
+    mkfifo(&fifo);
+    let comm = dir.path().join("t.comm");
+    let quick = Duration::from_secs(60);
+    for (print, kw) in [
+        ("IMPR_TABLE(TABLE=T, UNITE=30)", "UNITE"),
+        (
+            "IMPR_TABLE(TABLE=T, FORMAT='PNG', NOM_PARA=('X', 'Y'), FICHIER='pipe')",
+            "FICHIER",
+        ),
+    ] {
+        std::fs::write(
+            &comm,
+            format!(
+                "DEBUT()\nT = CREA_TABLE(LISTE=(_F(PARA='X', LISTE_R=(1., 2.)), \
+                 _F(PARA='Y', LISTE_R=(3., 4.))))\n{print}\nFIN()\n"
+            ),
+        )
+        .unwrap();
+        let o = limited_run(
+            dir.path(),
+            4 * 1024 * 1024,
+            &["run", "t.comm", "--unit", "30=pipe"],
+            quick,
+        );
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{out}");
+        assert!(out.contains("regular file"), "{out}");
+        assert!(out.contains(kw), "{out}");
+    }
+    for args in [
+        &["run", "pipe"][..],
+        &["check", "pipe"],
+        &["check", "/dev/zero"],
+        &["sweep", "pipe"],
+    ] {
+        let o = limited_run(dir.path(), 4 * 1024 * 1024, args, quick);
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {out}");
+        assert!(out.contains("not a regular file"), "{args:?}: {out}");
+    }
+}
+
+/// Rows 6 and 7: the memory estimates honour the limits of the process (here `ulimit -v`),
+/// not only the machine's memory: NB_HARM_NONL = 10⁶ and REST_MODE_NONL's NB_INST = 10⁷
+/// are refused with exit 2 before allocating (they passed, then aborted after minutes).
+#[test]
+fn memory_estimates_honour_the_process_limits() {
+    use std::time::Duration;
+    let base = std::fs::read_to_string(case("sdnd122a.comm")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("sdnd122a.mail"), dir.path().join("b.mail")).unwrap();
+    for (text_comm, kw) in [
+        (
+            base.replace("NB_HARM_NONL=200", "NB_HARM_NONL=1000000"),
+            "NB_HARM_NONL",
+        ),
+        (
+            base.replace("NB_INST=256", "NB_INST=10**7"),
+            "REST_MODE_NONL/NB_INST",
+        ),
+    ] {
+        std::fs::write(dir.path().join("b.comm"), &text_comm).unwrap();
+        let _ = std::fs::remove_file(dir.path().join("b.db"));
+        // 3 GB of address space: both estimates are above it (and below this machine's
+        // memory, which the estimate compared them with).
+        let o = limited_run(
+            dir.path(),
+            3 * 1024 * 1024,
+            &["run", "b.comm"],
+            Duration::from_secs(600),
+        );
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{kw}: {out}");
+        assert!(out.contains(kw), "{kw}: {out}");
+        assert!(out.contains("address-space limit"), "{kw}: {out}");
+    }
+}
+
+/// Rows 8 and 9: values that grow by doubling or by nesting stop at a clear error as they
+/// are built (they took 4 GB and aborted; nesting was quadratic in time).
+#[test]
+fn values_that_double_or_nest_are_bounded_as_they_are_built() {
+    use std::time::Duration;
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        ("x = (1.0,)\nfor i in range(40):\n    x = (x, x)\n", "items"),
+        ("x = [1.0]\nfor i in range(40):\n    x = x + x\n", "items"),
+        (
+            "x = 'ab'\nfor i in range(40):\n    x = str((x, x))\n",
+            "items",
+        ),
+        (
+            "x = (1.0,)\nfor i in range(40):\n    x = [str(x)] * 2\n",
+            "items",
+        ),
+        (
+            "x = [0.5]\nfor i in range(40):\n    x = [x] * 2\ny = sum(x)\n",
+            "items",
+        ),
+        (
+            "a = [0]\nfor i in range(200000):\n    a = [a]\n",
+            "levels deep",
+        ),
+        (
+            "f = _F(A=1)\nfor i in range(200000):\n    f = _F(A=f)\n",
+            "levels deep",
+        ),
+    ];
+    for (body, want) in cases {
+        for cmd in ["check", "run"] {
+            std::fs::write(
+                dir.path().join("g.comm"),
+                format!("DEBUT()\n{body}T = CREA_TABLE(TITRE=x, LISTE=_F(PARA='X', LISTE_R=x))\nFIN()\n"),
+            )
+            .unwrap();
+            let o = limited_run(
+                dir.path(),
+                4 * 1024 * 1024,
+                &[cmd, "g.comm"],
+                Duration::from_secs(120),
+            );
+            let out = text(&o);
+            assert_eq!(o.status.code(), Some(2), "{cmd} {body}: {out}");
+            assert!(out.contains(want), "{cmd} {body}: {out}");
+        }
+    }
+}
+
+/// Row 10: a keyword given a million wrong items gets one message with a count (it got a
+/// message per item: 785,000 messages, 219 MB).
+#[test]
+fn a_huge_list_of_wrong_items_is_one_message() {
+    let dir = tempfile::tempdir().unwrap();
+    let comm = dir.path().join("h.comm");
+    std::fs::write(
+        &comm,
+        "DEBUT()\nA = ASSE_MATRICE(MATR_ELEM=[0.0]*10**6, NUME_DDL=[0.0]*10**6)\nFIN()\n",
+    )
+    .unwrap();
+    let o = bin().arg("check").arg(&comm).output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{}", &out[..out.len().min(2000)]);
+    assert!(out.len() < 20_000, "{} bytes of messages", out.len());
+    assert!(out.contains("999999 more"), "{out}");
+}
+
+/// Row 11: a 70,000-character undefined name next to a similar defined one: no "did you
+/// mean" search over such names (it took more than 30 s).
+#[test]
+fn very_long_names_get_no_suggestion_search() {
+    let dir = tempfile::tempdir().unwrap();
+    let comm = dir.path().join("n.comm");
+    let defined = "A".repeat(70_000);
+    let typed = format!("{}B", "A".repeat(69_999));
+    std::fs::write(&comm, format!("{defined} = 1\nx = {typed}\n")).unwrap();
+    let o = bin().arg("check").arg(&comm).output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{}", &out[..out.len().min(2000)]);
+    assert!(out.contains("is not defined"));
+    assert!(!out.contains("did you mean"));
+}
+
+/// Row 12: the limits count operator calls: a loop of two million operator calls is
+/// refused before it starts (it ran for an hour under the statement limit), and a long
+/// loop of operators is announced before it starts.
+#[test]
+fn long_loops_of_operators_are_refused_or_announced_before_they_start() {
+    let dir = tempfile::tempdir().unwrap();
+    let comm = dir.path().join("l.comm");
+    std::fs::write(
+        &comm,
+        "DEBUT()\nfor i in range(10**6):\n    T = CREA_TABLE(LISTE=_F(PARA='X', LISTE_R=(1.,)))\n    DETRUIRE(CONCEPT=_F(NOM=T))\nFIN()\n",
+    )
+    .unwrap();
+    for cmd in ["check", "run"] {
+        let o = bin().arg(cmd).arg(&comm).output().unwrap();
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{cmd}: {out}");
+        assert!(out.contains("2000000 operator calls"), "{cmd}: {out}");
+    }
+    // Under the limit but long: announced, then the first (wrong) call stops the run.
+    std::fs::write(
+        &comm,
+        "DEBUT()\nfor i in range(20000):\n    T = CREA_TABLE(LISTE=_F(PARA='X', LISTE_R=(1.,)), NOPE=1)\nFIN()\n",
+    )
+    .unwrap();
+    let o = bin().arg("run").arg(&comm).output().unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("<RESSOURCES_2>"), "{out}");
+    assert!(out.contains("20000 operator calls"), "{out}");
+    assert!(out.find("RESSOURCES_2") < out.find("NOPE"), "{out}");
+}
+
+/// Minor point: a full disk during `merge` names the merged database, not the run it was
+/// copying (here the disk is "full" because of a file-size limit).
+#[test]
+fn a_full_disk_during_merge_names_the_output() {
+    let (dir, comm) = copy_case("chain_fixed_fixed");
+    let b1 = dir.path().join("b1.db");
+    assert_eq!(run_with_db(&comm, &b1, &[]).status.code(), Some(0));
+    assert!(std::fs::metadata(&b1).unwrap().len() > 40 * 1024);
+    // 24 kB of file size: the merged file (SWEEP_POINTS first) outgrows it while copying.
+    let o = Command::new("sh")
+        .arg("-c")
+        .arg("trap '' XFSZ; ulimit -f 24; exec \"$0\" merge out.db b1.db")
+        .arg(env!("CARGO_BIN_EXE_aster-nl"))
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(
+        out.contains("cannot write the merged database out.db"),
+        "{out}"
+    );
+    assert!(!out.contains("b1.db:"), "{out}");
+    assert!(!dir.path().join("out.db").exists());
+}

@@ -373,7 +373,7 @@ pub(crate) fn validate_level(
                             Error::validation(format!(
                                 "expected a factor keyword _F(...) or a tuple of them, got {} {}",
                                 other.kind_name(),
-                                other
+                                other.brief()
                             ))
                             .at(file, k.span)
                             .keyword(level.key(&def.name)),
@@ -538,11 +538,11 @@ fn check_item(def: &SimpDef, v: &Value) -> Option<Msg> {
                 None,
             ),
             Value::Str(s) if def.types.iter().any(|t| is_concept_type(t) && t != "C") => (
-                format!("expected {expected}, got a text {v}"),
+                format!("expected {expected}, got a text {}", v.brief()),
                 Some(format!("a concept is named without quotes: {s}")),
             ),
             _ => (
-                format!("expected {expected}, got {} {v}", v.kind_name()),
+                format!("expected {expected}, got {} {}", v.kind_name(), v.brief()),
                 None,
             ),
         });
@@ -551,7 +551,7 @@ fn check_item(def: &SimpDef, v: &Value) -> Option<Msg> {
         if !into.iter().any(|a| value_eq(a, v)) {
             let allowed: Vec<String> = into.iter().map(|a| a.to_string()).collect();
             return Some((
-                format!("expected one of {}, got {v}", allowed.join(", ")),
+                format!("expected one of {}, got {}", allowed.join(", "), v.brief()),
                 Some(format!("allowed values: {}", allowed.join(", "))),
             ));
         }
@@ -625,9 +625,17 @@ pub(crate) fn check_simple(def: &SimpDef, v: &Value) -> Result<Value, Vec<Msg>> 
             None,
         )]);
     }
-    let errs: Vec<Msg> = items.iter().filter_map(|i| check_item(def, i)).collect();
-    if !errs.is_empty() {
-        return Err(errs);
+    // One message per keyword, however many of its items are wrong: the first, and how
+    // many more (a list of a million wrong items is one line, not a million).
+    let mut wrong = items.iter().filter_map(|i| check_item(def, i));
+    if let Some((first, hint)) = wrong.next() {
+        let more = wrong.count();
+        let message = if more > 0 {
+            format!("{first} (and {more} more wrong item(s) in this keyword)")
+        } else {
+            first
+        };
+        return Err(vec![(message, hint)]);
     }
     Ok(if def.is_list() {
         Value::Seq(items.into_iter().cloned().collect())

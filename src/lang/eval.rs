@@ -5,6 +5,7 @@ use super::arith;
 use super::ast::*;
 use super::builtins::{self, BUILTINS, MATH_FUNCS};
 use super::diag::{did_you_mean, suggestions};
+use super::extent::{extent, Extent};
 use super::{Env, Host, Source};
 use crate::error::{Error, Result};
 use crate::value::{CommandCall, ConceptRef, Keyword, Span, Value};
@@ -19,6 +20,7 @@ pub fn execute(program: &Program, src: &Source, env: &mut Env, host: &mut dyn Ho
         steps: 0,
         work: 0,
         stopped: false,
+        operator_calls: 0,
     };
     ev.block(&program.stmts)
 }
@@ -32,6 +34,7 @@ struct Evaluator<'a> {
     /// A limit on statements or work was passed: no error is recovered any more, or a
     /// runaway loop would report one error per statement.
     stopped: bool,
+    operator_calls: u64,
 }
 
 /// Positional values (with their spans) and keywords of a call.
@@ -68,25 +71,80 @@ impl Evaluator<'_> {
         Error::input(msg).at(self.file, span)
     }
 
-    /// Counts the items of a value just built; errors past `Limits::max_work`.
+    /// Refuses a value that would exceed the bounds on one value ([`super::Limits`]):
+    /// called with the extent of what is about to be built, before building it.
+    fn check_extent(&self, e: Extent, span: Span) -> Result<()> {
+        let limits = &self.env.limits;
+        if e.depth > limits.max_depth {
+            return Err(self
+                .input(
+                    format!(
+                        "this value would be nested {} levels deep, more than the {} a value may have",
+                        e.depth, limits.max_depth
+                    ),
+                    span,
+                )
+                .hint("a loop probably puts a list inside itself (a = [a])"));
+        }
+        if e.items > limits.max_value_items {
+            return Err(self
+                .input(
+                    format!(
+                        "this value would have {} items (counting those of nested lists and \
+                         the characters of texts), more than the {} a value may have",
+                        e.items, limits.max_value_items
+                    ),
+                    span,
+                )
+                .hint("a loop probably doubles a list (x = (x, x)) or repeats a long one"));
+        }
+        Ok(())
+    }
+
+    /// Checks a value just built against the bounds on one value and counts its items
+    /// against `Limits::max_work`, the items built over the whole run.
     fn charge(&mut self, v: Value, span: Span) -> Result<Value> {
-        let n = match &v {
-            Value::Seq(items) => items.len(),
-            Value::Str(s) => s.len(),
-            _ => 0,
-        };
-        self.work += n as u64;
+        let e = extent(&v);
+        self.check_extent(e, span)?;
+        self.add_work(e.items, span)?;
+        Ok(v)
+    }
+
+    /// Counts `items` built or copied; errors past `Limits::max_work`.
+    fn add_work(&mut self, items: u64, span: Span) -> Result<()> {
+        self.work = self.work.saturating_add(items);
         let max_work = self.env.limits.max_work;
         if self.work > max_work {
             self.stopped = true;
             return Err(self
                 .input(
-                    format!("more than {max_work} list items or characters built"),
+                    format!("more than {max_work} list items or characters built or copied"),
                     span,
                 )
-                .hint("a loop probably builds very long lists"));
+                .hint("a loop probably builds very long lists, or reads a long one many times"));
         }
-        Ok(v)
+        Ok(())
+    }
+
+    /// `x op y`, refused before it is computed when its result would be too big.
+    fn binary(&mut self, op: BinOp, x: &Value, y: &Value, span: Span) -> Result<Value> {
+        let count = |v: &Value| match v {
+            Value::Int(n) => Some(u64::try_from(*n).unwrap_or(0)),
+            Value::Bool(b) => Some(u64::from(*b)),
+            _ => None,
+        };
+        let sized = |v: &Value| matches!(v, Value::Seq(_) | Value::Str(_));
+        let result = match op {
+            BinOp::Add if sized(x) && sized(y) => Some(extent(x).joined(extent(y))),
+            BinOp::Mul if sized(x) => count(y).map(|n| extent(x).repeated(n)),
+            BinOp::Mul if sized(y) => count(x).map(|n| extent(y).repeated(n)),
+            _ => None,
+        };
+        if let Some(e) = result {
+            self.check_extent(e, span)?;
+        }
+        let v = arith::binary(op, x, y).map_err(|m| self.input(m, span))?;
+        self.charge(v, span)
     }
 
     fn block(&mut self, stmts: &[Stmt]) -> Result<()> {
@@ -154,8 +212,7 @@ impl Evaluator<'_> {
             StmtKind::AugAssign { target, op, value } => {
                 let cur = self.name_value(&target.text, target.span)?;
                 let rhs = self.eval(value)?;
-                let v = arith::binary(*op, &cur, &rhs).map_err(|m| self.input(m, s.span))?;
-                let v = self.charge(v, s.span)?;
+                let v = self.binary(*op, &cur, &rhs, s.span)?;
                 self.env.bind(&target.text, v);
             }
             StmtKind::Call(e) => {
@@ -179,6 +236,7 @@ impl Evaluator<'_> {
                         ))
                     }
                 };
+                self.announce_loop(items.len(), body, s.span)?;
                 for item in items {
                     self.bind_target(var, item, iter.span)?;
                     self.block(body)?;
@@ -193,6 +251,63 @@ impl Evaluator<'_> {
             }
         }
         Ok(())
+    }
+
+    /// Before a `for` loop of `iterations` starts: the operator calls its body makes at the
+    /// least (a nested loop's body counted once) times its iterations are refused when
+    /// they exceed what the run may still make (`Limits::max_operator_calls`), and
+    /// announced when they exceed `Limits::warn_operator_calls`: each call is a
+    /// transaction, so such a loop runs for minutes or hours.
+    fn announce_loop(&mut self, iterations: usize, body: &[Stmt], span: Span) -> Result<()> {
+        let per_iteration = self.operator_calls_in(body);
+        if per_iteration == 0 {
+            return Ok(());
+        }
+        let calls = (iterations as u64).saturating_mul(per_iteration);
+        let limits = self.env.limits;
+        let left = limits
+            .max_operator_calls
+            .saturating_sub(self.operator_calls);
+        if calls > left {
+            return Err(self
+                .input(
+                    format!(
+                        "this loop would make at least {calls} operator calls ({iterations} \
+                         iterations of {per_iteration}), more than the {} a run may make",
+                        limits.max_operator_calls
+                    ),
+                    span,
+                )
+                .hint("each operator call is a transaction of the study: loop over fewer values"));
+        }
+        if calls > limits.warn_operator_calls {
+            self.host.warn(
+                "RESSOURCES_2",
+                &format!(
+                    "{}:{}: this loop makes at least {calls} operator calls ({iterations} \
+                     iterations of {per_iteration}): expect a long run",
+                    self.file, span.line
+                ),
+            );
+        }
+        Ok(())
+    }
+
+    /// Operator calls written in `body` (a nested loop's body counted once: a lower bound).
+    fn operator_calls_in(&self, body: &[Stmt]) -> u64 {
+        body.iter()
+            .map(|s| match &s.kind {
+                StmtKind::Call(e) | StmtKind::Assign { value: e, .. } => match &e.kind {
+                    ExprKind::Call { func, .. } => match &func.kind {
+                        ExprKind::Name(n) if self.host.is_operator(n) => 1,
+                        _ => 0,
+                    },
+                    _ => 0,
+                },
+                StmtKind::For { body, .. } => self.operator_calls_in(body),
+                _ => 0,
+            })
+            .sum()
     }
 
     /// Binds a name, or unpacks `value` (built at `span`) into a tuple of names.
@@ -259,10 +374,15 @@ impl Evaluator<'_> {
         Ok(())
     }
 
-    /// The value of a bare name.
+    /// The value of a bare name. Each use copies the value: a list's copy counts against
+    /// `Limits::max_work` like a list built, so that a long loop reading a long list ends.
     fn name_value(&mut self, n: &str, span: Span) -> Result<Value> {
         if let Some(v) = self.env.vars.get(n) {
-            return Ok(v.clone());
+            let v = v.clone();
+            if matches!(v, Value::Seq(_) | Value::Fact(_) | Value::Table(_)) {
+                self.add_work(extent(&v).items, span)?;
+            }
+            return Ok(v);
         }
         if self.env.funcs.contains_key(n) || BUILTINS.contains(&n) {
             return Err(self.syntax(format!("'{n}' is a function: call it, e.g. {n}(...)"), span));
@@ -298,11 +418,16 @@ impl Evaluator<'_> {
             ExprKind::None => Ok(Value::None),
             ExprKind::Name(n) => self.name_value(n, e.span),
             ExprKind::Tuple(items) | ExprKind::List(items) => {
+                // Bounded item by item: `(x, x)` stops before the second copy is made.
                 let mut out = Vec::with_capacity(items.len());
+                let mut size = Extent::list_of([]);
                 for i in items {
-                    out.push(self.eval(i)?);
+                    let v = self.eval(i)?;
+                    size.push(extent(&v));
+                    self.check_extent(size, e.span)?;
+                    out.push(v);
                 }
-                Ok(Value::Seq(out))
+                self.charge(Value::Seq(out), e.span)
             }
             ExprKind::Unary(op, x) => {
                 let v = self.eval(x)?;
@@ -311,8 +436,7 @@ impl Evaluator<'_> {
             ExprKind::Binary(op, a, b) => {
                 let x = self.eval(a)?;
                 let y = self.eval(b)?;
-                let v = arith::binary(*op, &x, &y).map_err(|m| self.input(m, e.span))?;
-                self.charge(v, e.span)
+                self.binary(*op, &x, &y, e.span)
             }
             ExprKind::Call { func, args } => self.call(func, args, e.span, Site::Nested),
             ExprKind::Index(base, idx) => {
@@ -404,7 +528,7 @@ impl Evaluator<'_> {
                 if let Some((_, s)) = pos.first() {
                     return Err(self.syntax("_F(...) takes only keywords KEY=value", *s));
                 }
-                return Ok(Value::Fact(kws));
+                return self.charge(Value::Fact(kws), span);
             }
             "CO" => {
                 let (pos, kws) = self.args(args)?;
@@ -616,6 +740,13 @@ impl Evaluator<'_> {
                     .hint(format!("write X = {op}(...) on its own line, then use X")))
             }
         };
+        self.operator_calls += 1;
+        let max_calls = self.env.limits.max_operator_calls;
+        if self.operator_calls > max_calls {
+            return Err(self
+                .input(format!("more than {max_calls} operator calls"), op_span)
+                .hint("a loop probably calls operators far too many times"));
+        }
         let (pos, mut kws) = self.args(args)?;
         if let Some((_, s)) = pos.first() {
             return Err(self

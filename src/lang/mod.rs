@@ -27,6 +27,7 @@ mod builtins;
 pub mod diag;
 pub mod encoding;
 mod eval;
+pub mod extent;
 mod parser;
 mod scan;
 
@@ -57,12 +58,8 @@ impl Source {
     /// guessed.
     pub fn read(path: &std::path::Path) -> Result<(Source, Option<String>)> {
         let name = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|e| {
-            crate::error::Error::new(
-                crate::error::ErrorKind::Io,
-                format!("cannot read {name}: {e}"),
-            )
-        })?;
+        // A regular file of bounded size, both checked before a byte is read (text_file.rs).
+        let bytes = crate::text_file::read_bytes(path, "the command file")?;
         let decoded = encoding::decode(&bytes, &name)?;
         Ok((Source::new(name, decoded.text), decoded.note))
     }
@@ -89,15 +86,30 @@ pub fn run(src: &Source, env: &mut Env, host: &mut dyn Host) -> Result<()> {
 pub struct Limits {
     /// Most statements run (loop bodies count once per iteration).
     pub max_steps: u64,
-    /// Most list items and text characters built by `+`, `*` and builtins.
+    /// Most list items and text characters built by literals, `+`, `*` and builtins, over
+    /// the whole run.
     pub max_work: u64,
+    /// Most items one value may hold, counted at every level of nesting
+    /// ([`extent::Extent`]): checked as the value is built, before it is kept.
+    pub max_value_items: u64,
+    /// Deepest nesting of lists (and `_F`) in one value.
+    pub max_depth: usize,
+    /// Most operator calls one run makes (each is a transaction, milliseconds at least).
+    pub max_operator_calls: u64,
+    /// A `for` loop whose iterations times the operator calls of its body exceed this is
+    /// announced before it starts.
+    pub warn_operator_calls: u64,
 }
 
 impl Default for Limits {
     fn default() -> Self {
         Limits {
             max_steps: 10_000_000,
-            max_work: 100_000_000,
+            max_work: 50_000_000,
+            max_value_items: 2_000_000,
+            max_depth: 100,
+            max_operator_calls: 100_000,
+            warn_operator_calls: 10_000,
         }
     }
 }
@@ -190,6 +202,12 @@ pub trait Host {
     /// `false` (a run) stops execution with it.
     fn recover(&mut self, _error: &crate::error::Error) -> bool {
         false
+    }
+
+    /// An alarm of the language itself (`id`, e.g. `RESSOURCES_2`: a loop of many operator
+    /// calls), before the statement it is about runs.
+    fn warn(&mut self, id: &str, text: &str) {
+        eprintln!("<A> <{id}> {text}");
     }
 
     /// Output of `print(...)` in the command file.

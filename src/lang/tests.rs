@@ -792,6 +792,7 @@ fn copying_big_lists_in_a_loop_is_stopped() {
     let small = Limits {
         max_steps: 1000,
         max_work: 10_000,
+        ..Limits::default()
     };
     let e = run_err_limited(
         "L = list(range(500))\nfor i in range(1000):\n    M = L + L",

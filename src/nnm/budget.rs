@@ -112,11 +112,24 @@ pub fn mnl_branch_flops(s: &MnlSizes) -> f64 {
     factor + order * 4.0 * entries + contact
 }
 
-/// Peak memory of a time history of `n_inst` instants on `n_dofs` DOFs (REST_MODE_NONL,
-/// DYNA_TRANS): displacements, velocities and accelerations kept for every instant, in
-/// memory and once more as table rows before they are stored.
-pub fn time_history_bytes(n_dofs: usize, n_inst: usize) -> f64 {
-    2.0 * 3.0 * BYTES_PER_REAL * n_dofs as f64 * n_inst as f64
+/// Memory of one row of an in-memory table before it is stored: the row's vector (header
+/// and allocation overhead), its cells (24 bytes each) and the texts of its `texts` text
+/// cells (a node or component name: one smallest allocation each, 32 bytes).
+fn table_row_bytes(cells: usize, texts: usize) -> f64 {
+    24.0 + 16.0 + 24.0 * cells as f64 + 32.0 * texts as f64
+}
+
+/// Peak memory of a time history of `n_inst` instants on `n_dofs` DOFs with
+/// `n_force_components` contact-force components (REST_MODE_NONL): per instant and DOF the
+/// displacement, velocity and acceleration and one table row of 7 cells (2 texts), per
+/// instant and force component the force and one row of 6 cells (2 texts), the rows'
+/// vectors growing by doubling (up to twice their length). For sdnd122a (one DOF, one
+/// force component) this gives 600 bytes per instant; measured: 547 (peak resident memory
+/// 70.9 MB at NB_INST = 10⁵ against 16.3 MB at 256, docs/store.md "Sizes").
+pub fn time_history_bytes(n_dofs: usize, n_force_components: usize, n_inst: usize) -> f64 {
+    let per_dof = 3.0 * BYTES_PER_REAL + table_row_bytes(7, 2) + 24.0;
+    let per_force = BYTES_PER_REAL + table_row_bytes(6, 2) + 24.0;
+    n_inst as f64 * (n_dofs as f64 * per_dof + n_force_components as f64 * per_force)
 }
 
 /// Floating-point operations of a Floquet analysis (CALC_STABILITE): `n_inst` steps of a
@@ -205,7 +218,7 @@ mod tests {
             ..wall(0)
         };
         assert!(memory_estimate(&s) > 1.0e30);
-        assert!(time_history_bytes(10, 1_000_000_000) > 1.0e11);
+        assert!(time_history_bytes(10, 1, 1_000_000_000) > 1.0e11);
         assert!(floquet_flops(2, 1_000_000_000) > 1.0e11);
     }
 }

@@ -70,10 +70,11 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             // At least 2 (the catalog's bound).
             let n_inst = args.req_count("NB_INST")?;
             let n = problem.k.nrows();
+            let force_components: usize = setup.shocks.iter().map(|s| s.cmps.len().max(1)).sum();
             crate::ops::common::resources::check_memory(
                 "REST_MODE_NONL/NB_INST",
                 &format!("the time history of {n} DOF(s) at {n_inst} instants"),
-                nnm::budget::time_history_bytes(n, n_inst),
+                nnm::budget::time_history_bytes(n, force_components, n_inst),
             )?;
             let th = nnm::time_history(&problem, &settings, &x, n_inst).map_err(stored_point)?;
             let mut t = Table::new(format!("REST_MODE_NONL {src} NUME_ORDRE={order}"));

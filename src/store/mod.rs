@@ -25,7 +25,10 @@ pub mod mesh;
 pub mod mnl;
 pub mod model;
 pub mod modes;
+pub(crate) mod own_file;
+pub mod recovery;
 pub mod study_file;
+pub mod study_lock;
 pub mod table;
 
 use crate::error::{Error, Result};
@@ -47,6 +50,9 @@ pub struct Store {
     /// The run's exclusive lock on the study (none for in-memory and read-only stores).
     /// Declared after `conn` so that the connection closes before the lock is released.
     _lock: Option<study_file::StudyLock>,
+    /// The rolled-back copy a read-only store reads when a killed run left the study with a
+    /// hot journal (removed when the store is dropped, after the connection closes).
+    _recovered: Option<recovery::RecoveredCopy>,
 }
 
 /// One row of the `concepts` table.
@@ -105,6 +111,16 @@ const RUN_END_PRAGMAS: &str = "PRAGMA journal_mode = PERSIST; PRAGMA synchronous
 /// the text) passes through once per save and evicts the least recently used.
 const STATEMENT_CACHE: usize = 128;
 
+/// Where DEBUT prepares a new study before renaming it to `path`: `.<name>.new-<pid>`
+/// beside it.
+fn fresh_study_path(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    path.with_file_name(format!(".{name}.new-{}", std::process::id()))
+}
+
 const CORE_SCHEMA: &str = "
 CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
 CREATE TABLE IF NOT EXISTS concepts (
@@ -135,29 +151,48 @@ impl Store {
     pub fn create_for(path: &Path, purpose: &str) -> Result<Store> {
         let lock = study_file::StudyLock::acquire(path, purpose)?;
         let replace = study_file::check_replaceable(path)?;
+        // Beside a new study, a journal is not ours; beside our study, it is its journal.
+        study_file::check_journals(path, replace)?;
         study_file::check_writable(path)?;
+        // The new study is made whole beside its place, schema marker committed, then
+        // renamed into it: a run killed during DEBUT never leaves a file without the
+        // marker at the study's path (only, at worst, that temporary).
+        let fresh = fresh_study_path(path);
+        let made = own_file::create_new(&fresh).map_err(|e| {
+            Error::store(format!(
+                "cannot create {}, where the new study is prepared: {e}",
+                fresh.display()
+            ))
+            .hint("the directory of the database must be writable")
+        })?;
+        let prepared = (|| -> Result<()> {
+            let new = Store::with(Connection::open(&fresh)?, None, None);
+            new.init_schema()
+        })();
+        if let Err(e) = prepared {
+            own_file::remove_if_ours(&made, &fresh);
+            return Err(e);
+        }
         if replace {
             // Our lock is held, so no aster-nl run uses these: a journal left by a killed
             // run of the old study must not be applied to the new one.
             for j in study_file::journal_paths(path) {
-                if matches!(
-                    study_file::file_kind(&j)?,
-                    study_file::FileKind::OtherFile | study_file::FileKind::Sqlite
-                ) {
+                if study_file::file_kind(&j)? != study_file::FileKind::Absent {
                     let _ = std::fs::remove_file(&j);
                 }
             }
-            std::fs::remove_file(path).map_err(|e| {
-                Error::store(format!(
-                    "cannot replace the database {}: {e}",
-                    path.display()
-                ))
-            })?;
         }
+        std::fs::rename(&fresh, path).map_err(|e| {
+            own_file::remove_if_ours(&made, &fresh);
+            Error::store(format!(
+                "cannot create the database {}: {e}",
+                path.display()
+            ))
+        })?;
         let mut store = Store::with(Connection::open(path)?, Some(path), Some(lock));
         store.conn.execute_batch(RUN_END_PRAGMAS)?;
         store.durability = Durability::RunEnd;
-        store.init_schema()?;
+        store.conn.execute_batch("PRAGMA foreign_keys = ON;")?;
         Ok(store)
     }
 
@@ -171,6 +206,10 @@ impl Store {
     pub fn open_for(path: &Path, purpose: &str) -> Result<Store> {
         let lock = study_file::StudyLock::acquire(path, purpose)?;
         study_file::check_openable(path)?;
+        study_file::check_journals(path, true)?;
+        // Judged before SQLite opens it for writing, which would roll back the hot journal
+        // of another program's database.
+        study_file::check_marker(path)?;
         study_file::check_writable(path)?;
         let store = Store::with(Connection::open(path)?, Some(path), Some(lock));
         store.check_schema()?;
@@ -184,8 +223,17 @@ impl Store {
     pub fn open_read_only(path: &Path) -> Result<Store> {
         use rusqlite::OpenFlags;
         study_file::check_openable(path)?;
-        let conn = Connection::open_with_flags(path, OpenFlags::SQLITE_OPEN_READ_ONLY)?;
-        let store = Store::with(conn, Some(path), None);
+        // A study a killed run left with a hot journal is read in a rolled-back copy: the
+        // study itself is not written (the next run that writes rolls it back).
+        let copy = if recovery::has_hot_journal(path) {
+            Some(recovery::recovered_copy(path)?)
+        } else {
+            None
+        };
+        let read = copy.as_ref().map_or(path, |c| c.db());
+        let conn = Connection::open_with_flags(read, OpenFlags::SQLITE_OPEN_READ_ONLY)?;
+        let mut store = Store::with(conn, Some(path), None);
+        store._recovered = copy;
         store.check_schema()?;
         Ok(store)
     }
@@ -209,6 +257,7 @@ impl Store {
             schemas: Cell::new(0),
             durability,
             _lock: lock,
+            _recovered: None,
         }
     }
 

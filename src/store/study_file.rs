@@ -5,19 +5,20 @@
 //!   aster-nl database (SQLite header and our `meta` schema marker). A command file, a mesh,
 //!   a directory, a device, a symbolic link or any other file is refused, named, and left
 //!   untouched.
-//! - **Locking** ([`StudyLock`]): a run holds an exclusive advisory lock (`flock`) on
-//!   `<db>.lock` from before DEBUT/POURSUITE touches the database until the run ends. The
-//!   lock file records the process id and the command file, so that a second run on the same
-//!   study is refused at once with a message naming the first. The kernel releases the lock
-//!   when the process dies, however it dies (`kill -9` included): a stale lock file never
-//!   blocks a later run.
+//!   A study a killed run left with a hot journal is judged on its rolled-back copy
+//!   (`store::recovery`), so it is recognised and replaced.
+//! - **Journals** ([`check_journals`]): SQLite deletes, truncates or writes through the
+//!   files `<db>-journal`, `-wal` and `-shm`; beside a new study any such file is not ours
+//!   and is refused, and a link or special file there is refused always.
+//! - **Locking** (`store::study_lock`, re-exported here): a run holds an exclusive lock on
+//!   `<db>.lock` from before DEBUT/POURSUITE touches the database until the run ends.
 //! - **Writability** ([`check_writable`]): the file and its directory (where SQLite writes
 //!   its journal) must be writable; a file or directory without any write permission bit is
 //!   refused even for root, because that is how a user marks a study read-only.
 
 use crate::error::{Error, Result};
 use std::fs::{File, OpenOptions};
-use std::io::{Read, Write};
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 /// The first 16 bytes of every SQLite 3 database file.
@@ -77,7 +78,18 @@ pub fn has_sqlite_header(path: &Path) -> bool {
 
 /// Whether the SQLite file at `path` carries the aster-nl schema marker (a `meta` table with
 /// a `schema_version` row, any version). Opened read-only: nothing is written.
-fn has_schema_marker(path: &Path) -> bool {
+/// A file a killed process left with a hot journal is judged on its committed contents, in
+/// a private copy (an error if the copy cannot be made).
+fn has_schema_marker(path: &Path) -> Result<bool> {
+    if super::recovery::has_hot_journal(path) {
+        let copy = super::recovery::recovered_copy(path)?;
+        return Ok(marker_in(copy.db()));
+    }
+    Ok(marker_in(path))
+}
+
+/// [`has_schema_marker`] of a file SQLite can read as it is.
+fn marker_in(path: &Path) -> bool {
     use rusqlite::OpenFlags;
     let Ok(conn) = rusqlite::Connection::open_with_flags(
         path,
@@ -110,13 +122,29 @@ pub fn check_replaceable(path: &Path) -> Result<bool> {
             "{shown} exists and is not an aster-nl database: DEBUT will not replace it"
         ))
         .hint(proceed)),
-        FileKind::Sqlite if has_schema_marker(path) => Ok(true),
+        FileKind::Sqlite if has_schema_marker(path)? => Ok(true),
         FileKind::Sqlite => Err(Error::store(format!(
             "{shown} is an SQLite database but not an aster-nl study (no schema marker): \
              DEBUT will not replace it"
         ))
         .hint(proceed)),
     }
+}
+
+/// Refuse, before SQLite opens `path` for writing, an SQLite file that a killed process
+/// left with a hot journal and that is not an aster-nl study: opening it would roll back
+/// another program's journal. (A file without a hot journal is judged by the store's own
+/// schema check, which names the version.)
+pub fn check_marker(path: &Path) -> Result<()> {
+    if super::recovery::has_hot_journal(path) && !has_schema_marker(path)? {
+        return Err(Error::store(format!(
+            "{} is an SQLite database but not an aster-nl study (no schema marker), and \
+             another program left its journal beside it: aster-nl will not open it",
+            path.display()
+        ))
+        .hint("pass the study's .db file with --db"));
+    }
+    Ok(())
 }
 
 /// Refuse unless POURSUITE may open `path`: a regular file.
@@ -191,10 +219,8 @@ pub fn check_writable(path: &Path) -> Result<()> {
             .unwrap_or_default(),
         std::process::id()
     ));
-    match OpenOptions::new().write(true).create_new(true).open(&probe) {
-        Ok(_) => {
-            let _ = std::fs::remove_file(&probe);
-        }
+    match super::own_file::create_new(&probe) {
+        Ok(f) => super::own_file::remove_if_ours(&f, &probe),
         Err(e) => {
             return Err(Error::store(format!(
                 "cannot create files in {}, where the database and its journal live: {e}",
@@ -225,107 +251,61 @@ pub fn journal_paths(path: &Path) -> [PathBuf; 3] {
     [with("-journal"), with("-wal"), with("-shm")]
 }
 
-/// The lock file of a study: `<db>.lock`.
-pub fn lock_path(path: &Path) -> PathBuf {
-    let mut s = path.as_os_str().to_owned();
-    s.push(".lock");
-    PathBuf::from(s)
+/// The first bytes of a rollback journal SQLite is using.
+const JOURNAL_MAGIC: [u8; 8] = [0xd9, 0xd5, 0x05, 0xf9, 0x20, 0xa1, 0x63, 0xd7];
+
+/// Whether the regular file at `journal` is what SQLite leaves at a rollback journal's
+/// path: empty (truncated), starting with the journal magic (a transaction's), or with a
+/// zeroed 28-byte header (a journal kept between transactions, `journal_mode = PERSIST`).
+fn looks_like_a_journal(journal: &Path) -> bool {
+    let mut head = Vec::with_capacity(28);
+    let Ok(f) = File::open(journal) else {
+        return false;
+    };
+    if f.take(28).read_to_end(&mut head).is_err() {
+        return false;
+    }
+    head.is_empty()
+        || head.starts_with(&JOURNAL_MAGIC)
+        || (head.len() == 28 && head.iter().all(|&b| b == 0))
 }
 
-/// An exclusive lock on a study, held for as long as this value lives.
-#[derive(Debug)]
-pub struct StudyLock {
-    file: File,
-    path: PathBuf,
-}
-
-impl StudyLock {
-    /// Take the lock of the study at `db` without waiting; `purpose` (the command file, say)
-    /// is recorded for the message another run would print.
-    pub fn acquire(db: &Path, purpose: &str) -> Result<StudyLock> {
-        let path = lock_path(db);
-        // A run that ended removes its lock file; another one may be removing it just as we
-        // open it, so retry until the file we locked is the one at the path.
-        for _ in 0..16 {
-            let file = OpenOptions::new()
-                .read(true)
-                .write(true)
-                .create(true)
-                .truncate(false)
-                .open(&path)
-                .map_err(|e| {
-                    Error::store(format!(
-                        "cannot create the lock file {} of the study: {e}",
-                        path.display()
-                    ))
-                    .hint("the directory of the database must be writable")
-                })?;
-            match file.try_lock() {
-                Ok(()) => {}
-                Err(std::fs::TryLockError::WouldBlock) => {
-                    let mut holder = String::new();
-                    let _ = (&file).read_to_string(&mut holder);
-                    let holder = holder.trim();
-                    let holder = if holder.is_empty() {
-                        "another aster-nl process".to_string()
-                    } else {
-                        holder.to_string()
-                    };
-                    return Err(Error::store(format!(
-                        "the study {} is in use by {holder}",
-                        db.display()
-                    ))
-                    .hint(
-                        "wait for that run to end, or give this one another database with --db",
-                    ));
-                }
-                Err(std::fs::TryLockError::Error(e)) => {
-                    return Err(Error::store(format!(
-                        "cannot lock the study {} ({}): {e}",
-                        db.display(),
-                        path.display()
-                    )));
-                }
+/// Refuse the files at the journal paths of `path` that SQLite would delete, truncate or
+/// write through and that are not provably the journal of our study: any of them beside a
+/// study that does not exist yet (`study_exists` false: DEBUT creating one); a write-ahead
+/// log or its shared memory (`-wal`, `-shm`: our studies never use one); a rollback
+/// journal that does not look like one; a link, a directory or a special file always.
+pub fn check_journals(path: &Path, study_exists: bool) -> Result<()> {
+    let hint = "move that file away, or pass another database with --db";
+    for (k, j) in journal_paths(path).into_iter().enumerate() {
+        let shown = j.display();
+        let refuse = |why: String| {
+            Err(Error::store(format!(
+                "{shown} {why}: SQLite would delete, overwrite or write through it, so the \
+                 study {} is not opened",
+                path.display()
+            ))
+            .hint(hint))
+        };
+        match file_kind(&j)? {
+            FileKind::Absent => {}
+            FileKind::NotRegular(what) => return refuse(format!("is {what}")),
+            _ if !study_exists => {
+                return refuse("exists but there is no study beside it: it is not ours".into())
             }
-            if same_file(&file, &path) {
-                let mut lock = StudyLock { file, path };
-                lock.record(purpose)?;
-                return Ok(lock);
+            _ if k > 0 => {
+                return refuse("exists, and aster-nl studies never use a write-ahead log".into())
             }
+            _ if !looks_like_a_journal(&j) => {
+                return refuse("is not a journal SQLite wrote".into())
+            }
+            _ => {}
         }
-        Err(Error::store(format!(
-            "cannot lock the study {}: its lock file keeps changing",
-            db.display()
-        )))
     }
-
-    fn record(&mut self, purpose: &str) -> Result<()> {
-        let text = format!(
-            "aster-nl process {} running {purpose}\n",
-            std::process::id()
-        );
-        self.file.set_len(0)?;
-        (&self.file).write_all(text.as_bytes())?;
-        Ok(())
-    }
+    Ok(())
 }
 
-impl Drop for StudyLock {
-    fn drop(&mut self) {
-        // Removed while still locked: a run waiting on this inode then sees that the path
-        // names another file and retries (see `acquire`).
-        let _ = std::fs::remove_file(&self.path);
-    }
-}
-
-/// Whether the open `file` is the file at `path` now.
-fn same_file(file: &File, path: &Path) -> bool {
-    use std::os::unix::fs::MetadataExt;
-    match (file.metadata(), std::fs::metadata(path)) {
-        (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
-        _ => false,
-    }
-}
+pub use super::study_lock::{lock_path, StudyLock};
 
 /// Whether two paths name the same existing file (same device and inode).
 pub fn same_path(a: &Path, b: &Path) -> bool {
@@ -339,24 +319,6 @@ pub fn same_path(a: &Path, b: &Path) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn a_second_lock_is_refused_and_names_the_first() {
-        let dir = tempfile::tempdir().unwrap();
-        let db = dir.path().join("s.db");
-        let first = StudyLock::acquire(&db, "a.comm").unwrap();
-        let err = StudyLock::acquire(&db, "b.comm").unwrap_err();
-        assert!(err.message.contains("in use by"), "{err}");
-        assert!(err.message.contains("a.comm"), "{err}");
-        assert!(
-            err.message
-                .contains(&format!("process {}", std::process::id())),
-            "{err}"
-        );
-        drop(first);
-        assert!(!lock_path(&db).exists());
-        let _again = StudyLock::acquire(&db, "b.comm").unwrap();
-    }
 
     #[test]
     fn only_aster_databases_are_replaceable() {

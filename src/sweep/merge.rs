@@ -67,18 +67,26 @@ struct Target {
 pub fn merge(out: &Path, params: &[String], runs: &[RunInput]) -> Result<MergeReport> {
     check_destination(out, runs)?;
     let tmp = layout::temp_sibling(out);
-    remove_file(&tmp)?;
-    let r = build(&tmp, params, runs);
+    // Our temporary: made exclusively (never through a link, never over a file that is
+    // there), removed only while the path still names it.
+    let made = crate::store::own_file::create_new(&tmp).map_err(|e| {
+        io(format!(
+            "cannot create {}, where the merged database is built: {e}",
+            tmp.display()
+        ))
+        .hint("remove that file if an interrupted merge left it, or merge to another file")
+    })?;
+    let r = build(&tmp, out, params, runs);
     match r {
         Ok(report) => {
             std::fs::rename(&tmp, out).map_err(|e| {
-                let _ = std::fs::remove_file(&tmp);
+                crate::store::own_file::remove_if_ours(&made, &tmp);
                 io(format!("cannot write {}: {e}", out.display()))
             })?;
             Ok(report)
         }
         Err(e) => {
-            let _ = std::fs::remove_file(&tmp);
+            crate::store::own_file::remove_if_ours(&made, &tmp);
             Err(e)
         }
     }
@@ -121,7 +129,8 @@ fn check_destination(out: &Path, runs: &[RunInput]) -> Result<()> {
     Ok(())
 }
 
-fn build(path: &Path, params: &[String], runs: &[RunInput]) -> Result<MergeReport> {
+/// Build the merged file at `path` (a temporary, renamed to `out` when complete).
+fn build(path: &Path, out: &Path, params: &[String], runs: &[RunInput]) -> Result<MergeReport> {
     let conn = Connection::open_with_flags(
         path,
         OpenFlags::SQLITE_OPEN_READ_WRITE
@@ -129,10 +138,10 @@ fn build(path: &Path, params: &[String], runs: &[RunInput]) -> Result<MergeRepor
             | OpenFlags::SQLITE_OPEN_URI
             | OpenFlags::SQLITE_OPEN_NO_MUTEX,
     )
-    .map_err(|e| sql(path, e))?;
+    .map_err(|e| writing(out, out, e))?;
     // A file under construction, renamed into place only when complete: no journal needed.
     conn.execute_batch("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF;")
-        .map_err(|e| sql(path, e))?;
+        .map_err(|e| writing(out, out, e))?;
 
     let types = param_types(params.len(), runs);
     let mut cols = vec![format!("{} TEXT", q(POINT_COLUMN))];
@@ -149,13 +158,13 @@ fn build(path: &Path, params: &[String], runs: &[RunInput]) -> Result<MergeRepor
         cols.join(", "),
         q(META_TABLE)
     ))
-    .map_err(|e| sql(path, e))?;
+    .map_err(|e| writing(out, out, e))?;
     let names = serde_json::to_string(params).map_err(|e| Error::internal(e.to_string()))?;
     conn.execute(
         &format!("INSERT INTO {} VALUES ('params', ?1)", q(META_TABLE)),
         [names],
     )
-    .map_err(|e| sql(path, e))?;
+    .map_err(|e| writing(out, out, e))?;
 
     let mut targets: HashMap<String, Target> = HashMap::new();
     let mut report = MergeReport::default();
@@ -181,12 +190,12 @@ fn build(path: &Path, params: &[String], runs: &[RunInput]) -> Result<MergeRepor
             &format!("INSERT INTO {} VALUES ({marks})", q(POINTS_TABLE)),
             params_from_iter(row),
         )
-        .map_err(|e| sql(path, e))?;
+        .map_err(|e| writing(out, out, e))?;
         let Some(db) = &run.db else { continue };
         if matches!(run.outcome, Some(Outcome::Failed) | None) {
             continue;
         }
-        report.rows += copy_run(&conn, db, params, &types, run, &mut targets)?;
+        report.rows += copy_run(&conn, db, out, params, &types, run, &mut targets)?;
         report.runs += 1;
     }
     report.tables = targets.len();
@@ -197,6 +206,7 @@ fn build(path: &Path, params: &[String], runs: &[RunInput]) -> Result<MergeRepor
 fn copy_run(
     conn: &Connection,
     db: &Path,
+    out: &Path,
     params: &[String],
     types: &[&str],
     run: &RunInput,
@@ -207,7 +217,7 @@ fn copy_run(
     }
     conn.execute("ATTACH DATABASE ?1 AS run", [read_only_uri(db)])
         .map_err(|e| sql(db, e))?;
-    let r = copy_attached(conn, db, params, types, run, targets);
+    let r = copy_attached(conn, db, out, params, types, run, targets);
     let detach = conn.execute_batch("DETACH DATABASE run");
     let n = r?;
     detach.map_err(|e| sql(db, e))?;
@@ -217,6 +227,7 @@ fn copy_run(
 fn copy_attached(
     conn: &Connection,
     db: &Path,
+    out: &Path,
     params: &[String],
     types: &[&str],
     run: &RunInput,
@@ -283,13 +294,14 @@ fn copy_attached(
             }));
             rows += conn
                 .execute(&insert, params_from_iter(binds))
-                .map_err(|e| sql(db, e))? as u64;
+                .map_err(|e| writing(db, out, e))? as u64;
         }
         Ok(rows)
     })();
     match r {
         Ok(n) => {
-            conn.execute_batch("COMMIT").map_err(|e| sql(db, e))?;
+            conn.execute_batch("COMMIT")
+                .map_err(|e| writing(db, out, e))?;
             Ok(n)
         }
         Err(e) => {
@@ -446,14 +458,22 @@ fn sql(db: &Path, e: rusqlite::Error) -> Error {
     Error::new(ErrorKind::Store, format!("{}: {e}", db.display()))
 }
 
-fn io(msg: String) -> Error {
-    Error::new(ErrorKind::Io, msg)
+/// An SQLite error of a statement that writes the merged file (reading run `db`, or `out`
+/// itself): a full disk or a failed write is the merged database `out`'s, and named so.
+fn writing(db: &Path, out: &Path, e: rusqlite::Error) -> Error {
+    let write_failed = matches!(&e, rusqlite::Error::SqliteFailure(f, _)
+        if matches!(f.code, rusqlite::ErrorCode::DiskFull | rusqlite::ErrorCode::SystemIoFailure));
+    if write_failed {
+        Error::new(
+            ErrorKind::Io,
+            format!("cannot write the merged database {}: {e}", out.display()),
+        )
+        .hint("free space on its disk, or merge to a file on another disk")
+    } else {
+        sql(db, e)
+    }
 }
 
-fn remove_file(p: &Path) -> Result<()> {
-    match std::fs::remove_file(p) {
-        Ok(()) => Ok(()),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
-        Err(e) => Err(io(format!("cannot remove {}: {e}", p.display()))),
-    }
+fn io(msg: String) -> Error {
+    Error::new(ErrorKind::Io, msg)
 }

@@ -4,7 +4,7 @@
 //! Every error names the study file, the line and the key, and says what was expected.
 
 use super::value::ParamValue;
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 use crate::lang::diag::LineIndex;
 use crate::lang::Source;
 use serde::Deserialize;
@@ -137,12 +137,7 @@ pub const MAX_POINTS: usize = 1_000_000;
 impl Study {
     /// Read and check a study file.
     pub fn load(path: &Path) -> Result<Study> {
-        let text = std::fs::read_to_string(path).map_err(|e| {
-            Error::new(
-                ErrorKind::Io,
-                format!("cannot read the study file {}: {e}", path.display()),
-            )
-        })?;
+        let text = crate::text_file::read(path, "the study file")?;
         Study::parse(path, text)
     }
 

@@ -5,7 +5,7 @@
 
 use super::study::Study;
 use super::value::ParamValue;
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::Result;
 use crate::lang::ast::{StmtKind, Target};
 use crate::lang::{self, Source};
 use std::ops::Range;
@@ -24,12 +24,7 @@ impl Template {
     /// exactly once at top level (not inside a `for` loop), so that the replacement is the
     /// value the whole file sees.
     pub fn load(study: &Study) -> Result<Template> {
-        let text = std::fs::read_to_string(&study.template).map_err(|e| {
-            Error::new(
-                ErrorKind::Io,
-                format!("cannot read the template {}: {e}", study.template.display()),
-            )
-        })?;
+        let text = crate::text_file::read(&study.template, "the template")?;
         let source = Source {
             name: study.template.display().to_string(),
             text,

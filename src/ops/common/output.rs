@@ -1,11 +1,14 @@
 //! Writing to Code_Aster logical units (UNITE): 6 is the run's output, 8 the results file
 //! when one is mapped (a .export's `F resu`) else the run's output, any other unit the
 //! file mapped in `ctx.units`, else `fort.N` beside the command file. Successive
-//! prints to one unit append, as Code_Aster's do.
+//! prints to one unit append, as Code_Aster's do. An output is a regular file (or a new
+//! one): a FIFO, a device, a directory or a symbolic link is refused as `--db` refuses it,
+//! and the file is opened without following a link and without blocking.
 
 use crate::error::{Error, Result};
 use crate::ops::{OpContext, Units};
 use std::io::Write;
+use std::os::unix::fs::OpenOptionsExt;
 use std::path::{Path, PathBuf};
 
 /// The file behind unit `unite` (not called for 6 and 8).
@@ -39,6 +42,15 @@ pub fn check_output_path(units: &Units, path: &Path) -> Result<()> {
         ))
         .hint("give the output another file (FICHIER, or --unit N=PATH)"));
     }
+    if let crate::store::study_file::FileKind::NotRegular(what) =
+        crate::store::study_file::file_kind(path)?
+    {
+        return Err(Error::validation(format!(
+            "{} is {what}: an operator writes its output to a regular file only",
+            path.display()
+        ))
+        .hint("give the output a regular file (FICHIER, or --unit N=PATH)"));
+    }
     if path.is_file() && crate::store::study_file::has_sqlite_header(path) {
         return Err(Error::validation(format!(
             "{} is an SQLite database: an operator will not write over it",
@@ -60,15 +72,25 @@ pub fn write_unit(ctx: &mut OpContext<'_>, unite: i64, text: &str) -> Result<()>
     // unite >= 1: the catalogs' bound (IMPR_TABLE, IMPR_FONCTION).
     let path = unit_path(ctx.units, unite);
     check_output_path(ctx.units, &path).map_err(|e| e.keyword("UNITE"))?;
+    // No link followed and no wait on a FIFO even if the path changed since the check.
     let mut f = std::fs::OpenOptions::new()
         .create(true)
         .append(true)
+        .custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK | libc::O_CLOEXEC)
+        .mode(0o644)
         .open(&path)
         .map_err(|e| {
             Error::from(e)
                 .keyword("UNITE")
                 .hint(format!("unit {unite} writes to {}", path.display()))
         })?;
+    if !f.metadata().is_ok_and(|m| m.file_type().is_file()) {
+        return Err(Error::validation(format!(
+            "{} is not a regular file: an operator writes its output to a regular file only",
+            path.display()
+        ))
+        .keyword("UNITE"));
+    }
     f.write_all(text.as_bytes())
         .map_err(|e| Error::from(e).keyword("UNITE"))?;
     Ok(())
