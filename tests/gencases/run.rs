@@ -84,12 +84,7 @@ pub fn reference(
     energy: f64,
 ) -> Result<Reference, String> {
     let reg = Dynamics::new(model, shock_of(case, model, true))?;
-    let u0 = shooting::at_energy(&reg, &guess.u0, energy);
-    let start = Orbit {
-        tau: shooting::half_period_near(&reg, &u0, guess.tau),
-        u0,
-    };
-    let (o, accuracy) = shooting::solve_refined(&reg, &start, energy)?;
+    let (o, accuracy) = shooting::solve_from(&reg, guess, energy)?;
     let de = 1e-3;
     let o2 = shooting::solve(&reg, &o, energy * (1.0 + de), 1e-11)?;
     let slope = (o2.freq() / o.freq()).ln() / (1.0 + de).ln();
@@ -322,8 +317,7 @@ fn run_binary(
 /// The last error line of the run's output (or its last line).
 fn message_of(text: &str) -> String {
     text.lines()
-        .filter(|l| l.contains('×'))
-        .next_back()
+        .rfind(|l| l.contains('×'))
         .or_else(|| text.lines().rev().find(|l| !l.trim().is_empty()))
         .unwrap_or("")
         .trim()

@@ -116,7 +116,8 @@ fn norm(v: &[f64]) -> f64 {
     v.iter().fold(0.0f64, |a, &b| a.max(b.abs()))
 }
 
-/// Newton on (u0, τ) at ENERGIE `energy`, finite-difference Jacobian, from `guess`.
+/// Newton on (u0, τ) at ENERGIE `energy`, finite-difference Jacobian, from `guess`
+/// (environment GEN_DEBUG: print every iteration, for a case whose reference fails).
 pub fn solve(d: &Dynamics, guess: &Orbit, energy: f64, rtol: f64) -> Result<Orbit, String> {
     let n = d.n;
     let mut o = guess.clone();
@@ -152,8 +153,8 @@ pub fn solve(d: &Dynamics, guess: &Orbit, energy: f64, rtol: f64) -> Result<Orbi
         let r0 = norm(&r);
         loop {
             let mut p = o.clone();
-            for i in 0..n {
-                p.u0[i] += lambda * dx[i];
+            for (u, d) in p.u0.iter_mut().zip(&dx[..n]) {
+                *u += lambda * d;
             }
             p.tau += lambda * dx[n];
             // The orbit sought is the row's: its period within a factor 1.5 of the row's
@@ -234,6 +235,18 @@ pub fn half_period_near(d: &Dynamics, u0: &[f64], tau: f64) -> f64 {
         .map(|j| stops[j] + (stops[j + 1] - stops[j]) * v[j] / (v[j] - v[j + 1]))
         .min_by(|a, b| (a - tau).abs().total_cmp(&(b - tau).abs()))
         .unwrap_or(tau)
+}
+
+/// The whole solve from a rough guess (a row's state, a linear orbit): the guess put at the
+/// energy (`at_energy`), its half period on the right side of any contact
+/// (`half_period_near`), then `solve_refined`.
+pub fn solve_from(d: &Dynamics, guess: &Orbit, energy: f64) -> Result<(Orbit, f64), String> {
+    let u0 = at_energy(d, &guess.u0, energy);
+    let start = Orbit {
+        tau: half_period_near(d, &u0, guess.tau),
+        u0,
+    };
+    solve_refined(d, &start, energy)
 }
 
 /// Solves at the three accuracies; returns the orbit and the frequency change between the
