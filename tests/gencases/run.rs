@@ -403,6 +403,9 @@ pub fn judge(case: &Case, bin: &Path, dir: &Path, timeout: Duration) -> Outcome 
         Some(0) if ref_fail => Verdict::RefFail,
         Some(0) if rows.is_empty() => Verdict::Crash,
         Some(0) if reached && all_right => Verdict::Reached,
+        // MODE_NON_LINE ended before NB_BRANCHE with its alarm (why and where), rows
+        // kept and the file run to its end: a clear stop, not a spent budget.
+        Some(0) if !reached && text.contains("<MODE_NON_LINE_8>") => Verdict::StoppedClear,
         Some(0) => Verdict::Short,
         _ if reached => Verdict::Exit2AfterComputing,
         _ if text.contains('×') => Verdict::StoppedClear,
