@@ -23,7 +23,10 @@ pub fn read_bounded(path: &Path, what: &str, max_bytes: u64) -> Result<String> {
     String::from_utf8(bytes).map_err(|e| {
         Error::new(
             ErrorKind::Io,
-            format!("cannot read {what} {}: not UTF-8 text ({e})", path.display()),
+            format!(
+                "cannot read {what} {}: not UTF-8 text ({e})",
+                path.display()
+            ),
         )
     })
 }

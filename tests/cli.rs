@@ -245,7 +245,7 @@ fn check_goes_past_unsupported_operators_and_unknown_names() {
          CHOC=_F(OBSTACLE='PLAN', GROUP_NO='N2', NOM_CMP='DX', JEU=-0.01, RIGI_NOR=50.), \
          RESOLUTION=_F(METHODE='EHMAN', NB_HARM_LINE=5, NB_HARM_NONL=100, NB_PAS_MAN=1, \
          NB_BRANCH=10))\n\
-         IMPR_RESU(FORMAT='MED', RESU=_F(RESULTAT=DYN))\n\
+         INFO_MODE(MATR_RIGI=RIGIDITE, MATR_MASS=MASSE)\n\
          FIN()\n"
     );
     let comm = port_of_sdnd122a(dir.path(), &body);
@@ -267,7 +267,7 @@ fn check_goes_past_unsupported_operators_and_unknown_names() {
         "unknown keyword NB_BRANCH",
         "did you mean NB_BRANCHE?",
         "missing mandatory keyword NB_BRANCHE",
-        "IMPR_RESU is a Code_Aster operator that aster-nl does not support",
+        "INFO_MODE is a Code_Aster operator that aster-nl does not support",
     ] {
         assert!(out.contains(expected), "{expected}:\n{out}");
     }

@@ -592,7 +592,14 @@ fn a_runtime_error_points_at_the_keyword_it_names() {
         std::fs::copy(case("hard").join(&name), dir.path().join(&name)).unwrap();
     }
     let comm = dir.path().join("failed_correction.comm");
-    let src = std::fs::read_to_string(&comm).unwrap();
+    // Issue 34: a failed correction after rows is an alarm unless alarms are errors.
+    let src = std::fs::read_to_string(&comm).unwrap().replacen(
+        "DEBUT(CODE=_F(NIV_PUB_WEB='INTERNET'),",
+        "DEBUT(CODE=_F(NIV_PUB_WEB='INTERNET'), ERREUR=_F(ALARME='EXCEPTION'),",
+        1,
+    );
+    assert!(src.contains("ALARME='EXCEPTION'"));
+    std::fs::write(&comm, &src).unwrap();
     let (line, col) = src
         .lines()
         .enumerate()

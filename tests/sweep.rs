@@ -429,12 +429,17 @@ fn points_past_their_timeout_are_stopped_and_listed() {
     let comm = dir.path().join("wall.comm");
     let template = std::fs::read_to_string(&comm).unwrap();
     assert!(template.contains("NB_BRANCHE=NB_BRANCHE,"));
+    // A PLAN stop is followed to its homogeneous limit and ends there (issue 34): BI_PLAN's
+    // long branch crawls.
+    assert!(template.contains("OBSTACLE='PLAN'"));
     std::fs::write(
         &comm,
-        template.replace(
-            "NB_BRANCHE=NB_BRANCHE,",
-            "NB_BRANCHE=NB_BRANCHE, NB_BRANCHE_SANS_PROGRES=0,",
-        ),
+        template
+            .replace(
+                "NB_BRANCHE=NB_BRANCHE,",
+                "NB_BRANCHE=NB_BRANCHE, NB_BRANCHE_SANS_PROGRES=0,",
+            )
+            .replace("OBSTACLE='PLAN'", "OBSTACLE='BI_PLAN'"),
     )
     .unwrap();
     let s = std::fs::read_to_string(&study)
