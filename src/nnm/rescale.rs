@@ -38,17 +38,20 @@ pub(super) fn motion_amplitude(sys: &System, x: &[f64]) -> f64 {
 /// The scaling whose length unit is the motion's amplitude, when `x` has outgrown the
 /// current unit by [`RESCALE_AT`]; None otherwise.
 pub(super) fn rescaled(sys: &System, x: &[f64]) -> Option<Scaling> {
-    // BI_PLAN and CERCLE compute z = (f/α − u)²/s² from terms of size (u/JEU)²: in a
-    // smaller s the cancellation is no better, and measured on testcases/hard/biplan_long
-    // (a one-DOF BI_PLAN stop run to ENER_MAX 1e15 J) the rescaled run stopped short and
-    // its test failed. Only stops that are all PLAN are rescaled.
-    if sys.shocks.iter().any(|s| !matches!(s.law, ScaledLaw::Plan)) {
-        return None;
-    }
-    let a = motion_amplitude(sys, x);
-    (a.is_finite() && a > RESCALE_AT).then_some(Scaling {
-        length: sys.scaling.length * a,
-        ..sys.scaling
+    let all_plan = sys.shocks.iter().all(|s| matches!(s.law, ScaledLaw::Plan));
+    outgrown(&sys.scaling, all_plan, motion_amplitude(sys, x))
+}
+
+/// The one rule of a change of length unit, for a run (above) and for a restart from a
+/// stored row (start.rs): `amplitude` is the motion's in units of `scaling.length`.
+/// BI_PLAN and CERCLE compute z = (f/α − u)²/s² from terms of size (u/JEU)²: in a smaller
+/// s the cancellation is no better, and measured on testcases/hard/biplan_long (a one-DOF
+/// BI_PLAN stop run to ENER_MAX 1e15 J) the rescaled run stopped short and its test
+/// failed. Only stops that are all PLAN (`all_plan`) are rescaled.
+pub(super) fn outgrown(scaling: &Scaling, all_plan: bool, amplitude: f64) -> Option<Scaling> {
+    (all_plan && amplitude.is_finite() && amplitude > RESCALE_AT).then_some(Scaling {
+        length: scaling.length * amplitude,
+        ..*scaling
     })
 }
 

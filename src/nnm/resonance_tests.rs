@@ -10,18 +10,8 @@ use std::f64::consts::PI;
 
 fn settings(hl: usize, hn: usize, branches: usize) -> Settings {
     Settings {
-        h_lin: hl,
-        h_nonl: hn,
-        n_branches: branches,
-        n_points_per_branch: 3,
-        order: 20,
         prec_man: 1e-10,
-        prec_newton: 1e-9,
-        iter_newton_max: 15,
-        bif_terms: 3,
-        bif_tol: 1e-4,
-        det_test: true,
-        direction: -1,
+        ..super::tests::settings(hl, hn, branches, 3)
     }
 }
 

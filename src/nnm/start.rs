@@ -383,13 +383,12 @@ pub(super) fn system_for_point(
     let scaling = Scaling::new(problem, amp(p), p)?;
     // A row far up a branch is restarted in the length unit the run had rescaled to
     // (rescale.rs), or its correction would meet the round-off the rescaling avoids.
-    let scaling = match amp(p) / scaling.length > super::rescale::RESCALE_AT {
-        true => Scaling {
-            length: amp(p),
-            ..scaling
-        },
-        false => scaling,
-    };
+    let all_plan = problem
+        .shocks
+        .iter()
+        .all(|s| matches!(s.law, super::ShockLaw::Plan));
+    let scaling =
+        super::rescale::outgrown(&scaling, all_plan, amp(p) / scaling.length).unwrap_or(scaling);
     let amps: Vec<f64> = (0..n).map(amp).collect();
     System::new(problem, settings, scaling, phase_dof(&amps))
 }
