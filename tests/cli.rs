@@ -473,7 +473,7 @@ fn cercle_shock_with_one_component_is_one_clear_error() {
         out.contains("MODE_NON_LINE/CHOC/NOM_CMP: expected 2 value(s) (a text), got 1"),
         "{out}"
     );
-    assert!(out.contains("cercle_one.comm:38:"), "{out}");
+    assert!(out.contains("cercle_one.comm:39:"), "{out}");
     assert!(
         out.contains("NOM_CMP takes this form when OBSTACLE is 'CERCLE'"),
         "{out}"

@@ -376,6 +376,49 @@ fn hard_cercle_through_its_centre_is_the_biplan_branch() {
     assert!(compared > 100 && worst < 3e-6, "{compared} {worst:e}");
 }
 
+/// The U-tube through two rings with the settings of Code_Aster's U-tube case
+/// (testcases/hard/utube_rayon.comm): the ring with Code_Aster's law (LOI_CERCLE='RAYON'),
+/// with the secant form, and BI_PLAN stops on DY, 10 branches of 10 rows each. Every branch
+/// hardens; the tube stays in the DY plane through the ring centres (DX of the ring nodes
+/// zero: the centres are offset along DY only, so f_x = φ d_x/r vanishes); and in the same
+/// 10 branches the default law gets higher in frequency than the other two (measured
+/// 3.8667 Hz against 3.8470 Hz and 3.8497 Hz: the series steps are longer on eq. (12)).
+#[test]
+fn hard_utube_rings_with_code_asters_law_climb_further_in_the_same_branches() {
+    let (_d, c) = run_ok("utube_rayon.comm", 3);
+    let top = |t: &str| {
+        let v = rows(&c, t);
+        assert_eq!(v.len(), 100, "{t}");
+        assert_hardening(t, &v);
+        v.iter().map(|r| r.freq).fold(0.0, f64::max)
+    };
+    let (rayon, secant, planes) = (top("MNL"), top("SEC"), top("BIP"));
+    println!(
+        "U-tube after 10 branches: RAYON {rayon:.5} Hz, SECANTE {secant:.5}, BI_PLAN {planes:.5}"
+    );
+    assert!(
+        rayon > secant && rayon > planes,
+        "{rayon} {secant} {planes}"
+    );
+    let dx: f64 = c
+        .query_row(
+            "SELECT MAX(ABS(COEF_C) + ABS(COEF_S)) FROM mnl_fourier WHERE concept = 'MNL' \
+             AND NOM_CMP = 'DX' AND NOEUD IN ('N4', 'N8')",
+            [],
+            |r| r.get(0),
+        )
+        .unwrap();
+    let dy: f64 = c
+        .query_row(
+            "SELECT MAX(ABS(COEF_C) + ABS(COEF_S)) FROM mnl_fourier WHERE concept = 'MNL' \
+             AND NOM_CMP = 'DY' AND NOEUD IN ('N4', 'N8')",
+            [],
+            |r| r.get(0),
+        )
+        .unwrap();
+    assert!(dy > 0.9 * 2.9e-4 && dx < 1e-12 * dy, "DX {dx:e} DY {dy:e}");
+}
+
 #[test]
 fn hard_cercle_whirl_from_a_degenerate_pair() {
     // The .comm checks residuals, |γ|, the degenerate pair and, on rows 17–45, FREQUENCE

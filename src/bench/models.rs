@@ -72,6 +72,7 @@ fn ring(
         stiffness,
         regul,
         origin,
+        loi_cercle: "RAYON".into(),
     }
 }
 
@@ -103,6 +104,7 @@ pub fn wall(h_nonl: usize, branches: usize) -> Case {
             stiffness: 50.0,
             regul: 5e-5,
             origin: [0.0; 3],
+            loi_cercle: "RAYON".into(),
         }],
         mnl: Mnl {
             h_lin: 5,
@@ -409,6 +411,7 @@ MODES = CALC_MODES(MATR_RIGI=RIGIDITE, MATR_MASS=MASSE, OPTION='PLUS_PETITE', CA
             stiffness: 10.0,
             regul: 1e-4,
             origin: [0.0; 3],
+            loi_cercle: "RAYON".into(),
         }],
         mnl: mnl(h_lin, h_nonl, branches, 1),
     }
@@ -446,10 +449,11 @@ pub fn full_comm(case: &Case, coef_ampl: f64, plus_forward: bool) -> String {
         };
         let orig = if s.obstacle == "CERCLE" {
             format!(
-                ", ORIG_OBST=({}, {}, {})",
+                ", ORIG_OBST=({}, {}, {}), LOI_CERCLE='{}'",
                 fmt_real(s.origin[0]),
                 fmt_real(s.origin[1]),
-                fmt_real(s.origin[2])
+                fmt_real(s.origin[2]),
+                s.loi_cercle
             )
         } else {
             String::new()

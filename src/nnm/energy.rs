@@ -59,7 +59,7 @@ pub fn energy_ca(sys: &System, x: &[f64]) -> f64 {
         e += match sh.law {
             ScaledLaw::Plan => pen(u[sh.dofs[0]] - sh.gap),
             ScaledLaw::BiPlan => pen(u[sh.dofs[0]].abs() - sh.gap),
-            ScaledLaw::Cercle { ex, ey } => {
+            ScaledLaw::Cercle { ex, ey, .. } => {
                 let r = ((u[sh.dofs[0]] - ex).powi(2) + (u[sh.dofs[1]] - ey).powi(2)).sqrt();
                 pen(r - sh.gap)
             }
@@ -91,7 +91,9 @@ pub fn energy_mean_ca(sys: &System, x: &[f64]) -> f64 {
             .map(|j| match sh.law {
                 ScaledLaw::Plan => pen(u[0][j] - sh.gap),
                 ScaledLaw::BiPlan => pen(u[0][j].abs() - sh.gap),
-                ScaledLaw::Cercle { ex, ey } => pen((u[0][j] - ex).hypot(u[1][j] - ey) - sh.gap),
+                ScaledLaw::Cercle { ex, ey, .. } => {
+                    pen((u[0][j] - ex).hypot(u[1][j] - ey) - sh.gap)
+                }
             })
             .sum();
         e += total / ns as f64;

@@ -219,7 +219,7 @@ fn law(sh: &ExactShock, u: [f64; 2]) -> ([f64; 2], [f64; 4]) {
                 ([0.0; 2], [0.0; 4])
             }
         }
-        ShockLaw::Cercle { origin } => {
+        ShockLaw::Cercle { origin, .. } => {
             let d = [u[0] - origin[0], u[1] - origin[1]];
             let r = d[0].hypot(d[1]);
             if r > sh.gap {
@@ -247,7 +247,7 @@ fn penalty(sh: &ExactShock, u: [f64; 2]) -> f64 {
     match sh.law {
         ShockLaw::Plan => pen(u[0] - sh.gap),
         ShockLaw::BiPlan => pen(u[0].abs() - sh.gap),
-        ShockLaw::Cercle { origin } => pen((u[0] - origin[0]).hypot(u[1] - origin[1]) - sh.gap),
+        ShockLaw::Cercle { origin, .. } => pen((u[0] - origin[0]).hypot(u[1] - origin[1]) - sh.gap),
     }
 }
 
@@ -654,7 +654,7 @@ fn context(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::nnm::{continue_while, start_from_mode, Point, Shock};
+    use crate::nnm::{continue_while, start_from_mode, CercleForm, Point, Shock};
     use crate::study::{cases, measure, CaseKind, Config, StudyCase};
     use faer::sparse::{SparseColMat, Triplet};
 
@@ -821,6 +821,7 @@ mod tests {
             ShockLaw::BiPlan,
             ShockLaw::Cercle {
                 origin: [0.0005, -0.0003],
+                form: CercleForm::Secant,
             },
         ] {
             for held in [HeldEnergy::Instant, HeldEnergy::Mean] {

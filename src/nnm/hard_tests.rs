@@ -424,7 +424,10 @@ fn hard_cercle_whirl_around_the_ring() {
         k: sparse(2, &[(0, 0, k), (1, 1, k)]),
         m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),
         shocks: vec![Shock {
-            law: ShockLaw::Cercle { origin: [0.0, 0.0] },
+            law: ShockLaw::Cercle {
+                origin: [0.0, 0.0],
+                form: CercleForm::Secant,
+            },
             dofs: vec![0, 1],
             gap: g,
             stiffness: alpha,
@@ -484,7 +487,10 @@ fn hard_ring_through_its_centre_next_to_another_shock() {
         shocks: vec![
             plan_on(1, ShockLaw::Plan),
             Shock {
-                law: ShockLaw::Cercle { origin: [0.0, 0.0] },
+                law: ShockLaw::Cercle {
+                    origin: [0.0, 0.0],
+                    form: CercleForm::Secant,
+                },
                 dofs: vec![0, 1],
                 gap: 0.01,
                 stiffness: 50.0,

@@ -10,8 +10,19 @@
 //! - BI_PLAN (f, z):       f − η u − f z = 0,   z − (f/α − u)²/s² = 0
 //!   (Code_Aster's F − η u/JEU − F Z = 0, Z = (F/α − u/JEU)², with its sign; the same law
 //!   in physical units: docs/ehman.md §2).
-//! - CERCLE (fx, fy, λ, z), with d = (ux − ex, uy − ey) the displacement relative to the
-//!   ring centre and F = (fx, fy):  F − λ d = 0 (two equations),  λ − η − λ z = 0,
+//! - CERCLE, LOI_CERCLE='RAYON' (fx, fy, r, φ), R5.07.01 eq. (12) as Code_Aster writes it,
+//!   with d = (ux − ex, uy − ey) the displacement from the ring centre:
+//!   φ²/α − φ (r − s) − η s² = 0 (PLAN's law on the radial distance r),
+//!   r² − |d|² = 0, fx r − φ dx = 0, fy r − φ dy = 0. In contact the force is α(r − s) along
+//!   d/r; inside the ring it is φ ≈ η s²/(s − r) along d/r, a force of nearly constant
+//!   magnitude η s that turns with d. Where the orbit passes through the centre that force
+//!   changes sign within an instant and the equations degenerate: r² = |d|² has a double root
+//!   and f r = φ d leaves the direction free (pointwise Jacobian 2r³√((r−s)² + 4ηs²/α), zero
+//!   at r = 0). The start takes the root r = |d| sample by sample, as Code_Aster does, with
+//!   no force at an instant exactly at the centre; the harmonic balance then follows the
+//!   truncated series of r, which stays close to |d| (docs/mode_non_line.md, "CERCLE").
+//! - CERCLE, LOI_CERCLE='SECANTE' (fx, fy, λ, z), aster-nl's form, with d as above and
+//!   F = (fx, fy):  F − λ d = 0 (two equations),  λ − η − λ z = 0,
 //!   z − |F/α − d|²/s² = 0. λ is the secant stiffness of the ring, F/d. With r = |d| and
 //!   φ = λ r the force magnitude, these are BI_PLAN's equations at the radial distance:
 //!   φ(1 − (φ/α − r)²/s²) = η r, so the force is α(r − s) along d in contact and a weak
@@ -21,14 +32,13 @@
 //!   fx ≡ 0 and, pointwise, the rest is BI_PLAN's law (f = λ u); in harmonic balance the
 //!   force series is λ·u truncated instead of f, another truncation of the same regularised
 //!   system (the BI_PLAN branch is recovered to the truncation error, tests.rs).
-//!   Departure from Code_Aster, whose CERCLE is PLAN's law in an unknown r with r² = |d|²
-//!   and F = f d/r: there the force inside the ring, f ≈ η s²/(s − r), points away from the
-//!   centre with a direction undefined at r = 0, and the equations F r = f d degenerate
-//!   where r(t) → 0. The two regularisations agree in contact and both vanish as η → 0.
+//!   The two forms agree in contact and differ inside the ring (a force of magnitude ≈ η s
+//!   along d/r for 'RAYON', a weak spring for 'SECANTE'); both differences vanish as η → 0.
 //!
 //! Pointwise Jacobian of each law with respect to its own unknowns on its physical root
 //! (what the determinant test of condensed_det.rs and a pointwise preconditioner rely on):
-//! PLAN √((u−s)² + 4ηs²/α) > 0; BI_PLAN ψ_f = 1 − z − 2f(f/α − u)/(α s²) > 0; CERCLE
+//! PLAN √((u−s)² + 4ηs²/α) > 0; BI_PLAN ψ_f = 1 − z − 2f(f/α − u)/(α s²) > 0; CERCLE 'RAYON'
+//! 2r³√((r−s)² + 4ηs²/α) ≥ 0, zero at the centre; CERCLE 'SECANTE'
 //! (eliminating F = λ d, whose block is the identity) 1 − z − 2λ(λ/α − 1) r²/(α s²), which
 //! is BI_PLAN's ψ_f at the radial distance (f = φ = λ r): > 0, and 1 at the centre.
 //! ψ_f > 0 on the physical root for every u: f(1 − (f/α − u)²/s²) is a cubic in f that
@@ -38,6 +48,7 @@
 //! the truncated series of z overshoots 1 and the harmonic-balance block changes sign
 //! (tests.rs, cercle_law_block_keeps_its_determinant_sign_along_branches); λ avoids it.
 
+use super::problem::CercleForm;
 use crate::error::{Error, Result};
 
 /// A variable a law equation depends on: one of its own unknown series (H_nl harmonics) or a
@@ -73,6 +84,7 @@ pub enum ScaledLaw {
     Cercle {
         ex: f64,
         ey: f64,
+        form: CercleForm,
     },
 }
 
@@ -128,7 +140,16 @@ pub fn equations(law: ScaledLaw, s: f64, alpha: f64, eta: f64) -> LawEqs {
                 forces: vec![(0, 0)],
             }
         }
-        ScaledLaw::Cercle { ex, ey } => {
+        ScaledLaw::Cercle {
+            ex,
+            ey,
+            form: CercleForm::Radial,
+        } => radial_equations(ex, ey, s, alpha, eta),
+        ScaledLaw::Cercle {
+            ex,
+            ey,
+            form: CercleForm::Secant,
+        } => {
             // Own(0) = Fx, Own(1) = Fy, Own(2) = λ, Own(3) = z; components c = 0 (x), 1 (y),
             // centre e_c, d_c = u_c − e_c.
             let c = 1.0 / (s * s);
@@ -162,6 +183,38 @@ pub fn equations(law: ScaledLaw, s: f64, alpha: f64, eta: f64) -> LawEqs {
                 forces: vec![(0, 0), (1, 1)],
             }
         }
+    }
+}
+
+/// R5.07.01 eq. (12) in scaled units: Own(0) = fx, Own(1) = fy, Own(2) = r, Own(3) = φ.
+fn radial_equations(ex: f64, ey: f64, s: f64, alpha: f64, eta: f64) -> LawEqs {
+    use Var::{Own, U};
+    let mut quad = Vec::with_capacity(10);
+    let mut lin = Vec::with_capacity(8);
+    let mut cst = vec![(2, 0.0), (3, -eta * s * s)];
+    for (comp, e) in [(0usize, ex), (1, ey)] {
+        // f_c r − φ (u_c − e_c) = 0.
+        quad.push(quad_term(comp, 1.0, Own(comp), Own(2)));
+        quad.push(quad_term(comp, -1.0, Own(3), U(comp)));
+        lin.push(lin_term(comp, e, Own(3)));
+        // −(u_c − e_c)², expanded, in the equation of r.
+        quad.push(quad_term(2, -1.0, U(comp), U(comp)));
+        lin.push(lin_term(2, 2.0 * e, U(comp)));
+        cst[0].1 -= e * e;
+    }
+    // r² in the equation of r; φ²/α − φ r + s φ in the equation of φ.
+    quad.push(quad_term(2, 1.0, Own(2), Own(2)));
+    quad.push(quad_term(3, 1.0 / alpha, Own(3), Own(3)));
+    quad.push(quad_term(3, -1.0, Own(3), Own(2)));
+    lin.push(lin_term(3, s, Own(3)));
+    cst.retain(|&(_, v)| v != 0.0);
+    lin.retain(|v| v.coef != 0.0);
+    LawEqs {
+        n_own: 4,
+        quad,
+        lin,
+        cst,
+        forces: vec![(0, 0), (1, 1)],
     }
 }
 
@@ -233,7 +286,37 @@ pub fn own_from_u(
                 .collect();
             Ok(vec![f, z])
         }
-        ScaledLaw::Cercle { ex, ey } => {
+        ScaledLaw::Cercle {
+            ex,
+            ey,
+            form: CercleForm::Radial,
+        } => {
+            let (ux, uy) = (comp(0)?, comp(1)?);
+            let n = ux.len().min(uy.len());
+            let mut own = vec![vec![0.0; n]; 4];
+            for i in 0..n {
+                let (dx, dy) = (ux[i] - ex, uy[i] - ey);
+                let r = dx.hypot(dy);
+                let phi = plan_force(r - s, alpha, c);
+                // The physical root r = |d|; exactly at the centre the direction is free
+                // and the instant carries no force (module doc).
+                let (nx, ny) = if r > 0.0 {
+                    (dx / r, dy / r)
+                } else {
+                    (0.0, 0.0)
+                };
+                own[0][i] = phi * nx;
+                own[1][i] = phi * ny;
+                own[2][i] = r;
+                own[3][i] = phi;
+            }
+            Ok(own)
+        }
+        ScaledLaw::Cercle {
+            ex,
+            ey,
+            form: CercleForm::Secant,
+        } => {
             let (ux, uy) = (comp(0)?, comp(1)?);
             let n = ux.len().min(uy.len());
             let mut own = vec![vec![0.0; n]; 4];
@@ -327,13 +410,66 @@ mod tests {
     }
 
     #[test]
+    fn radial_ring_root_solves_eq_12_with_the_jacobian_2r3_psi() {
+        // R5.07.01 eq. (12) in scaled units: s = 1.3, α = 50, η = 1e-3, centre (0.2, −0.1).
+        // At each radial distance the own unknowns from own_from_u must solve the listed
+        // equations to round-off, the force must be PLAN's root along d/r (an independent
+        // quadratic formula here), and the Jacobian's determinant must be 2r³ψ with
+        // ψ = √((r − s)² + 4ηs²/α) (module doc): zero at the centre, positive elsewhere.
+        let (s, a, eta, ex, ey) = (1.3, 50.0, 1e-3, 0.2, -0.1);
+        let law = ScaledLaw::Cercle {
+            ex,
+            ey,
+            form: CercleForm::Radial,
+        };
+        let eqs = equations(law, s, a, eta);
+        assert_eq!(eqs.n_own, 4);
+        for &r in &[0.0, 1e-3, 0.3, 1.29, 1.3, 1.31, 2.0, 4.0] {
+            for theta in [0.0f64, 2.0, 4.5] {
+                let u = [ex + r * theta.cos(), ey + r * theta.sin()];
+                let own = own_from_u(law, s, a, eta, &[vec![u[0]], vec![u[1]]]).unwrap();
+                let own: Vec<f64> = own.iter().map(|v| v[0]).collect();
+                let (res, jac) = pointwise(&eqs, &own, &u);
+                let scale = 1.0 + own.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                assert!(
+                    res.iter().all(|v| v.abs() < 1e-12 * scale),
+                    "r {r}: {res:?}"
+                );
+                // φ²/α − φ(r − s) − ηs² = 0: φ = α/2 ((r − s) + √((r − s)² + 4ηs²/α)).
+                let q = ((r - s) * (r - s) + 4.0 * eta * s * s / a).sqrt();
+                let phi = 0.5 * a * ((r - s) + q);
+                assert!((own[3] - phi).abs() < 1e-9 * phi.max(1e-3), "r {r}");
+                assert!((own[2] - r).abs() < 1e-15 * (1.0 + r));
+                let det = det4(&jac);
+                let want = 2.0 * r.powi(3) * q;
+                assert!(
+                    (det - want).abs() <= 1e-9 * want.max(1e-300),
+                    "r {r}: {det} {want}"
+                );
+                if r > 0.0 {
+                    let dir = [(u[0] - ex) / r, (u[1] - ey) / r];
+                    assert!((own[0] - phi * dir[0]).abs() < 1e-12 * scale);
+                    assert!((own[1] - phi * dir[1]).abs() < 1e-12 * scale);
+                } else {
+                    // Exactly at the centre: the physical root r = 0, no force direction.
+                    assert_eq!((own[0], own[1]), (0.0, 0.0));
+                }
+            }
+        }
+    }
+
+    #[test]
     fn cercle_root_solves_its_equations_with_a_positive_jacobian_through_the_centre() {
         // Scaled ring: s = 1, α = 50, η = 1e-3, centre (0.2, −0.1). Radial distances from the
         // centre itself to deep contact; at each the own unknowns from own_from_u must solve
         // the listed equations (to round-off), and the determinant of their Jacobian must be
         // BI_PLAN's ψ_f = 1 − z − 2φ(φ/α − r)/(α s²) at r, positive; 1 at the centre.
         let (s, a, eta, ex, ey) = (1.0, 50.0, 1e-3, 0.2, -0.1);
-        let law = ScaledLaw::Cercle { ex, ey };
+        let law = ScaledLaw::Cercle {
+            ex,
+            ey,
+            form: CercleForm::Secant,
+        };
         let eqs = equations(law, s, a, eta);
         assert_eq!(eqs.n_own, 4);
         for &r in &[0.0, 1e-9, 0.3, 0.999, 1.0, 1.001, 1.5, 3.0] {

@@ -6,8 +6,9 @@
 //! - Fourier coefficients are ordered like Code_Aster's output: 0, C1..CH, S1..SH.
 //! - `Point::x` is the full unknown vector in physical units, laid out as: U (n DOFs ×
 //!   (2H_l+1), DOF after DOF), V (velocities, same layout, m/s), the contact unknowns of each
-//!   shock in order (PLAN: f; BI_PLAN: f, z; CERCLE: fx, fy, λ, z; z dimensionless, λ in N/m; each
-//!   2H_nl+1 coefficients; forces in N), then ω (rad/s) and γ (1/s, the unfolding
+//!   shock in order (PLAN: f; BI_PLAN: f, z; CERCLE: fx, fy, r, f with LOI_CERCLE='RAYON', fx,
+//!   fy, λ, z with 'SECANTE'; z dimensionless, r in m, λ in N/m; each 2H_nl+1 coefficients;
+//!   forces in N), then ω (rad/s) and γ (1/s, the unfolding
 //!   parameter, zero on an exact solution). Without any shock H_nl is taken equal to H_l.
 //! - ENERGIE is Code_Aster's (see `energy.rs`); `energy_spread` is our a-posteriori check.
 //! - `Settings::direction` (DIR_EVOLUTION): −1 goes forward, +1 backward. From a linear
@@ -72,6 +73,8 @@ mod toeplitz;
 mod vector;
 
 #[cfg(test)]
+mod cercle_eq12_tests;
+#[cfg(test)]
 mod hard_tests;
 #[cfg(test)]
 mod reference;
@@ -92,7 +95,7 @@ pub use orbit::{
 };
 pub use point::Point;
 pub use post::{contact_law_defect, PostProcessor, RowOutputs};
-pub use problem::{Problem, Settings, Shock, ShockLaw};
+pub use problem::{CercleForm, Problem, Settings, Shock, ShockLaw};
 pub use quadrature::{check_degenerate_pair, start_from_mode_pair, QUAD_FREQ_TOL};
 pub use report::BranchReport;
 pub use resolution::{resolution_warnings, tail_ratio};

@@ -3,6 +3,7 @@
 
 use super::energy;
 use super::laws::ScaledLaw;
+use super::problem::CercleForm;
 use super::system::System;
 
 #[derive(Clone, Debug)]
@@ -52,7 +53,14 @@ pub(super) fn unit_factors(sys: &System) -> Vec<f64> {
         let per: &[f64] = match sh.law {
             ScaledLaw::Plan => &[force],
             ScaledLaw::BiPlan => &[force, 1.0],
-            ScaledLaw::Cercle { .. } => &[force, force, scaling.stiffness, 1.0],
+            ScaledLaw::Cercle {
+                form: CercleForm::Radial,
+                ..
+            } => &[force, force, scaling.length, force],
+            ScaledLaw::Cercle {
+                form: CercleForm::Secant,
+                ..
+            } => &[force, force, scaling.stiffness, 1.0],
         };
         for &u in per {
             f.extend(std::iter::repeat_n(u, lay.n_coef_nonl));

@@ -7,15 +7,19 @@
 //! - PLAN:    f² − α f (u − g) − α η = 0, positive root; df/du = α f / √(α²(u−g)² + 4αη).
 //! - BI_PLAN: f ((f − α u)² − α² g²) + α² η u = 0 on the root through f(0) = 0 (the engine's
 //!   branch); df/du by implicit differentiation.
-//! - CERCLE:  r = |u − e|, φ = BI_PLAN's law at r, force φ(r) n with n = (u − e)/r,
-//!   ∂F/∂u = φ'(r) n nᵀ + (φ/r)(I − n nᵀ). φ is odd, so φ(r)/r and the force are smooth
-//!   through the centre, where F = 0 and ∂F/∂u = φ'(0) I.
+//! - CERCLE:  r = |u − e|, force φ(r) n with n = (u − e)/r,
+//!   ∂F/∂u = φ'(r) n nᵀ + (φ/r)(I − n nᵀ); φ is PLAN's law at r − g ('RAYON', R5.07.01
+//!   eq. 12) or BI_PLAN's at r ('SECANTE'). BI_PLAN's φ is odd, so with 'SECANTE' φ(r)/r and
+//!   the force are smooth through the centre, where F = 0 and ∂F/∂u = φ'(0) I. PLAN's φ(0)
+//!   is positive, so with 'RAYON' the force flips across the centre and φ/r is unbounded
+//!   there; exactly at the centre (an instant of measure zero) the force is taken as zero
+//!   and the tangent as φ'(0) I, its radial part.
 //!
 //! Sign: the force enters M Ü + K U + Pᵀ F = 0 with a plus sign (as in the engine's
 //! residual), so a compressed stop (u > g for PLAN) has f > 0 and J adds to K.
 
 use super::system::Scaling;
-use super::{Problem, ShockLaw};
+use super::{CercleForm, Problem, ShockLaw};
 use crate::error::{Error, Result};
 
 /// Physical regularisation η of each shock: PARA_REGUL·k_ref·JEU², with k_ref the engine's
@@ -79,6 +83,14 @@ fn biplan(u: f64, alpha: f64, g: f64, eta: f64) -> Result<(f64, f64)> {
 }
 
 impl PointLaw {
+    /// A ring's force magnitude φ(r) and φ'(r) at radial distance r ≥ 0.
+    fn radial(&self, form: CercleForm, r: f64) -> Result<(f64, f64)> {
+        match form {
+            CercleForm::Radial => Ok(plan(r - self.gap, self.alpha, self.eta)),
+            CercleForm::Secant => biplan(r, self.alpha, self.gap, self.eta),
+        }
+    }
+
     /// Number of displacement components (1, or 2 for CERCLE).
     pub fn n_comp(&self) -> usize {
         match self.law {
@@ -101,10 +113,10 @@ impl PointLaw {
                 0.0,
             ]),
             ShockLaw::BiPlan => Ok([biplan(comp(0)?, self.alpha, self.gap, self.eta)?.0, 0.0]),
-            ShockLaw::Cercle { origin } => {
+            ShockLaw::Cercle { origin, form } => {
                 let (dx, dy) = (comp(0)? - origin[0], comp(1)? - origin[1]);
                 let r = dx.hypot(dy);
-                let (f, _) = biplan(r, self.alpha, self.gap, self.eta)?;
+                let (f, _) = self.radial(form, r)?;
                 if r == 0.0 {
                     return Ok([0.0, 0.0]);
                 }
@@ -129,12 +141,13 @@ impl PointLaw {
                 let (f, df) = biplan(comp(0)?, self.alpha, self.gap, self.eta)?;
                 Ok((vec![f], vec![df]))
             }
-            ShockLaw::Cercle { origin } => {
+            ShockLaw::Cercle { origin, form } => {
                 let (dx, dy) = (comp(0)? - origin[0], comp(1)? - origin[1]);
                 let r = dx.hypot(dy);
-                let (f, df) = biplan(r, self.alpha, self.gap, self.eta)?;
+                let (f, df) = self.radial(form, r)?;
                 if r == 0.0 {
-                    // The centre: no force, and φ/r → φ'(0) in every direction.
+                    // The centre: no force, and the radial tangent in every direction
+                    // (φ/r → φ'(0) with 'SECANTE'; module doc for 'RAYON').
                     return Ok((vec![0.0, 0.0], vec![df, 0.0, 0.0, df]));
                 }
                 let (nx, ny) = (dx / r, dy / r);

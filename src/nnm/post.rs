@@ -194,7 +194,7 @@ pub fn contact_law_defect(problem: &Problem, settings: &Settings, x: &[f64]) -> 
 mod tests {
     use super::super::system::{Scaling, System};
     use super::super::tests::{settings, sparse};
-    use super::super::{Shock, ShockLaw};
+    use super::super::{CercleForm, Shock, ShockLaw};
     use super::*;
 
     fn shock(law: ShockLaw, dofs: Vec<usize>) -> Shock {
@@ -220,7 +220,13 @@ mod tests {
             with(vec![
                 shock(ShockLaw::Plan, vec![0]),
                 shock(ShockLaw::BiPlan, vec![1]),
-                shock(ShockLaw::Cercle { origin: [0.0, 0.0] }, vec![1, 2]),
+                shock(
+                    ShockLaw::Cercle {
+                        origin: [0.0, 0.0],
+                        form: CercleForm::Secant,
+                    },
+                    vec![1, 2],
+                ),
             ]),
             with(vec![]),
         ]

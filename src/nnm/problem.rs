@@ -7,7 +7,18 @@ use faer::sparse::SparseColMat;
 pub enum ShockLaw {
     Plan,
     BiPlan,
-    Cercle { origin: [f64; 2] },
+    Cercle { origin: [f64; 2], form: CercleForm },
+}
+
+/// Which regularisation of the ring law (CHOC/LOI_CERCLE; laws.rs gives both).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CercleForm {
+    /// R5.07.01 eq. (12), Code_Aster's: PLAN's regularised law on the radial distance r,
+    /// the force along d/r (unknowns f_x, f_y, r, f).
+    Radial,
+    /// aster-nl's: BI_PLAN's law at the radial distance through a secant stiffness λ
+    /// (unknowns f_x, f_y, λ, z), regular through the ring centre.
+    Secant,
 }
 
 #[derive(Clone, Debug)]

@@ -146,16 +146,23 @@ pub fn start_from_mode_pair(
 #[cfg(test)]
 mod tests {
     use super::super::tests::{settings, sparse};
-    use super::super::{continue_branches, Shock, ShockLaw};
+    use super::super::{continue_branches, CercleForm, Shock, ShockLaw};
     use super::*;
 
-    /// Isotropic node (k in x and y, m = 1) in a centred ring of radius `g`.
+    /// Isotropic node (k in x and y, m = 1) in a centred ring of radius `g` (secant law).
     fn isotropic(k: f64, g: f64, alpha: f64, regul: f64) -> Problem {
+        isotropic_with(k, g, alpha, regul, CercleForm::Secant)
+    }
+
+    fn isotropic_with(k: f64, g: f64, alpha: f64, regul: f64, form: CercleForm) -> Problem {
         Problem {
             k: sparse(2, &[(0, 0, k), (1, 1, k)]),
             m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),
             shocks: vec![Shock {
-                law: ShockLaw::Cercle { origin: [0.0, 0.0] },
+                law: ShockLaw::Cercle {
+                    origin: [0.0, 0.0],
+                    form,
+                },
                 dofs: vec![0, 1],
                 gap: g,
                 stiffness: alpha,
@@ -173,9 +180,18 @@ mod tests {
         // (the start must rescale it). Started inside the ring (radius 0.9 JEU), the branch
         // must run into contact as a circular whirl: |u_x| = |u_y| (first harmonic, to 1e-6),
         // no higher harmonics, and ω² = (k + f(r)/r)/m, f the regularised ring force (exact
-        // for a circular orbit: constant radius, constant force), within 1e-7 relative.
+        // for a circular orbit: constant radius, constant force), within 1e-7 relative. Both
+        // ring laws: 'SECANTE' (f: BI_PLAN's law at r, `ring_force`) and 'RAYON' (R5.07.01
+        // eq. 12: f the root of f² − αf(r − g) − αη = 0, η = PARA_REGUL·k·g², written out
+        // here by the quadratic formula).
+        for form in [CercleForm::Secant, CercleForm::Radial] {
+            whirl_into_contact(form);
+        }
+    }
+
+    fn whirl_into_contact(form: CercleForm) {
         let (k, g, alpha, regul) = (10.0, 0.01, 50.0, 1e-4);
-        let p = isotropic(k, g, alpha, regul);
+        let p = isotropic_with(k, g, alpha, regul, form);
         let mut s = settings(3, 20, 12, 1);
         s.prec_man = 1e-8;
         let b = 30f64.to_radians();
@@ -204,12 +220,19 @@ mod tests {
                 .map(|h| q.x[h].hypot(q.x[hl + h]) + q.x[nl + h].hypot(q.x[nl + hl + h]))
                 .sum();
             assert!(higher < 1e-9 * ax, "{higher}");
-            let closed = (k + ring_force(ax, g, alpha, eps) / ax).sqrt();
+            let f = match form {
+                CercleForm::Secant => ring_force(ax, g, alpha, eps),
+                CercleForm::Radial => {
+                    let (d, eta) = (ax - g, regul * k * g * g);
+                    0.5 * (alpha * d + (alpha * alpha * d * d + 4.0 * alpha * eta).sqrt())
+                }
+            };
+            let closed = (k + f / ax).sqrt();
             worst = worst.max((q.omega / closed - 1.0).abs());
         }
         let last = out.points.last().unwrap();
         let r_end = last.x[1].hypot(last.x[1 + hl]);
-        println!("pair whirl: worst rel ω error {worst:.2e}, end radius {r_end:.4e}");
+        println!("pair whirl {form:?}: worst rel ω error {worst:.2e}, end radius {r_end:.4e}");
         assert!(
             r_end > 1.1 * g,
             "the branch did not reach contact: r = {r_end}"

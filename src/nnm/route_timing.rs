@@ -6,7 +6,7 @@ use super::contact::{self, ContactBlock, Method};
 use super::linear_solver::solves_per_factorisation;
 use super::start::init_contact;
 use super::system::{Scaling, System};
-use super::{series, Problem, Settings, Shock, ShockLaw};
+use super::{series, CercleForm, Problem, Settings, Shock, ShockLaw};
 use crate::error::Result;
 use faer::sparse::{SparseColMat, Triplet};
 use std::time::Instant;
@@ -84,6 +84,7 @@ pub fn contact_route_timings(h_values: &[usize], solves: usize) -> Result<Vec<Ro
             "CERCLE",
             ShockLaw::Cercle {
                 origin: [0.0, 0.003],
+                form: CercleForm::Secant,
             },
         ),
     ];

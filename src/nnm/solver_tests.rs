@@ -63,6 +63,7 @@ fn problem() -> Problem {
             Shock {
                 law: ShockLaw::Cercle {
                     origin: [0.002, -0.001],
+                    form: CercleForm::Secant,
                 },
                 dofs: vec![1, 2],
                 gap: 0.01,

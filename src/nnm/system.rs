@@ -343,7 +343,8 @@ impl Layout {
     }
 }
 
-/// Number of contact unknowns (series) of a law: PLAN f; BI_PLAN f, z; CERCLE fx, fy, λ, z
+/// Number of contact unknowns (series) of a law: PLAN f; BI_PLAN f, z; CERCLE fx, fy, r, φ
+/// ('RAYON') or fx, fy, λ, z ('SECANTE')
 /// (`laws::equations` gives the same `n_own`; a test checks it).
 pub fn own_count(law: ShockLaw) -> usize {
     match law {
@@ -499,9 +500,10 @@ impl System {
             let law = match s.law {
                 ShockLaw::Plan => ScaledLaw::Plan,
                 ShockLaw::BiPlan => ScaledLaw::BiPlan,
-                ShockLaw::Cercle { origin } => ScaledLaw::Cercle {
+                ShockLaw::Cercle { origin, form } => ScaledLaw::Cercle {
                     ex: origin[0] / scaling.length,
                     ey: origin[1] / scaling.length,
+                    form,
                 },
             };
             let (gs, alpha) = (s.gap / scaling.length, s.stiffness / scaling.stiffness);
@@ -1113,11 +1115,18 @@ mod tests {
     /// full result exactly.
     #[test]
     fn cosine_grid_products_equal_the_full_grid_ones() {
-        use crate::nnm::ShockLaw;
+        use crate::nnm::{CercleForm, ShockLaw};
         for law in [
             ShockLaw::Plan,
             ShockLaw::BiPlan,
-            ShockLaw::Cercle { origin: [0.0, 0.0] },
+            ShockLaw::Cercle {
+                origin: [0.0, 0.0],
+                form: CercleForm::Secant,
+            },
+            ShockLaw::Cercle {
+                origin: [0.0, 0.0],
+                form: CercleForm::Radial,
+            },
         ] {
             let (sys, _) = crate::nnm::route_timing::system_and_point(law, 40).unwrap();
             let lay = sys.lay;

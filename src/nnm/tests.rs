@@ -95,6 +95,7 @@ fn tangent_is_the_derivative_of_the_residual() {
             ShockLaw::BiPlan,
             ShockLaw::Cercle {
                 origin: [0.002, -0.001],
+                form: CercleForm::Secant,
             },
         ]
         .map(|l| (l, hn))
@@ -316,6 +317,7 @@ fn ring(delta: f64, regul: f64) -> Problem {
         shocks: vec![Shock {
             law: ShockLaw::Cercle {
                 origin: [delta, 0.0],
+                form: CercleForm::Secant,
             },
             dofs: vec![0, 1],
             gap: 0.01,
@@ -724,7 +726,14 @@ fn reference_stiffness_is_taken_where_code_aster_takes_it() {
         m: sparse(3, &[(0, 0, 1.0), (1, 1, 2.0), (2, 2, 3.0)]),
         shocks: vec![
             shock(ShockLaw::Plan, vec![2], 0.01),
-            shock(ShockLaw::Cercle { origin: [0.0, 0.0] }, vec![0, 1], 0.02),
+            shock(
+                ShockLaw::Cercle {
+                    origin: [0.0, 0.0],
+                    form: CercleForm::Secant,
+                },
+                vec![0, 1],
+                0.02,
+            ),
             shock(ShockLaw::BiPlan, vec![2], 0.02),
         ],
     };

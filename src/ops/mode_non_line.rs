@@ -635,6 +635,8 @@ fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<StoredShock>
                 ))
                 .keyword(kw("ORIG_OBST"))
             })?;
+        // Text in the catalog's list (its `into`).
+        let loi_cercle = c.req_text("LOI_CERCLE")?.to_string();
         // The same shock twice doubles its stiffness without a word: refuse it.
         if let Some(j) = out
             .iter()
@@ -656,6 +658,7 @@ fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<StoredShock>
             stiffness,
             regul,
             origin,
+            loi_cercle,
         });
     }
     Ok(out)
@@ -756,6 +759,7 @@ fn cara_choc_table(shocks: &[StoredShock]) -> Result<Table> {
         ("ORIG_OBST_X", ColKind::R),
         ("ORIG_OBST_Y", ColKind::R),
         ("ORIG_OBST_Z", ColKind::R),
+        ("LOI_CERCLE", ColKind::K),
     ];
     for (n, k) in cols {
         t.add_column(n, *k)?;
@@ -776,6 +780,7 @@ fn cara_choc_table(shocks: &[StoredShock]) -> Result<Table> {
             Cell::R(s.origin[0]),
             Cell::R(s.origin[1]),
             Cell::R(s.origin[2]),
+            Cell::K(s.loi_cercle.clone()),
         ])?;
     }
     Ok(t)
@@ -794,6 +799,7 @@ mod tests {
             stiffness: 50.0,
             regul: 1e-4,
             origin,
+            loi_cercle: "RAYON".into(),
         }
     }
 

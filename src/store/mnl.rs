@@ -51,6 +51,15 @@ pub struct StoredShock {
     pub stiffness: f64,
     pub regul: f64,
     pub origin: [f64; 3],
+    /// LOI_CERCLE, the ring law's form ('RAYON' or 'SECANTE'; read by CERCLE only). Studies
+    /// stored before the keyword existed were computed with 'SECANTE'.
+    #[serde(default = "form_of_older_studies")]
+    pub loi_cercle: String,
+}
+
+/// The ring law of studies stored before LOI_CERCLE existed.
+pub fn form_of_older_studies() -> String {
+    "SECANTE".to_string()
 }
 
 /// What a later REST_MODE_NONL or restart needs to interpret the stored points.

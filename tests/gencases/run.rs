@@ -96,16 +96,9 @@ pub fn reference(
         Law::Plan => 1.0 / osc.period_plan(energy),
         _ => 1.0 / osc.period_biplan(energy),
     });
-    // The engine's ring is another regularisation of the same nonsmooth law as eq. (12):
-    // allow twice the seed's own regularisation effect there.
-    let law_term = match case.law {
-        Law::Cercle { .. } => 2.0 * (o.freq() / o0.freq() - 1.0).abs(),
-        _ => 0.0,
-    };
-    let bound = FLOOR
-        + SAFETY * (t.tail_v + t.tail_f + slope.abs() * t.ripple)
-        + 10.0 * accuracy
-        + law_term;
+    // The engine's ring law is eq. (12) (LOI_CERCLE='RAYON', the default the generated
+    // files use), the law of this reference: no allowance for another regularisation.
+    let bound = FLOOR + SAFETY * (t.tail_v + t.tail_f + slope.abs() * t.ripple) + 10.0 * accuracy;
     Ok(Reference {
         freq: o.freq(),
         freq_nonsmooth: o0.freq(),

@@ -2,8 +2,8 @@
 //! against the engine's, Newmark against RK4 on sdnd122, and an orbit that loses stability.
 
 use super::super::{
-    contact_coefficients, continue_branches, displacement_coefficients, start_from_mode, Point,
-    Problem, Settings, Shock, ShockLaw,
+    contact_coefficients, continue_branches, displacement_coefficients, start_from_mode,
+    CercleForm, Point, Problem, Settings, Shock, ShockLaw,
 };
 use super::*;
 use faer::sparse::{SparseColMat, Triplet};
@@ -290,6 +290,14 @@ fn pointwise_laws_reproduce_the_engine_contact_forces_in_time() {
         (
             ShockLaw::Cercle {
                 origin: [0.001, 0.001],
+                form: CercleForm::Secant,
+            },
+            vec![0, 1],
+        ),
+        (
+            ShockLaw::Cercle {
+                origin: [0.001, 0.001],
+                form: CercleForm::Radial,
             },
             vec![0, 1],
         ),
@@ -349,6 +357,7 @@ fn law_jacobians_are_the_derivatives_of_the_forces() {
         PointLaw {
             law: ShockLaw::Cercle {
                 origin: [0.001, -0.002],
+                form: CercleForm::Secant,
             },
             alpha,
             gap: g,

@@ -4,7 +4,7 @@
 use crate::error::{Error, Result};
 use crate::model::assembly::AssembledMatrix;
 use crate::model::dof::Cmp;
-use crate::nnm::{Problem, Settings, Shock, ShockLaw};
+use crate::nnm::{CercleForm, Problem, Settings, Shock, ShockLaw};
 use crate::store::mnl::{MnlSetup, StoredShock};
 use crate::table::{Cell, Table};
 
@@ -47,8 +47,19 @@ pub fn engine_shock(s: &StoredShock, i: usize, k: &AssembledMatrix) -> Result<Sh
                 "DY" | "DRY" => s.origin[1],
                 _ => s.origin[2],
             };
+            let form = match s.loi_cercle.as_str() {
+                "RAYON" => CercleForm::Radial,
+                "SECANTE" => CercleForm::Secant,
+                other => {
+                    return Err(Error::validation(format!(
+                        "unknown LOI_CERCLE '{other}': 'RAYON' or 'SECANTE'"
+                    ))
+                    .keyword(kw("LOI_CERCLE")))
+                }
+            };
             ShockLaw::Cercle {
                 origin: [pick(&s.cmps[0]), pick(&s.cmps[1])],
+                form,
             }
         }
         other => {
@@ -151,6 +162,9 @@ pub fn shocks_from_cara_choc(t: &Table, name: &str) -> Result<Vec<StoredShock>> 
                     real(r, "ORIG_OBST_Y")?,
                     real(r, "ORIG_OBST_Z")?,
                 ],
+                // A table written before LOI_CERCLE existed: the form it was computed with.
+                loi_cercle: text(r, "LOI_CERCLE")
+                    .unwrap_or_else(crate::store::mnl::form_of_older_studies),
             })
         })
         .collect()
