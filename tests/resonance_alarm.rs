@@ -54,7 +54,11 @@ fn run(edit: &dyn Fn(String) -> String) -> (Option<i32>, String, Vec<(f64, f64)>
     for (k, r) in rows.iter().enumerate() {
         assert_eq!(r.0, k as i64 + 1);
     }
-    (o.status.code(), out, rows.iter().map(|r| (r.1, r.2)).collect())
+    (
+        o.status.code(),
+        out,
+        rows.iter().map(|r| (r.1, r.2)).collect(),
+    )
 }
 
 /// The number after `key` in `line`, up to the next space, comma or parenthesis.
@@ -77,7 +81,10 @@ fn the_seventeen_to_one_resonance_with_bending_mode_3_is_announced() {
     assert!(out.contains("tests: 3 OK, 0 NOOK"), "{out}");
     // 17·f crosses f3 between rows k−1 and k: unambiguous over the band of f3.
     let (lo, hi) = (f_eb(3) * (1.0 - MODE3_TOL), f_eb(3) * (1.0 + MODE3_TOL));
-    let k = rows.iter().position(|r| 17.0 * r.0 > lo).expect("17 f reaches f3");
+    let k = rows
+        .iter()
+        .position(|r| 17.0 * r.0 > lo)
+        .expect("17 f reaches f3");
     assert!(k > 0 && 17.0 * rows[k].0 > hi, "{rows:?}");
     let line = out
         .lines()
