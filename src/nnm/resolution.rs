@@ -38,6 +38,33 @@ pub fn tail_ratio(coefs: &[f64]) -> f64 {
     (first_tail..=h).map(amp).fold(0.0, f64::max) / peak
 }
 
+/// The tail ratio of a force with several components (a ring's f_x, f_y): the largest
+/// tail amplitude of any component over the largest harmonic of any. A component that
+/// barely moves (round-off around a planar motion, 1e-55 of the other) has a spectrum of
+/// noise whose own tail ratio is O(1); measured against the whole force it is nothing.
+pub fn tail_ratio_of(components: &[&[f64]]) -> f64 {
+    let amp = |c: &[f64], k: usize| {
+        let h = c.len().saturating_sub(1) / 2;
+        c[k].hypot(c[h + k])
+    };
+    let mut peak = 0.0f64;
+    let mut tail = 0.0f64;
+    for c in components {
+        let h = c.len().saturating_sub(1) / 2;
+        if h == 0 {
+            continue;
+        }
+        let first_tail = h - (h / 10).max(1) + 1;
+        peak = (1..=h).fold(peak, |m, k| m.max(amp(c, k)));
+        tail = (first_tail..=h).fold(tail, |m, k| m.max(amp(c, k)));
+    }
+    if peak == 0.0 {
+        0.0
+    } else {
+        tail / peak
+    }
+}
+
 /// One message per shock whose force series is poorly resolved somewhere on `points`.
 pub fn resolution_warnings(
     problem: &Problem,
@@ -66,12 +93,15 @@ pub fn resolution_warnings(
                 ShockLaw::Cercle { .. } => 2,
                 _ => 1,
             };
-            for f in unknowns.iter().take(n_force) {
-                if let Some(w) = worst.get_mut(s) {
-                    let r = tail_ratio(f);
-                    if r > w.0 {
-                        *w = (r, p.energy);
-                    }
+            let components: Vec<&[f64]> = unknowns
+                .iter()
+                .take(n_force)
+                .map(|f| f.as_slice())
+                .collect();
+            if let Some(w) = worst.get_mut(s) {
+                let r = tail_ratio_of(&components);
+                if r > w.0 {
+                    *w = (r, p.energy);
                 }
             }
         }
@@ -105,6 +135,28 @@ pub fn resolution_warnings(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_ring_force_is_judged_as_a_whole_not_by_a_component_of_round_off() {
+        // f_y: a resolved series (geometric decay); f_x: round-off noise 1e-55 with a flat
+        // spectrum, whose own tail ratio is 1. The ring's force is resolved.
+        let h = 20;
+        let mut fy = vec![0.0; 2 * h + 1];
+        for (k, c) in fy.iter_mut().enumerate().take(h + 1).skip(1) {
+            *c = 0.5f64.powi(k as i32);
+        }
+        let fx: Vec<f64> = (0..=2 * h)
+            .map(|i| 1e-55 * (1.0 + (i % 3) as f64))
+            .collect();
+        assert!(tail_ratio(&fx) > 0.3);
+        assert!(tail_ratio_of(&[&fx, &fy]) < 1e-5);
+        // A component that does carry the force still counts: its tail against the peak.
+        assert!((tail_ratio_of(&[&fy, &fy]) - tail_ratio(&fy)).abs() < 1e-15);
+        let flat: Vec<f64> = (0..=2 * h)
+            .map(|i| if i <= h { 1.0 } else { 0.0 })
+            .collect();
+        assert!((tail_ratio_of(&[&fy, &flat]) - 1.0).abs() < 1e-15);
+    }
 
     #[test]
     fn tail_ratio_of_a_resolved_and_of_a_truncated_series() {
