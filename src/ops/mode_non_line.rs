@@ -239,6 +239,18 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             i64::from(restart_from.is_some()) + restart_reprise(ctx, &restart_from)?,
         ),
     };
+    // Built once: what every row's outputs share (layout, physical laws, FFT plan).
+    let post = nnm::PostProcessor::new(&problem, &settings)?;
+    let outs = outcome
+        .points
+        .iter()
+        .map(|p| post.row_with_defect(&p.x, p.law_defect))
+        .collect::<Result<Vec<_>>>()?;
+    // A branch that left the physical root of its law: its trailing suspect rows are not
+    // stored (mnl_end::rows_kept); every other run stores every row.
+    let defects: Vec<f64> = outs.iter().map(|o| o.law_defect_relative).collect();
+    let kept = mnl_end::rows_kept(outcome.error.as_ref(), &defects);
+    let points = &outcome.points[..kept];
     // RESOLUTION/CORR_LOI_EXACTE: the extra column, added to a reused table that lacks
     // it; a reused table that has it gets empty cells from a call without the correction.
     let exact_cells = match &exact_law {
@@ -246,7 +258,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             if table.col(mnl_exact_law::COLUMN).is_none() {
                 table.add_column(mnl_exact_law::COLUMN, ColKind::R)?;
             }
-            mnl_exact_law::cells(ctx, &problem, x, &outcome.points, first_order)?
+            mnl_exact_law::cells(ctx, &problem, x, points, first_order)?
         }
         None => Vec::new(),
     };
@@ -282,13 +294,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let ncoef = 2 * settings.h_lin as i64 + 1;
     let mut suspect: Vec<i64> = Vec::new();
     let mut worst_defect = 0.0f64;
-    // Built once: what every row's outputs share (layout, physical laws, FFT plan), and
-    // the writer of the points (statements prepared once, Fourier rows batched).
-    let post = nnm::PostProcessor::new(&problem, &settings)?;
+    // The writer of the points (statements prepared once, Fourier rows batched).
     let mut writer = mnl_store::PointWriter::new(ctx.store, &name)?;
-    for (j, p) in outcome.points.iter().enumerate() {
+    for (j, (p, out)) in points.iter().zip(&outs).enumerate() {
         let order = first_order + j as i64;
-        let out = post.row_with_defect(&p.x, p.law_defect)?;
         let defect = out.law_defect;
         // Judged relative to the force the law carries (as ECART_LOI_CHOC_MAXI): far into
         // a stop the force is many RIGI_NOR*JEU and so is a well-resolved defect.
@@ -323,8 +332,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             ),
         )?;
     }
-    let floor_rows: Vec<i64> = outcome
-        .points
+    let floor_rows: Vec<i64> = points
         .iter()
         .enumerate()
         .filter(|(_, p)| p.at_floor)
@@ -344,18 +352,19 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             ),
         )?;
     }
-    for w in nnm::resolution_warnings(&problem, &settings, &outcome.points) {
+    for w in nnm::resolution_warnings(&problem, &settings, points) {
         ctx.alarm("MODE_NON_LINE_1", &w)?;
     }
     // Internal resonances n:1 with a linear mode (nnm/resonance.rs).
-    if let Some(w) = nnm::resonance_alarm(&problem, &settings, &outcome.points, first_order)? {
+    if let Some(w) = nnm::resonance_alarm(&problem, &settings, points, first_order)? {
         ctx.alarm("MODE_NON_LINE_7", &w)?;
     }
     mnl_end::report(
         ctx,
         outcome.error,
         outcome.limit.as_deref(),
-        &outcome.points,
+        points,
+        outcome.points.len() - kept,
         settings.n_branches,
         first_order,
     )?;

@@ -1,9 +1,12 @@
 //! How a MODE_NON_LINE run that ended before NB_BRANCHE is reported: an alarm that says
 //! why and where when rows were computed, so that the file goes on and the commands after
 //! it answer from those rows; an error when nothing usable was computed, when the failure
-//! is not a numerical one, when it says the branch has left the physics (the law and
-//! energy checks), or when the user asked alarms to be errors
-//! (DEBUT(ERREUR=_F(ALARME='EXCEPTION'))).
+//! is not a numerical one, or when the user asked alarms to be errors
+//! (DEBUT(ERREUR=_F(ALARME='EXCEPTION'))). When the failure says the branch has left the
+//! physics (the law and energy checks at a branch end), the rows at the end of the branch
+//! that already break their contact law beyond LAW_DEFECT_ALARM are not stored
+//! ([`rows_kept`]): the file goes on from the rows that are motions of the system, and no
+//! row of the wrong branch is in the table.
 //!
 //! Code_Aster stops the whole study when MODE_NON_LINE cannot go on. A user writes
 //! NB_BRANCHE generously, so a branch that has passed every energy the file tests and then
@@ -20,9 +23,28 @@ pub const ALARM: &str = "MODE_NON_LINE_8";
 
 /// The checks whose failure says the branch has left the motions of the system (its end
 /// breaks its contact law, or its energy is not conserved) rather than that it cannot go
-/// on: the rows just before are suspect too, so the run stops as an error and no file ends
-/// with exit code 0 on a wrong branch.
+/// on: the rows just before may be off the law too ([`rows_kept`]).
 const WRONG_BRANCH: &[&str] = &["ECART_LOI_CHOC_MAXI", "ECART_ENERGIE_MAXI"];
+
+fn is_wrong_branch(e: &Error) -> bool {
+    e.keyword
+        .as_deref()
+        .is_some_and(|k| WRONG_BRANCH.iter().any(|w| k.ends_with(w)))
+}
+
+/// How many of the computed rows are stored: all of them, except after a wrong-branch
+/// failure, where the trailing rows whose relative law defect (ECART_LOI_CHOC judged as
+/// ECART_LOI_CHOC_MAXI is) exceeds `LAW_DEFECT_ALARM` are dropped: past the last row that
+/// satisfies its law, the branch is no longer a motion of the system.
+pub fn rows_kept(error: Option<&Error>, law_defects: &[f64]) -> usize {
+    match error {
+        Some(e) if is_wrong_branch(e) => law_defects
+            .iter()
+            .rposition(|&d| d <= crate::nnm::LAW_DEFECT_ALARM)
+            .map_or(0, |i| i + 1),
+        _ => law_defects.len(),
+    }
+}
 
 /// Reports how the continuation ended: `error` (a failure) or `limit` (a reason to stop
 /// that is not one), after the `points` stored from NUME_ORDRE `first_order` on.
@@ -31,10 +53,17 @@ pub fn report(
     error: Option<Error>,
     limit: Option<&str>,
     points: &[Point],
+    dropped: usize,
     n_branches: usize,
     first_order: i64,
 ) -> Result<()> {
-    let stored = stored_rows(points, first_order);
+    let mut stored = stored_rows(points, first_order);
+    if dropped > 0 {
+        stored = format!(
+            "{stored}; the {dropped} row(s) computed after them broke their contact law by more              than {} x max(RIGI_NOR*JEU, largest contact force) and were not stored",
+            crate::nnm::LAW_DEFECT_ALARM
+        );
+    }
     if let Some(why) = limit {
         ctx.alarm(
             ALARM,
@@ -45,14 +74,7 @@ pub fn report(
         return Ok(());
     };
     let restart = "restart from the last row with ETAT_INIT=_F(MODE_NON_LINE=..., NUME_ORDRE=...)";
-    let wrong_branch = e
-        .keyword
-        .as_deref()
-        .is_some_and(|k| WRONG_BRANCH.iter().any(|w| k.ends_with(w)));
-    let as_error = points.is_empty()
-        || e.kind != ErrorKind::Numerical
-        || wrong_branch
-        || ctx.alarms_are_errors;
+    let as_error = points.is_empty() || e.kind != ErrorKind::Numerical || ctx.alarms_are_errors;
     if as_error {
         // Keep every branch computed so far (committed), then stop the run. The engine's
         // own hint (what to change) is kept in front of the restart advice.
@@ -101,4 +123,27 @@ fn stored_rows(points: &[Point], first_order: i64) -> String {
         last.energy,
         last.frequency
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_wrong_branch_drops_only_its_trailing_rows_off_the_law() {
+        let law = Error::numerical("off the law").keyword("RESOLUTION/ECART_LOI_CHOC_MAXI");
+        let energy = Error::numerical("energy").keyword("RESOLUTION/ECART_ENERGIE_MAXI");
+        let newton = Error::numerical("no convergence").keyword("RESOLUTION/ITER_NEWTON_MAXI");
+        let d = [0.01, 0.2, 0.05, 0.3, 0.4];
+        // The suspect row 2 is followed by a row within the level: only rows 4 and 5 go.
+        assert_eq!(rows_kept(Some(&law), &d), 3);
+        assert_eq!(rows_kept(Some(&energy), &d), 3);
+        // At the level itself a row is kept.
+        assert_eq!(rows_kept(Some(&law), &[0.01, 0.1]), 2);
+        // Nothing within the level: nothing stored (the run is then an error).
+        assert_eq!(rows_kept(Some(&law), &[0.2, 0.3]), 0);
+        // Any other end keeps every row.
+        assert_eq!(rows_kept(Some(&newton), &d), 5);
+        assert_eq!(rows_kept(None, &d), 5);
+    }
 }
