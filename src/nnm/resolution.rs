@@ -2,8 +2,12 @@
 //!
 //! The contact force of a stiff shock is a narrow pulse: its Fourier series decays slowly,
 //! and when NB_HARM_NONL is too small the highest retained harmonics still carry a visible
-//! part of the pulse. Code_Aster warns in that case and asks for more harmonics; so do we.
+//! part of the pulse. Code_Aster warns in that case and asks for more harmonics. We warn
+//! on the same tail, but the advice comes from an estimate of which setting limits the
+//! frequency (`error_sources.rs`): a stiff stop's pulse keeps a heavy tail at any
+//! NB_HARM_NONL, and the frequency error may come from NB_HARM_LINE or PARA_REGUL.
 
+use super::error_sources;
 use super::post::Unknowns;
 use super::{Point, Problem, Settings, ShockLaw};
 
@@ -38,11 +42,18 @@ pub fn tail_ratio(coefs: &[f64]) -> f64 {
     (first_tail..=h).map(amp).fold(0.0, f64::max) / peak
 }
 
-/// One message per shock whose force series is poorly resolved somewhere on `points`.
+/// One message per shock whose force series is poorly resolved somewhere on `points`
+/// (numbered from `first_order`). With `advise`, the message ends with the estimated parts
+/// of the frequency error and the setting whose refinement lowers it most
+/// (`error_sources.rs`): the tail says that the force is a narrow pulse, not which setting
+/// limits the frequency. Without it (the alarm is ignored, or no estimate could be made) the
+/// advice is the tail's own.
 pub fn resolution_warnings(
     problem: &Problem,
     settings: &Settings,
     points: &[Point],
+    first_order: i64,
+    advise: bool,
 ) -> Vec<String> {
     let mut worst: Vec<(f64, f64)> = vec![(0.0, 0.0); problem.shocks.len()];
     if points.is_empty() || problem.shocks.is_empty() {
@@ -76,19 +87,29 @@ pub fn resolution_warnings(
             }
         }
     }
+    let alarmed = worst.iter().any(|(r, _)| *r > TAIL_RATIO_ALARM);
+    let sources = if alarmed && advise {
+        error_sources::worst_row(problem, settings, points)
+    } else {
+        None
+    };
     worst
         .iter()
         .enumerate()
         .filter(|(_, (r, _))| *r > TAIL_RATIO_ALARM)
         .map(|(s, (r, e))| {
-            let advice = if *r > UNRESOLVED_RATIO {
-                "; the force series is not resolved at all there, and rows with a converged RESIDU \
-                 need not be motions of the system (energies that go back and forth, frequencies \
-                 below the linear one, spurious bifurcations): raise NB_HARM_NONL and, for a stiff \
-                 stop, NB_HARM_LINE (the displacement must follow the short contact), or lower \
-                 RIGI_NOR or raise PARA_REGUL"
-            } else {
-                "; raise NB_HARM_NONL"
+            let unresolved = "; the force series is not resolved at all there, and rows with a \
+                 converged RESIDU need not be motions of the system (energies that go back and \
+                 forth, frequencies below the linear one, spurious bifurcations)";
+            let advice = match (&sources, *r > UNRESOLVED_RATIO) {
+                (Some(src), true) => format!("{unresolved}; {}", src.text(settings, first_order)),
+                (Some(src), false) => format!("; {}", src.text(settings, first_order)),
+                (None, true) => format!(
+                    "{unresolved}: raise NB_HARM_NONL and, for a stiff stop, NB_HARM_LINE (the \
+                     displacement must follow the short contact), or lower RIGI_NOR or raise \
+                     PARA_REGUL"
+                ),
+                (None, false) => "; raise NB_HARM_NONL".to_string(),
             };
             format!(
                 "the contact force of shock {} is poorly resolved by NB_HARM_NONL={}: its last harmonics \
