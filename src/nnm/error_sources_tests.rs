@@ -36,7 +36,10 @@ impl Case {
         };
         if self.chain {
             Problem {
-                k: sparse(2, &[(0, 0, K + KC), (0, 1, -KC), (1, 0, -KC), (1, 1, K + KC)]),
+                k: sparse(
+                    2,
+                    &[(0, 0, K + KC), (0, 1, -KC), (1, 0, -KC), (1, 1, K + KC)],
+                ),
                 m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),
                 shocks: vec![shock(0, ShockLaw::BiPlan), shock(1, ShockLaw::BiPlan)],
             }
@@ -126,6 +129,18 @@ fn on_family(case: &Case, p: &Point, h_lin: usize) -> bool {
     (0..l).all(|i| (p.x[i] + p.x[l + i]).abs() <= 1e-6 * big)
 }
 
+/// The run reaches `top`·E_c, on the reference's family all the way (a chain whose branch
+/// leaves the anti-phase orbits, at a symmetry-breaking bifurcation, has no closed-form
+/// reference).
+fn reaches(case: &Case, pts: &[Point], top: f64, h_lin: usize) -> bool {
+    let e_top = top * case.contact_energy();
+    pts.last().is_some_and(|q| q.energy >= e_top)
+        && pts
+            .iter()
+            .filter(|p| p.energy <= e_top)
+            .all(|p| on_family(case, p, h_lin))
+}
+
 /// The largest |f_row/f_exact(ENERGIE) − 1| over the rows of `pts` (computed with `h_lin`
 /// harmonics) in (E_c, top·E_c] that lie on the reference's family.
 pub fn run_error(case: &Case, pts: &[Point], top: f64, h_lin: usize) -> f64 {
@@ -141,7 +156,7 @@ pub fn run_error(case: &Case, pts: &[Point], top: f64, h_lin: usize) -> f64 {
 /// PARA_REGUL) and measures the run's error again.
 pub fn follow(case: Case, top: f64) -> Option<Outcome> {
     let pts = case.run(case.regul, case.h_lin, case.h_nonl, top);
-    if pts.last()?.energy < top * case.contact_energy() {
+    if !reaches(&case, &pts, top, case.h_lin) {
         return None;
     }
     let p = case.problem(case.regul);
@@ -160,7 +175,7 @@ pub fn follow(case: Case, top: f64) -> Option<Outcome> {
             Source::Regul => regul *= 0.5,
         }
         let refined = case.run(regul, hl, hn, top);
-        if refined.last().is_none_or(|q| q.energy < top * case.contact_energy()) {
+        if !reaches(&case, &refined, top, hl) {
             return f64::INFINITY;
         }
         run_error(&case, &refined, top, hl)
@@ -226,7 +241,9 @@ fn the_advice_weighs_signed_parts() {
     assert_eq!(s.advised(), Some(Source::HarmLine));
     // Worst case R = 0: before −2.988e-3, after +1.2e-5.
     assert!((s.worst_ratio(Source::HarmLine) - 0.5).abs() < 1e-2);
-    assert!(s.text(&settings(20, 1000, 1, 1), 1).contains("raise NB_HARM_LINE (doubled: 40)"));
+    assert!(s
+        .text(&settings(20, 1000, 1, 1), 1)
+        .contains("raise NB_HARM_LINE (doubled: 40)"));
     // The parts cancel: the regularisation's +4.1e-3 against the displacement's −2e-3 to
     // −4e-3. Doubling NB_HARM_LINE overshoots where R is small, halving PARA_REGUL where it
     // is large: nothing is named.
@@ -237,7 +254,9 @@ fn the_advice_weighs_signed_parts() {
         ..s
     };
     assert_eq!(c.advised(), None);
-    assert!(c.text(&settings(20, 1000, 1, 1), 1).contains("the parts cancel"));
+    assert!(c
+        .text(&settings(20, 1000, 1, 1), 1)
+        .contains("the parts cancel"));
     // Below NEGLIGIBLE for every remainder: nothing is named.
     let t = Sources {
         line_doubling: -2.5e-6,
@@ -246,7 +265,9 @@ fn the_advice_weighs_signed_parts() {
         ..s
     };
     assert_eq!(t.advised(), None);
-    assert!(t.text(&settings(20, 1000, 1, 1), 1).contains("do not limit"));
+    assert!(t
+        .text(&settings(20, 1000, 1, 1), 1)
+        .contains("do not limit"));
     // The contact unknowns' part dominates and the others are small: NB_HARM_NONL.
     let u = Sources {
         line_doubling: 1e-6,
@@ -261,7 +282,10 @@ fn the_advice_weighs_signed_parts() {
 pub fn tally(outcomes: &[Outcome]) -> (usize, usize, usize, usize, usize) {
     let alarms: Vec<&Outcome> = outcomes.iter().filter(|o| o.alarm).collect();
     let named: Vec<&&Outcome> = alarms.iter().filter(|o| o.after.is_some()).collect();
-    let short = named.iter().filter(|o| o.after == Some(f64::INFINITY)).count();
+    let short = named
+        .iter()
+        .filter(|o| o.after == Some(f64::INFINITY))
+        .count();
     let lowered = named
         .iter()
         .filter(|o| o.after.is_some_and(|a| a < o.before))
@@ -310,7 +334,10 @@ fn following_the_advice_lowers_the_error_on_a_grid() {
     let outcomes: Vec<Outcome> = cases.into_iter().filter_map(|c| follow(c, 10.0)).collect();
     let report: String = outcomes.iter().map(|o| line(o) + "\n").collect();
     let (alarms, named, lowered, raised, short) = tally(&outcomes);
-    assert_eq!(raised, 0, "following the advice raised the error:\n{report}");
+    assert_eq!(
+        raised, 0,
+        "following the advice raised the error:\n{report}"
+    );
     assert!(
         alarms >= 10 && lowered + 2 >= named && lowered >= 8,
         "{alarms} alarms, {named} named, {lowered} lowered, {short} refined runs short:\n{report}"
@@ -327,12 +354,16 @@ fn following_the_advice_lowers_the_error_on_a_grid() {
 
 /// The full grid of docs/mode_non_line.md ("Which setting limits the frequency"): prints
 /// one line per case and the tally (`cargo test --release advice_grid_table -- --ignored
-/// --nocapture`; about 15 minutes).
+/// --nocapture`; about 15 minutes; ADVICE_GRID=walls or chains runs half of it).
 #[test]
 #[ignore]
 fn advice_grid_table() {
     let mut all = Vec::new();
+    let which = std::env::var("ADVICE_GRID").unwrap_or_default();
     for chain in [false, true] {
+        if (which == "walls" && chain) || (which == "chains" && !chain) {
+            continue;
+        }
         let pairs: &[(usize, usize)] = if chain {
             &[(5, 50), (10, 200), (20, 400), (40, 200)]
         } else {
@@ -354,7 +385,7 @@ fn advice_grid_table() {
                             println!("{} [{:.1}s]", line(&o), t.elapsed().as_secs_f64());
                             all.push(o);
                         }
-                        None => println!("{c:?}: the run does not reach 10 E_c"),
+                        None => println!("{c:?}: the run does not reach 10 E_c on the family"),
                     }
                 }
             }

@@ -23,6 +23,12 @@ pub const TAIL_RATIO_ALARM: f64 = 1e-2;
 /// the exact period to 5e-3. An alarm, not an error: Code_Aster completes such runs.
 pub const UNRESOLVED_RATIO: f64 = 0.2;
 
+/// Said when the error's sources were asked for and could not be estimated.
+const NOT_ESTIMATED: &str = " (the parts of the frequency error that come from NB_HARM_LINE, \
+     NB_HARM_NONL and PARA_REGUL could not be estimated on these rows: the exact-law correction \
+     did not converge, or the model is too large for it; on a stiff stop NB_HARM_LINE often \
+     limits the frequency more than NB_HARM_NONL)";
+
 /// At most this many points of a branch are examined (evenly spread, the last included).
 const SAMPLED_POINTS: usize = 20;
 
@@ -107,9 +113,13 @@ pub fn resolution_warnings(
                 (None, true) => format!(
                     "{unresolved}: raise NB_HARM_NONL and, for a stiff stop, NB_HARM_LINE (the \
                      displacement must follow the short contact), or lower RIGI_NOR or raise \
-                     PARA_REGUL"
+                     PARA_REGUL{}",
+                    if advise { NOT_ESTIMATED } else { "" }
                 ),
-                (None, false) => "; raise NB_HARM_NONL".to_string(),
+                (None, false) => format!(
+                    "; raise NB_HARM_NONL{}",
+                    if advise { NOT_ESTIMATED } else { "" }
+                ),
             };
             format!(
                 "the contact force of shock {} is poorly resolved by NB_HARM_NONL={}: its last harmonics \
