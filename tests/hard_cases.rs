@@ -169,6 +169,30 @@ fn freq_at_with_error(v: &[Row], e: f64) -> Option<(f64, f64)> {
     Some((quadratic, (quadratic - linear).abs()))
 }
 
+/// Issue 34, point 4: on the stiff wall (RIGI_NOR/k 1e7, PARA_REGUL 1e-8, NB_HARM_LINE 20,
+/// NB_HARM_NONL 1000) the force series' tail raises MODE_NON_LINE_1, and its advice names
+/// NB_HARM_LINE, whose truncation makes the frequency low (the file's own TEST_FONCTION
+/// bounds that error against the exact period), not NB_HARM_NONL.
+#[test]
+fn hard_wall_advice_names_nb_harm_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run("wall_advice.comm", &dir.path().join("case.db"));
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert!(out.contains("tests: 2 OK, 0 NOOK"), "{out}");
+    let alarm = out
+        .lines()
+        .find(|l| l.contains("<MODE_NON_LINE_1>"))
+        .unwrap_or_else(|| panic!("no MODE_NON_LINE_1:\n{out}"));
+    assert!(
+        alarm.contains("the largest part is NB_HARM_LINE's")
+            && alarm.contains("refining NB_HARM_LINE is predicted")
+            && alarm.contains("raise NB_HARM_LINE (doubled: 40)"),
+        "{alarm}"
+    );
+    assert!(!alarm.contains("raise NB_HARM_NONL"), "{alarm}");
+}
+
 #[test]
 fn hard_wall_stiffness_from_1_to_1e8() {
     // The .comm checks residuals, |γ|, the exact period for RIGI_NOR = k and the bracket

@@ -36,6 +36,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::dense_lu::DenseLu;
+use super::point_law::{eta_phys, PointLaw};
 use super::series::{self, Sampler};
 use super::{Problem, ShockLaw};
 use crate::error::{Error, Result};
@@ -164,6 +165,9 @@ struct ExactShock {
     dofs: Vec<usize>,
     gap: f64,
     alpha: f64,
+    /// The engine's regularised law, when the harmonic balance is solved on it instead of
+    /// the exact law ([`correct_on_law`]); the held energy keeps the exact penalty.
+    regularised: Option<PointLaw>,
 }
 
 /// The problem's data laid out for assembly.
@@ -241,6 +245,28 @@ fn law(sh: &ExactShock, u: [f64; 2]) -> ([f64; 2], [f64; 4]) {
     }
 }
 
+/// The force in the harmonic balance: the exact law, or the regularised one when asked
+/// (a law that cannot be evaluated gives NaN, which stops Newton with an error).
+fn balance_law(sh: &ExactShock, u: [f64; 2]) -> ([f64; 2], [f64; 4]) {
+    let Some(pl) = &sh.regularised else {
+        return law(sh, u);
+    };
+    match pl.eval(&u[..pl.n_comp()]) {
+        Ok((f, j)) => {
+            let mut fo = [0.0; 2];
+            let mut jo = [0.0; 4];
+            fo[..f.len()].copy_from_slice(&f);
+            if j.len() == 1 {
+                jo[0] = j[0];
+            } else {
+                jo[..j.len()].copy_from_slice(&j);
+            }
+            (fo, jo)
+        }
+        Err(_) => ([f64::NAN; 2], [f64::NAN; 4]),
+    }
+}
+
 /// Penalty energy ½α(δ)₊² of one shock at one instant (δ the penetration).
 fn penalty(sh: &ExactShock, u: [f64; 2]) -> f64 {
     let pen = |d: f64| if d > 0.0 { 0.5 * sh.alpha * d * d } else { 0.0 };
@@ -300,6 +326,7 @@ impl Ctx {
         let mut ws = self.smp.scratch();
         let mut us = [vec![0.0; ns], vec![0.0; ns]];
         let mut fs = [vec![0.0; ns], vec![0.0; ns]];
+        let mut ps = [vec![0.0; ns], vec![0.0; ns]];
         let mut ds = [vec![0.0; ns], vec![0.0; ns], vec![0.0; ns], vec![0.0; ns]];
         let mut coef = vec![0.0; nj];
         let mut pen_mean = 0.0;
@@ -313,11 +340,17 @@ impl Ctx {
             }
             for t in 0..ns {
                 let ut = [us[0][t], if nc > 1 { us[1][t] } else { 0.0 }];
-                let (f, jt) = law(sh, ut);
+                let (f, jt) = balance_law(sh, ut);
                 for c in 0..nc {
                     fs[c][t] = f[c];
                     for c2 in 0..nc {
                         ds[c * 2 + c2][t] = jt[c * 2 + c2];
+                    }
+                }
+                if sh.regularised.is_some() {
+                    let (pf, _) = law(sh, ut);
+                    for c in 0..nc {
+                        ps[c][t] = pf[c];
                     }
                 }
                 pen_mean += penalty(sh, ut) / ns as f64;
@@ -328,6 +361,10 @@ impl Ctx {
                 self.smp.analyse_with(&mut fs[c], h, &mut fh, &mut ws);
                 for p in 0..nl {
                     r[d * nl + p] += rs * fh[p];
+                }
+                // The exact penalty's force when the balance uses the regularised law.
+                if sh.regularised.is_some() {
+                    self.smp.analyse_with(&mut ps[c], h, &mut fh, &mut ws);
                 }
                 // Gradient of the mean penalty energy: the force's harmonics, mean of
                 // f·φ_q = a0 for the mean, a_k/2 and b_k/2 for the others.
@@ -525,7 +562,36 @@ pub fn correct(
     omega0: f64,
     energy: f64,
 ) -> Result<ExactPoint> {
-    let ctx = context(problem, settings, u0, omega0, energy)?;
+    correct_on_law(problem, settings, u0, omega0, energy, Variant::default())
+}
+
+/// Which law a correction solves on, and how.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Variant {
+    /// The engine's regularised law (PARA_REGUL, `point_law.rs`) instead of the exact one:
+    /// the harmonic balance at NB_HARM_LINE with the force's harmonics computed from the
+    /// law in time, as if NB_HARM_NONL were unbounded (error_sources.rs). The held energy
+    /// keeps Code_Aster's penalty ½α(δ)₊² (as ENERGIE does).
+    pub regularised: bool,
+    /// Backtracking on ‖R‖: a Newton step that does not lower the residual is halved (up
+    /// to [`BACKTRACKS`] times). A stiff stop barely touched makes the sampled law's
+    /// residual kink sharply, and full steps then cycle; CORR_LOI_EXACTE keeps full steps.
+    pub damped: bool,
+}
+
+/// Halvings of a damped Newton step at most.
+pub const BACKTRACKS: usize = 12;
+
+/// [`correct`] on the law and with the iteration of `variant`.
+pub fn correct_on_law(
+    problem: &Problem,
+    settings: &ExactLawSettings,
+    u0: &[f64],
+    omega0: f64,
+    energy: f64,
+    variant: Variant,
+) -> Result<ExactPoint> {
+    let ctx = context(problem, settings, u0, omega0, energy, variant.regularised)?;
     let (n, nl, dim, len, ns) = (ctx.n, ctx.nl, ctx.dim, ctx.len, ctx.smp.n());
     let mut x: Vec<f64> = u0[..n * nl].iter().map(|v| v / len).collect();
     x.push(1.0);
@@ -562,8 +628,21 @@ pub fn correct(
             ))
         })?;
         lu.solve(&mut r, 1)?;
+        let mut lambda = 1.0;
+        if variant.damped {
+            let (mut rt, mut jt) = (vec![0.0; dim], vec![0.0; dim * dim]);
+            for _ in 0..BACKTRACKS {
+                let xt: Vec<f64> = x.iter().zip(&r).map(|(a, d)| a - lambda * d).collect();
+                ctx.assemble(&xt, &mut rt, &mut jt);
+                let rest = norm(&rt) / norm(&xt).max(1.0);
+                if rest.is_finite() && rest < res {
+                    break;
+                }
+                lambda *= 0.5;
+            }
+        }
         for (xi, di) in x.iter_mut().zip(&r) {
-            *xi -= di;
+            *xi -= lambda * di;
         }
         it += 1;
     }
@@ -590,6 +669,7 @@ fn context(
     u0: &[f64],
     omega0: f64,
     energy: f64,
+    regularised: bool,
 ) -> Result<Ctx> {
     let n = problem.k.nrows();
     let h = settings.h_lin;
@@ -612,14 +692,26 @@ fn context(
     } else {
         settings.samples.max(min_samples)
     };
+    let etas = if regularised {
+        eta_phys(problem)?
+    } else {
+        vec![0.0; problem.shocks.len()]
+    };
     let shocks: Vec<ExactShock> = problem
         .shocks
         .iter()
-        .map(|s| ExactShock {
+        .zip(etas)
+        .map(|(s, eta)| ExactShock {
             law: s.law,
             dofs: s.dofs.clone(),
             gap: s.gap,
             alpha: s.stiffness,
+            regularised: regularised.then_some(PointLaw {
+                law: s.law,
+                alpha: s.stiffness,
+                gap: s.gap,
+                eta,
+            }),
         })
         .collect();
     let k = entries(&problem.k);
@@ -802,10 +894,12 @@ mod tests {
 
     #[test]
     fn jacobian_matches_finite_differences() {
-        // Every law, both held energies, at an orbit that enters the stop for part of the
-        // period: central differences of the sampled residual (step 1e-7 in scaled units;
-        // no sample crosses the gap within it at this orbit, so the residual is smooth
-        // there and the difference is accurate to ~1e-8 relative to the Jacobian's size).
+        // Every law, exact and regularised (PARA_REGUL 1e-3), both held energies, at an
+        // orbit that enters the stop for part of the period: central differences of the
+        // sampled residual (step 1e-7 in scaled units; no sample crosses the gap within it
+        // at this orbit, so the exact law's residual is smooth there, the regularised one
+        // everywhere, and the difference is accurate to ~1e-8 relative to the Jacobian's
+        // size).
         let h = 3;
         let nl = series::len(h);
         let mut u0 = vec![0.0; 2 * nl];
@@ -824,13 +918,18 @@ mod tests {
                 form: CercleForm::Secant,
             },
         ] {
-            for held in [HeldEnergy::Instant, HeldEnergy::Mean] {
+            for (held, regularised) in [
+                (HeldEnergy::Instant, false),
+                (HeldEnergy::Mean, false),
+                (HeldEnergy::Instant, true),
+                (HeldEnergy::Mean, true),
+            ] {
                 let p = two_dof(law);
                 let set = ExactLawSettings {
                     held,
                     ..settings(h, 1e-9)
                 };
-                let ctx = context(&p, &set, &u0, 3.0, 1e-3).unwrap();
+                let ctx = context(&p, &set, &u0, 3.0, 1e-3, regularised).unwrap();
                 let dim = ctx.dim;
                 let mut x: Vec<f64> = u0.iter().map(|v| v / ctx.len).collect();
                 x.extend([1.1, 0.05]);
@@ -853,7 +952,8 @@ mod tests {
                         let a = jac[j * dim + i];
                         assert!(
                             (fd - a).abs() <= 1e-6 * big,
-                            "{law:?} {held:?}: J[{i}][{j}] = {a:e}, differences {fd:e}"
+                            "{law:?} {held:?} regularised {regularised}: J[{i}][{j}] = {a:e}, \
+                             differences {fd:e}"
                         );
                     }
                 }

@@ -39,6 +39,7 @@ mod correction;
 mod cosine_sampler;
 mod dense_lu;
 mod energy;
+pub mod error_sources;
 pub mod exact;
 pub mod exact_law;
 mod gmres;

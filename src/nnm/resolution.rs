@@ -2,8 +2,12 @@
 //!
 //! The contact force of a stiff shock is a narrow pulse: its Fourier series decays slowly,
 //! and when NB_HARM_NONL is too small the highest retained harmonics still carry a visible
-//! part of the pulse. Code_Aster warns in that case and asks for more harmonics; so do we.
+//! part of the pulse. Code_Aster warns in that case and asks for more harmonics. We warn
+//! on the same tail, but the advice comes from an estimate of which setting limits the
+//! frequency (`error_sources.rs`): a stiff stop's pulse keeps a heavy tail at any
+//! NB_HARM_NONL, and the frequency error may come from NB_HARM_LINE or PARA_REGUL.
 
+use super::error_sources;
 use super::post::Unknowns;
 use super::{Point, Problem, Settings, ShockLaw};
 
@@ -18,6 +22,12 @@ pub const TAIL_RATIO_ALARM: f64 = 1e-2;
 /// whose frequency falls below the linear one; 0.015 with NB_HARM_LINE 20, whose rows follow
 /// the exact period to 5e-3. An alarm, not an error: Code_Aster completes such runs.
 pub const UNRESOLVED_RATIO: f64 = 0.2;
+
+/// Said when the error's sources were asked for and could not be estimated.
+const NOT_ESTIMATED: &str = " (the parts of the frequency error that come from NB_HARM_LINE, \
+     NB_HARM_NONL and PARA_REGUL could not be estimated on these rows: the exact-law correction \
+     did not converge, or the model is too large for it; on a stiff stop NB_HARM_LINE often \
+     limits the frequency more than NB_HARM_NONL)";
 
 /// At most this many points of a branch are examined (evenly spread, the last included).
 const SAMPLED_POINTS: usize = 20;
@@ -65,11 +75,18 @@ pub fn tail_ratio_of(components: &[&[f64]]) -> f64 {
     }
 }
 
-/// One message per shock whose force series is poorly resolved somewhere on `points`.
+/// One message per shock whose force series is poorly resolved somewhere on `points`
+/// (numbered from `first_order`). With `advise`, the message ends with the estimated parts
+/// of the frequency error and the setting whose refinement lowers it most
+/// (`error_sources.rs`): the tail says that the force is a narrow pulse, not which setting
+/// limits the frequency. Without it (the alarm is ignored, or no estimate could be made) the
+/// advice is the tail's own.
 pub fn resolution_warnings(
     problem: &Problem,
     settings: &Settings,
     points: &[Point],
+    first_order: i64,
+    advise: bool,
 ) -> Vec<String> {
     let mut worst: Vec<(f64, f64)> = vec![(0.0, 0.0); problem.shocks.len()];
     if points.is_empty() || problem.shocks.is_empty() {
@@ -106,19 +123,33 @@ pub fn resolution_warnings(
             }
         }
     }
+    let alarmed = worst.iter().any(|(r, _)| *r > TAIL_RATIO_ALARM);
+    let sources = if alarmed && advise {
+        error_sources::worst_row(problem, settings, points)
+    } else {
+        None
+    };
     worst
         .iter()
         .enumerate()
         .filter(|(_, (r, _))| *r > TAIL_RATIO_ALARM)
         .map(|(s, (r, e))| {
-            let advice = if *r > UNRESOLVED_RATIO {
-                "; the force series is not resolved at all there, and rows with a converged RESIDU \
-                 need not be motions of the system (energies that go back and forth, frequencies \
-                 below the linear one, spurious bifurcations): raise NB_HARM_NONL and, for a stiff \
-                 stop, NB_HARM_LINE (the displacement must follow the short contact), or lower \
-                 RIGI_NOR or raise PARA_REGUL"
-            } else {
-                "; raise NB_HARM_NONL"
+            let unresolved = "; the force series is not resolved at all there, and rows with a \
+                 converged RESIDU need not be motions of the system (energies that go back and \
+                 forth, frequencies below the linear one, spurious bifurcations)";
+            let advice = match (&sources, *r > UNRESOLVED_RATIO) {
+                (Some(src), true) => format!("{unresolved}; {}", src.text(settings, first_order)),
+                (Some(src), false) => format!("; {}", src.text(settings, first_order)),
+                (None, true) => format!(
+                    "{unresolved}: raise NB_HARM_NONL and, for a stiff stop, NB_HARM_LINE (the \
+                     displacement must follow the short contact), or lower RIGI_NOR or raise \
+                     PARA_REGUL{}",
+                    if advise { NOT_ESTIMATED } else { "" }
+                ),
+                (None, false) => format!(
+                    "; raise NB_HARM_NONL{}",
+                    if advise { NOT_ESTIMATED } else { "" }
+                ),
             };
             format!(
                 "the contact force of shock {} is poorly resolved by NB_HARM_NONL={}: its last harmonics \

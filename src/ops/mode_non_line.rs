@@ -352,7 +352,9 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             ),
         )?;
     }
-    for w in nnm::resolution_warnings(&problem, &settings, points) {
+    // The advice's estimate (a few small Newton solves) only when the alarm is shown.
+    let advise = !ctx.ignored_alarms.iter().any(|a| a == "MODE_NON_LINE_1");
+    for w in nnm::resolution_warnings(&problem, &settings, points, first_order, advise) {
         ctx.alarm("MODE_NON_LINE_1", &w)?;
     }
     // Internal resonances n:1 with a linear mode (nnm/resonance.rs).
