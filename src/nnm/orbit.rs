@@ -150,7 +150,8 @@ pub fn velocity_coefficients(
 }
 
 /// Fourier coefficients (0, C1..CH_nl, S1..SH_nl) of each contact unknown of each shock
-/// (PLAN: f; BI_PLAN: f, z; CERCLE: fx, fy, λ, z), physical.
+/// (PLAN: f; BI_PLAN: f, z; CERCLE: fx, fy, r, φ, or fx, fy, λ, z with LOI_CERCLE='SECANTE'),
+/// physical.
 pub fn contact_coefficients(
     problem: &Problem,
     settings: &Settings,

@@ -96,7 +96,8 @@ impl Unknowns {
 pub struct RowOutputs {
     /// Per DOF: 0, C1..CH_l, S1..SH_l.
     pub displacement: Vec<Vec<f64>>,
-    /// Per shock, per contact unknown (PLAN: f; BI_PLAN: f, z; CERCLE: fx, fy, λ, z):
+    /// Per shock, per contact unknown (PLAN: f; BI_PLAN: f, z; CERCLE: fx, fy, r, φ or, with
+    /// LOI_CERCLE='SECANTE', fx, fy, λ, z):
     /// 0, C1..CH_nl, S1..SH_nl.
     pub contact: Vec<Vec<Vec<f64>>>,
     /// Largest |f_series(t) − f_law(u(t))| / (RIGI_NOR·JEU) over the shocks and over

@@ -169,3 +169,63 @@ pub fn shocks_from_cara_choc(t: &Table, name: &str) -> Result<Vec<StoredShock>> 
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::table::ColKind;
+
+    fn cara_choc(with_form: Option<&str>) -> Table {
+        let mut t = Table::new("CARA_CHOC");
+        let mut cols = vec![
+            ("TYPE_CHOC", ColKind::K),
+            ("NOEUD_CHOC", ColKind::K),
+            ("NOM_CMP_1", ColKind::K),
+            ("NOM_CMP_2", ColKind::K),
+            ("RIGI_NOR", ColKind::R),
+            ("PARA_REGUL", ColKind::R),
+            ("JEU", ColKind::R),
+            ("ORIG_OBST_X", ColKind::R),
+            ("ORIG_OBST_Y", ColKind::R),
+            ("ORIG_OBST_Z", ColKind::R),
+        ];
+        if with_form.is_some() {
+            cols.push(("LOI_CERCLE", ColKind::K));
+        }
+        for (n, k) in cols {
+            t.add_column(n, k).unwrap();
+        }
+        let mut row = vec![
+            Cell::K("CERCLE".into()),
+            Cell::K("N1".into()),
+            Cell::K("DX".into()),
+            Cell::K("DY".into()),
+            Cell::R(50.0),
+            Cell::R(1e-4),
+            Cell::R(0.01),
+            Cell::R(0.0),
+            Cell::R(0.0),
+            Cell::R(0.0),
+        ];
+        if let Some(f) = with_form {
+            row.push(Cell::K(f.into()));
+        }
+        t.push_row(row).unwrap();
+        t
+    }
+
+    /// A restart goes on with the ring law the stored run used: the CARA_CHOC column, or
+    /// 'SECANTE' for a table written before the column existed (the law of those studies).
+    #[test]
+    fn a_stored_ring_keeps_its_law_and_older_tables_read_as_secant() {
+        let new = shocks_from_cara_choc(&cara_choc(Some("RAYON")), "C").unwrap();
+        assert_eq!(new[0].loi_cercle, "RAYON");
+        let old = shocks_from_cara_choc(&cara_choc(None), "C").unwrap();
+        assert_eq!(old[0].loi_cercle, "SECANTE");
+        // And an older study's stored setup (JSON without the field) too.
+        let json = r#"{"obstacle":"CERCLE","node":"N1","cmps":["DX","DY"],"gap":0.01,
+            "stiffness":50.0,"regul":1e-4,"origin":[0.0,0.0,0.0]}"#;
+        let s: StoredShock = serde_json::from_str(json).unwrap();
+        assert_eq!(s.loi_cercle, "SECANTE");
+    }
+}
