@@ -241,15 +241,23 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     };
     // Built once: what every row's outputs share (layout, physical laws, FFT plan).
     let post = nnm::PostProcessor::new(&problem, &settings)?;
-    let outs = outcome
-        .points
-        .iter()
-        .map(|p| post.row_with_defect(&p.x, p.law_defect))
-        .collect::<Result<Vec<_>>>()?;
     // A branch that left the physical root of its law: its trailing suspect rows are not
-    // stored (mnl_end::rows_kept); every other run stores every row.
-    let defects: Vec<f64> = outs.iter().map(|o| o.law_defect_relative).collect();
-    let kept = mnl_end::rows_kept(outcome.error.as_ref(), &defects);
+    // stored (mnl_end::rows_kept; their defects computed only then, the rows' outputs are
+    // not kept in memory); every other run stores every row.
+    let kept = if mnl_end::cuts_rows(outcome.error.as_ref()) {
+        let defects = outcome
+            .points
+            .iter()
+            .map(|p| {
+                Ok(post
+                    .row_with_defect(&p.x, p.law_defect)?
+                    .law_defect_relative)
+            })
+            .collect::<Result<Vec<f64>>>()?;
+        mnl_end::rows_kept(outcome.error.as_ref(), &defects)
+    } else {
+        outcome.points.len()
+    };
     let points = &outcome.points[..kept];
     // RESOLUTION/CORR_LOI_EXACTE: the extra column, added to a reused table that lacks
     // it; a reused table that has it gets empty cells from a call without the correction.
@@ -296,8 +304,9 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let mut worst_defect = 0.0f64;
     // The writer of the points (statements prepared once, Fourier rows batched).
     let mut writer = mnl_store::PointWriter::new(ctx.store, &name)?;
-    for (j, (p, out)) in points.iter().zip(&outs).enumerate() {
+    for (j, p) in points.iter().enumerate() {
         let order = first_order + j as i64;
+        let out = post.row_with_defect(&p.x, p.law_defect)?;
         let defect = out.law_defect;
         // Judged relative to the force the law carries (as ECART_LOI_CHOC_MAXI): far into
         // a stop the force is many RIGI_NOR*JEU and so is a well-resolved defect.

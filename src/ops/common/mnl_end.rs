@@ -32,6 +32,11 @@ fn is_wrong_branch(e: &Error) -> bool {
         .is_some_and(|k| WRONG_BRANCH.iter().any(|w| k.ends_with(w)))
 }
 
+/// Whether `error` may cut rows off the end of the table ([`rows_kept`]).
+pub fn cuts_rows(error: Option<&Error>) -> bool {
+    error.is_some_and(is_wrong_branch)
+}
+
 /// How many of the computed rows are stored: all of them, except after a wrong-branch
 /// failure, where the trailing rows whose relative law defect (ECART_LOI_CHOC judged as
 /// ECART_LOI_CHOC_MAXI is) exceeds `LAW_DEFECT_ALARM` are dropped: past the last row that
