@@ -409,6 +409,40 @@ mod tests {
             .sum()
     }
 
+    /// A ring's own unknowns from own_from_u at each radial distance in `radii` and three
+    /// directions from its centre, with the Jacobian of its listed equations there; asserts
+    /// that they solve those equations to round-off. Returns (r, u, own, Jacobian).
+    #[allow(clippy::type_complexity)]
+    fn ring_roots(
+        law: ScaledLaw,
+        s: f64,
+        a: f64,
+        eta: f64,
+        radii: &[f64],
+    ) -> Vec<(f64, [f64; 2], Vec<f64>, Vec<f64>)> {
+        let ScaledLaw::Cercle { ex, ey, .. } = law else {
+            panic!("a ring")
+        };
+        let eqs = equations(law, s, a, eta);
+        assert_eq!(eqs.n_own, 4);
+        let mut out = Vec::new();
+        for &r in radii {
+            for theta in [0.0f64, 2.0, 4.5] {
+                let u = [ex + r * theta.cos(), ey + r * theta.sin()];
+                let own = own_from_u(law, s, a, eta, &[vec![u[0]], vec![u[1]]]).unwrap();
+                let own: Vec<f64> = own.iter().map(|v| v[0]).collect();
+                let (res, jac) = pointwise(&eqs, &own, &u);
+                let scale = 1.0 + own.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                assert!(
+                    res.iter().all(|v| v.abs() < 1e-12 * scale),
+                    "r {r}: {res:?}"
+                );
+                out.push((r, u, own, jac));
+            }
+        }
+        out
+    }
+
     #[test]
     fn radial_ring_root_solves_eq_12_with_the_jacobian_2r3_psi() {
         // R5.07.01 eq. (12) in scaled units: s = 1.3, α = 50, η = 1e-3, centre (0.2, −0.1).
@@ -422,38 +456,28 @@ mod tests {
             ey,
             form: CercleForm::Radial,
         };
-        let eqs = equations(law, s, a, eta);
-        assert_eq!(eqs.n_own, 4);
-        for &r in &[0.0, 1e-3, 0.3, 1.29, 1.3, 1.31, 2.0, 4.0] {
-            for theta in [0.0f64, 2.0, 4.5] {
-                let u = [ex + r * theta.cos(), ey + r * theta.sin()];
-                let own = own_from_u(law, s, a, eta, &[vec![u[0]], vec![u[1]]]).unwrap();
-                let own: Vec<f64> = own.iter().map(|v| v[0]).collect();
-                let (res, jac) = pointwise(&eqs, &own, &u);
-                let scale = 1.0 + own.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-                assert!(
-                    res.iter().all(|v| v.abs() < 1e-12 * scale),
-                    "r {r}: {res:?}"
-                );
-                // φ²/α − φ(r − s) − ηs² = 0: φ = α/2 ((r − s) + √((r − s)² + 4ηs²/α)).
-                let q = ((r - s) * (r - s) + 4.0 * eta * s * s / a).sqrt();
-                let phi = 0.5 * a * ((r - s) + q);
-                assert!((own[3] - phi).abs() < 1e-9 * phi.max(1e-3), "r {r}");
-                assert!((own[2] - r).abs() < 1e-15 * (1.0 + r));
-                let det = det4(&jac);
-                let want = 2.0 * r.powi(3) * q;
-                assert!(
-                    (det - want).abs() <= 1e-9 * want.max(1e-300),
-                    "r {r}: {det} {want}"
-                );
-                if r > 0.0 {
-                    let dir = [(u[0] - ex) / r, (u[1] - ey) / r];
-                    assert!((own[0] - phi * dir[0]).abs() < 1e-12 * scale);
-                    assert!((own[1] - phi * dir[1]).abs() < 1e-12 * scale);
-                } else {
-                    // Exactly at the centre: the physical root r = 0, no force direction.
-                    assert_eq!((own[0], own[1]), (0.0, 0.0));
-                }
+        for (r, u, own, jac) in
+            ring_roots(law, s, a, eta, &[0.0, 1e-3, 0.3, 1.29, 1.3, 1.31, 2.0, 4.0])
+        {
+            let scale = 1.0 + own.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            // φ²/α − φ(r − s) − ηs² = 0: φ = α/2 ((r − s) + √((r − s)² + 4ηs²/α)).
+            let q = ((r - s) * (r - s) + 4.0 * eta * s * s / a).sqrt();
+            let phi = 0.5 * a * ((r - s) + q);
+            assert!((own[3] - phi).abs() < 1e-9 * phi.max(1e-3), "r {r}");
+            assert!((own[2] - r).abs() < 1e-15 * (1.0 + r));
+            let det = det4(&jac);
+            let want = 2.0 * r.powi(3) * q;
+            assert!(
+                (det - want).abs() <= 1e-9 * want.max(1e-300),
+                "r {r}: {det} {want}"
+            );
+            if r > 0.0 {
+                let dir = [(u[0] - ex) / r, (u[1] - ey) / r];
+                assert!((own[0] - phi * dir[0]).abs() < 1e-12 * scale);
+                assert!((own[1] - phi * dir[1]).abs() < 1e-12 * scale);
+            } else {
+                // Exactly at the centre: the physical root r = 0, no force direction.
+                assert_eq!((own[0], own[1]), (0.0, 0.0));
             }
         }
     }
@@ -470,31 +494,24 @@ mod tests {
             ey,
             form: CercleForm::Secant,
         };
-        let eqs = equations(law, s, a, eta);
-        assert_eq!(eqs.n_own, 4);
-        for &r in &[0.0, 1e-9, 0.3, 0.999, 1.0, 1.001, 1.5, 3.0] {
-            for theta in [0.0f64, 2.0, 4.5] {
-                let u = [ex + r * theta.cos(), ey + r * theta.sin()];
-                let own = own_from_u(law, s, a, eta, &[vec![u[0]], vec![u[1]]]).unwrap();
-                let own: Vec<f64> = own.iter().map(|v| v[0]).collect();
-                let (res, jac) = pointwise(&eqs, &own, &u);
-                let scale = 1.0 + own.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-                assert!(
-                    res.iter().all(|v| v.abs() < 1e-12 * scale),
-                    "r {r}: {res:?}"
-                );
-                let phi = own[2] * r;
-                let z = own[3];
-                let psi = 1.0 - z - 2.0 * phi * (phi / a - r) / (a * s * s);
-                let det = det4(&jac);
-                assert!(
-                    psi > 0.0 && (det / psi - 1.0).abs() < 1e-9,
-                    "r {r}: {det} {psi}"
-                );
-                if r == 0.0 {
-                    assert_eq!(own, vec![0.0, 0.0, eta, 0.0]);
-                    assert!((det - 1.0).abs() < 1e-15);
-                }
+        for (r, _, own, jac) in ring_roots(
+            law,
+            s,
+            a,
+            eta,
+            &[0.0, 1e-9, 0.3, 0.999, 1.0, 1.001, 1.5, 3.0],
+        ) {
+            let phi = own[2] * r;
+            let z = own[3];
+            let psi = 1.0 - z - 2.0 * phi * (phi / a - r) / (a * s * s);
+            let det = det4(&jac);
+            assert!(
+                psi > 0.0 && (det / psi - 1.0).abs() < 1e-9,
+                "r {r}: {det} {psi}"
+            );
+            if r == 0.0 {
+                assert_eq!(own, vec![0.0, 0.0, eta, 0.0]);
+                assert!((det - 1.0).abs() < 1e-15);
             }
         }
     }

@@ -10,7 +10,9 @@ use crate::error::{Error, ErrorKind, Result};
 use crate::nnm::{self, Point, Problem, Settings, StartState};
 use crate::ops::common::mnl_end;
 use crate::ops::common::mnl_exact_law;
-use crate::ops::common::mnl_problem::{engine_shock, row_of, shocks_from_cara_choc};
+use crate::ops::common::mnl_problem::{
+    engine_shock, row_of, shocks_from_cara_choc, CARA_CHOC_COLUMNS,
+};
 use crate::ops::common::mnl_restart;
 use crate::ops::common::mnl_start;
 use crate::ops::common::nodes::{one_node_of_group, OneNode};
@@ -767,21 +769,7 @@ fn max_int(t: &Table, col: &str) -> i64 {
 
 fn cara_choc_table(shocks: &[StoredShock]) -> Result<Table> {
     let mut t = Table::new("CARA_CHOC");
-    let cols: &[(&str, ColKind)] = &[
-        ("NUME_CHOC", ColKind::I),
-        ("TYPE_CHOC", ColKind::K),
-        ("NOEUD_CHOC", ColKind::K),
-        ("NOM_CMP_1", ColKind::K),
-        ("NOM_CMP_2", ColKind::K),
-        ("RIGI_NOR", ColKind::R),
-        ("PARA_REGUL", ColKind::R),
-        ("JEU", ColKind::R),
-        ("ORIG_OBST_X", ColKind::R),
-        ("ORIG_OBST_Y", ColKind::R),
-        ("ORIG_OBST_Z", ColKind::R),
-        ("LOI_CERCLE", ColKind::K),
-    ];
-    for (n, k) in cols {
+    for (n, k) in CARA_CHOC_COLUMNS {
         t.add_column(n, *k)?;
     }
     for (i, s) in shocks.iter().enumerate() {

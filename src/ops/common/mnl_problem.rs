@@ -6,7 +6,7 @@ use crate::model::assembly::AssembledMatrix;
 use crate::model::dof::Cmp;
 use crate::nnm::{CercleForm, Problem, Settings, Shock, ShockLaw};
 use crate::store::mnl::{MnlSetup, StoredShock};
-use crate::table::{Cell, Table};
+use crate::table::{Cell, ColKind, Table};
 
 /// Translate a stored shock into the engine's reduced-DOF form (the DOFs left free by the
 /// boundary conditions of `k`).
@@ -121,6 +121,24 @@ pub fn row_of(t: &Table, order: i64) -> Option<usize> {
         .position(|r| matches!(r.get(col), Some(Cell::I(i)) if *i == order))
 }
 
+/// The columns of a CARA_CHOC sub-table, as MODE_NON_LINE writes it and
+/// [`shocks_from_cara_choc`] reads it: Code_Aster's, then LOI_CERCLE (ours; tables written
+/// before it existed lack it).
+pub const CARA_CHOC_COLUMNS: &[(&str, ColKind)] = &[
+    ("NUME_CHOC", ColKind::I),
+    ("TYPE_CHOC", ColKind::K),
+    ("NOEUD_CHOC", ColKind::K),
+    ("NOM_CMP_1", ColKind::K),
+    ("NOM_CMP_2", ColKind::K),
+    ("RIGI_NOR", ColKind::R),
+    ("PARA_REGUL", ColKind::R),
+    ("JEU", ColKind::R),
+    ("ORIG_OBST_X", ColKind::R),
+    ("ORIG_OBST_Y", ColKind::R),
+    ("ORIG_OBST_Z", ColKind::R),
+    ("LOI_CERCLE", ColKind::K),
+];
+
 /// The shocks described by a CARA_CHOC sub-table.
 pub fn shocks_from_cara_choc(t: &Table, name: &str) -> Result<Vec<StoredShock>> {
     let text = |r: usize, c: &str| -> Option<String> {
@@ -173,29 +191,16 @@ pub fn shocks_from_cara_choc(t: &Table, name: &str) -> Result<Vec<StoredShock>> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::table::ColKind;
 
     fn cara_choc(with_form: Option<&str>) -> Table {
         let mut t = Table::new("CARA_CHOC");
-        let mut cols = vec![
-            ("TYPE_CHOC", ColKind::K),
-            ("NOEUD_CHOC", ColKind::K),
-            ("NOM_CMP_1", ColKind::K),
-            ("NOM_CMP_2", ColKind::K),
-            ("RIGI_NOR", ColKind::R),
-            ("PARA_REGUL", ColKind::R),
-            ("JEU", ColKind::R),
-            ("ORIG_OBST_X", ColKind::R),
-            ("ORIG_OBST_Y", ColKind::R),
-            ("ORIG_OBST_Z", ColKind::R),
-        ];
-        if with_form.is_some() {
-            cols.push(("LOI_CERCLE", ColKind::K));
-        }
-        for (n, k) in cols {
-            t.add_column(n, k).unwrap();
+        for &(n, k) in CARA_CHOC_COLUMNS {
+            if n != "LOI_CERCLE" || with_form.is_some() {
+                t.add_column(n, k).unwrap();
+            }
         }
         let mut row = vec![
+            Cell::I(1),
             Cell::K("CERCLE".into()),
             Cell::K("N1".into()),
             Cell::K("DX".into()),
