@@ -187,6 +187,10 @@ fn main() {
                             "|  | row {} E {:e} F {:e}: {:?} |",
                             c.row.nume, c.row.energy, c.row.freq, c.reference
                         );
+                        if let Some(a) = &c.at_frequency {
+                            println!("|  | at its frequency: {a:?} |");
+                        }
+                        println!("|  | judged (error, bound): {:?} |", c.judged());
                     }
                 }
                 if !matches!(out.verdict, Verdict::Reached | Verdict::Short) {

@@ -99,6 +99,7 @@ fn main() {
         root_jump_max: None,
         correction_ratio_max: None,
         spread_max: None,
+        work_min: None,
         approximation: if std::env::var("PADE").is_ok() {
             Approximation::Pade
         } else {

@@ -98,9 +98,10 @@ fn run(
     let kind = start_state.solver;
     let mut solver = make_solver(&sys, settings, kind)?;
     // The contact law checked in time at every branch end, when asked for (StepControl).
-    let law_check = match control.law_defect_max {
-        Some(_) if !problem.shocks.is_empty() => Some(PostProcessor::new(problem, settings)?),
-        _ => None,
+    let checked = control.law_defect_max.is_some() || control.work_min.is_some();
+    let law_check = match checked && !problem.shocks.is_empty() {
+        true => Some(PostProcessor::new(problem, settings)?),
+        false => None,
     };
     let mut x0 = start_state.x;
     let border = start_state.border;

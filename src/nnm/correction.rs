@@ -14,7 +14,7 @@ use super::{Point, PostProcessor, Settings, StepControl};
 use crate::error::{Error, Result};
 
 /// Why a corrected branch end is not a point of the physical family although its residual
-/// converged, if it is not (StepControl::law_defect_max, spread_max): the error a retry
+/// converged, if it is not (StepControl::law_defect_max, work_min, spread_max): the error a retry
 /// with a shorter step may cure, else the one that stops the run. The law check's absolute
 /// defect is kept on the point (`Point::law_defect`) for its row.
 pub(super) fn off_the_law(
@@ -39,6 +39,25 @@ pub(super) fn off_the_law(
                 .hint(
                     "lower PREC_MAN (1e-9 or below: shorter series steps do not jump across to \
                      the other root of the law), raise PARA_REGUL, or raise NB_HARM_NONL",
+                ),
+            ));
+        }
+    }
+    if let (Some(min), Some(check)) = (control.work_min, law_check) {
+        if let Some(ratio) = check.not_a_motion(&end.x, min)? {
+            return Ok(Some(
+                Error::numerical(format!(
+                    "the contact forces of the branch end attract the structure on average: \
+                     their work on the displacement over the period is {ratio:.3e} x its elastic \
+                     virial < TRAVAIL_CHOC_MINI = {min:.3e} (ENERGIE = {:.6e}, FREQUENCE = \
+                     {:.6e} Hz): a root of the truncated harmonic balance, not a motion of the \
+                     system (its force series is too short for the contact it carries)",
+                    end.energy, end.frequency
+                ))
+                .keyword("RESOLUTION/TRAVAIL_CHOC_MINI")
+                .hint(
+                    "raise NB_HARM_NONL and NB_HARM_LINE (a stiff stop needs both), or raise \
+                     PARA_REGUL or lower RIGI_NOR",
                 ),
             ));
         }

@@ -542,6 +542,7 @@ fn hard_non_physical_family_stops_on_the_law_check() {
             root_jump_max: None,
             correction_ratio_max: None,
             spread_max: None,
+            work_min: None,
             approximation: Approximation::Series,
         };
         continue_controlled(&problem, &s, control, start, &mut |_, _| true)
@@ -604,6 +605,7 @@ fn wall_grid_run(ratio: f64, regul: f64, approximation: Approximation) -> (usize
         root_jump_max: None,
         correction_ratio_max: None,
         spread_max: None,
+        work_min: None,
         approximation,
     };
     let mut branches = 0;

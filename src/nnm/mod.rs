@@ -34,6 +34,7 @@ mod bifurcation;
 pub mod budget;
 mod condensed_det;
 mod contact;
+mod contact_work;
 mod continuation;
 mod correction;
 mod cosine_sampler;

@@ -7,6 +7,7 @@
 //! check, the physical laws (η needs factorisations of K and M) and the FFT plan of the
 //! sampling (`PostProcessor`). A row then costs copies and a few FFTs.
 
+use super::contact_work::ContactWork;
 use super::law_check::LawCheck;
 use super::point::finite;
 use super::system::{self, Layout};
@@ -113,13 +114,19 @@ pub struct RowOutputs {
 pub struct PostProcessor {
     unknowns: Unknowns,
     check: LawCheck,
+    work: ContactWork,
 }
 
 impl PostProcessor {
     pub fn new(problem: &Problem, settings: &Settings) -> Result<PostProcessor> {
         let unknowns = Unknowns::new(problem, settings)?;
         let check = LawCheck::new(problem, unknowns.layout())?;
-        Ok(PostProcessor { unknowns, check })
+        let work = ContactWork::new(problem, unknowns.layout())?;
+        Ok(PostProcessor {
+            unknowns,
+            check,
+            work,
+        })
     }
 
     /// Everything stored with the point `x` (a `Point::x` of this problem and settings).
@@ -169,6 +176,26 @@ impl PostProcessor {
     /// the run's guard (StepControl::law_defect_max) compares.
     pub fn relative_law_defect(&self, x: &[f64]) -> Result<f64> {
         Ok(self.law_defects(x)?.1)
+    }
+
+    /// The work of the contact forces on the displacement over the period, as the harmonic
+    /// balance sees it, relative to the elastic virial (contact_work.rs): negative on a
+    /// point whose forces attract the structure on average (not a motion); +∞ without
+    /// shocks.
+    pub fn contact_work(&self, x: &[f64]) -> Result<f64> {
+        self.unknowns.check(x)?;
+        let displacement = self.unknowns.displacement_unchecked(x);
+        let contact = self.unknowns.contact_unchecked(x);
+        Ok(self.work.ratio(&displacement, &contact))
+    }
+
+    /// The work ratio of a point that is not a motion by the work test
+    /// (`ContactWork::not_a_motion`, StepControl::work_min), None for one that may be.
+    pub fn not_a_motion(&self, x: &[f64], work_min: f64) -> Result<Option<f64>> {
+        self.unknowns.check(x)?;
+        let displacement = self.unknowns.displacement_unchecked(x);
+        let contact = self.unknowns.contact_unchecked(x);
+        Ok(self.work.not_a_motion(&displacement, &contact, work_min))
     }
 
     /// The law defect of `row` and the relative one of `relative_law_defect`, from one

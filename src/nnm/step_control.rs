@@ -40,6 +40,11 @@ pub struct StepControl {
     pub correction_ratio_max: Option<f64>,
     /// Likewise for the energy spread over the period (ECART_ENERGIE) of the corrected end.
     pub spread_max: Option<f64>,
+    /// A branch whose corrected end's contact forces do less work on the displacement than
+    /// this times its elastic virial (contact_work.rs: negative, the forces attract the
+    /// structure on average; not a motion) is retried like a failed correction, then stops
+    /// the run (None: not checked).
+    pub work_min: Option<f64>,
     /// What each branch is evaluated on.
     pub approximation: Approximation,
 }
@@ -64,6 +69,7 @@ impl StepControl {
             root_jump_max: None,
             correction_ratio_max: None,
             spread_max: None,
+            work_min: None,
             approximation: Approximation::Series,
         }
     }

@@ -247,16 +247,18 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     // stored (mnl_end::rows_kept; their defects computed only then, the rows' outputs are
     // not kept in memory); every other run stores every row.
     let kept = if mnl_end::cuts_rows(outcome.error.as_ref()) {
-        let defects = outcome
+        let work_min = control.work_min.unwrap_or(f64::NEG_INFINITY);
+        let motions = outcome
             .points
             .iter()
             .map(|p| {
-                Ok(post
+                let defect = post
                     .row_with_defect(&p.x, p.law_defect)?
-                    .law_defect_relative)
+                    .law_defect_relative;
+                Ok(defect <= nnm::LAW_DEFECT_ALARM && post.not_a_motion(&p.x, work_min)?.is_none())
             })
-            .collect::<Result<Vec<f64>>>()?;
-        mnl_end::rows_kept(outcome.error.as_ref(), &defects)
+            .collect::<Result<Vec<bool>>>()?;
+        mnl_end::rows_kept(outcome.error.as_ref(), &motions)
     } else {
         outcome.points.len()
     };
@@ -533,7 +535,7 @@ fn settings(args: &Args) -> Result<Settings> {
 }
 
 /// RESOLUTION/NB_REPRISE_PAS_MAXI, NB_BRANCHE_SANS_PROGRES, ECART_LOI_CHOC_MAXI, SAUT_RACINE_MAXI,
-/// RAPPORT_CORRECTION_MAXI,
+/// RAPPORT_CORRECTION_MAXI, TRAVAIL_CHOC_MINI,
 /// ECART_ENERGIE_MAXI and APPROX_MAN (aster-nl extensions; default and bounds in the
 /// catalog).
 fn step_control(args: &Args) -> Result<nnm::StepControl> {
@@ -545,6 +547,7 @@ fn step_control(args: &Args) -> Result<nnm::StepControl> {
         root_jump_max: Some(r.req_real("SAUT_RACINE_MAXI")?).filter(|&v| v > 0.0),
         correction_ratio_max: Some(r.req_real("RAPPORT_CORRECTION_MAXI")?).filter(|&v| v > 0.0),
         spread_max: r.real("ECART_ENERGIE_MAXI"),
+        work_min: Some(r.req_real("TRAVAIL_CHOC_MINI")?),
         approximation: match r.req_text("APPROX_MAN")? {
             "PADE" => nnm::Approximation::Pade,
             _ => nnm::Approximation::Series,

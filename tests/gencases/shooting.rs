@@ -259,6 +259,79 @@ pub fn solve_refined(d: &Dynamics, guess: &Orbit, energy: f64) -> Result<(Orbit,
     Ok((o3, acc))
 }
 
+/// Newton on u0 at the half period `tau` held fixed (the frequency given, the energy free),
+/// finite-difference Jacobian, from `u0`: the brake orbit of that period next to the guess.
+/// Where ENERGIE folds or barely changes along a family (a stiff stop at grazing: the
+/// frequency rises at almost constant energy), the orbit at a row's ENERGIE may sit on
+/// another part of the curve than the row; at the row's frequency it is on the row's part.
+/// Ill-posed where the frequency does not change with the energy (the linear regime): the
+/// caller then keeps the comparison at equal ENERGIE. Refuses an orbit whose ENERGIE is below
+/// half the guess's (the rest state is a root too).
+pub fn solve_at_period(d: &Dynamics, u0: &[f64], tau: f64, rtol: f64) -> Result<Orbit, String> {
+    let n = d.n;
+    let w = std::f64::consts::PI / tau;
+    let scale = norm(u0).max(1e-300);
+    let res = |u: &[f64]| -> Result<Vec<f64>, String> {
+        let s = d.shoot(u, &[tau], rtol)?;
+        Ok(s[0][n..].iter().map(|v| v / (scale * w)).collect())
+    };
+    let energy =
+        |u: &[f64]| -> Result<f64, String> { Ok(d.energy_ca(&d.shoot(u, &[0.5 * tau], rtol)?[0])) };
+    let e_guess = energy(u0)?;
+    let mut u = u0.to_vec();
+    let mut r = res(&u)?;
+    let h = (rtol.sqrt() * 10.0).min(1e-4);
+    for _ in 0..30 {
+        let mut jac = vec![0.0; n * n];
+        for c in 0..n {
+            let mut p = u.clone();
+            let step = h * scale;
+            p[c] += step;
+            let rp = res(&p)?;
+            for i in 0..n {
+                jac[i * n + c] = (rp[i] - r[i]) / step;
+            }
+        }
+        let neg: Vec<f64> = r.iter().map(|x| -x).collect();
+        let dx = eigen::solve(&jac, &neg).ok_or("singular shooting Jacobian at fixed period")?;
+        let size = norm(&dx) / scale;
+        let r0 = norm(&r);
+        let mut lambda = 1.0;
+        loop {
+            let p: Vec<f64> = u.iter().zip(&dx).map(|(a, b)| a + lambda * b).collect();
+            if let Ok(rp) = res(&p) {
+                if norm(&rp) < r0 || size * lambda < 100.0 * rtol {
+                    u = p;
+                    r = rp;
+                    break;
+                }
+            }
+            lambda *= 0.5;
+            if lambda < 1e-3 {
+                return Err(format!("fixed-period Newton stalled at |r| = {r0:.2e}"));
+            }
+        }
+        if size * lambda <= 100.0 * rtol {
+            break;
+        }
+    }
+    if norm(&r) > (1e3 * rtol).max(1e-5) {
+        return Err(format!(
+            "fixed-period Newton did not converge (|r| = {:.2e})",
+            norm(&r)
+        ));
+    }
+    if energy(&u)? < 0.5 * e_guess {
+        return Err("fixed-period Newton went to another orbit (ENERGIE halved)".into());
+    }
+    Ok(Orbit { u0: u, tau })
+}
+
+/// ENERGIE of a brake orbit (at the quarter period, as the rows read it).
+pub fn energy_of(d: &Dynamics, o: &Orbit, rtol: f64) -> Result<f64, String> {
+    Ok(d.energy_ca(&d.shoot(&o.u0, &[0.5 * o.tau], rtol)?[0]))
+}
+
 /// What the truncation to `h_lin` and `h_nonl` harmonics leaves out of the orbit, from its
 /// own spectrum over one period (N uniform samples, N ≥ 16 NB_HARM_NONL and ≥ 64 samples per
 /// contact pulse, up to 2²⁰):

@@ -24,7 +24,11 @@ pub const ALARM: &str = "MODE_NON_LINE_8";
 /// The checks whose failure says the branch has left the motions of the system (its end
 /// breaks its contact law, or its energy is not conserved) rather than that it cannot go
 /// on: the rows just before may be off the law too ([`rows_kept`]).
-const WRONG_BRANCH: &[&str] = &["ECART_LOI_CHOC_MAXI", "ECART_ENERGIE_MAXI"];
+const WRONG_BRANCH: &[&str] = &[
+    "ECART_LOI_CHOC_MAXI",
+    "ECART_ENERGIE_MAXI",
+    "TRAVAIL_CHOC_MINI",
+];
 
 fn is_wrong_branch(e: &Error) -> bool {
     e.keyword
@@ -38,16 +42,15 @@ pub fn cuts_rows(error: Option<&Error>) -> bool {
 }
 
 /// How many of the computed rows are stored: all of them, except after a wrong-branch
-/// failure, where the trailing rows whose relative law defect (ECART_LOI_CHOC judged as
-/// ECART_LOI_CHOC_MAXI is) exceeds `LAW_DEFECT_ALARM` are dropped: past the last row that
-/// satisfies its law, the branch is no longer a motion of the system.
-pub fn rows_kept(error: Option<&Error>, law_defects: &[f64]) -> usize {
+/// failure, where the trailing rows that are not motions of the system (`motions[i]`
+/// false: a relative law defect, ECART_LOI_CHOC judged as ECART_LOI_CHOC_MAXI is, above
+/// `LAW_DEFECT_ALARM`, or contact forces that attract the structure on average,
+/// TRAVAIL_CHOC_MINI) are dropped: past the last row that is one, the branch is no longer a
+/// motion of the system.
+pub fn rows_kept(error: Option<&Error>, motions: &[bool]) -> usize {
     match error {
-        Some(e) if is_wrong_branch(e) => law_defects
-            .iter()
-            .rposition(|&d| d <= crate::nnm::LAW_DEFECT_ALARM)
-            .map_or(0, |i| i + 1),
-        _ => law_defects.len(),
+        Some(e) if is_wrong_branch(e) => motions.iter().rposition(|&ok| ok).map_or(0, |i| i + 1),
+        _ => motions.len(),
     }
 }
 
@@ -65,7 +68,10 @@ pub fn report(
     let mut stored = stored_rows(points, first_order);
     if dropped > 0 {
         stored = format!(
-            "{stored}; the {dropped} row(s) computed after them broke their contact law by more              than {} x max(RIGI_NOR*JEU, largest contact force) and were not stored",
+            "{stored}; the {dropped} row(s) computed after them are not motions of the system \
+             (contact law broken by more than {} x max(RIGI_NOR*JEU, largest contact force), or \
+             contact forces that attract the structure on average, below TRAVAIL_CHOC_MINI) and \
+             were not stored",
             crate::nnm::LAW_DEFECT_ALARM
         );
     }
@@ -135,18 +141,18 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_wrong_branch_drops_only_its_trailing_rows_off_the_law() {
+    fn a_wrong_branch_drops_only_its_trailing_rows_that_are_not_motions() {
         let law = Error::numerical("off the law").keyword("RESOLUTION/ECART_LOI_CHOC_MAXI");
         let energy = Error::numerical("energy").keyword("RESOLUTION/ECART_ENERGIE_MAXI");
+        let work = Error::numerical("attracts").keyword("RESOLUTION/TRAVAIL_CHOC_MINI");
         let newton = Error::numerical("no convergence").keyword("RESOLUTION/ITER_NEWTON_MAXI");
-        let d = [0.01, 0.2, 0.05, 0.3, 0.4];
-        // The suspect row 2 is followed by a row within the level: only rows 4 and 5 go.
+        let d = [true, false, true, false, false];
+        // The suspect row 2 is followed by a motion: only rows 4 and 5 go.
         assert_eq!(rows_kept(Some(&law), &d), 3);
         assert_eq!(rows_kept(Some(&energy), &d), 3);
-        // At the level itself a row is kept.
-        assert_eq!(rows_kept(Some(&law), &[0.01, 0.1]), 2);
-        // Nothing within the level: nothing stored (the run is then an error).
-        assert_eq!(rows_kept(Some(&law), &[0.2, 0.3]), 0);
+        assert_eq!(rows_kept(Some(&work), &d), 3);
+        // No motion at all: nothing stored (the run is then an error).
+        assert_eq!(rows_kept(Some(&law), &[false, false]), 0);
         // Any other end keeps every row.
         assert_eq!(rows_kept(Some(&newton), &d), 5);
         assert_eq!(rows_kept(None, &d), 5);
