@@ -519,3 +519,77 @@ fn roots_of_the_truncated_balance_that_attract_are_cut() {
         );
     }
 }
+
+/// A generated centred ring far up its branch (seed 1, case 54: one node with a CERCLE
+/// ring, RIGI_NOR/k_ref 58, H 30/55, 234 branches asked). Far up, the motion crosses the
+/// ring's centre with an amplitude of many JEU, and the ring law (eq. 12, LOI_CERCLE='RAYON')
+/// tends to α·u: the frequency tends to the exact limit √((k + α)/m)/2π of the node's
+/// x-spring k, mass m and RIGI_NOR α (the gap's share, 4·JEU/(π·A), is below 1e-12
+/// there). Before the ring was rescaled along the branch (rescale.rs), its rows from
+/// 5.8e18 J on were accepted at the round-off floor (RESIDU up to 1.4e-5, alarm
+/// MODE_NON_LINE_5) and the run stalled (NB_BRANCHE_SANS_PROGRES). Now every row converges
+/// to 1e-8, the run ends at the homogeneous limit, and the last row's frequency converges to
+/// the exact limit as NB_HARM_NONL grows, the error being the truncation of the radial
+/// distance |u|, whose kink at the centre makes its coefficients fall like 1/h²: measured
+/// 1.3e-5 with 55 harmonics, 1.6e-6 with 110; asserted below 3e-5 and falling at least
+/// four times.
+#[test]
+fn ring_far_up_its_branch_converges_to_the_exact_homogeneous_limit() {
+    let bin = std::path::Path::new(env!("CARGO_BIN_EXE_aster-nl"));
+    let dir = tempfile::tempdir().unwrap();
+    let case = sample::sample(1, 54);
+    assert!(
+        matches!(case.law, Law::Cercle { .. }) && case.h_nonl == 55,
+        "{case:?}"
+    );
+    let model = Model::of(&case);
+    let (k, m, alpha) = (model.k[0], model.m[0], case.rigi_nor);
+    let limit = ((k + alpha) / m).sqrt() / (2.0 * PI);
+    let mut errors = Vec::new();
+    for h_nonl in [55, 110] {
+        let name = format!("ring{h_nonl}");
+        let text = gencases::write::comm(&case).replacen(
+            "NB_HARM_NONL=55",
+            &format!("NB_HARM_NONL={h_nonl}"),
+            1,
+        );
+        assert!(text.contains(&format!("NB_HARM_NONL={h_nonl}")));
+        let comm = dir.path().join(format!("{name}.comm"));
+        std::fs::write(&comm, text).unwrap();
+        std::fs::write(
+            dir.path().join(format!("{name}.mail")),
+            gencases::write::mesh(&case),
+        )
+        .unwrap();
+        let db = dir.path().join(format!("{name}.db"));
+        let o = std::process::Command::new(bin)
+            .arg("run")
+            .arg(&comm)
+            .arg("--db")
+            .arg(&db)
+            .output()
+            .unwrap();
+        let out = String::from_utf8_lossy(&o.stdout).to_string();
+        assert_eq!(o.status.code(), Some(0), "{out}");
+        assert!(
+            out.contains("<MODE_NON_LINE_8>") && out.contains("gapless"),
+            "{out}"
+        );
+        assert!(!out.contains("<MODE_NON_LINE_5>"), "{out}");
+        let c = rusqlite::Connection::open(&db).unwrap();
+        let (residual, energy, freq): (f64, f64, f64) = c
+            .query_row(
+                "SELECT (SELECT MAX(RESIDU) FROM MNL), ENERGIE, FREQUENCE FROM MNL ORDER BY NUME_ORDRE DESC LIMIT 1",
+                [],
+                |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)),
+            )
+            .unwrap();
+        assert!(residual <= 1e-8, "{name}: RESIDU {residual}");
+        assert!(energy > 1e18, "{name}: ENERGIE {energy}");
+        errors.push((freq / limit - 1.0).abs());
+    }
+    assert!(
+        errors[0] < 3e-5 && errors[1] < errors[0] / 4.0,
+        "{errors:?}"
+    );
+}

@@ -21,7 +21,7 @@
 use super::laws::ScaledLaw;
 use super::point::unit_factors;
 use super::system::{Scaling, System};
-use super::Problem;
+use super::{CercleForm, Problem, ShockLaw};
 
 /// Scaled displacement amplitude (largest |coefficient| of U) above which the lengths are
 /// rescaled. Large enough that the branches of the testcases (sdnd122a reaches 134 JEU
@@ -38,18 +38,43 @@ pub(super) fn motion_amplitude(sys: &System, x: &[f64]) -> f64 {
 /// The scaling whose length unit is the motion's amplitude, when `x` has outgrown the
 /// current unit by [`RESCALE_AT`]; None otherwise.
 pub(super) fn rescaled(sys: &System, x: &[f64]) -> Option<Scaling> {
-    let all_plan = sys.shocks.iter().all(|s| matches!(s.law, ScaledLaw::Plan));
-    outgrown(&sys.scaling, all_plan, motion_amplitude(sys, x))
+    let all = sys.shocks.iter().all(|s| rescalable(s.law));
+    outgrown(&sys.scaling, all, motion_amplitude(sys, x))
+}
+
+/// Whether a law's recast keeps round-off relative in a length unit of the motion's size:
+/// PLAN (f² − αf(u − s) − αηs² = 0) and CERCLE with LOI_CERCLE='RAYON' (the same law on
+/// the radial distance r, with r² = d_x² + d_y² and f_x r = f d_x, f_y r = f d_y: every
+/// equation homogeneous in the lengths, the gap and η only in the small terms). BI_PLAN
+/// and the secant ring ('SECANTE') compute z = (f/α − u)²/s² from terms of size
+/// (u/JEU)²: in a smaller s the cancellation is no better, and measured on
+/// testcases/hard/biplan_long (a one-DOF BI_PLAN stop run to ENER_MAX 1e15 J) the rescaled
+/// run stopped short and its test failed; they keep Code_Aster's unit.
+pub(super) fn rescalable(law: ScaledLaw) -> bool {
+    matches!(
+        law,
+        ScaledLaw::Plan
+            | ScaledLaw::Cercle {
+                form: CercleForm::Radial,
+                ..
+            }
+    )
+}
+
+/// [`rescalable`] for a law as the problem states it (a restart's start.rs).
+pub(super) fn rescalable_shock(law: ShockLaw) -> bool {
+    match law {
+        ShockLaw::Plan => true,
+        ShockLaw::BiPlan => false,
+        ShockLaw::Cercle { form, .. } => form == CercleForm::Radial,
+    }
 }
 
 /// The one rule of a change of length unit, for a run (above) and for a restart from a
-/// stored row (start.rs): `amplitude` is the motion's in units of `scaling.length`.
-/// BI_PLAN and CERCLE compute z = (f/α − u)²/s² from terms of size (u/JEU)²: in a smaller
-/// s the cancellation is no better, and measured on testcases/hard/biplan_long (a one-DOF
-/// BI_PLAN stop run to ENER_MAX 1e15 J) the rescaled run stopped short and its test
-/// failed. Only stops that are all PLAN (`all_plan`) are rescaled.
-pub(super) fn outgrown(scaling: &Scaling, all_plan: bool, amplitude: f64) -> Option<Scaling> {
-    (all_plan && amplitude.is_finite() && amplitude > RESCALE_AT).then_some(Scaling {
+/// stored row (start.rs): `amplitude` is the motion's in units of `scaling.length`; only
+/// problems whose stops are all [`rescalable`] (`all_rescalable`) change unit.
+pub(super) fn outgrown(scaling: &Scaling, all_rescalable: bool, amplitude: f64) -> Option<Scaling> {
+    (all_rescalable && amplitude.is_finite() && amplitude > RESCALE_AT).then_some(Scaling {
         length: scaling.length * amplitude,
         ..*scaling
     })

@@ -134,6 +134,16 @@ impl Shock {
     }
 
     /// The magnitude of the force (for the spectrum of the contact force).
+    /// A ring's radial distance |u − c|, one of eq. (12)'s unknowns (None for the planes):
+    /// its series, truncated to NB_HARM_NONL like the force's, has a kink where the orbit
+    /// crosses the centre even when the force is smooth there.
+    pub fn radial_distance(&self, u: &[f64]) -> Option<f64> {
+        match self.kind {
+            Kind::Cercle { centre } => Some((u[self.px] - centre[0]).hypot(u[self.py] - centre[1])),
+            _ => None,
+        }
+    }
+
     pub fn force_magnitude(&self, u: &[f64]) -> f64 {
         let (fx, fy) = self.force(u);
         match self.kind {

@@ -39,6 +39,7 @@ pub struct Reference {
     pub slope: f64,
     pub tail_v: f64,
     pub tail_f: f64,
+    pub tail_r: f64,
     pub ripple: f64,
     pub bound: f64,
 }
@@ -98,7 +99,9 @@ pub fn reference(
     });
     // The engine's ring law is eq. (12) (LOI_CERCLE='RAYON', the default the generated
     // files use), the law of this reference: no allowance for another regularisation.
-    let bound = FLOOR + SAFETY * (t.tail_v + t.tail_f + slope.abs() * t.ripple) + 10.0 * accuracy;
+    let bound = FLOOR
+        + SAFETY * (t.tail_v + t.tail_f + t.tail_r + slope.abs() * t.ripple)
+        + 10.0 * accuracy;
     Ok(Reference {
         freq: o.freq(),
         freq_nonsmooth: o0.freq(),
@@ -107,6 +110,7 @@ pub fn reference(
         slope,
         tail_v: t.tail_v,
         tail_f: t.tail_f,
+        tail_r: t.tail_r,
         ripple: t.ripple,
         bound,
     })
@@ -124,6 +128,7 @@ pub struct AtFrequency {
     pub accuracy: f64,
     pub tail_v: f64,
     pub tail_f: f64,
+    pub tail_r: f64,
     pub ripple: f64,
     pub bound: f64,
 }
@@ -151,13 +156,16 @@ pub fn reference_at_frequency(
     }
     let accuracy = (e3 / e2).ln().abs() * slope.abs();
     let t = shooting::tails(&reg, &o3, case.h_lin, case.h_nonl)?;
-    let bound = FLOOR + SAFETY * (t.tail_v + t.tail_f + slope.abs() * t.ripple) + 10.0 * accuracy;
+    let bound = FLOOR
+        + SAFETY * (t.tail_v + t.tail_f + t.tail_r + slope.abs() * t.ripple)
+        + 10.0 * accuracy;
     Ok(AtFrequency {
         energy: e3,
         slope,
         accuracy,
         tail_v: t.tail_v,
         tail_f: t.tail_f,
+        tail_r: t.tail_r,
         ripple: t.ripple,
         bound,
     })
