@@ -593,3 +593,105 @@ fn ring_far_up_its_branch_converges_to_the_exact_homogeneous_limit() {
         "{errors:?}"
     );
 }
+
+/// One pair of alarm MODE_NON_LINE_7: (n, mode j, f_j, NUME_ORDRE, FREQUENCE, holds).
+fn resonance_pairs(out: &str) -> Vec<(usize, usize, f64, i64, f64, bool)> {
+    let num = |s: &str| s.trim().parse::<f64>().unwrap();
+    out.lines()
+        .filter(|l| l.contains(":1 with linear mode "))
+        .map(|l| {
+            let l = l.trim();
+            let (n, rest) = l.split_once(":1 with linear mode ").unwrap();
+            let (j, rest) = rest.split_once(" (").unwrap();
+            let (fj, rest) = rest.split_once(" Hz) at NUME_ORDRE ").unwrap();
+            let (row, rest) = rest.split_once(" (FREQUENCE ").unwrap();
+            let (f, _) = rest.split_once(" Hz").unwrap();
+            (
+                n.parse().unwrap(),
+                j.parse().unwrap(),
+                num(fj),
+                row.parse().unwrap(),
+                num(f),
+                l.contains(" holds it"),
+            )
+        })
+        .collect()
+}
+
+/// Issue 34 point 5 on generated cases (seed 1: 9, a clamped beam with a BI_PLAN stop; 12 and
+/// 18, 5-mass chains with BI_PLAN and PLAN stops; 20, a 5-mass chain with a centred ring),
+/// each of which announces internal resonances. Every pair the alarm names is checked
+/// independently of the engine: mode j's frequency against the eigenpairs of the case's own
+/// model (tests/gencases/eigen.rs) to 1e-6, the crossing against the table (n·FREQUENCE −
+/// f_j changes sign between the named row and the one before, or the row is within 1e-3 of
+/// f_j: the rule of src/nnm/resonance.rs), the FREQUENCE quoted against the table's, and
+/// "holds it" exactly when NB_HARM_LINE ≥ n.
+#[test]
+fn internal_resonances_announced_on_generated_cases_are_real_crossings() {
+    let bin = std::path::Path::new(env!("CARGO_BIN_EXE_aster-nl"));
+    let dir = tempfile::tempdir().unwrap();
+    for index in [9, 12, 18, 20] {
+        let case = sample::sample(1, index);
+        let name = case.name();
+        let comm = dir.path().join(format!("{name}.comm"));
+        std::fs::write(&comm, gencases::write::comm(&case)).unwrap();
+        std::fs::write(
+            dir.path().join(format!("{name}.mail")),
+            gencases::write::mesh(&case),
+        )
+        .unwrap();
+        let db = dir.path().join(format!("{name}.db"));
+        let o = std::process::Command::new(bin)
+            .arg("run")
+            .arg(&comm)
+            .arg("--db")
+            .arg(&db)
+            .output()
+            .unwrap();
+        let out = String::from_utf8_lossy(&o.stdout).to_string();
+        assert_eq!(o.status.code(), Some(0), "{name}:\n{out}");
+        let pairs = resonance_pairs(&out);
+        assert!(
+            out.contains("<MODE_NON_LINE_7>") && !pairs.is_empty(),
+            "{name}:\n{out}"
+        );
+        let model = Model::of(&case);
+        let (w2, _) = eigen::modes(&model.k, &model.m, model.n).unwrap();
+        let c = rusqlite::Connection::open(&db).unwrap();
+        let freq_at = |row: i64| -> f64 {
+            c.query_row(
+                "SELECT FREQUENCE FROM MNL WHERE NUME_ORDRE = ?1",
+                [row],
+                |r| r.get(0),
+            )
+            .unwrap()
+        };
+        for (n, j, fj, row, f, holds) in pairs {
+            let exact = w2[j - 1].sqrt() / (2.0 * PI);
+            assert!(
+                (fj / exact - 1.0).abs() < 1e-6,
+                "{name}: mode {j} {fj} vs {exact}"
+            );
+            let here = freq_at(row);
+            assert!(
+                (f / here - 1.0).abs() < 1e-6,
+                "{name}: row {row} {f} vs {here}"
+            );
+            let d1 = n as f64 * here - exact;
+            let crossed = row > 1 && {
+                let d0 = n as f64 * freq_at(row - 1) - exact;
+                (d0 > 0.0) != (d1 > 0.0) || d0 == 0.0
+            };
+            assert!(
+                crossed || d1.abs() <= 1e-3 * exact,
+                "{name}: {n}:1 with mode {j} at row {row} is no crossing"
+            );
+            assert_eq!(
+                holds,
+                case.h_lin >= n,
+                "{name}: {n}:1, NB_HARM_LINE {}",
+                case.h_lin
+            );
+        }
+    }
+}
