@@ -336,6 +336,18 @@ impl Host for Runner<'_> {
         catalog::get(name).is_some()
     }
 
+    fn map_file(&mut self, path: &str) -> Result<i64> {
+        self.units.map_named_file(path)
+    }
+
+    fn record_test(&mut self, ok: bool, line: &str) {
+        let _ = writeln!(self.out, "{line}");
+        self.summary.tests.push(ops::TestOutcome {
+            ok,
+            line: line.to_string(),
+        });
+    }
+
     fn operator_names(&self) -> Vec<String> {
         catalog::operator_names()
             .into_iter()
@@ -725,6 +737,11 @@ impl Host for Checker {
     fn is_operator(&self, name: &str) -> bool {
         catalog::get(name).is_some()
     }
+    fn map_file(&mut self, path: &str) -> Result<i64> {
+        self.units.map_named_file(path)
+    }
+    /// `check` runs no operator: an assertion that could be evaluated is not a test.
+    fn record_test(&mut self, _ok: bool, _line: &str) {}
     fn operator_names(&self) -> Vec<String> {
         catalog::operator_names()
             .into_iter()

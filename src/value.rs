@@ -56,6 +56,19 @@ pub enum Value {
     /// The contents of a table concept, as `T.EXTR_TABLE()` returns them: `tab.PARA` is
     /// the column (a list, `None` in an empty cell), `len(tab)` the number of rows.
     Table(std::sync::Arc<TableValue>),
+    /// An object of Code_Aster's Python API that its newer test files create
+    /// (docs/mode_non_line.md, "Files written with Code_Aster's Python API").
+    Api(ApiObject),
+}
+
+/// The objects of Code_Aster's Python API that aster-nl understands.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ApiObject {
+    /// `test = code_aster.TestCase()`: its assert methods count as tests (OK/NOOK).
+    TestCase,
+    /// `MA = code_aster.Mesh()`: an empty mesh until `MA.readAsterMeshFile(...)` or
+    /// `MA.readMedFile(...)` reads one (LIRE_MAILLAGE).
+    Mesh,
 }
 
 /// A table's contents in the command language (`T.EXTR_TABLE()`).
@@ -96,6 +109,8 @@ impl Value {
             Value::Co(_) => "CO(...)",
             Value::Unknown => "a value known only when the file runs",
             Value::Table(_) => "a table (EXTR_TABLE())",
+            Value::Api(ApiObject::TestCase) => "a code_aster.TestCase()",
+            Value::Api(ApiObject::Mesh) => "a code_aster.Mesh() not read yet",
         }
     }
 
@@ -176,6 +191,8 @@ impl fmt::Display for Value {
                 t.rows.len(),
                 t.columns.join(", ")
             ),
+            Value::Api(ApiObject::TestCase) => write!(f, "<code_aster.TestCase>"),
+            Value::Api(ApiObject::Mesh) => write!(f, "<code_aster.Mesh>"),
         }
     }
 }

@@ -10,6 +10,8 @@ use super::{Env, Host, Source};
 use crate::error::{Error, Result};
 use crate::value::{CommandCall, ConceptRef, Keyword, Span, Value};
 
+mod python_api;
+
 const IMPORT_HINT: &str = "add `from math import *` at the top of the file";
 
 pub fn execute(program: &Program, src: &Source, env: &mut Env, host: &mut dyn Host) -> Result<()> {
@@ -615,20 +617,27 @@ impl Evaluator<'_> {
                 let vals = self.positional(&attr.text, args)?;
                 return builtins::call_math(&attr.text, &vals).map_err(|m| self.input(m, span));
             }
+            if let Some(Value::Api(obj)) = self.env.vars.get(m).cloned() {
+                return self.api_method(m, obj, attr, args, span);
+            }
             if !self.env.vars.contains_key(m) && self.host.lookup_concept(m).is_none() {
                 if m == "code_aster" {
+                    if let Some(v) = self.code_aster_call(attr, args, span)? {
+                        return Ok(v);
+                    }
                     return Err(self
                         .input(
                             format!(
-                                "code_aster.{}(): the Python API of Code_Aster (code_aster.init(), \
-                                 code_aster.Mesh(), TestCase...) is not supported",
+                                "code_aster.{}(): this part of the Python API of Code_Aster is not \
+                                 supported (only code_aster.init(), code_aster.Mesh() with its \
+                                 read...File methods and code_aster.TestCase() with its assertions)",
                                 attr.text
                             ),
                             span,
                         )
                         .hint(
-                            "write the study as a command file: DEBUT(), LIRE_MAILLAGE(...) and \
-                             the other operators, FIN()",
+                            "write that part as commands: DEBUT(), LIRE_MAILLAGE(...), TEST_*(...), \
+                             FIN()",
                         ));
                 }
                 let mut err = self.input(format!("name '{m}' is not defined"), base.span);

@@ -69,6 +69,7 @@ pub fn extent(v: &Value) -> Extent {
                 depth: v.depth,
             }
         })),
+        Value::Api(_) => Extent { items: 1, depth: 0 },
         Value::Table(t) => Extent {
             items: t
                 .rows

@@ -214,6 +214,22 @@ pub trait Host {
     fn print(&mut self, text: &str) {
         println!("{text}");
     }
+
+    /// A file a command names by its path (`MA.readAsterMeshFile("x.mail")` of Code_Aster's
+    /// Python API): the logical unit the host has mapped it to, for the operator that
+    /// reads it.
+    fn map_file(&mut self, path: &str) -> Result<i64> {
+        Err(crate::error::Error::input(format!(
+            "reading the file '{path}' by its name is not available here"
+        )))
+    }
+
+    /// One assertion of a `code_aster.TestCase()` (`test.assertTrue(...)`): a test, OK or
+    /// NOOK, with its printed line.
+    fn record_test(&mut self, ok: bool, line: &str) {
+        println!("{line}");
+        let _ = ok;
+    }
 }
 
 #[cfg(test)]

@@ -971,14 +971,52 @@ fn table_contents_in_python() {
 }
 
 #[test]
-fn the_code_aster_python_api_is_named_as_unsupported() {
-    let src = Source::new("t.py", "import code_aster\ncode_aster.init()\n");
-    let e = run(&src, &mut Env::new(), &mut Recorder::default()).unwrap_err();
+fn the_code_aster_python_api_becomes_commands_and_the_rest_is_named_as_unsupported() {
+    let text = "import code_aster\nfrom code_aster.Commands import *\n\
+                code_aster.init(\"--test\", ERREUR=_F(ALARME='EXCEPTION'), debug=True)\n\
+                test = code_aster.TestCase()\nMA = code_aster.Mesh()\n\
+                test.assertTrue(True)\ntest.printSummary()\ncode_aster.Model()\n";
+    let src = Source::new("t.py", text);
+    let mut host = Recorder::default();
+    let e = run(&src, &mut Env::new(), &mut host).unwrap_err();
+    // init() is DEBUT with DEBUT's (capitalised) keywords; the API's own options are dropped.
+    assert_eq!(host.calls.len(), 1, "{:?}", host.calls);
+    assert_eq!(host.calls[0].op, "DEBUT");
+    let names: Vec<&str> = host.calls[0].args.iter().map(|k| k.name.as_str()).collect();
+    assert_eq!(names, ["ERREUR"]);
     assert!(
         e.message
-            .starts_with("code_aster.init(): the Python API of Code_Aster"),
+            .starts_with("code_aster.Model(): this part of the Python API of Code_Aster"),
         "{}",
         e.message
     );
-    assert!(e.hint.unwrap_or_default().contains("DEBUT()"));
+    assert_eq!(e.location.map(|l| l.span.line), Some(8));
+    // A mesh is read through the host's file mapping (the Recorder has none: an error that
+    // names the file), an unknown assertion is refused with the supported list.
+    for (line, want) in [
+        (
+            "MA.readAsterMeshFile('m.mail')\n",
+            "reading the file 'm.mail' by its name",
+        ),
+        (
+            "test.assertSomething(1)\n",
+            "code_aster.TestCase has no method 'assertSomething'",
+        ),
+        (
+            "MA.readMesh('m')\n",
+            "code_aster.Mesh has no method 'readMesh'",
+        ),
+    ] {
+        let text = format!(
+            "import code_aster\ncode_aster.init()\ntest = code_aster.TestCase()\n\
+             MA = code_aster.Mesh()\n{line}"
+        );
+        let e = run(
+            &Source::new("t.py", &text),
+            &mut Env::new(),
+            &mut Recorder::default(),
+        )
+        .unwrap_err();
+        assert!(e.message.contains(want), "{}", e.message);
+    }
 }

@@ -72,6 +72,47 @@ pub struct Units {
     pub read: std::cell::RefCell<Vec<PathBuf>>,
 }
 
+/// First logical unit given to files a command file names by their path (above Code_Aster's
+/// units 1..99, so that no `--unit` or `.export` mapping is taken).
+const NAMED_FILE_UNITS: i64 = 1000;
+
+impl Units {
+    /// A file the command file names by its path (`MA.readAsterMeshFile("x.mail")` of
+    /// Code_Aster's Python API): the file beside the command file, else the path as given
+    /// (relative to the working directory), mapped to a fresh logical unit for the operator
+    /// that reads it.
+    pub fn map_named_file(&mut self, name: &str) -> Result<i64> {
+        let given = PathBuf::from(name);
+        let beside = self
+            .comm_file
+            .as_ref()
+            .and_then(|c| c.parent())
+            .filter(|_| given.is_relative())
+            .map(|d| d.join(&given));
+        let path = match (&beside, given.is_file()) {
+            (Some(b), _) if b.is_file() => b.clone(),
+            (_, true) => given,
+            _ => {
+                let looked = match &beside {
+                    Some(b) => format!("{} nor {}", b.display(), given.display()),
+                    None => given.display().to_string(),
+                };
+                return Err(Error::input(format!(
+                    "the file '{name}' does not exist (neither {looked})"
+                ))
+                .hint("put the file beside the command file"));
+            }
+        };
+        let unit = self
+            .map
+            .range(NAMED_FILE_UNITS..)
+            .next_back()
+            .map_or(NAMED_FILE_UNITS, |(u, _)| u + 1);
+        self.map.insert(unit, path);
+        Ok(unit)
+    }
+}
+
 /// Everything an operator may use besides its arguments.
 pub struct OpContext<'a> {
     pub store: &'a Store,
