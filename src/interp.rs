@@ -340,6 +340,11 @@ impl Host for Runner<'_> {
         self.units.map_named_file(path)
     }
 
+    fn function_value(&mut self, function: &ConceptRef, x: f64) -> Result<Value> {
+        let f = crate::store::function::load_function(self.store()?, &function.name)?;
+        Ok(Value::Real(f.eval(x)?))
+    }
+
     fn record_test(&mut self, ok: bool, line: &str) {
         let _ = writeln!(self.out, "{line}");
         self.summary.tests.push(ops::TestOutcome {
@@ -739,6 +744,9 @@ impl Host for Checker {
     }
     fn map_file(&mut self, path: &str) -> Result<i64> {
         self.units.map_named_file(path)
+    }
+    fn function_value(&mut self, _function: &ConceptRef, _x: f64) -> Result<Value> {
+        Ok(Value::Unknown)
     }
     /// `check` runs no operator: an assertion that could be evaluated is not a test.
     fn record_test(&mut self, _ok: bool, _line: &str) {}

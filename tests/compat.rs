@@ -392,13 +392,14 @@ fn own_alarms_do_not_stop_an_exception_file() {
 /// for DEBUT, `MA = code_aster.Mesh(); MA.readAsterMeshFile("file")` for LIRE_MAILLAGE,
 /// `test = code_aster.TestCase()` and its assertions for TEST_*. testcases/compat_python_api
 /// is nnm_wall written so (its mesh read by name, its rows checked against the exact
-/// frequency of the nonsmooth wall by assertAlmostEqual): all 7 assertions OK, and the
+/// frequency of the nonsmooth wall by assertAlmostEqual, a function concept called at an
+/// abscissa): all 8 assertions OK, and the
 /// table equal to nnm_wall's to round-off (the same commands). A failing assertion is a
 /// NOOK (exit 1); a mesh file that does not exist is an error naming it (exit 2).
 #[test]
 fn python_api_files_run_as_their_commands() {
     let dir = tempfile::tempdir().unwrap();
-    let api = run_case("compat_python_api.comm", dir.path(), 7);
+    let api = run_case("compat_python_api.comm", dir.path(), 8);
     let wall = run_case("nnm_wall.comm", dir.path(), 6);
     let (a, b) = (energy_frequency(&api), energy_frequency(&wall));
     assert_eq!(a.len(), b.len());
@@ -407,11 +408,16 @@ fn python_api_files_run_as_their_commands() {
     }
     let base = std::fs::read_to_string(case("compat_python_api.comm")).unwrap();
     let failing = base.replacen("delta=1.e-4)", "delta=1.e-9)", 1);
+    let failing_line = 1 + base
+        .lines()
+        .position(|l| l.contains("delta=1.e-4)"))
+        .unwrap();
+    let nook = format!(" NOOK test.assertAlmostEqual (line {failing_line})");
     assert_ne!(failing, base);
     let missing = base.replacen("\"nnm_wall.mail\"", "\"no_such_mesh.mail\"", 1);
     assert_ne!(missing, base);
     for (edited, code, want) in [
-        (failing, 1, " NOOK test.assertAlmostEqual (line 68)"),
+        (failing, 1, nook.as_str()),
         (missing, 2, "the file 'no_such_mesh.mail' does not exist"),
     ] {
         let sub = tempfile::tempdir().unwrap();

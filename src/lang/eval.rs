@@ -542,6 +542,24 @@ impl Evaluator<'_> {
             _ => {}
         }
         if let Some(v) = self.env.vars.get(name) {
+            // F(x) on a function concept (fonction_sdaster), as Code_Aster's Python allows.
+            if let Value::Concept(c) = v {
+                if c.ty.starts_with("fonction") {
+                    let c = c.clone();
+                    let vals = self.positional(name, args)?;
+                    return match vals.as_slice() {
+                        [Value::Unknown] => Ok(Value::Unknown),
+                        [x] if x.as_f64().is_some() => self
+                            .host
+                            .function_value(&c, x.as_f64().unwrap_or_default())
+                            .map_err(|e| e.at(self.file, span)),
+                        _ => {
+                            Err(self
+                                .input(format!("{name}(x) takes one number, the abscissa"), span))
+                        }
+                    };
+                }
+            }
             return Err(self.input(
                 format!("'{name}' is {}, not a function", v.kind_name()),
                 func.span,

@@ -215,6 +215,15 @@ pub trait Host {
         println!("{text}");
     }
 
+    /// The value at `x` of the function concept `function` (`F(x)` in the command file):
+    /// `Value::Real`, or `Value::Unknown` when nothing runs (`aster-nl check`).
+    fn function_value(&mut self, function: &ConceptRef, _x: f64) -> Result<Value> {
+        Err(crate::error::Error::input(format!(
+            "the values of function {} are not available here",
+            function.name
+        )))
+    }
+
     /// A file a command names by its path (`MA.readAsterMeshFile("x.mail")` of Code_Aster's
     /// Python API): the logical unit the host has mapped it to, for the operator that
     /// reads it.

@@ -2,7 +2,8 @@
 //! (docs/mode_non_line.md, "Files written with Code_Aster's Python API"):
 //!
 //! - `code_aster.init(...)` starts the study as DEBUT() does (DEBUT's keywords, given in
-//!   capitals, are passed on; the API's own options have no effect here);
+//!   capitals, are passed on; the API's own options have no effect here), and
+//!   `code_aster.close()` ends it as FIN() does;
 //! - `MA = code_aster.Mesh()` then `MA.readAsterMeshFile("x.mail")` (or `readMedFile`,
 //!   `readGmshFile`) reads the named file as LIRE_MAILLAGE does, into the concept MA; the
 //!   file is looked for beside the command file, then in the working directory;
@@ -44,7 +45,7 @@ fn truth(v: &Value) -> bool {
 }
 
 impl Evaluator<'_> {
-    /// `code_aster.NAME(...)`: `init`, `TestCase` and `Mesh`; None for any other name (the
+    /// `code_aster.NAME(...)`: `init`, `close`, `TestCase` and `Mesh`; None for any other name (the
     /// caller reports it as unsupported).
     pub(super) fn code_aster_call(
         &mut self,
@@ -64,6 +65,23 @@ impl Evaluator<'_> {
                     result: None,
                     reuse: None,
                     args: debut,
+                    span,
+                    op_span: attr.span,
+                };
+                self.host.call(call).map_err(|e| e.at(self.file, span))?;
+                Ok(Some(Value::None))
+            }
+            "close" => {
+                let (_, kws) = self.args(args)?;
+                let fin: Vec<Keyword> = kws
+                    .into_iter()
+                    .filter(|k| super::is_upper_name(&k.name))
+                    .collect();
+                let call = CommandCall {
+                    op: "FIN".to_string(),
+                    result: None,
+                    reuse: None,
+                    args: fin,
                     span,
                     op_span: attr.span,
                 };
