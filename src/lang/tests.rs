@@ -991,6 +991,15 @@ fn the_code_aster_python_api_becomes_commands_and_the_rest_is_named_as_unsupport
         e.message
     );
     assert_eq!(e.location.map(|l| l.span.line), Some(8));
+    // init("--continue") continues a study: POURSUITE.
+    let mut host = Recorder::default();
+    let src = Source::new(
+        "t.py",
+        "import code_aster\ncode_aster.init(\"--continue\")\n",
+    );
+    run(&src, &mut Env::new(), &mut host).unwrap();
+    let ops: Vec<&str> = host.calls.iter().map(|c| c.op.as_str()).collect();
+    assert_eq!(ops, ["POURSUITE"]);
     // A mesh is read through the host's file mapping (the Recorder has none: an error that
     // names the file), an unknown assertion is refused with the supported list.
     for (line, want) in [

@@ -1,8 +1,9 @@
 //! The part of Code_Aster's Python API that its newer test files use around the commands
 //! (docs/mode_non_line.md, "Files written with Code_Aster's Python API"):
 //!
-//! - `code_aster.init(...)` starts the study as DEBUT() does (DEBUT's keywords, given in
-//!   capitals, are passed on; the API's own options have no effect here), and
+//! - `code_aster.init(...)` starts the study as DEBUT() does, `code_aster.init("--continue")`
+//!   continues one as POURSUITE() does (their keywords, given in capitals, are passed on;
+//!   the API's other options have no effect here), and
 //!   `code_aster.close()` ends it as FIN() does;
 //! - `MA = code_aster.Mesh()` then `MA.readAsterMeshFile("x.mail")` (or `readMedFile`,
 //!   `readGmshFile`) reads the named file as LIRE_MAILLAGE does, into the concept MA; the
@@ -55,13 +56,22 @@ impl Evaluator<'_> {
     ) -> Result<Option<Value>> {
         match attr.text.as_str() {
             "init" => {
-                let (_, kws) = self.args(args)?;
+                let (pos, kws) = self.args(args)?;
+                // "--continue" continues a study (POURSUITE); otherwise a new one (DEBUT).
+                let op = if pos
+                    .iter()
+                    .any(|(v, _)| matches!(v, Value::Str(s) if s == "--continue"))
+                {
+                    "POURSUITE"
+                } else {
+                    "DEBUT"
+                };
                 let debut: Vec<Keyword> = kws
                     .into_iter()
                     .filter(|k| super::is_upper_name(&k.name))
                     .collect();
                 let call = CommandCall {
-                    op: "DEBUT".to_string(),
+                    op: op.to_string(),
                     result: None,
                     reuse: None,
                     args: debut,
