@@ -647,8 +647,9 @@ impl Evaluator<'_> {
                         .input(
                             format!(
                                 "code_aster.{}(): this part of the Python API of Code_Aster is not \
-                                 supported (only code_aster.init(), code_aster.Mesh() with its \
-                                 read...File methods and code_aster.TestCase() with its assertions)",
+                                 supported (only code_aster.init(), code_aster.close(), \
+                                 code_aster.Mesh() with its read...File methods and \
+                                 code_aster.TestCase() with its assertions)",
                                 attr.text
                             ),
                             span,

@@ -178,19 +178,10 @@ impl PostProcessor {
         Ok(self.law_defects(x)?.1)
     }
 
-    /// The work of the contact forces on the displacement over the period, as the harmonic
-    /// balance sees it, relative to the elastic virial (contact_work.rs): negative on a
-    /// point whose forces attract the structure on average (not a motion); +∞ without
-    /// shocks.
-    pub fn contact_work(&self, x: &[f64]) -> Result<f64> {
-        self.unknowns.check(x)?;
-        let displacement = self.unknowns.displacement_unchecked(x);
-        let contact = self.unknowns.contact_unchecked(x);
-        Ok(self.work.ratio(&displacement, &contact))
-    }
-
-    /// The work ratio of a point that is not a motion by the work test
-    /// (`ContactWork::not_a_motion`, StepControl::work_min), None for one that may be.
+    /// The work ratio of a point that is not a motion by the work test (contact_work.rs:
+    /// the work of its contact forces on the displacement over the period, relative to
+    /// the elastic virial, below `work_min`; StepControl::work_min), None for one that may
+    /// be.
     pub fn not_a_motion(&self, x: &[f64], work_min: f64) -> Result<Option<f64>> {
         self.unknowns.check(x)?;
         let displacement = self.unknowns.displacement_unchecked(x);
