@@ -46,8 +46,8 @@ fn truth(v: &Value) -> bool {
 }
 
 impl Evaluator<'_> {
-    /// `code_aster.NAME(...)`: `init`, `close`, `TestCase` and `Mesh`; None for any other name (the
-    /// caller reports it as unsupported).
+    /// `code_aster.NAME(...)`: `init`, `close`, `TestCase` and `Mesh`; None for any other
+    /// name (the caller reports it as unsupported).
     pub(super) fn code_aster_call(
         &mut self,
         attr: &Name,
@@ -58,45 +58,15 @@ impl Evaluator<'_> {
             "init" => {
                 let (pos, kws) = self.args(args)?;
                 // "--continue" continues a study (POURSUITE); otherwise a new one (DEBUT).
-                let op = if pos
+                let continues = pos
                     .iter()
-                    .any(|(v, _)| matches!(v, Value::Str(s) if s == "--continue"))
-                {
-                    "POURSUITE"
-                } else {
-                    "DEBUT"
-                };
-                let debut: Vec<Keyword> = kws
-                    .into_iter()
-                    .filter(|k| super::is_upper_name(&k.name))
-                    .collect();
-                let call = CommandCall {
-                    op: op.to_string(),
-                    result: None,
-                    reuse: None,
-                    args: debut,
-                    span,
-                    op_span: attr.span,
-                };
-                self.host.call(call).map_err(|e| e.at(self.file, span))?;
-                Ok(Some(Value::None))
+                    .any(|(v, _)| matches!(v, Value::Str(s) if s == "--continue"));
+                let op = if continues { "POURSUITE" } else { "DEBUT" };
+                self.study_command(op, kws, attr, span)
             }
             "close" => {
                 let (_, kws) = self.args(args)?;
-                let fin: Vec<Keyword> = kws
-                    .into_iter()
-                    .filter(|k| super::is_upper_name(&k.name))
-                    .collect();
-                let call = CommandCall {
-                    op: "FIN".to_string(),
-                    result: None,
-                    reuse: None,
-                    args: fin,
-                    span,
-                    op_span: attr.span,
-                };
-                self.host.call(call).map_err(|e| e.at(self.file, span))?;
-                Ok(Some(Value::None))
+                self.study_command("FIN", kws, attr, span)
             }
             "TestCase" | "Mesh" => {
                 let (pos, kws) = self.args(args)?;
@@ -114,6 +84,31 @@ impl Evaluator<'_> {
             }
             _ => Ok(None),
         }
+    }
+
+    /// DEBUT, POURSUITE or FIN for `code_aster.init(...)`/`close(...)`, with the keywords
+    /// given in capitals (the command's own); the API's other options are dropped.
+    fn study_command(
+        &mut self,
+        op: &str,
+        kws: Vec<Keyword>,
+        attr: &Name,
+        span: Span,
+    ) -> Result<Option<Value>> {
+        let args: Vec<Keyword> = kws
+            .into_iter()
+            .filter(|k| super::is_upper_name(&k.name))
+            .collect();
+        let call = CommandCall {
+            op: op.to_string(),
+            result: None,
+            reuse: None,
+            args,
+            span,
+            op_span: attr.span,
+        };
+        self.host.call(call).map_err(|e| e.at(self.file, span))?;
+        Ok(Some(Value::None))
     }
 
     /// `name.method(...)` on the API object `obj` bound to `name`.
