@@ -248,4 +248,68 @@ mod tests {
         let bad = work.not_a_motion(&u, &[vec![attracting]], -1e-2);
         assert!(bad.is_some_and(|r| r < -1e-2), "{bad:?}");
     }
+
+    /// A ring of radius JEU = 0.01 around ORIG_OBST c = (0.002, −0.001) on a two-DOF node
+    /// (k = 10 both ways, RIGI_NOR 1000, PARA_REGUL 1e-4), under an elliptic whirl
+    /// d = (0.012 cos θ, 0.009 sin θ) that crosses the ring: the exact regularised radial
+    /// force F = f(r)·(d − c)/r, r = |d − c|, sampled at 4096 instants. The ratio is
+    /// (⟨(d − c)·F⟩ + η(1 + |c|/(JEU − |c|)))/⟨dᵀKd⟩ computed directly from the samples, to
+    /// round-off; positive (the ring pushes back).
+    #[test]
+    fn ratio_of_an_off_centre_ring_is_its_direct_mean() {
+        use super::super::CercleForm;
+        let (k, g, alpha, regul) = (10.0, 0.01, 1000.0, 1e-4);
+        let c = [0.002, -0.001];
+        let problem = Problem {
+            k: sparse(2, &[(0, 0, k), (1, 1, k)]),
+            m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),
+            shocks: vec![Shock {
+                law: ShockLaw::Cercle {
+                    origin: c,
+                    form: CercleForm::Radial,
+                },
+                dofs: vec![0, 1],
+                gap: g,
+                stiffness: alpha,
+                regul,
+            }],
+        };
+        let eta = eta_phys(&problem).unwrap()[0];
+        let (hl, hn) = (1, 64);
+        let (lay, _) = Layout::of(&problem, &settings(hl, hn, 1, 1));
+        let work = ContactWork::new(&problem, &lay).unwrap();
+        let n = 4096;
+        let (mut ux, mut uy, mut fx, mut fy) = (vec![], vec![], vec![], vec![]);
+        let mut direct_work = 0.0;
+        let mut direct_elastic = 0.0;
+        for j in 0..n {
+            let t = 2.0 * std::f64::consts::PI * j as f64 / n as f64;
+            let (x, y) = (0.012 * t.cos(), 0.009 * t.sin());
+            let (dx, dy) = (x - c[0], y - c[1]);
+            let r = dx.hypot(dy);
+            let d = alpha * (r - g);
+            let f = 0.5 * (d + (d * d + 4.0 * alpha * eta).sqrt());
+            ux.push(x);
+            uy.push(y);
+            fx.push(f * dx / r);
+            fy.push(f * dy / r);
+            direct_work += f * r / n as f64;
+            direct_elastic += k * (x * x + y * y) / n as f64;
+        }
+        let cn = c[0].hypot(c[1]);
+        let expected = (direct_work + eta * (1.0 + cn / (g - cn))) / direct_elastic;
+        let u = vec![coefficients(&ux, hl), coefficients(&uy, hl)];
+        let own = vec![
+            coefficients(&fx, hn),
+            coefficients(&fy, hn),
+            vec![0.0; 2 * hn + 1],
+            vec![0.0; 2 * hn + 1],
+        ];
+        let got = work.ratio(&u, &[own]);
+        assert!(expected > 0.0, "{expected}");
+        assert!(
+            (got - expected).abs() < 1e-10 * expected,
+            "{got} vs {expected}"
+        );
+    }
 }
