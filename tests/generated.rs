@@ -458,6 +458,37 @@ fn generated_sample_has_no_wrong_row_and_no_crash() {
     println!("{}", report.join("\n"));
 }
 
+/// Writes `text` (a generated case's command file, maybe edited) as `name.comm` with the
+/// case's mesh beside it in `dir`, runs the binary on it; (exit code, stdout + stderr, db).
+fn run_generated(
+    dir: &std::path::Path,
+    name: &str,
+    case: &gencases::sample::Case,
+    text: &str,
+) -> (Option<i32>, String, std::path::PathBuf) {
+    let comm = dir.join(format!("{name}.comm"));
+    std::fs::write(&comm, text).unwrap();
+    std::fs::write(
+        dir.join(format!("{name}.mail")),
+        gencases::write::mesh(case),
+    )
+    .unwrap();
+    let db = dir.join(format!("{name}.db"));
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_aster-nl"))
+        .arg("run")
+        .arg(&comm)
+        .arg("--db")
+        .arg(&db)
+        .output()
+        .unwrap();
+    let out = format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    (o.status.code(), out, db)
+}
+
 /// Generated cases whose force series is far too short for their stiff contact (seed 1:
 /// 223, a 2-mass chain with a centred ring, RIGI_NOR/k_ref 1.2e5, PARA_REGUL 2e-8, H 7/39;
 /// 189, a 4-mass chain with a PLAN stop, RIGI_NOR/k_ref 2.4e6, PARA_REGUL 2e-8, H 18/289).
@@ -471,32 +502,13 @@ fn generated_sample_has_no_wrong_row_and_no_crash() {
 /// there, src/nnm/contact_work.rs).
 #[test]
 fn roots_of_the_truncated_balance_that_attract_are_cut() {
-    let bin = std::path::Path::new(env!("CARGO_BIN_EXE_aster-nl"));
     let dir = tempfile::tempdir().unwrap();
     for index in [223, 189] {
         let case = sample::sample(1, index);
         let name = case.name();
-        let comm = dir.path().join(format!("{name}.comm"));
-        std::fs::write(&comm, gencases::write::comm(&case)).unwrap();
-        std::fs::write(
-            dir.path().join(format!("{name}.mail")),
-            gencases::write::mesh(&case),
-        )
-        .unwrap();
-        let db = dir.path().join(format!("{name}.db"));
-        let o = std::process::Command::new(bin)
-            .arg("run")
-            .arg(&comm)
-            .arg("--db")
-            .arg(&db)
-            .output()
-            .unwrap();
-        let out = format!(
-            "{}{}",
-            String::from_utf8_lossy(&o.stdout),
-            String::from_utf8_lossy(&o.stderr)
-        );
-        assert_eq!(o.status.code(), Some(0), "{name}:\n{out}");
+        let (code, out, db) =
+            run_generated(dir.path(), &name, &case, &gencases::write::comm(&case));
+        assert_eq!(code, Some(0), "{name}:\n{out}");
         assert!(out.contains("<MODE_NON_LINE_8>"), "{name}:\n{out}");
         assert!(
             out.contains("[RESOLUTION/TRAVAIL_CHOC_MINI]"),
@@ -535,7 +547,6 @@ fn roots_of_the_truncated_balance_that_attract_are_cut() {
 /// four times.
 #[test]
 fn ring_far_up_its_branch_converges_to_the_exact_homogeneous_limit() {
-    let bin = std::path::Path::new(env!("CARGO_BIN_EXE_aster-nl"));
     let dir = tempfile::tempdir().unwrap();
     let case = sample::sample(1, 54);
     assert!(
@@ -554,23 +565,8 @@ fn ring_far_up_its_branch_converges_to_the_exact_homogeneous_limit() {
             1,
         );
         assert!(text.contains(&format!("NB_HARM_NONL={h_nonl}")));
-        let comm = dir.path().join(format!("{name}.comm"));
-        std::fs::write(&comm, text).unwrap();
-        std::fs::write(
-            dir.path().join(format!("{name}.mail")),
-            gencases::write::mesh(&case),
-        )
-        .unwrap();
-        let db = dir.path().join(format!("{name}.db"));
-        let o = std::process::Command::new(bin)
-            .arg("run")
-            .arg(&comm)
-            .arg("--db")
-            .arg(&db)
-            .output()
-            .unwrap();
-        let out = String::from_utf8_lossy(&o.stdout).to_string();
-        assert_eq!(o.status.code(), Some(0), "{out}");
+        let (code, out, db) = run_generated(dir.path(), &name, &case, &text);
+        assert_eq!(code, Some(0), "{out}");
         assert!(
             out.contains("<MODE_NON_LINE_8>") && out.contains("gapless"),
             "{out}"
@@ -628,28 +624,13 @@ fn resonance_pairs(out: &str) -> Vec<(usize, usize, f64, i64, f64, bool)> {
 /// "holds it" exactly when NB_HARM_LINE ≥ n.
 #[test]
 fn internal_resonances_announced_on_generated_cases_are_real_crossings() {
-    let bin = std::path::Path::new(env!("CARGO_BIN_EXE_aster-nl"));
     let dir = tempfile::tempdir().unwrap();
     for index in [9, 12, 18, 20] {
         let case = sample::sample(1, index);
         let name = case.name();
-        let comm = dir.path().join(format!("{name}.comm"));
-        std::fs::write(&comm, gencases::write::comm(&case)).unwrap();
-        std::fs::write(
-            dir.path().join(format!("{name}.mail")),
-            gencases::write::mesh(&case),
-        )
-        .unwrap();
-        let db = dir.path().join(format!("{name}.db"));
-        let o = std::process::Command::new(bin)
-            .arg("run")
-            .arg(&comm)
-            .arg("--db")
-            .arg(&db)
-            .output()
-            .unwrap();
-        let out = String::from_utf8_lossy(&o.stdout).to_string();
-        assert_eq!(o.status.code(), Some(0), "{name}:\n{out}");
+        let (code, out, db) =
+            run_generated(dir.path(), &name, &case, &gencases::write::comm(&case));
+        assert_eq!(code, Some(0), "{name}:\n{out}");
         let pairs = resonance_pairs(&out);
         assert!(
             out.contains("<MODE_NON_LINE_7>") && !pairs.is_empty(),

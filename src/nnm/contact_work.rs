@@ -34,7 +34,7 @@
 
 use super::point_law::eta_phys;
 use super::system::Layout;
-use super::{Problem, ShockLaw};
+use super::Problem;
 use crate::error::Result;
 use faer::sparse::SparseColMat;
 use std::ops::Range;
@@ -68,10 +68,7 @@ impl ContactWork {
             .iter()
             .zip(etas)
             .map(|(s, eta)| {
-                let (forces, origin) = match s.law {
-                    ShockLaw::Cercle { origin, .. } => (0..2, origin),
-                    _ => (0..1, [0.0, 0.0]),
-                };
+                let (forces, origin) = (s.law.force_unknowns(), s.law.origin());
                 let c = origin[0].hypot(origin[1]);
                 let floor = if c < s.gap {
                     eta * (1.0 + c / (s.gap - c))

@@ -202,7 +202,7 @@ fn run(
             ));
         }
         end_factor.map_err(|e| in_branch(e, b + 1))?;
-        match rescale::rescaled(&sys, &x0) {
+        match rescale::rescaled(problem, &sys, &x0) {
             // The motion has outgrown the length unit: the next branch runs in a unit of
             // its own size (rescale.rs), its start and border re-expressed and factorised.
             Some(scaling) => {

@@ -10,7 +10,7 @@
 use super::point_law::{eta_phys, PointLaw};
 use super::series::{FftScratch, Sampler};
 use super::system::Layout;
-use super::{Problem, ShockLaw};
+use super::Problem;
 use crate::error::Result;
 use std::cell::RefCell;
 use std::ops::Range;
@@ -65,10 +65,7 @@ impl LawCheck {
                     eta,
                 },
                 dofs: s.dofs.clone(),
-                forces: match s.law {
-                    ShockLaw::Cercle { .. } => 0..2,
-                    _ => 0..1,
-                },
+                forces: s.law.force_unknowns(),
                 scale: s.stiffness * s.gap,
             })
             .collect();
@@ -145,7 +142,7 @@ mod tests {
     use super::super::series;
     use super::super::tests::{one_dof, settings};
     use super::super::{
-        contact_law_defect, continue_branches, start_from_mode, PostProcessor, Settings,
+        contact_law_defect, continue_branches, start_from_mode, PostProcessor, Settings, ShockLaw,
     };
     use super::*;
 

@@ -178,6 +178,26 @@ impl PostProcessor {
         Ok(self.law_defects(x)?.1)
     }
 
+    /// Whether the point `x` may be a motion of the system: its contact law holds within
+    /// [`LAW_DEFECT_ALARM`](super::LAW_DEFECT_ALARM) relative (the defect taken from `known`
+    /// when the run computed it already, `Point::law_defect`) and its contact forces pass
+    /// the work test at `work_min` ([`PostProcessor::not_a_motion`]). What decides the rows a
+    /// wrong branch keeps (the operator's `mnl_end::rows_kept`).
+    pub fn is_motion(&self, x: &[f64], known: Option<(f64, f64)>, work_min: f64) -> Result<bool> {
+        self.unknowns.check(x)?;
+        let displacement = self.unknowns.displacement_unchecked(x);
+        let contact = self.unknowns.contact_unchecked(x);
+        let relative = match known {
+            Some((_, rel)) => rel,
+            None => self.check.defects(&displacement, &contact)?.1,
+        };
+        Ok(relative <= super::LAW_DEFECT_ALARM
+            && self
+                .work
+                .not_a_motion(&displacement, &contact, work_min)
+                .is_none())
+    }
+
     /// The work ratio of a point that is not a motion by the work test (contact_work.rs:
     /// the work of its contact forces on the displacement over the period, relative to
     /// the elastic virial, below `work_min`; StepControl::work_min), None for one that may

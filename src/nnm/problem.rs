@@ -10,6 +10,26 @@ pub enum ShockLaw {
     Cercle { origin: [f64; 2], form: CercleForm },
 }
 
+impl ShockLaw {
+    /// The contact unknowns that hold the force components the structure receives (laws.rs
+    /// places them first): f for PLAN and BI_PLAN, f_x and f_y for CERCLE.
+    pub fn force_unknowns(self) -> std::ops::Range<usize> {
+        match self {
+            ShockLaw::Cercle { .. } => 0..2,
+            ShockLaw::Plan | ShockLaw::BiPlan => 0..1,
+        }
+    }
+
+    /// The obstacle's origin relative to the rest position: CERCLE's ORIG_OBST, 0 for the
+    /// planes.
+    pub fn origin(self) -> [f64; 2] {
+        match self {
+            ShockLaw::Cercle { origin, .. } => origin,
+            ShockLaw::Plan | ShockLaw::BiPlan => [0.0, 0.0],
+        }
+    }
+}
+
 /// Which regularisation of the ring law (CHOC/LOI_CERCLE; laws.rs gives both).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CercleForm {

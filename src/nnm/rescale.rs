@@ -18,7 +18,6 @@
 //! by positive factors, and the new border is the old tangent scaled by the unknowns'
 //! factors, so the sign of the bordered tangent's determinant is unchanged (docs/nnm.md).
 
-use super::laws::ScaledLaw;
 use super::point::unit_factors;
 use super::system::{Scaling, System};
 use super::{CercleForm, Problem, ShockLaw};
@@ -36,10 +35,14 @@ pub(super) fn motion_amplitude(sys: &System, x: &[f64]) -> f64 {
 }
 
 /// The scaling whose length unit is the motion's amplitude, when `x` has outgrown the
-/// current unit by [`RESCALE_AT`]; None otherwise.
-pub(super) fn rescaled(sys: &System, x: &[f64]) -> Option<Scaling> {
-    let all = sys.shocks.iter().all(|s| rescalable(s.law));
-    outgrown(&sys.scaling, all, motion_amplitude(sys, x))
+/// current unit by [`RESCALE_AT`] and every stop of `problem` is [`rescalable`]; None
+/// otherwise.
+pub(super) fn rescaled(problem: &Problem, sys: &System, x: &[f64]) -> Option<Scaling> {
+    outgrown(
+        &sys.scaling,
+        all_rescalable(problem),
+        motion_amplitude(sys, x),
+    )
 }
 
 /// Whether a law's recast keeps round-off relative in a length unit of the motion's size:
@@ -50,24 +53,17 @@ pub(super) fn rescaled(sys: &System, x: &[f64]) -> Option<Scaling> {
 /// (u/JEU)²: in a smaller s the cancellation is no better, and measured on
 /// testcases/hard/biplan_long (a one-DOF BI_PLAN stop run to ENER_MAX 1e15 J) the rescaled
 /// run stopped short and its test failed; they keep Code_Aster's unit.
-pub(super) fn rescalable(law: ScaledLaw) -> bool {
-    matches!(
-        law,
-        ScaledLaw::Plan
-            | ScaledLaw::Cercle {
-                form: CercleForm::Radial,
-                ..
-            }
-    )
-}
-
-/// [`rescalable`] for a law as the problem states it (a restart's start.rs).
-pub(super) fn rescalable_shock(law: ShockLaw) -> bool {
+pub(super) fn rescalable(law: ShockLaw) -> bool {
     match law {
         ShockLaw::Plan => true,
         ShockLaw::BiPlan => false,
         ShockLaw::Cercle { form, .. } => form == CercleForm::Radial,
     }
+}
+
+/// Every stop of `problem` is [`rescalable`] (a run, above, and a restart, start.rs).
+pub(super) fn all_rescalable(problem: &Problem) -> bool {
+    problem.shocks.iter().all(|s| rescalable(s.law))
 }
 
 /// The one rule of a change of length unit, for a run (above) and for a restart from a

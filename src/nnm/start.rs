@@ -383,10 +383,7 @@ pub(super) fn system_for_point(
     let scaling = Scaling::new(problem, amp(p), p)?;
     // A row far up a branch is restarted in the length unit the run had rescaled to
     // (rescale.rs), or its correction would meet the round-off the rescaling avoids.
-    let all = problem
-        .shocks
-        .iter()
-        .all(|s| super::rescale::rescalable_shock(s.law));
+    let all = super::rescale::all_rescalable(problem);
     let scaling =
         super::rescale::outgrown(&scaling, all, amp(p) / scaling.length).unwrap_or(scaling);
     let amps: Vec<f64> = (0..n).map(amp).collect();

@@ -251,12 +251,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         let motions = outcome
             .points
             .iter()
-            .map(|p| {
-                let defect = post
-                    .row_with_defect(&p.x, p.law_defect)?
-                    .law_defect_relative;
-                Ok(defect <= nnm::LAW_DEFECT_ALARM && post.not_a_motion(&p.x, work_min)?.is_none())
-            })
+            .map(|p| post.is_motion(&p.x, p.law_defect, work_min))
             .collect::<Result<Vec<bool>>>()?;
         mnl_end::rows_kept(outcome.error.as_ref(), &motions)
     } else {
