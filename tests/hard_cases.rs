@@ -317,7 +317,8 @@ fn hard_branch_carries_on_past_a_verified_bifurcation() {
 /// (branch 11). Either way the branch is retried with shorter steps, then MODE_NON_LINE
 /// ends with alarm MODE_NON_LINE_8 naming the keyword, the rows before kept up to the last
 /// one that is a motion (issue 34: the file goes on from rows that are motions of the
-/// system; under ERREUR=_F(ALARME='EXCEPTION') it is an error, tested below).
+/// system; under ERREUR=_F(ALARME='EXCEPTION') it is an error, tested below). The file
+/// turns the frequency floor off; with it on, the run stops at branch 1 (tested below).
 #[test]
 fn hard_spurious_root_stops_on_the_contact_law_check() {
     let dir = tempfile::tempdir().unwrap();
@@ -378,6 +379,21 @@ fn hard_spurious_root_stops_on_the_contact_law_check() {
         assert!(*defects.last().unwrap() <= 0.1, "{defects:?}");
         assert!(v.iter().all(|r| r.residual <= 1e-9), "{v:?}");
     }
+    // The frequency floor on (the default; the file turns it off): the end of branch 1 is
+    // below the linear frequency of mode 2 (measured 3.9e-4 below; the start row 8.9e-4),
+    // nothing usable is computed, and the run ends with the error naming the keyword.
+    let floor = base.replacen("BAISSE_FREQ_MAXI=1.0, ", "", 1);
+    assert_ne!(floor, base);
+    let file = dir.path().join("floor.comm");
+    std::fs::write(&file, floor).unwrap();
+    std::fs::copy(case("spurious_root.mail"), dir.path().join("floor.mail")).unwrap();
+    let o3 = run_file(&file, &dir.path().join("floor.db"));
+    let out3 = text(&o3);
+    assert_eq!(o3.status.code(), Some(2), "{out3}");
+    assert!(
+        out3.contains("MODE_NON_LINE/RESOLUTION/BAISSE_FREQ_MAXI") && out3.contains("branch 1:"),
+        "{out3}"
+    );
     let strict = base.replacen("DEBUT(", "DEBUT(ERREUR=_F(ALARME='EXCEPTION'), ", 1);
     assert!(strict.contains("ALARME='EXCEPTION'"));
     let file = dir.path().join("strict.comm");
@@ -886,8 +902,9 @@ fn energie_moyenne_is_the_orbit_energy_where_energie_carries_the_truncation_ripp
 /// every row follows the exact penalty-stop period to ENER_MAX = 5 E_c; tolerance 2e-3, the
 /// truncation to NB_HARM_LINE 10 (measured 2.8e-4; the regularisation's share at PARA_REGUL
 /// 1e-6 is below 1e-4, the wrong family is 6e-3 to 1.1e-1 off). Without them (both 0) the
-/// same file stops on the ECART_LOI_CHOC_MAXI check at about 2.2 E_c, as it did before (now
-/// with alarm MODE_NON_LINE_8 and the rows before it, exit 0).
+/// same file now stops on the frequency floor (BAISSE_FREQ_MAXI), and without the floor too
+/// on the ECART_LOI_CHOC_MAXI check at about 2.2 E_c, as it did before (alarm
+/// MODE_NON_LINE_8 and the rows before it, exit 0).
 #[test]
 fn hard_grazing_jump_is_sent_back_to_the_physical_family() {
     let osc = sdnd122_wall();
@@ -906,23 +923,41 @@ fn hard_grazing_jump_is_sent_back_to_the_physical_family() {
     assert!(retries > 0, "no branch was retried");
 
     let dir = tempfile::tempdir().unwrap();
-    let comm = std::fs::read_to_string(case("grazing_jump.comm"))
-        .unwrap()
-        .replace(
-            "ENER_MAX=2.5e-3)",
-            "ENER_MAX=2.5e-3, SAUT_RACINE_MAXI=0., RAPPORT_CORRECTION_MAXI=0.)",
+    // Without the jump checks the wrong family falls below the linear frequency and the
+    // frequency floor stops it (measured: branch 12, 7e-6 below); without the floor too,
+    // the law check (as before the floor).
+    for (name, extra, keyword) in [
+        ("unchecked", "", "RESOLUTION/BAISSE_FREQ_MAXI"),
+        (
+            "nofloor",
+            " BAISSE_FREQ_MAXI=1.,",
+            "RESOLUTION/ECART_LOI_CHOC_MAXI",
+        ),
+    ] {
+        let comm = std::fs::read_to_string(case("grazing_jump.comm"))
+            .unwrap()
+            .replace(
+                "ENER_MAX=2.5e-3)",
+                &format!(
+                    "ENER_MAX=2.5e-3,{extra} SAUT_RACINE_MAXI=0., RAPPORT_CORRECTION_MAXI=0.)"
+                ),
+            );
+        assert!(comm.contains("SAUT_RACINE_MAXI=0."));
+        let file = dir.path().join(format!("{name}.comm"));
+        std::fs::write(&file, comm).unwrap();
+        std::fs::copy(
+            case("grazing_jump.mail"),
+            dir.path().join(format!("{name}.mail")),
+        )
+        .unwrap();
+        let o = run_file(&file, &dir.path().join(format!("{name}.db")));
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(0), "{out}");
+        assert!(
+            out.contains("<A> <MODE_NON_LINE_8>") && out.contains(keyword),
+            "{name}: {out}"
         );
-    assert!(comm.contains("SAUT_RACINE_MAXI=0."));
-    let file = dir.path().join("unchecked.comm");
-    std::fs::write(&file, comm).unwrap();
-    std::fs::copy(case("grazing_jump.mail"), dir.path().join("unchecked.mail")).unwrap();
-    let o = run_file(&file, &dir.path().join("u.db"));
-    let out = text(&o);
-    assert_eq!(o.status.code(), Some(0), "{out}");
-    assert!(
-        out.contains("<A> <MODE_NON_LINE_8>") && out.contains("RESOLUTION/ECART_LOI_CHOC_MAXI"),
-        "{out}"
-    );
+    }
 }
 
 /// The exact period of sdnd122's wall with the regularised PLAN law (all harmonics) at total

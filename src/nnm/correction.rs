@@ -3,6 +3,7 @@
 //! the same series with a shorter step when it fails (docs/nnm.md, "Failed corrections").
 
 use super::anm;
+use super::frequency_floor::OffTheFamily;
 use super::linear_solver::TangentSolver;
 use super::newton;
 use super::point::{finite, make_point};
@@ -14,9 +15,10 @@ use super::{Point, PostProcessor, Settings, StepControl};
 use crate::error::{Error, Result};
 
 /// Why a corrected branch end is not a point of the physical family although its residual
-/// converged, if it is not (StepControl::law_defect_max, work_min, spread_max): the error a retry
-/// with a shorter step may cure, else the one that stops the run. The law check's absolute
-/// defect is kept on the point (`Point::law_defect`) for its row.
+/// converged, if it is not (StepControl::law_defect_max, work_min, frequency_floor,
+/// spread_max): the error a retry with a shorter step may cure, else the one that stops the
+/// run. The law check's absolute defect is kept on the point (`Point::law_defect`) for its
+/// row.
 pub(super) fn off_the_law(
     control: &StepControl,
     law_check: Option<&PostProcessor>,
@@ -59,6 +61,50 @@ pub(super) fn off_the_law(
                     "raise NB_HARM_NONL and NB_HARM_LINE (a stiff stop needs both), or raise \
                      PARA_REGUL or lower RIGI_NOR",
                 ),
+            ));
+        }
+    }
+    if let Some(floor) = &control.frequency_floor {
+        let why = match floor.off_the_family(end.frequency, end.energy) {
+            Some(OffTheFamily::Below(dip)) => Some((
+                format!(
+                    "the branch end is {dip:.3e} x the linear frequency {:.6e} Hz of its mode \
+                     below it > BAISSE_FREQ_MAXI = {:.3e}, with no internal resonance near to \
+                     explain it (ENERGIE = {:.6e}, FREQUENCE = {:.6e} Hz): the contact laws \
+                     only stiffen the structure, so this is a root of the truncated harmonic \
+                     balance, not a motion of the system (its frequency is wrong by at least \
+                     that much)",
+                    floor.linear(),
+                    floor.tolerance(),
+                    end.energy,
+                    end.frequency
+                ),
+                "raise NB_HARM_NONL (the contact force of a stiff or weakly regularised stop \
+                 needs many harmonics near first contact), or raise PARA_REGUL or lower \
+                 RIGI_NOR",
+            )),
+            Some(OffTheFamily::Linear(distance)) => Some((
+                format!(
+                    "the branch end is far below first contact (ENERGIE = {:.6e}) yet \
+                     {distance:.3e} x the linear frequency {:.6e} Hz of its mode away from it \
+                     (FREQUENCE = {:.6e} Hz): a motion that reaches no stop is the linear mode, \
+                     so the branch has folded back onto the equilibrium, which solves the \
+                     harmonic balance at any frequency",
+                    end.energy,
+                    floor.linear(),
+                    end.frequency
+                ),
+                "the rows before are the family down to that energy; to go further up, \
+                 restart from a row in contact with ETAT_INIT=_F(MODE_NON_LINE=..., \
+                 NUME_ORDRE=...) and the other DIR_EVOLUTION, or lower PREC_MAN",
+            )),
+            None => None,
+        };
+        if let Some((why, hint)) = why {
+            return Ok(Some(
+                Error::numerical(why)
+                    .keyword("RESOLUTION/BAISSE_FREQ_MAXI")
+                    .hint(hint),
             ));
         }
     }

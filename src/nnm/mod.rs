@@ -43,6 +43,7 @@ mod energy;
 pub mod error_sources;
 pub mod exact;
 pub mod exact_law;
+mod frequency_floor;
 mod gmres;
 mod law_check;
 mod laws;
@@ -89,6 +90,7 @@ mod tests;
 
 pub use contact::Method as ContactMethod;
 pub use continuation::{continue_branches, continue_controlled, continue_while, Outcome};
+pub use frequency_floor::FrequencyFloor;
 pub use law_check::LAW_DEFECT_ALARM;
 pub use linear_solver::{BorderedSolver, SparseLu};
 pub use orbit::{
@@ -101,7 +103,7 @@ pub use problem::{CercleForm, Problem, Settings, Shock, ShockLaw};
 pub use quadrature::{check_degenerate_pair, start_from_mode_pair, QUAD_FREQ_TOL};
 pub use report::BranchReport;
 pub use resolution::{resolution_warnings, tail_ratio};
-pub use resonance::resonance_alarm;
+pub use resonance::{linear_modes, resonance_alarm, LinearMode};
 pub use route_timing::{contact_route_timings, RouteRow};
 pub use solver_kind::SolverKind;
 pub(crate) use start::check_start;

@@ -293,17 +293,19 @@ fn drive(
 }
 
 /// The alarm text for the resonances met along `points` (rows numbered from `first_order`),
-/// or None when there is none or the model is too large for the dense check.
+/// or None when there is none or `modes` is None ([`linear_modes`]: the model is too large
+/// for the dense check).
 pub fn resonance_alarm(
     problem: &Problem,
     settings: &Settings,
     points: &[Point],
     first_order: i64,
+    modes: Option<&[LinearMode]>,
 ) -> Result<Option<String>> {
-    let Some(modes) = linear_modes(problem)? else {
+    let Some(modes) = modes else {
         return Ok(None);
     };
-    let mut met = internal_resonances(problem, settings, points, &modes)?;
+    let mut met = internal_resonances(problem, settings, points, modes)?;
     if met.is_empty() {
         return Ok(None);
     }

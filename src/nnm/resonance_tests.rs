@@ -84,7 +84,9 @@ fn a_three_to_one_crossing_driven_by_the_stop_is_reported_once() {
         };
         assert!(on(r.row) && !on(r.row - 1), "row {}", r.row);
         assert_eq!(r.represented, hl >= 3);
-        let text = resonance_alarm(&p, &s, &pts, 1).unwrap().unwrap();
+        let text = resonance_alarm(&p, &s, &pts, 1, linear_modes(&p).unwrap().as_deref())
+            .unwrap()
+            .unwrap();
         assert!(text.contains("3:1 with linear mode 2"), "{text}");
         let held = if hl >= 3 {
             "holds it"
@@ -104,7 +106,10 @@ fn no_alarm_where_no_resonance_is_reached_or_driven() {
     let f1 = 10f64.sqrt() / (2.0 * PI);
     let fmax = pts.iter().map(|q| q.frequency).fold(0.0, f64::max);
     assert!(fmax > 1.005 * f1 && fmax < 1.2 * f1, "{fmax}");
-    assert_eq!(resonance_alarm(&p, &s, &pts, 1).unwrap(), None);
+    assert_eq!(
+        resonance_alarm(&p, &s, &pts, 1, linear_modes(&p).unwrap().as_deref()).unwrap(),
+        None
+    );
     // f₂ = 2.02 f₁ with a symmetric stop (BI_PLAN): the branch crosses f₂/2 but its contact
     // force has no even harmonic, so mode 2 is not driven at harmonic 2: no report. (A
     // rule on frequencies alone would report it.)
@@ -113,5 +118,8 @@ fn no_alarm_where_no_resonance_is_reached_or_driven() {
     let f2 = 2.02 * f1;
     let fmax = pts.iter().map(|q| q.frequency).fold(0.0, f64::max);
     assert!(2.0 * fmax > f2, "the branch must pass f2/2: {fmax}");
-    assert_eq!(resonance_alarm(&p, &s, &pts, 1).unwrap(), None);
+    assert_eq!(
+        resonance_alarm(&p, &s, &pts, 1, linear_modes(&p).unwrap().as_deref()).unwrap(),
+        None
+    );
 }

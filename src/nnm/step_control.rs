@@ -2,6 +2,8 @@
 //! no-progress guard) and how far its steps reach (the series or its Padé approximants):
 //! the values come from the catalog (RESOLUTION).
 
+use super::frequency_floor::FrequencyFloor;
+
 /// What a branch is evaluated on (RESOLUTION/APPROX_MAN).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Approximation {
@@ -15,7 +17,7 @@ pub enum Approximation {
 
 /// How the run reacts to a branch that goes wrong; the engine's own callers use
 /// [`StepControl::none`].
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Debug, Default)]
 pub struct StepControl {
     /// A failed correction is retried from the same series with a_max halved, at most
     /// this many times per branch, before the run stops.
@@ -45,6 +47,11 @@ pub struct StepControl {
     /// structure on average; not a motion) is retried like a failed correction, then stops
     /// the run (None: not checked).
     pub work_min: Option<f64>,
+    /// A branch whose corrected end lies below the linear frequency of its mode by more
+    /// than the floor's tolerance, with no internal resonance in reach to explain it
+    /// (frequency_floor.rs: not a motion, the contact laws only stiffen), is retried like a
+    /// failed correction, then stops the run (None: not checked).
+    pub frequency_floor: Option<FrequencyFloor>,
     /// What each branch is evaluated on.
     pub approximation: Approximation,
 }
@@ -70,6 +77,7 @@ impl StepControl {
             correction_ratio_max: None,
             spread_max: None,
             work_min: None,
+            frequency_floor: None,
             approximation: Approximation::Series,
         }
     }

@@ -90,7 +90,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let free = k.free_dofs();
     let settings = settings(args)?;
     let exact_law = mnl_exact_law::settings(args, &settings)?;
-    let control = step_control(args)?;
+    let mut control = step_control(args)?;
     let bounds = stop_bounds(args)?;
     let etat = args.req_fact("ETAT_INIT")?;
 
@@ -160,6 +160,22 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         }
         None => mnl_start::from_linear_modes(ctx, etat, &problem, &settings, &k, &k_name)?,
     };
+
+    // The linear modes (dense, small models only): the frequency floor of a family that
+    // starts from a linear mode, and the internal-resonance alarm after the run.
+    let linear_modes = nnm::linear_modes(&problem)?;
+    if restart_from.is_none() {
+        control.frequency_floor = nnm::FrequencyFloor::new(
+            &problem,
+            linear_modes.as_deref(),
+            start.point.frequency,
+            settings.h_lin,
+            args.req_fact("RESOLUTION")?.req_real("BAISSE_FREQ_MAXI")?,
+        );
+    }
+    // The rows kept after a wrong-branch end are judged by the same checks.
+    let floor = control.frequency_floor.clone();
+    let work_min = control.work_min.unwrap_or(f64::NEG_INFINITY);
 
     // Continue, reporting each branch.
     let info = ctx.info;
@@ -247,11 +263,15 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     // stored (mnl_end::rows_kept; their defects computed only then, the rows' outputs are
     // not kept in memory); every other run stores every row.
     let kept = if mnl_end::cuts_rows(outcome.error.as_ref()) {
-        let work_min = control.work_min.unwrap_or(f64::NEG_INFINITY);
         let motions = outcome
             .points
             .iter()
-            .map(|p| post.is_motion(&p.x, p.law_defect, work_min))
+            .map(|p| {
+                let off_the_family = floor
+                    .as_ref()
+                    .is_some_and(|f| f.off_the_family(p.frequency, p.energy).is_some());
+                Ok(!off_the_family && post.is_motion(&p.x, p.law_defect, work_min)?)
+            })
             .collect::<Result<Vec<bool>>>()?;
         mnl_end::rows_kept(outcome.error.as_ref(), &motions)
     } else {
@@ -366,7 +386,13 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         ctx.alarm("MODE_NON_LINE_1", &w)?;
     }
     // Internal resonances n:1 with a linear mode (nnm/resonance.rs).
-    if let Some(w) = nnm::resonance_alarm(&problem, &settings, points, first_order)? {
+    if let Some(w) = nnm::resonance_alarm(
+        &problem,
+        &settings,
+        points,
+        first_order,
+        linear_modes.as_deref(),
+    )? {
         ctx.alarm("MODE_NON_LINE_7", &w)?;
     }
     mnl_end::report(
@@ -530,7 +556,7 @@ fn settings(args: &Args) -> Result<Settings> {
 }
 
 /// RESOLUTION/NB_REPRISE_PAS_MAXI, NB_BRANCHE_SANS_PROGRES, ECART_LOI_CHOC_MAXI, SAUT_RACINE_MAXI,
-/// RAPPORT_CORRECTION_MAXI, TRAVAIL_CHOC_MINI,
+/// RAPPORT_CORRECTION_MAXI, TRAVAIL_CHOC_MINI (BAISSE_FREQ_MAXI once the start is known),
 /// ECART_ENERGIE_MAXI and APPROX_MAN (aster-nl extensions; default and bounds in the
 /// catalog).
 fn step_control(args: &Args) -> Result<nnm::StepControl> {
@@ -543,6 +569,8 @@ fn step_control(args: &Args) -> Result<nnm::StepControl> {
         correction_ratio_max: Some(r.req_real("RAPPORT_CORRECTION_MAXI")?).filter(|&v| v > 0.0),
         spread_max: r.real("ECART_ENERGIE_MAXI"),
         work_min: Some(r.req_real("TRAVAIL_CHOC_MINI")?),
+        // Set once the start is known (the mode the family starts from).
+        frequency_floor: None,
         approximation: match r.req_text("APPROX_MAN")? {
             "PADE" => nnm::Approximation::Pade,
             _ => nnm::Approximation::Series,

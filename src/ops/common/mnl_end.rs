@@ -28,6 +28,7 @@ const WRONG_BRANCH: &[&str] = &[
     "ECART_LOI_CHOC_MAXI",
     "ECART_ENERGIE_MAXI",
     "TRAVAIL_CHOC_MINI",
+    "BAISSE_FREQ_MAXI",
 ];
 
 fn is_wrong_branch(e: &Error) -> bool {
@@ -70,8 +71,8 @@ pub fn report(
         stored = format!(
             "{stored}; the {dropped} row(s) computed after them are not motions of the system \
              (contact law broken by more than {} x max(RIGI_NOR*JEU, largest contact force), or \
-             contact forces that attract the structure on average, below TRAVAIL_CHOC_MINI) and \
-             were not stored",
+             contact forces that attract the structure on average, below TRAVAIL_CHOC_MINI, or a \
+             frequency off the family of the mode, BAISSE_FREQ_MAXI) and were not stored",
             crate::nnm::LAW_DEFECT_ALARM
         );
     }
