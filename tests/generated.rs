@@ -433,15 +433,7 @@ fn generated_sample_has_no_wrong_row_and_no_crash() {
     for index in SAMPLE {
         let case = sample::sample(1, index);
         let out = run::judge(&case, bin, dir.path(), Duration::from_secs(300));
-        let line = format!(
-            "{}: {} ({} rows, reach {:.3e} E_c, worst {:?}) {}",
-            case.name(),
-            out.verdict.name(),
-            out.rows,
-            out.reach,
-            out.worst(),
-            out.message
-        );
+        let line = out.summary();
         assert!(
             !matches!(
                 out.verdict,
@@ -459,34 +451,24 @@ fn generated_sample_has_no_wrong_row_and_no_crash() {
 }
 
 /// Writes `text` (a generated case's command file, maybe edited) as `name.comm` with the
-/// case's mesh beside it in `dir`, runs the binary on it; (exit code, stdout + stderr, db).
+/// case's mesh beside it in `dir`, runs the binary on it (gencases' runner, 300 s at most);
+/// (exit code, stdout + stderr, db).
 fn run_generated(
     dir: &std::path::Path,
     name: &str,
     case: &gencases::sample::Case,
     text: &str,
 ) -> (Option<i32>, String, std::path::PathBuf) {
-    let comm = dir.join(format!("{name}.comm"));
-    std::fs::write(&comm, text).unwrap();
+    std::fs::write(dir.join(format!("{name}.comm")), text).unwrap();
     std::fs::write(
         dir.join(format!("{name}.mail")),
         gencases::write::mesh(case),
     )
     .unwrap();
-    let db = dir.join(format!("{name}.db"));
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_aster-nl"))
-        .arg("run")
-        .arg(&comm)
-        .arg("--db")
-        .arg(&db)
-        .output()
-        .unwrap();
-    let out = format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    );
-    (o.status.code(), out, db)
+    let bin = std::path::Path::new(env!("CARGO_BIN_EXE_aster-nl"));
+    let (code, timed_out, _, out) = run::run_binary(bin, dir, name, Duration::from_secs(300));
+    assert!(!timed_out, "{name} timed out:\n{out}");
+    (code, out, dir.join(format!("{name}.db")))
 }
 
 /// Generated cases whose force series is far too short for their stiff contact (seed 1:
@@ -593,16 +575,7 @@ fn a_branch_end_below_the_floor_is_retried_onto_its_family() {
     let dir = tempfile::tempdir().unwrap();
     let case = sample::sample(1, 83);
     let out = run::judge(&case, bin, dir.path(), Duration::from_secs(300));
-    assert!(
-        matches!(out.verdict, Verdict::Reached),
-        "{}: {} ({} rows, reach {:.3e} E_c, worst {:?}) {}",
-        case.name(),
-        out.verdict.name(),
-        out.rows,
-        out.reach,
-        out.worst(),
-        out.message
-    );
+    assert!(matches!(out.verdict, Verdict::Reached), "{}", out.summary());
 }
 
 /// A generated centred ring far up its branch (seed 1, case 54: one node with a CERCLE

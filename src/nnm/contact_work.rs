@@ -69,9 +69,9 @@ impl ContactWork {
             .zip(etas)
             .map(|(s, eta)| {
                 let (forces, origin) = (s.law.force_unknowns(), s.law.origin());
-                let c = origin[0].hypot(origin[1]);
-                let floor = if c < s.gap {
-                    eta * (1.0 + c / (s.gap - c))
+                let room = s.room();
+                let floor = if room > 0.0 {
+                    eta * (1.0 + origin[0].hypot(origin[1]) / room)
                 } else {
                     f64::INFINITY
                 };

@@ -67,7 +67,8 @@ pub const RIGID: f64 = 1e-6;
 pub struct FrequencyFloor {
     /// f_j, Hz.
     linear: f64,
-    /// The f_k/n at or below f_j, increasing (Hz).
+    /// The f_k/n within [`NEAR`] below f_j, increasing (Hz): the only ones that can explain
+    /// a dip.
     resonances: Vec<f64>,
     /// Dips at or below this are not judged (BAISSE_FREQ_MAXI).
     tolerance: f64,
@@ -131,7 +132,7 @@ impl FrequencyFloor {
                     .filter(move |&n| !(n == 1 && m.number == start.number))
                     .map(move |n| m.frequency / n as f64)
             })
-            .filter(|&f| f <= linear && f > 0.0)
+            .filter(|&f| f <= linear && (linear - f) / linear <= NEAR)
             .collect();
         resonances.sort_by(f64::total_cmp);
         let planes = problem
@@ -185,10 +186,10 @@ impl FrequencyFloor {
         if dip <= self.tolerance {
             return None;
         }
-        let explained = self.resonances.iter().any(|&r| {
-            let distance = (self.linear - r) / self.linear;
-            distance * SLACK >= dip && distance <= NEAR
-        });
+        let explained = self
+            .resonances
+            .iter()
+            .any(|&r| (self.linear - r) / self.linear * SLACK >= dip);
         (!explained).then_some(dip)
     }
 }
@@ -208,8 +209,7 @@ fn contact_energy(problem: &Problem, shape: &[f64], frequency: f64) -> f64 {
                 .map(|&d| shape.get(d).copied().unwrap_or(0.0).powi(2))
                 .sum::<f64>()
                 .sqrt();
-            let [cx, cy] = sh.law.origin();
-            let room = sh.gap - cx.hypot(cy);
+            let room = sh.room();
             if reach > 0.0 {
                 0.5 * (omega * room / reach).powi(2)
             } else {
@@ -244,12 +244,7 @@ fn regularisation_shift(problem: &Problem, eta: &[f64], shape: &[f64], frequency
 /// Whether the structure at rest is inside the clearance of `shock` (every law then only
 /// stiffens it as it moves).
 fn rest_inside(shock: &super::Shock) -> bool {
-    let [cx, cy] = shock.law.origin();
-    let inside = match shock.law {
-        ShockLaw::Cercle { .. } => cx.hypot(cy) < shock.gap,
-        ShockLaw::Plan | ShockLaw::BiPlan => true,
-    };
-    inside && shock.gap > 0.0 && shock.stiffness > 0.0
+    shock.room() > 0.0 && shock.stiffness > 0.0
 }
 
 #[cfg(test)]

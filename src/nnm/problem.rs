@@ -55,6 +55,16 @@ pub struct Shock {
     pub regul: f64,
 }
 
+impl Shock {
+    /// The distance the structure at rest can move before it reaches the obstacle, along
+    /// the way out: JEU − |ORIG_OBST| for CERCLE, JEU for the planes. Not positive when the
+    /// structure rests against a ring or outside it.
+    pub fn room(&self) -> f64 {
+        let [cx, cy] = self.law.origin();
+        self.gap - cx.hypot(cy)
+    }
+}
+
 #[derive(Clone, Debug)]
 pub struct Problem {
     /// Stiffness and mass reduced to the free DOFs, n×n.

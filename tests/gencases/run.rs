@@ -278,6 +278,20 @@ impl Outcome {
             .filter_map(Compared::judged)
             .max_by(|a, b| (a.0 / a.1).total_cmp(&(b.0 / b.1)))
     }
+
+    /// One line for a test's report or failure: case, verdict, rows, reach, worst row and
+    /// the run's last message.
+    pub fn summary(&self) -> String {
+        format!(
+            "{}: {} ({} rows, reach {:.3e} E_c, worst {:?}) {}",
+            self.case.name(),
+            self.verdict.name(),
+            self.rows,
+            self.reach,
+            self.worst(),
+            self.message
+        )
+    }
 }
 
 fn read_rows(c: &Connection) -> Result<Vec<Row>, rusqlite::Error> {
@@ -334,8 +348,9 @@ pub fn rows_to_compare(case: &Case, rows: &[Row]) -> Vec<usize> {
     pick
 }
 
-/// Runs `bin run file --db db` with a timeout; (exit code, timed out, seconds, output).
-fn run_binary(
+/// Runs `bin run dir/name.comm --db dir/name.db` with a timeout, its output kept in
+/// dir/name.out; (exit code, timed out, seconds, output).
+pub fn run_binary(
     bin: &Path,
     dir: &Path,
     name: &str,
