@@ -578,6 +578,80 @@ fn a_branch_end_below_the_floor_is_retried_onto_its_family() {
     assert!(matches!(out.verdict, Verdict::Reached), "{}", out.summary());
 }
 
+/// A one-DOF BI_PLAN stop far up its branch with few harmonics of the contact unknowns
+/// (seed 1, case 290: RIGI_NOR/k_ref 5.7e5, PARA_REGUL 2.7e-6, H 11/27, 499 branches
+/// asked). Far into the stop the force series misses the law by more than RIGI_NOR·JEU,
+/// the branch turns back in ENERGIE at 3.0e5 J and went back down for the branches left,
+/// 1.5e-3 off the exact frequency (campaign verdict WRONG, exit 0). Now the run stops at
+/// the turn (MODE_NON_LINE_8 naming NB_HARM_NONL), no row after it stored, the file goes
+/// on. The reference is the exact period of the nonsmooth oscillator (gencases/exact.rs;
+/// the regularisation shifts it by less than 1e-12 there, shooting on the regularised law):
+/// the top row is more than 5e-4 off it (measured 1.5e-3: why the rows past it are not
+/// kept), and with NB_HARM_NONL doubled the branch passes the same ENERGIE without a turn,
+/// within 1e-4 of it (measured 3.5e-5; 1.7e-5 from NB_HARM_NONL 108, so the remainder is
+/// truncation).
+#[test]
+fn a_branch_that_turns_back_where_its_law_came_apart_stops_at_the_turn() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = sample::sample(1, 290);
+    let name = case.name();
+    let osc = run::one_dof(&case, &Model::of(&case)).expect("a one-DOF case");
+    let rows = |db: &std::path::Path| -> Vec<(f64, f64)> {
+        let c = rusqlite::Connection::open(db).unwrap();
+        let mut st = c
+            .prepare("SELECT ENERGIE, FREQUENCE FROM MNL ORDER BY NUME_ORDRE")
+            .unwrap();
+        st.query_map([], |r| Ok((r.get(0)?, r.get(1)?)))
+            .unwrap()
+            .map(|r| r.unwrap())
+            .collect()
+    };
+    let error = |(e, f): (f64, f64)| (f * osc.period_biplan(e) - 1.0).abs();
+
+    let text = gencases::write::comm(&case);
+    let (code, out, db) = run_generated(dir.path(), &name, &case, &text);
+    assert_eq!(code, Some(0), "{name}:\n{out}");
+    assert!(
+        out.contains("<MODE_NON_LINE_8>")
+            && out.contains("turns back in ENERGIE")
+            && out.contains("[RESOLUTION/NB_HARM_NONL]"),
+        "{name}:\n{out}"
+    );
+    let r = rows(&db);
+    assert!(
+        r.windows(2).all(|w| w[1].0 >= w[0].0),
+        "{name}: a stored row after the turn"
+    );
+    let top = *r.last().unwrap();
+    assert!(top.0 > 1e5, "{name}: stopped early, at {} J", top.0);
+    assert!(
+        error(top) > 5e-4,
+        "{name}: top row {top:?} off by only {:e}",
+        error(top)
+    );
+
+    let finer = text.replacen("NB_HARM_NONL=27", "NB_HARM_NONL=54", 1);
+    assert_ne!(finer, text);
+    let (code, out, db) = run_generated(dir.path(), &format!("{name}_54"), &case, &finer);
+    assert_eq!(code, Some(0), "{name}:\n{out}");
+    assert!(!out.contains("turns back in ENERGIE"), "{name}:\n{out}");
+    let r = rows(&db);
+    let i = r
+        .iter()
+        .position(|x| x.0 >= top.0)
+        .expect("the turn's energy passed");
+    assert!(
+        r[..=i].windows(2).all(|w| w[1].0 >= w[0].0),
+        "{name}: turns back below the energy of the turn with NB_HARM_NONL 54"
+    );
+    assert!(
+        error(r[i]) < 1e-4,
+        "{name}: {:?} off by {:e}",
+        r[i],
+        error(r[i])
+    );
+}
+
 /// A generated centred ring far up its branch (seed 1, case 54: one node with a CERCLE
 /// ring, RIGI_NOR/k_ref 58, H 30/55, 234 branches asked). Far up, the motion crosses the
 /// ring's centre with an amplitude of many JEU, and the ring law (eq. 12, LOI_CERCLE='RAYON')

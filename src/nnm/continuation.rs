@@ -6,6 +6,7 @@
 use super::anm::{self, AnmParams};
 use super::bifurcation::DeterminantWatch;
 use super::correction::{correct_branch, CorrectedBranch};
+use super::fold_guard::{BrokenTurn, EnergyTrend, CLEARANCE_DEFECT};
 use super::point::to_scaled;
 use super::report::{branch_report, in_branch, no_progress, stalled};
 use super::rescale;
@@ -116,6 +117,8 @@ fn run(
     let mut ends: Vec<(f64, f64)> = Vec::new();
     // The frequency defect of the corrected end of the previous branch, the next start.
     let mut start_defect = None;
+    // Turns of ENERGIE, for the broken-turn guard (fold_guard.rs).
+    let mut trend = EnergyTrend::default();
     for b in 1..=settings.n_branches {
         let mut series = series_step(
             &sys,
@@ -182,16 +185,27 @@ fn run(
             &mut points,
             || make_solver(&sys, settings, kind),
         )?;
-        let report = branch_report(
-            b,
-            &points,
-            series.a_max,
-            newton_iterations,
-            step_retries,
-            at_floor,
-        );
-        let go_on = on_branch(&report, &points);
+        // A turn of ENERGIE where the law has come apart: the rows up to the top are
+        // reported and kept, the run stops (fold_guard.rs).
+        let broken = trend.branch(&points);
+        if let Some(turn) = &broken {
+            points.truncate(turn.keep);
+        }
+        let go_on = points.is_empty() || {
+            let report = branch_report(
+                b,
+                &points,
+                series.a_max,
+                newton_iterations,
+                step_retries,
+                at_floor,
+            );
+            on_branch(&report, &points)
+        };
         out.extend(points);
+        if let Some(turn) = broken {
+            return Err(in_branch(turned_back(&turn), b));
+        }
         if !go_on || last {
             break;
         }
@@ -226,4 +240,21 @@ fn run(
         }
     }
     Ok(())
+}
+
+/// The error that stops a run at a broken turn (fold_guard.rs).
+fn turned_back(turn: &BrokenTurn) -> Error {
+    Error::numerical(format!(
+        "the branch turns back in ENERGIE at {:.6e} J (FREQUENCE {:.6e} Hz) where its contact \
+         law holds in time only to {:.3e} x RIGI_NOR*JEU (column ECART_LOI_CHOC) > {:.1}: the \
+         force series no longer tells contact from clearance, and past the turn the branch \
+         follows a root of the truncated harmonic balance, not a motion (a family turns back \
+         at an internal resonance with its law held); the rows after the turn were not stored",
+        turn.energy, turn.frequency, turn.defect, CLEARANCE_DEFECT
+    ))
+    .keyword("RESOLUTION/NB_HARM_NONL")
+    .hint(
+        "raise NB_HARM_NONL (the rows near the turn are the least accurate: their contact law \
+         is the least resolved), or stop the continuation below that ENERGIE",
+    )
 }

@@ -43,6 +43,7 @@ mod energy;
 pub mod error_sources;
 pub mod exact;
 pub mod exact_law;
+mod fold_guard;
 mod frequency_floor;
 mod gmres;
 mod law_check;

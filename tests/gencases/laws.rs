@@ -121,16 +121,20 @@ impl Shock {
         }
     }
 
-    /// The penalty energy ENERGIE counts (Code_Aster's definition): ½α·(penetration)².
-    pub fn penalty_energy(&self, u: &[f64]) -> f64 {
-        let d = match self.kind {
+    /// The signed penetration of the nonsmooth law at displacement u (positive in contact).
+    pub fn penetration(&self, u: &[f64]) -> f64 {
+        match self.kind {
             Kind::Plan => u[self.px] - self.gap,
             Kind::BiPlan => u[self.px].abs() - self.gap,
             Kind::Cercle { centre } => {
                 (u[self.px] - centre[0]).hypot(u[self.py] - centre[1]) - self.gap
             }
-        };
-        0.5 * self.alpha * d.max(0.0).powi(2)
+        }
+    }
+
+    /// The penalty energy ENERGIE counts (Code_Aster's definition): ½α·(penetration)².
+    pub fn penalty_energy(&self, u: &[f64]) -> f64 {
+        0.5 * self.alpha * self.penetration(u).max(0.0).powi(2)
     }
 
     /// The magnitude of the force (for the spectrum of the contact force).
