@@ -652,6 +652,48 @@ fn a_branch_that_turns_back_where_its_law_came_apart_stops_at_the_turn() {
     );
 }
 
+/// Rows that stay clear of a centred ring, shifted off the linear frequency by the ring's
+/// regularisation alone (seed 1, case 359: a 2-mass chain with a centred ring,
+/// RIGI_NOR/k_ref 4.6e6, PARA_REGUL 5.8e-7, H 28/200, DIR_EVOLUTION toward zero). As
+/// ENERGIE falls from 5e-8 J to 2e-14 J, FREQUENCE climbs from f_1 = 0.494 Hz to 0.91 Hz,
+/// every orbit more than half a JEU clear of the ring: the regularised force keeps a
+/// magnitude of about η/JEU at the centre and flips across it. The run now says so
+/// (MODE_NON_LINE_9, naming PARA_REGUL and LOI_CERCLE='SECANTE'), where MODE_NON_LINE_1's
+/// advice alone said "raise PARA_REGUL". That the shift is the regularised law's own is
+/// checked independently: shooting on the same law at the last row's ENERGIE puts the
+/// family more than 50 % above f_1 (measured 0.900 Hz, 82 %); below contact the nonsmooth
+/// law exerts no force, so its family there is the linear mode at f_1.
+#[test]
+fn rows_clear_of_a_ring_shifted_by_its_regularisation_are_announced() {
+    let bin = std::path::Path::new(env!("CARGO_BIN_EXE_aster-nl"));
+    let dir = tempfile::tempdir().unwrap();
+    let case = sample::sample(1, 359);
+    let out = run::judge(&case, bin, dir.path(), Duration::from_secs(300));
+    let text = std::fs::read_to_string(dir.path().join(format!("{}.out", case.name()))).unwrap();
+    assert!(
+        text.contains("<MODE_NON_LINE_9>")
+            && text.contains("lower PARA_REGUL")
+            && text.contains("LOI_CERCLE='SECANTE'"),
+        "{}",
+        out.summary()
+    );
+    let last = out
+        .compared
+        .iter()
+        .max_by_key(|c| c.row.nume)
+        .expect("a compared row");
+    let reference = last
+        .reference
+        .as_ref()
+        .expect("the reference at the last row");
+    assert!(
+        reference.freq / case.f_linear - 1.0 > 0.5,
+        "shooting puts the last row at {} Hz, f_1 = {} Hz",
+        reference.freq,
+        case.f_linear
+    );
+}
+
 /// A generated centred ring far up its branch (seed 1, case 54: one node with a CERCLE
 /// ring, RIGI_NOR/k_ref 58, H 30/55, 234 branches asked). Far up, the motion crosses the
 /// ring's centre with an amplitude of many JEU, and the ring law (eq. 12, LOI_CERCLE='RAYON')

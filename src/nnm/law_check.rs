@@ -85,6 +85,34 @@ impl LawCheck {
         })
     }
 
+    /// The largest penetration of the nonsmooth law over the shocks and the instants, in
+    /// units of each shock's JEU (negative when the orbit never reaches an obstacle); None
+    /// without shocks. `u`: displacement coefficients of each DOF.
+    pub fn largest_penetration(&self, u: &[Vec<f64>]) -> Result<Option<f64>> {
+        let n = self.sampler.n();
+        let mut work = self.work.borrow_mut();
+        let CheckWork { ws, ut, .. } = &mut *work;
+        let mut largest: Option<f64> = None;
+        for shock in &self.shocks {
+            let n_comp = shock.dofs.len().min(2);
+            for (&d, out) in shock.dofs.iter().zip(ut.chunks_exact_mut(n)) {
+                match u.get(d) {
+                    Some(s) => self.sampler.synth_with(s, self.h_lin, out, ws),
+                    None => out.fill(0.0),
+                }
+            }
+            let mut uj = [0.0; 2];
+            for j in 0..n {
+                for (c, v) in uj[..n_comp].iter_mut().enumerate() {
+                    *v = ut[c * n + j];
+                }
+                let p = shock.law.penetration(&uj[..n_comp])? / shock.law.gap;
+                largest = Some(largest.map_or(p, |l: f64| l.max(p)));
+            }
+        }
+        Ok(largest)
+    }
+
     /// Largest |f_series(t) − f_law(u(t))| / (α·JEU) over the shocks and the instants (0
     /// without shocks; `u`: displacement coefficients of each DOF; `contact`: per shock,
     /// its contact unknowns, the layout of `Point::x`, physical units), and the same

@@ -30,6 +30,7 @@
 // allowed once at the crate root (src/lib.rs), with the reason.
 
 mod anm;
+mod below_contact;
 mod bifurcation;
 pub mod budget;
 mod condensed_det;
@@ -89,6 +90,7 @@ mod solver_tests;
 #[cfg(test)]
 mod tests;
 
+pub use below_contact::{regularisation_alarm, ClearRow};
 pub use contact::Method as ContactMethod;
 pub use continuation::{continue_branches, continue_controlled, continue_while, Outcome};
 pub use frequency_floor::FrequencyFloor;

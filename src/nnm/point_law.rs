@@ -125,6 +125,23 @@ impl PointLaw {
         }
     }
 
+    /// The penetration of the nonsmooth law at displacement `u` (PLAN u − g, BI_PLAN
+    /// |u| − g, CERCLE |u − e| − g): negative while the structure is clear of the obstacle.
+    pub fn penetration(&self, u: &[f64]) -> Result<f64> {
+        let comp = |i: usize| {
+            u.get(i)
+                .copied()
+                .ok_or_else(|| Error::internal("contact law component missing"))
+        };
+        Ok(match self.law {
+            ShockLaw::Plan => comp(0)? - self.gap,
+            ShockLaw::BiPlan => comp(0)?.abs() - self.gap,
+            ShockLaw::Cercle { origin, .. } => {
+                (comp(0)? - origin[0]).hypot(comp(1)? - origin[1]) - self.gap
+            }
+        })
+    }
+
     /// Force components and their Jacobian (row-major n_comp × n_comp) at displacement `u`.
     pub fn eval(&self, u: &[f64]) -> Result<(Vec<f64>, Vec<f64>)> {
         let comp = |i: usize| {

@@ -209,6 +209,15 @@ impl PostProcessor {
         Ok(self.work.not_a_motion(&displacement, &contact, work_min))
     }
 
+    /// The largest penetration of the nonsmooth law along the orbit of `x`, in units of
+    /// JEU (`LawCheck::largest_penetration`): negative when the orbit reaches no obstacle;
+    /// None without shocks.
+    pub fn largest_penetration(&self, x: &[f64]) -> Result<Option<f64>> {
+        self.unknowns.check(x)?;
+        let displacement = self.unknowns.displacement_unchecked(x);
+        self.check.largest_penetration(&displacement)
+    }
+
     /// The law defect of `row` and the relative one of `relative_law_defect`, from one
     /// sampling of the law.
     pub fn law_defects(&self, x: &[f64]) -> Result<(f64, f64)> {

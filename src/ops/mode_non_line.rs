@@ -321,6 +321,9 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let ncoef = 2 * settings.h_lin as i64 + 1;
     let mut suspect: Vec<i64> = Vec::new();
     let mut worst_defect = 0.0f64;
+    // Rows and how far their orbits reach into the obstacles, for the regularisation's
+    // alarm (runs from a linear mode only: the floor knows its frequency).
+    let mut clear_rows: Vec<nnm::ClearRow> = Vec::new();
     // The writer of the points (statements prepared once, Fourier rows batched).
     let mut writer = mnl_store::PointWriter::new(ctx.store, &name)?;
     for (j, p) in points.iter().enumerate() {
@@ -333,6 +336,16 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             suspect.push(order);
         }
         worst_defect = worst_defect.max(out.law_defect_relative);
+        if floor.is_some() {
+            if let Some(penetration) = post.largest_penetration(&p.x)? {
+                clear_rows.push(nnm::ClearRow {
+                    order,
+                    energy: p.energy,
+                    frequency: p.frequency,
+                    penetration,
+                });
+            }
+        }
         let mut cells = row(&name, &cara_choc, order, ncoef, reprise, p, defect);
         if let Some(i) = exact_col {
             cells.insert(i, exact_cells.get(j).cloned().unwrap_or(Cell::Null));
@@ -379,6 +392,13 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 floor_rows.len()
             ),
         )?;
+    }
+    // Rows clear of every obstacle, off the linear frequency: the regularisation's shift
+    // (nnm/below_contact.rs).
+    if let Some(f) = &floor {
+        if let Some(w) = nnm::regularisation_alarm(&problem, f.linear(), &clear_rows) {
+            ctx.alarm("MODE_NON_LINE_9", &w)?;
+        }
     }
     // The advice's estimate (a few small Newton solves) only when the alarm is shown.
     let advise = !ctx.ignored_alarms.iter().any(|a| a == "MODE_NON_LINE_1");
