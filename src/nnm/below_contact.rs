@@ -77,8 +77,9 @@ pub fn regularisation_alarm(problem: &Problem, f_linear: f64, rows: &[ClearRow])
     };
     Some(format!(
         "{} row(s) between NUME_ORDRE {first} and {last} reach no obstacle (their orbit stays \
-         clear of every obstacle by at least {CLEARANCE} JEU) yet their FREQUENCE is off the linear frequency {f_linear:.6e} Hz \
-         of the mode by up to {:+.3e} (NUME_ORDRE {}, ENERGIE {:.4e} J): below contact the \
+         clear of every obstacle by at least {CLEARANCE} JEU) yet their FREQUENCE is off the \
+         linear frequency {f_linear:.6e} Hz of the mode by up to {:+.3e} (NUME_ORDRE {}, \
+         ENERGIE {:.4e} J): below contact the \
          nonsmooth law exerts no force, and that shift is the regularisation's alone ({why}). \
          With the nonsmooth law these rows are the linear mode; the truncated series resolves \
          the regularised force there less well than contact, and the advice of MODE_NON_LINE_1 \
