@@ -1267,14 +1267,44 @@ fn biplan_exact_frequency(m: f64, k: f64, alpha: f64, g: f64, e: f64) -> f64 {
     1.0 / (4.0 * (t1 + t2))
 }
 
+/// Issue 34, point 1, on a secant ring: testcases/hard/cercle_whirl.comm (a whirl in a
+/// ring, LOI_CERCLE='SECANTE', 33 tests of its rows) with NB_BRANCHE 400 instead of 45.
+/// The secant ring is not rescaled, so far up its corrections end at a round-off level
+/// that grows like (amplitude/JEU)²: before, a row at 2.3e16 J was accepted at RESIDU 3.5e-9
+/// above the file's PREC_NEWTON and its RESIDU test failed. Now the run stops at the first
+/// such branch end (MODE_NON_LINE_8 naming PREC_NEWTON, no MODE_NON_LINE_5), and every test
+/// of the file passes.
+#[test]
+fn a_secant_ring_with_a_generous_nb_branche_keeps_every_test() {
+    let dir = tempfile::tempdir().unwrap();
+    let original = std::fs::read_to_string(case("cercle_whirl.comm")).unwrap();
+    let generous = original.replacen("NB_BRANCHE=45", "NB_BRANCHE=400", 1);
+    assert_ne!(generous, original);
+    let file = dir.path().join("whirl400.comm");
+    std::fs::write(&file, generous).unwrap();
+    std::fs::copy(case("cercle_whirl.mail"), dir.path().join("whirl400.mail")).unwrap();
+    let o = run_file(&file, &dir.path().join("whirl400.db"));
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    assert!(out.contains("tests: 33 OK, 0 NOOK"), "{out}");
+    assert!(
+        out.contains("[RESOLUTION/PREC_NEWTON]") && !out.contains("<MODE_NON_LINE_5>"),
+        "{out}"
+    );
+}
+
 /// Issue 34, point 1, the other files a user writes with a generous NB_BRANCHE: sdnd122a's
 /// one DOF with a BI_PLAN stop and 400 branches, and a 3-mass fixed–free chain (k = 10,
 /// m = 1) with a PLAN stop on its middle mass, branch of linear mode 2, 200 branches. Each
 /// runs to its end (exit 0, FIN reached, the commands after MODE_NON_LINE run). The chain's
 /// rows all converge (RESIDU ≤ PREC_NEWTON, none accepted at the round-off floor: no
-/// MODE_NON_LINE_5); the BI_PLAN rows far up do not (BI_PLAN is not rescaled, the open part
-/// of point 1) but their frequency is the exact homogeneous limit √((k + α)/m)/2π within
-/// 1e-7. The BI_PLAN rows up to 20 E_c are compared with the exact frequency of
+/// MODE_NON_LINE_5). BI_PLAN is not rescaled (rescale.rs): far up its corrections end at
+/// a round-off level that grows like (amplitude/JEU)², and the run now stops at the first
+/// such branch end (MODE_NON_LINE_8 naming PREC_NEWTON, rescale::floor_far_up), every
+/// stored row solved to PREC_NEWTON 1e-9 (measured 7.2e-10 at worst, 294 rows to 6.1e12
+/// J; before, 106 rows from 3e13 J to 7e14 J were accepted at the floor, RESIDU up to
+/// 1.8e-8), the last one within 1e-5 of the exact homogeneous limit √((k + α)/m)/2π
+/// (measured 1.2e-8). The BI_PLAN rows up to 20 E_c are compared with the exact frequency of
 /// the symmetric bilinear oscillator (nonsmooth; PARA_REGUL 5e-5 moves it by less than
 /// 1e-4): within 5e-3, the order of NB_HARM_LINE 5's truncation (sdnd122a's PLAN rows:
 /// 1.3e-3, docs/accuracy.md; a symmetric stop's motion has odd harmonics only, so 5 hold
@@ -1303,10 +1333,16 @@ fn generous_nb_branche_biplan_and_chain_files_run_to_their_end() {
     let c = Connection::open(&db).unwrap();
     let v = rows(&c, "MNL");
     assert!(v.len() > 105, "{}", v.len());
-    // Far up, the gap is negligible and the motion linear at √((k + α)/m): BI_PLAN keeps
-    // Code_Aster's length unit (rescale.rs), so those rows sit at the round-off floor
-    // (MODE_NON_LINE_5, RESIDU up to 1.5e-8) and carry its error: measured 2.5e-9 at
-    // 7e14 J; allowed 1e-7, ten times the floor's RESIDU.
+    // Far up, the gap is negligible and the motion linear at √((k + α)/m). No row accepted
+    // at the round-off floor: the run ends where the floor begins.
+    assert!(
+        !out.contains("<MODE_NON_LINE_5>") && out.contains("[RESOLUTION/PREC_NEWTON]"),
+        "{out}"
+    );
+    let worst: f64 = c
+        .query_row("SELECT MAX(RESIDU) FROM MNL", [], |r| r.get(0))
+        .unwrap();
+    assert!(worst <= 1e-9, "RESIDU {worst:e}");
     let last = v.last().unwrap();
     assert!(last.energy > 1e10, "{last:?}");
     let limit = 60f64.sqrt() / (2.0 * std::f64::consts::PI);

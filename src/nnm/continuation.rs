@@ -155,6 +155,14 @@ fn run(
             b,
         )?;
         let at_floor = points.last().is_some_and(|p| p.at_floor);
+        // Far into a stop that is not rescaled, a floor is the amplitude's: the branch is
+        // not stored and the run ends (rescale::floor_far_up).
+        if let Some(end) = points.last().filter(|p| p.at_floor) {
+            if let Some(e) = rescale::floor_far_up(problem, &sys, &x_end, end, settings.prec_newton)
+            {
+                return Err(in_branch(e, b));
+            }
+        }
         if let Some(p) = points.last() {
             ends.push((p.energy, p.frequency));
         }

@@ -20,7 +20,8 @@
 
 use super::point::unit_factors;
 use super::system::{Scaling, System};
-use super::{CercleForm, Problem, ShockLaw};
+use super::{CercleForm, Point, Problem, ShockLaw};
+use crate::error::Error;
 
 /// Scaled displacement amplitude (largest |coefficient| of U) above which the lengths are
 /// rescaled. Large enough that the branches of the testcases (sdnd122a reaches 134 JEU
@@ -64,6 +65,46 @@ pub(super) fn rescalable(law: ShockLaw) -> bool {
 /// Every stop of `problem` is [`rescalable`] (a run, above, and a restart, start.rs).
 pub(super) fn all_rescalable(problem: &Problem) -> bool {
     problem.shocks.iter().all(|s| rescalable(s.law))
+}
+
+/// Why a branch end accepted at its round-off floor (newton.rs) ends the run, if it does:
+/// when some stop is not [`rescalable`] and the motion exceeds [`RESCALE_AT`] times the
+/// largest JEU, the floor is the amplitude's doing (BI_PLAN's and the secant ring's
+/// equations lose digits like (amplitude/JEU)², in any length unit), and every branch
+/// further up would end at a higher one. Issue 34 asks that no row past first contact be
+/// accepted at the floor merely because the amplitude is large: the branch is not stored
+/// and the run ends there, its rows all solved to PREC_NEWTON. Measured on the files of
+/// testcases/ run with NB_BRANCHE 400: cercle_centre, cercle_offset and utube_rayon
+/// (secant rings and BI_PLAN stops) stored rows above 1e14 J with RESIDU up to 2.8e-3
+/// against their PREC_NEWTON, and their RESIDU tests failed.
+pub(super) fn floor_far_up(
+    problem: &Problem,
+    sys: &System,
+    x_end: &[f64],
+    end: &Point,
+    prec_newton: f64,
+) -> Option<Error> {
+    let largest_gap = problem.shocks.iter().map(|s| s.gap).fold(0.0f64, f64::max);
+    if all_rescalable(problem) || largest_gap <= 0.0 {
+        return None;
+    }
+    let amplitude = motion_amplitude(sys, x_end) * sys.scaling.length / largest_gap;
+    (amplitude > RESCALE_AT).then(|| {
+        Error::numerical(format!(
+            "the branch end (ENERGIE = {:.6e}, FREQUENCE = {:.6e} Hz) was solved only to its \
+             round-off level, RESIDU = {:.3e} > PREC_NEWTON = {prec_newton:.1e}, with the motion \
+             {amplitude:.3e} times the largest JEU: the equations of BI_PLAN and of the secant \
+             ring (LOI_CERCLE='SECANTE') lose digits like (amplitude/JEU)², so no branch further \
+             up can be solved to PREC_NEWTON; that branch was not stored",
+            end.energy, end.frequency, end.residual
+        ))
+        .keyword("RESOLUTION/PREC_NEWTON")
+        .hint(
+            "the rows stored are solved to PREC_NEWTON; to go further up, raise PREC_NEWTON \
+             (the rows beyond are then solved to it), or bound the run below this ENERGIE with \
+             ENER_MAX",
+        )
+    })
 }
 
 /// The one rule of a change of length unit, for a run (above) and for a restart from a
