@@ -100,6 +100,7 @@ fn main() {
         correction_ratio_max: None,
         spread_max: None,
         work_min: None,
+        gamma_max: None,
         frequency_floor: None,
         approximation: if std::env::var("PADE").is_ok() {
             Approximation::Pade

@@ -64,6 +64,30 @@ pub(super) fn off_the_law(
             ));
         }
     }
+    if let Some(max) = control.gamma_max {
+        let ratio = relative_gamma(end);
+        if !(ratio <= max) {
+            return Ok(Some(
+                Error::numerical(format!(
+                    "the branch end balances its equations only with a fictitious damping \
+                     AMOR_FICTIF = {:.3e}, {ratio:.3e} x its pulsation > AMOR_FICTIF_MAXI = \
+                     {max:.3e} (ENERGIE = {:.6e}, FREQUENCE = {:.6e} Hz): over a period that \
+                     damping does work of about {:.1e} x the energy, so the point is not a \
+                     periodic orbit of the conservative structure (a root of the truncated \
+                     harmonic balance)",
+                    end.gamma.abs(),
+                    end.energy,
+                    end.frequency,
+                    2.0 * std::f64::consts::PI * ratio
+                ))
+                .keyword("RESOLUTION/AMOR_FICTIF_MAXI")
+                .hint(
+                    "raise NB_HARM_NONL and NB_HARM_LINE (the truncated contact force is not \
+                     conservative enough), or lower PREC_MAN",
+                ),
+            ));
+        }
+    }
     if let Some(floor) = &control.frequency_floor {
         let why = match floor.off_the_family(end.frequency, end.energy) {
             Some(OffTheFamily::Below(dip)) => Some((
@@ -405,4 +429,10 @@ fn jumped_off(
     let end = frequency_defect(sys, &done.x_end)?;
     done.end_defect = Some(end);
     Ok((end > max.max(ROOT_JUMP_RATIO * start)).then_some(Jump::Root))
+}
+
+/// AMOR_FICTIF relative to the pulsation, |γ|/ω: the work of the fictitious damping over a
+/// period is about 2π times this fraction of the energy (StepControl::gamma_max).
+pub fn relative_gamma(p: &Point) -> f64 {
+    p.gamma.abs() / (2.0 * std::f64::consts::PI * p.frequency.abs())
 }

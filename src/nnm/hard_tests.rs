@@ -543,6 +543,7 @@ fn hard_non_physical_family_stops_on_the_law_check() {
             correction_ratio_max: None,
             spread_max: None,
             work_min: None,
+            gamma_max: None,
             frequency_floor: None,
             approximation: Approximation::Series,
         };
@@ -607,6 +608,7 @@ fn wall_grid_run(ratio: f64, regul: f64, approximation: Approximation) -> (usize
         correction_ratio_max: None,
         spread_max: None,
         work_min: None,
+        gamma_max: None,
         frequency_floor: None,
         approximation,
     };

@@ -93,6 +93,7 @@ mod tests;
 pub use below_contact::{regularisation_alarm, ClearRow};
 pub use contact::Method as ContactMethod;
 pub use continuation::{continue_branches, continue_controlled, continue_while, Outcome};
+pub use correction::relative_gamma;
 pub use frequency_floor::FrequencyFloor;
 pub use law_check::LAW_DEFECT_ALARM;
 pub use linear_solver::{BorderedSolver, SparseLu};

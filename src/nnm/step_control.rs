@@ -47,6 +47,10 @@ pub struct StepControl {
     /// structure on average; not a motion) is retried like a failed correction, then stops
     /// the run (None: not checked).
     pub work_min: Option<f64>,
+    /// A branch whose corrected end needs a fictitious damping γ above this times ω to
+    /// balance (AMOR_FICTIF_MAXI: not a periodic orbit of the conservative structure) is
+    /// retried like a failed correction, then stops the run (None: not checked).
+    pub gamma_max: Option<f64>,
     /// A branch whose corrected end lies below the linear frequency of its mode by more
     /// than the floor's tolerance, with no internal resonance in reach to explain it
     /// (frequency_floor.rs: not a motion, the contact laws only stiffen), is retried like a
@@ -77,6 +81,7 @@ impl StepControl {
             correction_ratio_max: None,
             spread_max: None,
             work_min: None,
+            gamma_max: None,
             frequency_floor: None,
             approximation: Approximation::Series,
         }

@@ -176,6 +176,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     // The rows kept after a wrong-branch end are judged by the same checks.
     let floor = control.frequency_floor.clone();
     let work_min = control.work_min.unwrap_or(f64::NEG_INFINITY);
+    let gamma_max = control.gamma_max;
 
     // Continue, reporting each branch.
     let info = ctx.info;
@@ -270,7 +271,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 let off_the_family = floor
                     .as_ref()
                     .is_some_and(|f| f.off_the_family(p.frequency, p.energy).is_some());
-                Ok(!off_the_family && post.is_motion(&p.x, p.law_defect, work_min)?)
+                let damped = gamma_max.is_some_and(|max| !(nnm::relative_gamma(p) <= max));
+                Ok(!off_the_family && !damped && post.is_motion(&p.x, p.law_defect, work_min)?)
             })
             .collect::<Result<Vec<bool>>>()?;
         mnl_end::rows_kept(outcome.error.as_ref(), &motions)
@@ -577,7 +579,8 @@ fn settings(args: &Args) -> Result<Settings> {
 }
 
 /// RESOLUTION/NB_REPRISE_PAS_MAXI, NB_BRANCHE_SANS_PROGRES, ECART_LOI_CHOC_MAXI, SAUT_RACINE_MAXI,
-/// RAPPORT_CORRECTION_MAXI, TRAVAIL_CHOC_MINI (BAISSE_FREQ_MAXI once the start is known),
+/// RAPPORT_CORRECTION_MAXI, TRAVAIL_CHOC_MINI, AMOR_FICTIF_MAXI (BAISSE_FREQ_MAXI once the
+/// start is known),
 /// ECART_ENERGIE_MAXI and APPROX_MAN (aster-nl extensions; default and bounds in the
 /// catalog).
 fn step_control(args: &Args) -> Result<nnm::StepControl> {
@@ -590,6 +593,7 @@ fn step_control(args: &Args) -> Result<nnm::StepControl> {
         correction_ratio_max: Some(r.req_real("RAPPORT_CORRECTION_MAXI")?).filter(|&v| v > 0.0),
         spread_max: r.real("ECART_ENERGIE_MAXI"),
         work_min: Some(r.req_real("TRAVAIL_CHOC_MINI")?),
+        gamma_max: Some(r.req_real("AMOR_FICTIF_MAXI")?),
         // Set once the start is known (the mode the family starts from).
         frequency_floor: None,
         approximation: match r.req_text("APPROX_MAN")? {

@@ -29,6 +29,7 @@ const WRONG_BRANCH: &[&str] = &[
     "ECART_ENERGIE_MAXI",
     "TRAVAIL_CHOC_MINI",
     "BAISSE_FREQ_MAXI",
+    "AMOR_FICTIF_MAXI",
 ];
 
 fn is_wrong_branch(e: &Error) -> bool {
