@@ -66,7 +66,7 @@ pub(super) fn off_the_law(
     }
     if let Some(max) = control.gamma_max {
         let ratio = relative_gamma(end);
-        if !(ratio <= max) {
+        if ratio.is_nan() || ratio > max {
             return Ok(Some(
                 Error::numerical(format!(
                     "the branch end balances its equations only with a fictitious damping \

@@ -271,7 +271,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 let off_the_family = floor
                     .as_ref()
                     .is_some_and(|f| f.off_the_family(p.frequency, p.energy).is_some());
-                let damped = gamma_max.is_some_and(|max| !(nnm::relative_gamma(p) <= max));
+                let damped = gamma_max.is_some_and(|max| {
+                    let ratio = nnm::relative_gamma(p);
+                    ratio.is_nan() || ratio > max
+                });
                 Ok(!off_the_family && !damped && post.is_motion(&p.x, p.law_defect, work_min)?)
             })
             .collect::<Result<Vec<bool>>>()?;
