@@ -74,9 +74,11 @@ pub(super) fn all_rescalable(problem: &Problem) -> bool {
 /// further up would end at a higher one. Issue 34 asks that no row past first contact be
 /// accepted at the floor merely because the amplitude is large: the branch is not stored
 /// and the run ends there, its rows all solved to PREC_NEWTON. Measured on the files of
-/// testcases/ run with NB_BRANCHE 400: cercle_centre, cercle_offset and utube_rayon
-/// (secant rings and BI_PLAN stops) stored rows above 1e14 J with RESIDU up to 2.8e-3
-/// against their PREC_NEWTON, and their RESIDU tests failed.
+/// testcases/ run with NB_BRANCHE 400: before, cercle_centre, cercle_offset and
+/// cercle_whirl (secant rings, and BI_PLAN stops in the same files) stored rows above
+/// 1e14 J at the floor, RESIDU up to 2.8e-3 against PREC_NEWTON 1e-9; now none does, and
+/// cercle_whirl and cercle_offset pass their RESIDU tests (cercle_centre still fails its
+/// own on uncorrected rows inside branches, docs/hard_cases.md).
 pub(super) fn floor_far_up(
     problem: &Problem,
     sys: &System,
