@@ -471,6 +471,25 @@ fn run_generated(
     (code, out, dir.join(format!("{name}.db")))
 }
 
+/// Generated case `index` of seed 1 written, run and judged in a fresh directory (kept
+/// alive by the returned handle), with the run's output text.
+fn judge_generated(
+    index: u64,
+) -> (
+    tempfile::TempDir,
+    gencases::sample::Case,
+    run::Outcome,
+    String,
+) {
+    let bin = std::path::Path::new(env!("CARGO_BIN_EXE_aster-nl"));
+    let dir = tempfile::tempdir().unwrap();
+    let case = sample::sample(1, index);
+    let out = run::judge(&case, bin, dir.path(), Duration::from_secs(300));
+    let text = std::fs::read_to_string(dir.path().join(format!("{}.out", case.name())))
+        .unwrap_or_default();
+    (dir, case, out, text)
+}
+
 /// Generated cases whose force series is far too short for their stiff contact (seed 1:
 /// 223, a 2-mass chain with a centred ring, RIGI_NOR/k_ref 1.2e5, PARA_REGUL 2e-8, H 7/39;
 /// 189, a 4-mass chain with a PLAN stop, RIGI_NOR/k_ref 2.4e6, PARA_REGUL 2e-8, H 18/289).
@@ -571,10 +590,7 @@ fn rows_below_the_linear_frequency_are_cut() {
 /// campaign's judge, against shooting on the same regularised law).
 #[test]
 fn a_branch_end_below_the_floor_is_retried_onto_its_family() {
-    let bin = std::path::Path::new(env!("CARGO_BIN_EXE_aster-nl"));
-    let dir = tempfile::tempdir().unwrap();
-    let case = sample::sample(1, 83);
-    let out = run::judge(&case, bin, dir.path(), Duration::from_secs(300));
+    let (_dir, _, out, _) = judge_generated(83);
     assert!(matches!(out.verdict, Verdict::Reached), "{}", out.summary());
 }
 
@@ -665,11 +681,7 @@ fn a_branch_that_turns_back_where_its_law_came_apart_stops_at_the_turn() {
 /// law exerts no force, so its family there is the linear mode at f_1.
 #[test]
 fn rows_clear_of_a_ring_shifted_by_its_regularisation_are_announced() {
-    let bin = std::path::Path::new(env!("CARGO_BIN_EXE_aster-nl"));
-    let dir = tempfile::tempdir().unwrap();
-    let case = sample::sample(1, 359);
-    let out = run::judge(&case, bin, dir.path(), Duration::from_secs(300));
-    let text = std::fs::read_to_string(dir.path().join(format!("{}.out", case.name()))).unwrap();
+    let (_dir, case, out, text) = judge_generated(359);
     assert!(
         text.contains("<MODE_NON_LINE_9>")
             && text.contains("lower PARA_REGUL")
@@ -705,12 +717,8 @@ fn rows_clear_of_a_ring_shifted_by_its_regularisation_are_announced() {
 /// against 5.3e-4, 103 rows, 4.4 s), and no stored row above the bound.
 #[test]
 fn a_branch_end_held_by_its_fictitious_damping_is_not_a_motion() {
-    let bin = std::path::Path::new(env!("CARGO_BIN_EXE_aster-nl"));
-    let dir = tempfile::tempdir().unwrap();
-    let case = sample::sample(1, 67);
-    let out = run::judge(&case, bin, dir.path(), Duration::from_secs(300));
+    let (dir, case, out, text) = judge_generated(67);
     assert!(matches!(out.verdict, Verdict::Reached), "{}", out.summary());
-    let text = std::fs::read_to_string(dir.path().join(format!("{}.out", case.name()))).unwrap();
     assert!(
         text.contains("<MODE_NON_LINE_8>") && text.contains("[RESOLUTION/AMOR_FICTIF_MAXI]"),
         "{}",

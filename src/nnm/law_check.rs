@@ -85,6 +85,25 @@ impl LawCheck {
         })
     }
 
+    /// Samples the displacement components of `shock` over one period into `ut`
+    /// (component-major, by FFT); returns how many components (1, or 2 for a ring).
+    fn sample_displacement(
+        &self,
+        shock: &CheckedShock,
+        u: &[Vec<f64>],
+        ut: &mut [f64],
+        ws: &mut FftScratch,
+    ) -> usize {
+        let n = self.sampler.n();
+        for (&d, out) in shock.dofs.iter().zip(ut.chunks_exact_mut(n)) {
+            match u.get(d) {
+                Some(s) => self.sampler.synth_with(s, self.h_lin, out, ws),
+                None => out.fill(0.0),
+            }
+        }
+        shock.dofs.len().min(2)
+    }
+
     /// The largest penetration of the nonsmooth law over the shocks and the instants, in
     /// units of each shock's JEU (negative when the orbit never reaches an obstacle); None
     /// without shocks. `u`: displacement coefficients of each DOF.
@@ -94,13 +113,7 @@ impl LawCheck {
         let CheckWork { ws, ut, .. } = &mut *work;
         let mut largest: Option<f64> = None;
         for shock in &self.shocks {
-            let n_comp = shock.dofs.len().min(2);
-            for (&d, out) in shock.dofs.iter().zip(ut.chunks_exact_mut(n)) {
-                match u.get(d) {
-                    Some(s) => self.sampler.synth_with(s, self.h_lin, out, ws),
-                    None => out.fill(0.0),
-                }
-            }
+            let n_comp = self.sample_displacement(shock, u, ut, ws);
             let mut uj = [0.0; 2];
             for j in 0..n {
                 for (c, v) in uj[..n_comp].iter_mut().enumerate() {
@@ -133,13 +146,7 @@ impl LawCheck {
             let mut peak = shock.scale;
             // Samples by FFT: within round-off of summing the series at each instant,
             // O(N log N) instead of O(N·H).
-            let n_comp = shock.dofs.len().min(2);
-            for (&d, out) in shock.dofs.iter().zip(ut.chunks_exact_mut(n)) {
-                match u.get(d) {
-                    Some(s) => self.sampler.synth_with(s, self.h_lin, out, ws),
-                    None => out.fill(0.0),
-                }
-            }
+            let n_comp = self.sample_displacement(shock, u, ut, ws);
             let forces = unknowns.get(shock.forces.clone()).unwrap_or_default();
             let n_forces = forces.len().min(2);
             for (s, out) in forces.iter().zip(ft.chunks_exact_mut(n)) {
