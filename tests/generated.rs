@@ -501,7 +501,7 @@ fn judge_generated(
 /// with MODE_NON_LINE_8 naming TRAVAIL_CHOC_MINI, the file
 /// goes on, and no stored row is more than 1e-2 below the linear frequency (the test at
 /// its default −1e-2 bounds the dip to about half that: the work ratio is about 2Δf/f
-/// there, src/nnm/contact_work.rs).
+/// there, src/nnm/analysis/contact_work.rs).
 #[test]
 fn roots_of_the_truncated_balance_that_attract_are_cut() {
     let dir = tempfile::tempdir().unwrap();
@@ -545,7 +545,7 @@ fn roots_of_the_truncated_balance_that_attract_are_cut() {
 /// 2.4e6, H 18/289; 71, a 5-mass chain, H 20/44). With the frequency floor off
 /// (BAISSE_FREQ_MAXI=1.0) each run stores rows below f_lin by 3.8e-6 (75) to 1.7e-2 (189),
 /// measured: errors of at least that much, since the true family is at or above f_lin
-/// (src/nnm/frequency_floor.rs; f_lin here is the generator's own eigenvalue, gencases).
+/// (src/nnm/continuation/frequency_floor.rs; f_lin here is the generator's own eigenvalue, gencases).
 /// With the default each run ends with MODE_NON_LINE_8 naming BAISSE_FREQ_MAXI, the file
 /// goes on, and no stored row is below f_lin by more than the default 1e-6.
 #[test]
@@ -825,7 +825,7 @@ fn resonance_pairs(out: &str) -> Vec<(usize, usize, f64, i64, f64, bool)> {
 /// independently of the engine: mode j's frequency against the eigenpairs of the case's own
 /// model (tests/gencases/eigen.rs) to 1e-6, the crossing against the table (n·FREQUENCE −
 /// f_j changes sign between the named row and the one before, or the row is within 1e-3 of
-/// f_j: the rule of src/nnm/resonance.rs), the FREQUENCE quoted against the table's, and
+/// f_j: the rule of src/nnm/analysis/resonance.rs), the FREQUENCE quoted against the table's, and
 /// "holds it" exactly when NB_HARM_LINE ≥ n.
 #[test]
 fn internal_resonances_announced_on_generated_cases_are_real_crossings() {

@@ -1183,7 +1183,7 @@ fn no_row_far_up_a_plan_branch_is_accepted_at_the_round_off_floor() {
             |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?, r.get(3)?)),
         )
         .unwrap();
-    // Issue 34: with the lengths rescaled along the branch (src/nnm/rescale.rs) no row
+    // Issue 34: with the lengths rescaled along the branch (src/nnm/model/rescale.rs) no row
     // of this PLAN branch is accepted at the round-off floor any more (before: rows up to
     // RESIDU 4.1e-6, named by MODE_NON_LINE_5); the branch ends at the homogeneous limit.
     assert_eq!(n, 0, "{first:?} {last:?} {top:?}\n{out}");
@@ -1199,7 +1199,7 @@ fn no_row_far_up_a_plan_branch_is_accepted_at_the_round_off_floor() {
 /// to 6.5e16 J with 139 rows accepted "at the round-off floor" (RESIDU up to 4.1e-6) and 297
 /// rows flagged as breaking their contact law, then stopped on NB_BRANCHE_SANS_PROGRES with
 /// exit code 2, skipping every command after MODE_NON_LINE. Now the lengths are rescaled
-/// along the branch (src/nnm/rescale.rs) and the run ends at the homogeneous limit of the
+/// along the branch (src/nnm/model/rescale.rs) and the run ends at the homogeneous limit of the
 /// stop with an alarm: every row converged below PREC_NEWTON (1e-9), none at the floor or
 /// flagged, ENERGIE increasing, FREQUENCE non-decreasing and below the bilinear limit
 /// 2 f0 f1 / (f0 + f1) of the nonsmooth system (the frequency of a PLAN stop rises toward

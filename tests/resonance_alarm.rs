@@ -1,4 +1,4 @@
-//! Alarm MODE_NON_LINE_7 (internal resonances, src/nnm/resonance.rs) on the steel cantilever
+//! Alarm MODE_NON_LINE_7 (internal resonances, src/nnm/analysis/resonance.rs) on the steel cantilever
 //! of issue 34 point 5, `testcases/hard/cantilever_17to1.comm`, run by the `aster-nl`
 //! binary. Where the alarm must fire is computed here from Euler-Bernoulli's closed-form
 //! frequencies and the table's FREQUENCE column, independently of the engine.

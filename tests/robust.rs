@@ -392,7 +392,7 @@ fn size_keywords_that_cannot_fit_are_refused_before_allocating() {
     let huge = i64::MAX.to_string();
     let cases: Vec<(String, &str)> = vec![
         // The structured solver holds no dense (2H_nl+1)² block at this size, so
-        // NB_HARM_NONL=100000 needs about 0.5 GB (nnm/budget.rs); 10⁸ harmonics need
+        // NB_HARM_NONL=100000 needs about 0.5 GB (nnm/solve/budget.rs); 10⁸ harmonics need
         // hundreds of GB.
         (
             base.replace("NB_HARM_NONL=200", "NB_HARM_NONL=100000000"),

@@ -7,7 +7,7 @@
 use crate::error::{Error, Result};
 use crate::interp;
 use crate::nnm::{self, Problem, Settings};
-use crate::ops::common::mnl_problem::engine_shock;
+use crate::ops::mode_non_line::problem::engine_shock;
 use crate::ops::Units;
 use crate::store::mnl::StoredShock;
 use crate::store::{matrix, modes as mode_store, Store};

@@ -1672,8 +1672,18 @@ fn info_keywords_say_what_each_level_prints() {
         } else {
             op
         };
-        let src = std::fs::read_to_string(ops_dir.join(format!("{}.rs", file.to_lowercase())))
-            .unwrap_or_default();
+        // An operator is one file, or one folder of files (ops/mode_non_line/).
+        let stem = file.to_lowercase();
+        let folder = ops_dir.join(&stem);
+        let src = match std::fs::read_dir(&folder) {
+            Ok(entries) => entries
+                .filter_map(|e| std::fs::read_to_string(e.ok()?.path()).ok())
+                .collect::<Vec<_>>()
+                .join("\n"),
+            Err(_) => {
+                std::fs::read_to_string(ops_dir.join(format!("{stem}.rs"))).unwrap_or_default()
+            }
+        };
         let reads_info = src.contains("ctx.info") || src.contains("int(\"INFO\")");
         let no_effect = info.doc.starts_with("No effect");
         assert!(

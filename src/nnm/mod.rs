@@ -19,98 +19,64 @@
 //!   vector; this rule follows the paths of its validation cases (docs/mode_non_line.md).
 //! - Branch numbers in reports start at 1.
 //!
-//! The method, file by file (docs/nnm.md has the table): the problem and its settings
-//! (problem.rs); stage 1, the start (start.rs, quadrature.rs); stage 2, the series step
-//! (series_step.rs over anm.rs); stage 3, the correction of the branch end (correction.rs
-//! over newton.rs); stage 4, the bifurcation test (bifurcation.rs); stage 5, the report
-//! (report.rs); the driver that chains them branch after branch (continuation.rs); a point
-//! as the user sees it (point.rs) and as a motion (orbit.rs).
+//! The method, room by room (docs/nnm.md, "Rooms", lists every file): the problem, its
+//! settings and its laws (model/problem.rs, model/laws.rs, model/system.rs); the tangent's
+//! solvers (solve/); stage 1, the start (continuation/start.rs, continuation/quadrature.rs);
+//! stage 2, the series step (continuation/series_step.rs over continuation/anm.rs); stage 3,
+//! the correction of the branch end (continuation/correction.rs over
+//! continuation/newton.rs); stage 4, the bifurcation test (continuation/bifurcation.rs);
+//! stage 5, the report (continuation/report.rs); the driver that chains them branch after
+//! branch (continuation/driver.rs); a point as the user sees it (model/point.rs) and as a
+//! motion (analysis/orbit.rs).
 
 // The shared `Error` (a contract of the crate) is large: `clippy::result_large_err` is
 // allowed once at the crate root (src/lib.rs), with the reason.
 
-mod anm;
-mod below_contact;
-mod bifurcation;
-pub mod budget;
-mod condensed_det;
-mod contact;
-mod contact_work;
-mod continuation;
-mod correction;
-mod cosine_sampler;
-mod dense_lu;
-mod energy;
-pub mod error_sources;
-pub mod exact;
-pub mod exact_law;
-mod fold_guard;
-mod frequency_floor;
-mod gmres;
-mod law_check;
-mod laws;
-mod linear_solver;
-mod low_synth;
-mod newton;
-mod orbit;
-mod pade;
-mod parity_block;
-mod point;
-mod point_law;
-mod post;
-mod problem;
-mod quadrature;
-mod reduced;
-mod report;
-mod rescale;
-mod resolution;
-mod resonance;
-mod root_check;
-mod route_timing;
-mod series;
-mod series_step;
-mod solver_kind;
-pub mod stability;
-mod start;
-mod step_control;
-mod system;
-mod toeplitz;
-mod vector;
+// The rooms, lowest first: a room uses itself and the rooms declared before it, never one
+// declared after it (`tests::doors` checks it; docs/nnm.md lists their files).
+mod model;
 
-#[cfg(test)]
-mod cercle_eq12_tests;
-#[cfg(test)]
-mod hard_tests;
-#[cfg(test)]
-mod reference;
-#[cfg(test)]
-mod resonance_tests;
-#[cfg(test)]
-mod solver_tests;
+mod solve;
+
+mod continuation;
+
+mod analysis;
+
+// The front door: the continuation with the analysis room's checks of each branch end.
+mod follow;
+
 #[cfg(test)]
 mod tests;
 
-pub use below_contact::{regularisation_alarm, ClearRow};
-pub use contact::Method as ContactMethod;
-pub use continuation::{continue_branches, continue_controlled, continue_while, Outcome};
-pub use correction::relative_gamma;
-pub use frequency_floor::FrequencyFloor;
-pub use law_check::LAW_DEFECT_ALARM;
-pub use linear_solver::{BorderedSolver, SparseLu};
-pub use orbit::{
+pub use analysis::{error_sources, exact_law, stability};
+pub use model::exact;
+pub use solve::budget;
+
+pub use analysis::below_contact::{regularisation_alarm, ClearRow};
+pub use analysis::law_check::LAW_DEFECT_ALARM;
+pub use analysis::orbit::{
     contact_coefficients, displacement_coefficients, largest_displacement, time_history,
     velocity_coefficients, TimeHistory,
 };
-pub use point::Point;
-pub use post::{contact_law_defect, PostProcessor, RowOutputs};
-pub use problem::{CercleForm, Problem, Settings, Shock, ShockLaw};
-pub use quadrature::{check_degenerate_pair, start_from_mode_pair, QUAD_FREQ_TOL};
-pub use report::BranchReport;
-pub use resolution::{resolution_warnings, tail_ratio};
-pub use resonance::{linear_modes, resonance_alarm, LinearMode};
-pub use route_timing::{contact_route_timings, RouteRow};
-pub use solver_kind::SolverKind;
-pub(crate) use start::check_start;
-pub use start::{start_from_mode, start_from_mode_using, start_from_point, StartState};
-pub use step_control::{Approximation, StepControl, STALL_ENERGY, STALL_FREQUENCY};
-pub use system::unknown_count;
+pub use analysis::post::{contact_law_defect, PostProcessor, RowOutputs};
+pub use analysis::resolution::{resolution_warnings, tail_ratio};
+pub use analysis::resonance::resonance_alarm;
+pub use analysis::route_timing::{contact_route_timings, RouteRow};
+pub use continuation::correction::relative_gamma;
+pub use continuation::driver::Outcome;
+pub use continuation::frequency_floor::FrequencyFloor;
+pub use continuation::quadrature::{check_degenerate_pair, start_from_mode_pair, QUAD_FREQ_TOL};
+pub use continuation::report::BranchReport;
+pub(crate) use continuation::start::check_start;
+pub use continuation::start::{
+    start_from_mode, start_from_mode_using, start_from_point, StartState,
+};
+pub use continuation::step_control::{Approximation, StepControl, STALL_ENERGY, STALL_FREQUENCY};
+pub use follow::{continue_branches, continue_controlled, continue_while};
+pub use model::linear_modes::{linear_modes, LinearMode};
+pub use model::point::Point;
+pub use model::problem::{CercleForm, Problem, Settings, Shock, ShockLaw};
+pub use model::system::unknown_count;
+pub use solve::contact::Method as ContactMethod;
+pub use solve::linear_solver::{BorderedSolver, SparseLu};
+pub use solve::solver_kind::SolverKind;

@@ -7,7 +7,7 @@
 use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::nnm::stability::{FloquetAnalyser, Integrator, Verdict};
-use crate::ops::common::mnl_problem::{engine_problem, row_of};
+use crate::ops::mode_non_line::problem::{engine_problem, row_of};
 use crate::ops::{common::progress::Progress, OpContext};
 use crate::store::{matrix, mnl as mnl_store, table as table_store};
 use crate::table::print::format_e;

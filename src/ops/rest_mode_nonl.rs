@@ -6,7 +6,7 @@ use crate::args::Args;
 use crate::error::{Error, ErrorKind, Result};
 use crate::model::modes::{Mode, ModeMeca};
 use crate::nnm;
-use crate::ops::common::mnl_problem::{engine_problem, row_of};
+use crate::ops::mode_non_line::problem::{engine_problem, row_of};
 use crate::ops::OpContext;
 use crate::store::{
     dyna_trans as dyna_store, matrix, mnl as mnl_store, modes as mode_store, table as table_store,

@@ -4,19 +4,8 @@
 // Test support: operators run on an in-memory store with hand-built `Args`.
 #[cfg(test)]
 pub mod harness;
-// How a MODE_NON_LINE run that ended before NB_BRANCHE is reported (alarm or error).
-pub mod mnl_end;
 // MODE_NON_LINE's live view: the rows of each branch in a side file while it runs.
 pub mod live;
-// MODE_NON_LINE's RESOLUTION/CORR_LOI_EXACTE: rows corrected on the exact law.
-pub mod mnl_exact_law;
-// MODE_NON_LINE restarts: the stored direction of travel.
-pub mod mnl_restart;
-// MODE_NON_LINE's start from linear modes (ETAT_INIT).
-pub mod mnl_start;
-// Stored shocks and matrices back to the engine's problem (MODE_NON_LINE, REST_MODE_NONL,
-// CALC_STABILITE).
-pub mod mnl_problem;
 // One component of a dyna_trans by NOM_CHAM, NOEUD | GROUP_NO, NOM_CMP (TEST_RESU,
 // RECU_FONCTION).
 pub mod dyna_trans;

@@ -1,0 +1,402 @@
+//! EHMAN stage 1, the start: a first point of the branch, from a linear mode scaled by
+//! COEF_AMPL or from a stored point (ETAT_INIT), Newton-corrected at fixed amplitude
+//! (docs/ehman.md §4). The start from a pair of modes in quadrature is quadrature.rs.
+
+use crate::error::{Error, Result};
+use crate::nnm::model::point::{finite, make_point, to_scaled};
+use crate::nnm::model::system::{self, Scaling, ShockSys, System};
+use crate::nnm::model::unknowns::Unknowns;
+use crate::nnm::solve::linear_solver::TangentSolver;
+use crate::nnm::solve::solver_kind::{make_solver, SolverKind};
+use crate::nnm::{
+    continuation::anm, continuation::newton, model::fourier, model::laws, Point, Problem, Settings,
+};
+
+/// A corrected point to continue from.
+#[derive(Clone, Debug)]
+pub struct StartState {
+    /// The direction the stored branch travelled at the start point (physical units, the
+    /// layout of `x`); None from linear modes.
+    pub(in crate::nnm) travel: Option<Vec<f64>>,
+    pub(in crate::nnm) x: Vec<f64>,
+    pub(in crate::nnm) scaling: Scaling,
+    pub(in crate::nnm) ref_dof: usize,
+    pub(in crate::nnm) border: Vec<f64>,
+    /// The corrected start point (physical units).
+    pub point: Point,
+    pub newton_iterations: usize,
+    /// The solver the continuation uses (and the start used).
+    pub solver: SolverKind,
+}
+
+impl StartState {
+    /// The same start, continued relative to `travel`: the direction (physical units, the
+    /// layout of `Point::x`) in which the stored branch was travelling at this point, e.g.
+    /// the chord to the next stored row. DIR_EVOLUTION = −1 then goes on that way, +1 turns
+    /// back. Only the sign of its projection on the new tangent is used.
+    pub fn travelling(mut self, travel: Vec<f64>) -> Result<StartState> {
+        if travel.len() != self.x.len() || !finite(&travel) || travel.iter().all(|&v| v == 0.0) {
+            return Err(Error::internal(format!(
+                "direction of travel: {} finite values, not all zero, expected {}",
+                travel.len(),
+                self.x.len()
+            )));
+        }
+        self.travel = Some(travel);
+        Ok(self)
+    }
+}
+
+/// Samples of the contact unknowns consistent with the displacements of `x` (scaled).
+pub(in crate::nnm) fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
+    let lay = sys.lay;
+    let smp = sys.sampler();
+    for sh in &sys.shocks {
+        let u = shock_displacements(sys, sh, x);
+        let own = laws::own_from_u(sh.law, sh.gap, sh.alpha, sh.eta, &u)?;
+        for (v, mut s) in own.into_iter().enumerate() {
+            let o = sh.offset + v * lay.n_coef_nonl;
+            smp.analyse(&mut s, lay.h_nonl, &mut x[o..o + lay.n_coef_nonl]);
+        }
+    }
+    Ok(())
+}
+
+/// Time samples (the system's sampler) of the displacement of each of `sh`'s DOFs in `x`.
+pub(in crate::nnm) fn shock_displacements(sys: &System, sh: &ShockSys, x: &[f64]) -> Vec<Vec<f64>> {
+    let lay = sys.lay;
+    let smp = sys.sampler();
+    let mut ws = smp.scratch();
+    sh.dofs
+        .iter()
+        .map(|&d| {
+            let mut s = vec![0.0; smp.n()];
+            let u = &x[lay.u(d)..lay.u(d) + lay.n_coef_lin];
+            smp.synth_with(u, lay.h_lin, &mut s, &mut ws);
+            s
+        })
+        .collect()
+}
+
+/// The border guess at a start point: its displacement and velocity part (the branch
+/// leaves a point mostly by scaling its motion).
+pub(in crate::nnm) fn motion_border(sys: &System, x: &[f64]) -> Vec<f64> {
+    let lay = sys.lay;
+    let mut b = vec![0.0; lay.n_unk];
+    b[..2 * lay.n * lay.n_coef_lin].copy_from_slice(&x[..2 * lay.n * lay.n_coef_lin]);
+    let n = anm::norm(&b);
+    b.iter_mut().for_each(|v| *v /= n);
+    b
+}
+
+/// Where a start point's guess comes from, which decides how far it is corrected.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(in crate::nnm) enum Guess {
+    /// Built from linear modes: corrected to PREC_NEWTON (approached in amplitude when that
+    /// fails, [`approach_in_amplitude`]), then polished to the round-off level
+    /// ([`newton::polish`]).
+    LinearModes,
+    /// A stored, already corrected point: corrected to PREC_NEWTON only, so that a restart
+    /// continues from exactly the point the first run continued from.
+    StoredPoint,
+}
+
+pub(in crate::nnm) fn start(
+    sys: System,
+    settings: &Settings,
+    mut x: Vec<f64>,
+    kind: SolverKind,
+    guess: Guess,
+) -> Result<StartState> {
+    if !finite(&x) {
+        return Err(Error::numerical("the start point is not finite"));
+    }
+    let border = motion_border(&sys, &x);
+    if !finite(&border) {
+        return Err(
+            Error::input("the start point has no motion (all displacements are zero)")
+                .keyword("ETAT_INIT"),
+        );
+    }
+    let mut solver = make_solver(&sys, settings, kind)?;
+    let guess_x = x.clone();
+    let corr = match newton::correct(
+        &sys,
+        solver.as_mut(),
+        &mut x,
+        &border,
+        settings.prec_newton,
+        settings.iter_newton_max,
+    ) {
+        Ok(c) => c,
+        Err(e) => {
+            let approached = match guess {
+                Guess::LinearModes => {
+                    x.copy_from_slice(&guess_x);
+                    approach_in_amplitude(&sys, solver.as_mut(), settings, &mut x)
+                }
+                Guess::StoredPoint => None,
+            };
+            approached.ok_or_else(|| {
+                let mut err = Error {
+                    message: format!("start point: {}", e.message),
+                    ..e
+                };
+                if guess == Guess::LinearModes {
+                    // From a linear mode the amplitude is the user's choice and the usual cause.
+                    let usual = err.hint.take();
+                    err.keyword = Some("ETAT_INIT/COEF_AMPL".into());
+                    err = err.hint(format!(
+                        "the start guess is the linear mode scaled by COEF_AMPL (approached from \
+                         smaller amplitudes too): start at a smaller COEF_AMPL, the continuation \
+                         then climbs to the higher energies{}",
+                        usual.map(|h| format!("; else {h}")).unwrap_or_default()
+                    ));
+                }
+                err
+            })?
+        }
+    };
+    let (polished, residual) = match guess {
+        Guess::LinearModes if !corr.at_floor => newton::polish(
+            &sys,
+            solver.as_mut(),
+            &mut x,
+            &border,
+            settings.iter_newton_max,
+        )?,
+        _ => (0, corr.residual),
+    };
+    let it = corr.iterations + polished;
+    let mut point = make_point(&sys, &x, residual, 0, false);
+    point.at_floor = corr.at_floor;
+    Ok(StartState {
+        travel: None,
+        border: motion_border(&sys, &x),
+        x,
+        scaling: sys.scaling,
+        ref_dof: sys.ref_dof,
+        point,
+        newton_iterations: it,
+        solver: kind,
+    })
+}
+
+/// Sub-steps of [`approach_in_amplitude`], at most.
+const APPROACH_STEPS_MAX: usize = 24;
+
+/// The start at the amplitude of `x` (a linear-mode guess whose Newton correction failed:
+/// at or past first contact with a stiff or strongly regularised stop the linear mode can
+/// be too far from the orbit) approached from a smaller amplitude: the motion scaled by
+/// s = ½ (halved again while that fails), corrected, then s raised toward 1 with each
+/// corrected point scaled up as the next guess, the raise halved when a correction fails.
+/// The amplitude constraint is the border: each correction keeps the guess's amplitude.
+/// On success `x` is the start at the full amplitude; None when it cannot be reached
+/// within [`APPROACH_STEPS_MAX`] corrections (`x` is then unspecified).
+fn approach_in_amplitude(
+    sys: &System,
+    solver: &mut dyn TangentSolver,
+    settings: &Settings,
+    x: &mut [f64],
+) -> Option<newton::Correction> {
+    let motion = 2 * sys.lay.n * sys.lay.n_coef_lin;
+    let target = x.to_vec();
+    let at = |s: f64, from: &[f64], s_from: f64, x: &mut [f64]| -> Option<()> {
+        x.copy_from_slice(from);
+        x[..motion].iter_mut().for_each(|v| *v *= s / s_from);
+        init_contact(sys, x).ok()
+    };
+    let correct = |x: &mut [f64], solver: &mut dyn TangentSolver| {
+        let border = motion_border(sys, x);
+        newton::correct(
+            sys,
+            solver,
+            x,
+            &border,
+            settings.prec_newton,
+            settings.iter_newton_max,
+        )
+        .ok()
+    };
+    let mut s = 0.5;
+    let mut steps = 0;
+    // A corrected point below the target amplitude.
+    loop {
+        steps += 1;
+        at(s, &target, 1.0, x)?;
+        if correct(x, solver).is_some() {
+            break;
+        }
+        if steps >= APPROACH_STEPS_MAX {
+            return None;
+        }
+        s *= 0.5;
+    }
+    let mut ds = s.min(1.0 - s);
+    let mut from = x.to_vec();
+    while steps < APPROACH_STEPS_MAX {
+        steps += 1;
+        let next = (s + ds).min(1.0);
+        at(next, &from, s, x)?;
+        match correct(x, solver) {
+            Some(c) if next == 1.0 => return Some(c),
+            Some(_) => {
+                s = next;
+                from.copy_from_slice(x);
+            }
+            None => ds *= 0.5,
+        }
+    }
+    None
+}
+
+/// The DOF whose velocity is zero at t = 0: the first free DOF as in Code_Aster (so that
+/// ENERGIE, taken at ωt = π/2, is evaluated at the same instant of the motion), unless it
+/// barely moves in the mode (the condition would then be degenerate): then the DOF that
+/// moves most.
+pub(in crate::nnm) fn phase_dof(amplitudes: &[f64]) -> usize {
+    let big = amplitudes.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    match amplitudes.first() {
+        Some(a) if a.abs() > 1e-3 * big => 0,
+        _ => (0..amplitudes.len())
+            .max_by(|&a, &b| amplitudes[a].abs().total_cmp(&amplitudes[b].abs()))
+            .unwrap_or(0),
+    }
+}
+
+/// The checks shared by every start from linear modes: problem and settings agree, each
+/// mode (with the keyword that chose it) has one finite value per DOF, COEF_AMPL and the
+/// linear pulsation are positive. Returns the number of DOFs.
+pub(crate) fn check_start(
+    problem: &Problem,
+    settings: &Settings,
+    modes: &[(&[f64], &str)],
+    coef_ampl: f64,
+    omega_lin: f64,
+) -> Result<usize> {
+    system::validate(problem, settings)?;
+    let n = problem.k.nrows();
+    for (v, key) in modes {
+        if v.len() != n || !finite(v) {
+            return Err(Error::input(format!(
+                "the linear mode has {} finite components, {n} expected",
+                v.len()
+            ))
+            .keyword(format!("ETAT_INIT/{key}")));
+        }
+    }
+    if !(coef_ampl.is_finite() && coef_ampl > 0.0) {
+        return Err(
+            Error::input(format!("COEF_AMPL must be positive, got {coef_ampl}"))
+                .keyword("ETAT_INIT/COEF_AMPL"),
+        );
+    }
+    if !(omega_lin.is_finite() && omega_lin > 0.0) {
+        return Err(Error::input(format!(
+            "the linear mode chosen has pulsation {omega_lin}: a rigid-body mode (or not a \
+             vibration mode) has no periodic orbits to continue"
+        ))
+        .keyword("ETAT_INIT/NUME_ORDRE")
+        .hint(
+            "start from an elastic mode (frequency above zero): the first NUME_ORDRE after \
+             the rigid-body modes, or block the rigid-body motion (AFFE_CHAR_CINE, DDL_IMPO)",
+        ));
+    }
+    Ok(n)
+}
+
+/// Start from a linear mode (largest component 1) scaled by `coef_ampl` as Code_Aster does:
+/// with shocks the scaled displacement is coef_ampl·mode, so COEF_AMPL = 1 gives an
+/// amplitude equal to the largest JEU; without shocks the physical amplitude is
+/// coef_ampl·mode. The contact unknowns follow from their laws; the point is then
+/// Newton-corrected at fixed amplitude.
+pub fn start_from_mode(
+    problem: &Problem,
+    settings: &Settings,
+    mode: &[f64],
+    coef_ampl: f64,
+    omega_lin: f64,
+) -> Result<StartState> {
+    start_from_mode_using(
+        problem,
+        settings,
+        mode,
+        coef_ampl,
+        omega_lin,
+        SolverKind::default(),
+    )
+}
+
+/// [`start_from_mode`] with the tangent solved by `kind` (continued with it too).
+pub fn start_from_mode_using(
+    problem: &Problem,
+    settings: &Settings,
+    mode: &[f64],
+    coef_ampl: f64,
+    omega_lin: f64,
+    kind: SolverKind,
+) -> Result<StartState> {
+    let n = check_start(
+        problem,
+        settings,
+        &[(mode, "NUME_ORDRE")],
+        coef_ampl,
+        omega_lin,
+    )?;
+    let p = (0..n)
+        .max_by(|&a, &b| mode[a].abs().total_cmp(&mode[b].abs()))
+        .unwrap_or(0);
+    let mp = mode[p].abs();
+    if mp == 0.0 {
+        return Err(Error::input("the linear mode is zero").keyword("ETAT_INIT/NUME_ORDRE"));
+    }
+    let scaling = Scaling::new(problem, coef_ampl * mp, p)?;
+    let sys = System::new(problem, settings, scaling, phase_dof(mode))?;
+    let lay = sys.lay;
+    let phys_per_coef = if problem.shocks.is_empty() {
+        1.0
+    } else {
+        scaling.length
+    };
+    let om = omega_lin / scaling.omega;
+    let mut x = vec![0.0; lay.n_unk];
+    for i in 0..n {
+        let u = coef_ampl * mode[i] * phys_per_coef / scaling.length;
+        x[lay.u(i) + fourier::ic(1)] = u;
+        x[lay.v(i) + fourier::is(lay.h_lin, 1)] = -om * u;
+    }
+    x[lay.omega()] = om;
+    init_contact(&sys, &mut x)?;
+    start(sys, settings, x, kind, Guess::LinearModes)
+}
+
+/// Scaling and reference DOF for a stored physical point.
+pub(in crate::nnm) fn system_for_point(
+    problem: &Problem,
+    settings: &Settings,
+    x: &[f64],
+) -> Result<System> {
+    Unknowns::new(problem, settings)?.check(x)?;
+    let n = problem.k.nrows();
+    let nl = fourier::len(settings.h_lin);
+    let amp =
+        |i: usize| x[i * nl + fourier::ic(1)].hypot(x[i * nl + fourier::is(settings.h_lin, 1)]);
+    let p = (0..n)
+        .max_by(|&a, &b| amp(a).total_cmp(&amp(b)))
+        .unwrap_or(0);
+    let scaling = Scaling::new(problem, amp(p), p)?;
+    // A row far up a branch is restarted in the length unit the run had rescaled to
+    // (rescale.rs), or its correction would meet the round-off the rescaling avoids.
+    let all = crate::nnm::model::rescale::all_rescalable(problem);
+    let scaling = crate::nnm::model::rescale::outgrown(&scaling, all, amp(p) / scaling.length)
+        .unwrap_or(scaling);
+    let amps: Vec<f64> = (0..n).map(amp).collect();
+    System::new(problem, settings, scaling, phase_dof(&amps))
+}
+
+/// Restart from a stored point (physical `Point::x`), Newton-corrected.
+pub fn start_from_point(problem: &Problem, settings: &Settings, x: &[f64]) -> Result<StartState> {
+    let sys = system_for_point(problem, settings, x)?;
+    let xs = to_scaled(&sys, x);
+    start(sys, settings, xs, SolverKind::default(), Guess::StoredPoint)
+}

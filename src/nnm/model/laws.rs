@@ -1,0 +1,518 @@
+//! Regularised contact laws recast as quadratic equations, in scaled units (lengths divided
+//! by the largest JEU g_ref, forces by k_ref·g_ref; see `system::Scaling`).
+//!
+//! Each law lists its own unknown series and its equations as constant, linear and quadratic
+//! terms; the tangent is derived from the same list (system.rs), so residual and Jacobian
+//! cannot disagree. With s = JEU/g_ref, α = RIGI_NOR/k_ref and η = PARA_REGUL:
+//! - PLAN (f):             f²/α − f (u − s) − η s² = 0
+//!   (Code_Aster's F(F/α − (u/JEU − 1)) = η with F = f/(k_ref·JEU), i.e. the physical law
+//!   f(f − α(u−g)) = α η_phys with η_phys = PARA_REGUL·k_ref·JEU²).
+//! - BI_PLAN (f, z):       f − η u − f z = 0,   z − (f/α − u)²/s² = 0
+//!   (Code_Aster's F − η u/JEU − F Z = 0, Z = (F/α − u/JEU)², with its sign; the same law
+//!   in physical units: docs/ehman.md §2).
+//! - CERCLE, LOI_CERCLE='RAYON' (fx, fy, r, φ), R5.07.01 eq. (12) as Code_Aster writes it,
+//!   with d = (ux − ex, uy − ey) the displacement from the ring centre:
+//!   φ²/α − φ (r − s) − η s² = 0 (PLAN's law on the radial distance r),
+//!   r² − |d|² = 0, fx r − φ dx = 0, fy r − φ dy = 0. In contact the force is α(r − s) along
+//!   d/r; inside the ring it is φ ≈ η s²/(s − r) along d/r, a force of nearly constant
+//!   magnitude η s that turns with d. Where the orbit passes through the centre that force
+//!   changes sign within an instant and the equations degenerate: r² = |d|² has a double root
+//!   and f r = φ d leaves the direction free (pointwise Jacobian 2r³√((r−s)² + 4ηs²/α), zero
+//!   at r = 0). The start takes the root r = |d| sample by sample, as Code_Aster does, with
+//!   no force at an instant exactly at the centre; the harmonic balance then follows the
+//!   truncated series of r, which stays close to |d| (docs/mode_non_line.md, "CERCLE").
+//! - CERCLE, LOI_CERCLE='SECANTE' (fx, fy, λ, z), aster-nl's form, with d as above and
+//!   F = (fx, fy):  F − λ d = 0 (two equations),  λ − η − λ z = 0,
+//!   z − |F/α − d|²/s² = 0. λ is the secant stiffness of the ring, F/d. With r = |d| and
+//!   φ = λ r the force magnitude, these are BI_PLAN's equations at the radial distance:
+//!   φ(1 − (φ/α − r)²/s²) = η r, so the force is α(r − s) along d in contact and a weak
+//!   spring η d/(1 − r²/s²) toward the centre inside the ring. Nothing divides by r: at the
+//!   centre λ = η, z = 0, F = 0, and an orbit through the centre is as regular as any other.
+//!   With a centred ring and motion along one component (dx ≡ 0) the first equation gives
+//!   fx ≡ 0 and, pointwise, the rest is BI_PLAN's law (f = λ u); in harmonic balance the
+//!   force series is λ·u truncated instead of f, another truncation of the same regularised
+//!   system (the BI_PLAN branch is recovered to the truncation error, tests.rs).
+//!   The two forms agree in contact and differ inside the ring (a force of magnitude ≈ η s
+//!   along d/r for 'RAYON', a weak spring for 'SECANTE'); both differences vanish as η → 0.
+//!
+//! Pointwise Jacobian of each law with respect to its own unknowns on its physical root
+//! (what the determinant test of condensed_det.rs and a pointwise preconditioner rely on):
+//! PLAN √((u−s)² + 4ηs²/α) > 0; BI_PLAN ψ_f = 1 − z − 2f(f/α − u)/(α s²) > 0; CERCLE 'RAYON'
+//! 2r³√((r−s)² + 4ηs²/α) ≥ 0, zero at the centre; CERCLE 'SECANTE'
+//! (eliminating F = λ d, whose block is the identity) 1 − z − 2λ(λ/α − 1) r²/(α s²), which
+//! is BI_PLAN's ψ_f at the radial distance (f = φ = λ r): > 0, and 1 at the centre.
+//! ψ_f > 0 on the physical root for every u: f(1 − (f/α − u)²/s²) is a cubic in f that
+//! increases on the interval (max(0, α(u − s)), α u) holding that root (its critical points
+//! lie at α(2u ± √(u² + 3s²))/3, outside it). A three-unknown vector form F(1 − z) = η d
+//! has determinant (1 − z)·ψ_f instead; its factor 1 − z = η r/φ is tiny in contact, where
+//! the truncated series of z overshoots 1 and the harmonic-balance block changes sign
+//! (tests.rs, cercle_law_block_keeps_its_determinant_sign_along_branches); λ avoids it.
+
+use crate::error::{Error, Result};
+use crate::nnm::model::problem::CercleForm;
+
+/// A variable a law equation depends on: one of its own unknown series (H_nl harmonics) or a
+/// displacement component of its DOFs (H_l harmonics, zero-padded to H_nl).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Var {
+    Own(usize),
+    U(usize),
+}
+
+/// coef · a · b added to equation `eq`.
+#[derive(Clone, Copy, Debug)]
+pub struct Term {
+    pub eq: usize,
+    pub coef: f64,
+    pub a: Var,
+    pub b: Var,
+}
+
+/// coef · var added to equation `eq`.
+#[derive(Clone, Copy, Debug)]
+pub struct Lin {
+    pub eq: usize,
+    pub coef: f64,
+    pub var: Var,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ScaledLaw {
+    Plan,
+    BiPlan,
+    /// Ring centre in scaled units.
+    Cercle {
+        ex: f64,
+        ey: f64,
+        form: CercleForm,
+    },
+}
+
+/// The equations of one shock: as many as its own unknowns.
+#[derive(Clone, Debug)]
+pub struct LawEqs {
+    pub n_own: usize,
+    pub quad: Vec<Term>,
+    pub lin: Vec<Lin>,
+    /// Constants (on the mean, harmonic 0) per equation.
+    pub cst: Vec<(usize, f64)>,
+    /// (component, own variable) pairs: the force each component receives.
+    pub forces: Vec<(usize, usize)>,
+}
+
+fn quad_term(eq: usize, coef: f64, a: Var, b: Var) -> Term {
+    Term { eq, coef, a, b }
+}
+fn lin_term(eq: usize, coef: f64, var: Var) -> Lin {
+    Lin { eq, coef, var }
+}
+
+/// The equations of a law with scaled gap `s`, stiffness `alpha`, PARA_REGUL `eta`.
+pub fn equations(law: ScaledLaw, s: f64, alpha: f64, eta: f64) -> LawEqs {
+    use Var::{Own, U};
+    match law {
+        ScaledLaw::Plan => LawEqs {
+            n_own: 1,
+            quad: vec![
+                quad_term(0, 1.0 / alpha, Own(0), Own(0)),
+                quad_term(0, -1.0, Own(0), U(0)),
+            ],
+            lin: vec![lin_term(0, s, Own(0))],
+            cst: vec![(0, -eta * s * s)],
+            forces: vec![(0, 0)],
+        },
+        ScaledLaw::BiPlan => {
+            let c = 1.0 / (s * s);
+            LawEqs {
+                n_own: 2,
+                quad: vec![
+                    quad_term(0, -1.0, Own(0), Own(1)),
+                    quad_term(1, -c / (alpha * alpha), Own(0), Own(0)),
+                    quad_term(1, 2.0 * c / alpha, Own(0), U(0)),
+                    quad_term(1, -c, U(0), U(0)),
+                ],
+                lin: vec![
+                    lin_term(0, 1.0, Own(0)),
+                    lin_term(0, -eta, U(0)),
+                    lin_term(1, 1.0, Own(1)),
+                ],
+                cst: vec![],
+                forces: vec![(0, 0)],
+            }
+        }
+        ScaledLaw::Cercle {
+            ex,
+            ey,
+            form: CercleForm::Radial,
+        } => radial_equations(ex, ey, s, alpha, eta),
+        ScaledLaw::Cercle {
+            ex,
+            ey,
+            form: CercleForm::Secant,
+        } => {
+            // Own(0) = Fx, Own(1) = Fy, Own(2) = λ, Own(3) = z; components c = 0 (x), 1 (y),
+            // centre e_c, d_c = u_c − e_c.
+            let c = 1.0 / (s * s);
+            let mut quad = Vec::with_capacity(9);
+            let mut lin = Vec::with_capacity(9);
+            let mut cst = vec![(2, -eta), (3, 0.0)];
+            for (comp, e) in [(0usize, ex), (1, ey)] {
+                // F_c − λ d_c = 0.
+                lin.push(lin_term(comp, 1.0, Own(comp)));
+                quad.push(quad_term(comp, -1.0, Own(2), U(comp)));
+                lin.push(lin_term(comp, e, Own(2)));
+                // −(F_c/α − u_c + e_c)²/s², expanded, in the equation of z.
+                quad.push(quad_term(3, -c / (alpha * alpha), Own(comp), Own(comp)));
+                quad.push(quad_term(3, 2.0 * c / alpha, Own(comp), U(comp)));
+                quad.push(quad_term(3, -c, U(comp), U(comp)));
+                lin.push(lin_term(3, -2.0 * c * e / alpha, Own(comp)));
+                lin.push(lin_term(3, 2.0 * c * e, U(comp)));
+                cst[1].1 -= c * e * e;
+            }
+            // λ − η − λ z = 0.
+            lin.push(lin_term(2, 1.0, Own(2)));
+            quad.push(quad_term(2, -1.0, Own(2), Own(3)));
+            lin.push(lin_term(3, 1.0, Own(3)));
+            cst.retain(|&(_, v)| v != 0.0);
+            lin.retain(|v| v.coef != 0.0);
+            LawEqs {
+                n_own: 4,
+                quad,
+                lin,
+                cst,
+                forces: vec![(0, 0), (1, 1)],
+            }
+        }
+    }
+}
+
+/// R5.07.01 eq. (12) in scaled units: Own(0) = fx, Own(1) = fy, Own(2) = r, Own(3) = φ.
+fn radial_equations(ex: f64, ey: f64, s: f64, alpha: f64, eta: f64) -> LawEqs {
+    use Var::{Own, U};
+    let mut quad = Vec::with_capacity(10);
+    let mut lin = Vec::with_capacity(8);
+    let mut cst = vec![(2, 0.0), (3, -eta * s * s)];
+    for (comp, e) in [(0usize, ex), (1, ey)] {
+        // f_c r − φ (u_c − e_c) = 0.
+        quad.push(quad_term(comp, 1.0, Own(comp), Own(2)));
+        quad.push(quad_term(comp, -1.0, Own(3), U(comp)));
+        lin.push(lin_term(comp, e, Own(3)));
+        // −(u_c − e_c)², expanded, in the equation of r.
+        quad.push(quad_term(2, -1.0, U(comp), U(comp)));
+        lin.push(lin_term(2, 2.0 * e, U(comp)));
+        cst[0].1 -= e * e;
+    }
+    // r² in the equation of r; φ²/α − φ r + s φ in the equation of φ.
+    quad.push(quad_term(2, 1.0, Own(2), Own(2)));
+    quad.push(quad_term(3, 1.0 / alpha, Own(3), Own(3)));
+    quad.push(quad_term(3, -1.0, Own(3), Own(2)));
+    lin.push(lin_term(3, s, Own(3)));
+    cst.retain(|&(_, v)| v != 0.0);
+    lin.retain(|v| v.coef != 0.0);
+    LawEqs {
+        n_own: 4,
+        quad,
+        lin,
+        cst,
+        forces: vec![(0, 0), (1, 1)],
+    }
+}
+
+/// Positive root of f²/α − f d − c = 0 (c > 0), without cancellation. Also CALC_STABILITE's
+/// pointwise law (`point_law.rs`): one root for both.
+pub(crate) fn plan_force(d: f64, alpha: f64, c: f64) -> f64 {
+    let q = (d * d + 4.0 * c / alpha).sqrt();
+    if d > 0.0 {
+        0.5 * alpha * (d + q)
+    } else if q - d > 0.0 {
+        2.0 * c / (q - d)
+    } else {
+        0.0
+    }
+}
+
+/// Root of f(1 − (f/α − u)²/s²) = η u on the branch that is α(u ∓ s) in contact and
+/// η u/(1 − u²/s²) inside the gap: for u > 0 it lies in (max(0, α(u−s)), α u), where the
+/// function goes from negative to positive; the law is odd in u. Also CALC_STABILITE's.
+pub(crate) fn biplan_force(u: f64, s: f64, alpha: f64, eta: f64) -> f64 {
+    if u == 0.0 {
+        return 0.0;
+    }
+    let (sign, u) = if u < 0.0 { (-1.0, -u) } else { (1.0, u) };
+    let phi = |f: f64| f * (1.0 - (f / alpha - u).powi(2) / (s * s)) - eta * u;
+    let (mut lo, mut hi) = ((alpha * (u - s)).max(0.0), alpha * u);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if phi(mid) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+        if hi - lo <= 1e-15 * hi.abs().max(1e-300) {
+            break;
+        }
+    }
+    sign * 0.5 * (lo + hi)
+}
+
+/// Samples of a law's own unknowns from samples of its displacement components (a start
+/// point: consistent with the law sample by sample, then projected on the harmonics).
+pub fn own_from_u(
+    law: ScaledLaw,
+    s: f64,
+    alpha: f64,
+    eta: f64,
+    u: &[Vec<f64>],
+) -> Result<Vec<Vec<f64>>> {
+    let c = eta * s * s;
+    let comp = |i: usize| {
+        u.get(i)
+            .ok_or_else(|| Error::internal("law component missing"))
+    };
+    match law {
+        ScaledLaw::Plan => Ok(vec![comp(0)?
+            .iter()
+            .map(|&x| plan_force(x - s, alpha, c))
+            .collect()]),
+        ScaledLaw::BiPlan => {
+            let f: Vec<f64> = comp(0)?
+                .iter()
+                .map(|&x| biplan_force(x, s, alpha, eta))
+                .collect();
+            let z = f
+                .iter()
+                .zip(comp(0)?)
+                .map(|(&f, &x)| (f / alpha - x).powi(2) / (s * s))
+                .collect();
+            Ok(vec![f, z])
+        }
+        ScaledLaw::Cercle {
+            ex,
+            ey,
+            form: CercleForm::Radial,
+        } => {
+            let (ux, uy) = (comp(0)?, comp(1)?);
+            let n = ux.len().min(uy.len());
+            let mut own = vec![vec![0.0; n]; 4];
+            for i in 0..n {
+                let (dx, dy) = (ux[i] - ex, uy[i] - ey);
+                let r = dx.hypot(dy);
+                let phi = plan_force(r - s, alpha, c);
+                // The physical root r = |d|; exactly at the centre the direction is free
+                // and the instant carries no force (module doc).
+                let (nx, ny) = if r > 0.0 {
+                    (dx / r, dy / r)
+                } else {
+                    (0.0, 0.0)
+                };
+                own[0][i] = phi * nx;
+                own[1][i] = phi * ny;
+                own[2][i] = r;
+                own[3][i] = phi;
+            }
+            Ok(own)
+        }
+        ScaledLaw::Cercle {
+            ex,
+            ey,
+            form: CercleForm::Secant,
+        } => {
+            let (ux, uy) = (comp(0)?, comp(1)?);
+            let n = ux.len().min(uy.len());
+            let mut own = vec![vec![0.0; n]; 4];
+            for i in 0..n {
+                let (dx, dy) = (ux[i] - ex, uy[i] - ey);
+                let r = dx.hypot(dy);
+                // BI_PLAN's magnitude at the radial distance; λ = φ/r → φ'(0) = η at the
+                // centre.
+                let phi = biplan_force(r, s, alpha, eta);
+                let lambda = if r > 0.0 { phi / r } else { eta };
+                own[0][i] = lambda * dx;
+                own[1][i] = lambda * dy;
+                own[2][i] = lambda;
+                own[3][i] = (phi / alpha - r).powi(2) / (s * s);
+            }
+            Ok(own)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn biplan_root_solves_the_law_and_is_odd() {
+        let (s, a, e) = (1.0, 5.0, 1e-3);
+        for &u in &[0.3, 0.99, 1.0, 1.2, 3.0] {
+            let f = biplan_force(u, s, a, e);
+            let z = (f / a - u).powi(2) / (s * s);
+            assert!((f - e * u - f * z).abs() < 1e-10 * (1.0 + f.abs()));
+            assert_eq!(biplan_force(-u, s, a, e), -f);
+        }
+        // Far in contact the force is close to α(u − s).
+        assert!((biplan_force(3.0, s, a, e) - a * 2.0).abs() < 1e-2);
+    }
+
+    #[test]
+    fn plan_root_is_positive_and_smooth_max() {
+        let (a, c) = (50.0, 5e-5);
+        for &d in &[-1.0, -1e-3, 0.0, 1e-3, 1.0] {
+            let f = plan_force(d, a, c);
+            assert!(f > 0.0);
+            assert!((f * f / a - f * d - c).abs() < 1e-12 * (1.0 + f * f));
+        }
+    }
+
+    /// Residual and Jacobian (row-major, n_own²) with respect to the law's own unknowns of
+    /// the equations listed in `eqs`, evaluated at one instant (a pointwise evaluation of
+    /// the term list, independent of the harmonic-balance assembly).
+    fn pointwise(eqs: &LawEqs, own: &[f64], u: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let n = eqs.n_own;
+        let val = |v: Var| match v {
+            Var::Own(i) => own[i],
+            Var::U(i) => u[i],
+        };
+        let (mut r, mut j) = (vec![0.0; n], vec![0.0; n * n]);
+        for &(e, c) in &eqs.cst {
+            r[e] += c;
+        }
+        for t in &eqs.lin {
+            r[t.eq] += t.coef * val(t.var);
+            if let Var::Own(i) = t.var {
+                j[t.eq * n + i] += t.coef;
+            }
+        }
+        for t in &eqs.quad {
+            r[t.eq] += t.coef * val(t.a) * val(t.b);
+            if let Var::Own(i) = t.a {
+                j[t.eq * n + i] += t.coef * val(t.b);
+            }
+            if let Var::Own(i) = t.b {
+                j[t.eq * n + i] += t.coef * val(t.a);
+            }
+        }
+        (r, j)
+    }
+
+    fn det4(m: &[f64]) -> f64 {
+        // Laplace expansion along the first row of 3×3 minors.
+        let minor = |c: usize| {
+            let cols: Vec<usize> = (0..4).filter(|&k| k != c).collect();
+            let e = |r: usize, k: usize| m[r * 4 + cols[k]];
+            e(1, 0) * (e(2, 1) * e(3, 2) - e(2, 2) * e(3, 1))
+                - e(1, 1) * (e(2, 0) * e(3, 2) - e(2, 2) * e(3, 0))
+                + e(1, 2) * (e(2, 0) * e(3, 1) - e(2, 1) * e(3, 0))
+        };
+        (0..4)
+            .map(|c| [1.0, -1.0, 1.0, -1.0][c] * m[c] * minor(c))
+            .sum()
+    }
+
+    /// A ring's own unknowns from own_from_u at each radial distance in `radii` and three
+    /// directions from its centre, with the Jacobian of its listed equations there; asserts
+    /// that they solve those equations to round-off. Returns (r, u, own, Jacobian).
+    #[allow(clippy::type_complexity)]
+    fn ring_roots(
+        law: ScaledLaw,
+        s: f64,
+        a: f64,
+        eta: f64,
+        radii: &[f64],
+    ) -> Vec<(f64, [f64; 2], Vec<f64>, Vec<f64>)> {
+        let ScaledLaw::Cercle { ex, ey, .. } = law else {
+            panic!("a ring")
+        };
+        let eqs = equations(law, s, a, eta);
+        assert_eq!(eqs.n_own, 4);
+        let mut out = Vec::new();
+        for &r in radii {
+            for theta in [0.0f64, 2.0, 4.5] {
+                let u = [ex + r * theta.cos(), ey + r * theta.sin()];
+                let own = own_from_u(law, s, a, eta, &[vec![u[0]], vec![u[1]]]).unwrap();
+                let own: Vec<f64> = own.iter().map(|v| v[0]).collect();
+                let (res, jac) = pointwise(&eqs, &own, &u);
+                let scale = 1.0 + own.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                assert!(
+                    res.iter().all(|v| v.abs() < 1e-12 * scale),
+                    "r {r}: {res:?}"
+                );
+                out.push((r, u, own, jac));
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn radial_ring_root_solves_eq_12_with_the_jacobian_2r3_psi() {
+        // R5.07.01 eq. (12) in scaled units: s = 1.3, α = 50, η = 1e-3, centre (0.2, −0.1).
+        // At each radial distance the own unknowns from own_from_u must solve the listed
+        // equations to round-off, the force must be PLAN's root along d/r (an independent
+        // quadratic formula here), and the Jacobian's determinant must be 2r³ψ with
+        // ψ = √((r − s)² + 4ηs²/α) (module doc): zero at the centre, positive elsewhere.
+        let (s, a, eta, ex, ey) = (1.3, 50.0, 1e-3, 0.2, -0.1);
+        let law = ScaledLaw::Cercle {
+            ex,
+            ey,
+            form: CercleForm::Radial,
+        };
+        for (r, u, own, jac) in
+            ring_roots(law, s, a, eta, &[0.0, 1e-3, 0.3, 1.29, 1.3, 1.31, 2.0, 4.0])
+        {
+            let scale = 1.0 + own.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            // φ²/α − φ(r − s) − ηs² = 0: φ = α/2 ((r − s) + √((r − s)² + 4ηs²/α)).
+            let q = ((r - s) * (r - s) + 4.0 * eta * s * s / a).sqrt();
+            let phi = 0.5 * a * ((r - s) + q);
+            assert!((own[3] - phi).abs() < 1e-9 * phi.max(1e-3), "r {r}");
+            assert!((own[2] - r).abs() < 1e-15 * (1.0 + r));
+            let det = det4(&jac);
+            let want = 2.0 * r.powi(3) * q;
+            assert!(
+                (det - want).abs() <= 1e-9 * want.max(1e-300),
+                "r {r}: {det} {want}"
+            );
+            if r > 0.0 {
+                let dir = [(u[0] - ex) / r, (u[1] - ey) / r];
+                assert!((own[0] - phi * dir[0]).abs() < 1e-12 * scale);
+                assert!((own[1] - phi * dir[1]).abs() < 1e-12 * scale);
+            } else {
+                // Exactly at the centre: the physical root r = 0, no force direction.
+                assert_eq!((own[0], own[1]), (0.0, 0.0));
+            }
+        }
+    }
+
+    #[test]
+    fn cercle_root_solves_its_equations_with_a_positive_jacobian_through_the_centre() {
+        // Scaled ring: s = 1, α = 50, η = 1e-3, centre (0.2, −0.1). Radial distances from the
+        // centre itself to deep contact; at each the own unknowns from own_from_u must solve
+        // the listed equations (to round-off), and the determinant of their Jacobian must be
+        // BI_PLAN's ψ_f = 1 − z − 2φ(φ/α − r)/(α s²) at r, positive; 1 at the centre.
+        let (s, a, eta, ex, ey) = (1.0, 50.0, 1e-3, 0.2, -0.1);
+        let law = ScaledLaw::Cercle {
+            ex,
+            ey,
+            form: CercleForm::Secant,
+        };
+        for (r, _, own, jac) in ring_roots(
+            law,
+            s,
+            a,
+            eta,
+            &[0.0, 1e-9, 0.3, 0.999, 1.0, 1.001, 1.5, 3.0],
+        ) {
+            let phi = own[2] * r;
+            let z = own[3];
+            let psi = 1.0 - z - 2.0 * phi * (phi / a - r) / (a * s * s);
+            let det = det4(&jac);
+            assert!(
+                psi > 0.0 && (det / psi - 1.0).abs() < 1e-9,
+                "r {r}: {det} {psi}"
+            );
+            if r == 0.0 {
+                assert_eq!(own, vec![0.0, 0.0, eta, 0.0]);
+                assert!((det - 1.0).abs() < 1e-15);
+            }
+        }
+    }
+}

@@ -1,0 +1,449 @@
+//! MODE_NON_LINE: branches of nonlinear normal modes with shocks (EHMAN).
+//!
+//! Glue only: reads the matrices, the start (a linear mode or a row of an earlier
+//! MODE_NON_LINE table), the shocks and the settings, runs `nnm`, and stores the result
+//! table (a real SQL table), the CARA_CHOC sub-table, every point's unknowns and the
+//! displacement Fourier coefficients.
+
+mod end;
+mod exact_law;
+mod inputs;
+pub(crate) mod problem;
+mod restart;
+mod start;
+mod table;
+
+use crate::args::Args;
+use crate::error::{Error, ErrorKind, Result};
+use crate::nnm::{self, Problem, StartState};
+use crate::ops::{common::progress::Progress, OpContext};
+use crate::store::mnl::{self as mnl_store, MnlSetup};
+use crate::store::{matrix, table as table_store};
+use crate::table::{Cell, ColKind};
+use inputs::{
+    check_budget, check_restart_harmonics, orig_obst_notes, settings, shocks_from_args,
+    step_control, stop_bounds,
+};
+use problem::{engine_shock, row_of, shocks_from_cara_choc};
+use table::{cara_choc_table, max_int, new_table, restart_reprise, row};
+
+pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    let name = match (ctx.reuse, ctx.result) {
+        (Some(r), _) => r.to_string(),
+        (None, Some(r)) => r.to_string(),
+        (None, None) => ctx.result_name()?.to_string(),
+    };
+    let k_name = args.req_concept("MATR_RIGI")?.name.clone();
+    let m_name = args.req_concept("MATR_MASS")?.name.clone();
+    let cara_choc = format!("{name}_CHOC");
+    // The shock table's name is derived from the result's: a concept of that name made
+    // by another operator is the user's, never silently replaced.
+    if let Some(op) = ctx
+        .store
+        .concept_operator(&cara_choc)?
+        .filter(|_| ctx.reuse.is_none())
+    {
+        if op != "MODE_NON_LINE" {
+            return Err(Error::validation(format!(
+                "MODE_NON_LINE stores its shocks in the table {cara_choc}, but a concept of \
+                 that name already exists (made by {op}) and would be overwritten"
+            ))
+            .hint(format!(
+                "name the result of MODE_NON_LINE otherwise, or rename the concept {cara_choc}"
+            )));
+        }
+    }
+    let k = matrix::load_matrix(ctx.store, &k_name)?;
+    let m = matrix::load_matrix(ctx.store, &m_name)?;
+    if k.numbering.dofs != m.numbering.dofs || k.eliminated != m.eliminated {
+        return Err(Error::input(format!(
+            "{k_name} and {m_name} are not assembled on the same DOF numbering and boundary conditions"
+        ))
+        .keyword("MODE_NON_LINE/MATR_MASS"));
+    }
+    let free = k.free_dofs();
+    let settings = settings(args)?;
+    let exact_settings = exact_law::settings(args, &settings)?;
+    let mut control = step_control(args)?;
+    let bounds = stop_bounds(args)?;
+    let etat = args.req_fact("ETAT_INIT")?;
+
+    // Shocks: from CHOC on a first run, from the stored CARA_CHOC on a restart.
+    let restart_from = etat.concept("MODE_NON_LINE").map(|c| c.name.clone());
+    let stored_shocks = match &restart_from {
+        Some(src) => {
+            if args.has("CHOC") {
+                ctx.alarm(
+                    "MODE_NON_LINE_2",
+                    "CHOC is ignored on a restart: the shocks come from the CARA_CHOC of the start table",
+                )?;
+            }
+            let setup = mnl_store::load_setup(ctx.store, src)?;
+            check_restart_harmonics(&setup, &settings)?;
+            // The contact data of the start row, as Code_Aster reads them: from the
+            // sub-table named in its CARA_CHOC cell.
+            let t = table_store::load_table(ctx.store, src)?;
+            let order = etat.req_int("NUME_ORDRE")?;
+            let sub = row_of(&t, order)
+                .and_then(|r| t.cell(r, "CARA_CHOC"))
+                .and_then(Cell::as_text)
+                .map(str::to_string)
+                .unwrap_or(setup.cara_choc);
+            shocks_from_cara_choc(&table_store::load_table(ctx.store, &sub)?, &sub)?
+        }
+        None => shocks_from_args(ctx, args)?,
+    };
+    if ctx.info >= 1 {
+        for line in orig_obst_notes(&stored_shocks) {
+            ctx.say(&line)?;
+        }
+    }
+    let shocks = stored_shocks
+        .iter()
+        .enumerate()
+        .map(|(i, s)| engine_shock(s, i, &k))
+        .collect::<Result<Vec<_>>>()?;
+    let problem = Problem {
+        k: k.reduced()?,
+        m: m.reduced()?,
+        shocks,
+    };
+
+    if let Some(x) = &exact_settings {
+        exact_law::check(&problem, x)?;
+    }
+    check_budget(ctx, &problem, &settings, &stored_shocks)?;
+
+    // Start point.
+    let nume_ordre = etat.req_int("NUME_ORDRE")?;
+    let start: StartState = match &restart_from {
+        Some(src) => {
+            let x = mnl_store::load_point(ctx.store, src, nume_ordre)?.ok_or_else(|| {
+                Error::input(format!("{src} has no row NUME_ORDRE={nume_ordre}"))
+                    .keyword("MODE_NON_LINE/ETAT_INIT/NUME_ORDRE")
+            })?;
+            // A stored point that does not fit these settings is the start row's fault.
+            let start_state = nnm::start_from_point(&problem, &settings, &x).map_err(|e| {
+                if e.kind == ErrorKind::Input {
+                    e.keyword("ETAT_INIT/NUME_ORDRE")
+                } else {
+                    e
+                }
+            })?;
+            restart_direction(ctx, src, nume_ordre, settings.direction, start_state)?
+        }
+        None => start::from_linear_modes(ctx, etat, &problem, &settings, &k, &k_name)?,
+    };
+
+    // The linear modes (dense, small models only): the frequency floor of a family that
+    // starts from a linear mode, and the internal-resonance alarm after the run.
+    let linear_modes = nnm::linear_modes(&problem)?;
+    if restart_from.is_none() {
+        control.frequency_floor = nnm::FrequencyFloor::new(
+            &problem,
+            linear_modes.as_deref(),
+            start.point.frequency,
+            settings.h_lin,
+            args.req_fact("RESOLUTION")?.req_real("BAISSE_FREQ_MAXI")?,
+        );
+    }
+    // The rows kept after a wrong-branch end are judged by the same checks.
+    let floor = control.frequency_floor.clone();
+    let work_min = control.work_min.unwrap_or(f64::NEG_INFINITY);
+    let gamma_max = control.gamma_max;
+
+    // Continue, reporting each branch.
+    let info = ctx.info;
+    let mut lines = Vec::new();
+    let progress = Progress::new(
+        ctx.progress,
+        settings.n_branches as u64,
+        "MODE_NON_LINE",
+        "branches",
+    );
+    let mut stopped_by: Option<String> = None;
+    let mut bound_error: Option<Error> = None;
+    // The rows of each branch, readable in a live file while the operator runs.
+    let mut live = crate::ops::common::live::LiveView::start(ctx, &name)?;
+    let outcome = nnm::continue_controlled(&problem, &settings, control, start, &mut |rep, pts| {
+        progress.inc();
+        live.branch(rep.branch, pts);
+        if info >= 1 {
+            lines.push(format!(
+                "  branch {:>4}: {:>3} pts  freq {:.6e} .. {:.6e} Hz  energy {:.6e} .. {:.6e}  a_max {:.3e}  newton {:>2}  bifurcation {}{}{}",
+                rep.branch,
+                rep.points,
+                rep.freq_range.0,
+                rep.freq_range.1,
+                rep.energy_range.0,
+                rep.energy_range.1,
+                rep.a_max,
+                rep.newton_iterations,
+                if rep.bifurcation { "yes" } else { "no" },
+                if rep.step_retries > 0 {
+                    format!("  step halved {} time(s) (a failed correction, a law check or a jump off the family)", rep.step_retries)
+                } else {
+                    String::new()
+                },
+                if rep.at_floor { "  residual accepted at its round-off floor" } else { "" }
+            ));
+        }
+        match bounds.passed(&problem, &settings, pts) {
+            Ok(Some(why)) => {
+                stopped_by = Some(format!("branch {}: {why}", rep.branch));
+                false
+            }
+            Ok(None) => true,
+            Err(e) => {
+                bound_error = Some(e);
+                false
+            }
+        }
+    });
+    progress.finish();
+    live.finish(ctx, outcome.error.is_none() && bound_error.is_none())?;
+    if let Some(e) = bound_error {
+        return Err(e);
+    }
+    ctx.say(&format!(
+        "MODE_NON_LINE {name}: {} point(s)",
+        outcome.points.len()
+    ))?;
+    for l in &lines {
+        ctx.say(l)?;
+    }
+    if let Some(why) = &stopped_by {
+        ctx.say(&format!(
+            "MODE_NON_LINE {name}: stopped at the bound asked for in RESOLUTION: {why}"
+        ))?;
+    }
+
+    // The result table: a new one, or the reused one extended.
+    let (mut table, first_order, reprise) = match ctx.reuse {
+        Some(r) => {
+            let t = table_store::load_table(ctx.store, r)?;
+            let last = max_int(&t, "NUME_ORDRE");
+            let rep = max_int(&t, "NUME_REPRISE") + 1;
+            (t, last + 1, rep)
+        }
+        None => (
+            new_table(),
+            1,
+            i64::from(restart_from.is_some()) + restart_reprise(ctx, &restart_from)?,
+        ),
+    };
+    // Built once: what every row's outputs share (layout, physical laws, FFT plan).
+    let post = nnm::PostProcessor::new(&problem, &settings)?;
+    // A branch that left the physical root of its law: its trailing suspect rows are not
+    // stored (end::rows_kept; their defects computed only then, the rows' outputs are
+    // not kept in memory); every other run stores every row.
+    let kept = if end::cuts_rows(outcome.error.as_ref()) {
+        let motions = outcome
+            .points
+            .iter()
+            .map(|p| {
+                let off_the_family = floor
+                    .as_ref()
+                    .is_some_and(|f| f.off_the_family(p.frequency, p.energy).is_some());
+                let damped = gamma_max.is_some_and(|max| {
+                    let ratio = nnm::relative_gamma(p);
+                    ratio.is_nan() || ratio > max
+                });
+                Ok(!off_the_family && !damped && post.is_motion(&p.x, p.law_defect, work_min)?)
+            })
+            .collect::<Result<Vec<bool>>>()?;
+        end::rows_kept(outcome.error.as_ref(), &motions)
+    } else {
+        outcome.points.len()
+    };
+    let points = &outcome.points[..kept];
+    // RESOLUTION/CORR_LOI_EXACTE: the extra column, added to a reused table that lacks
+    // it; a reused table that has it gets empty cells from a call without the correction.
+    let exact_cells = match &exact_settings {
+        Some(x) => {
+            if table.col(exact_law::COLUMN).is_none() {
+                table.add_column(exact_law::COLUMN, ColKind::R)?;
+            }
+            exact_law::cells(ctx, &problem, x, points, first_order)?
+        }
+        None => Vec::new(),
+    };
+    let exact_col = table.col(exact_law::COLUMN);
+    if ctx.reuse.is_none() {
+        ctx.create(&name, "table_container")?;
+        // The table names K and M and rebuilds the problem from them when it is used
+        // again: it belongs to these K and M (checked at every use, store::deps).
+        ctx.store.record_dependency(&name, &k_name)?;
+        ctx.store.record_dependency(&name, &m_name)?;
+        ctx.create(&cara_choc, "table_sdaster")?;
+        table_store::save_table(ctx.store, &cara_choc, &cara_choc_table(&stored_shocks)?)?;
+        mnl_store::save_setup(
+            ctx.store,
+            &name,
+            &MnlSetup {
+                h_lin: settings.h_lin,
+                h_nonl: settings.h_nonl,
+                matr_rigi: k_name.clone(),
+                matr_mass: m_name.clone(),
+                shocks: stored_shocks.clone(),
+                cara_choc: cara_choc.clone(),
+            },
+        )?;
+    }
+    let dof_names: Vec<(String, String)> = free
+        .iter()
+        .map(|&i| {
+            let d = &k.numbering.dofs[i];
+            (d.node.clone(), d.cmp.name().to_string())
+        })
+        .collect();
+    let ncoef = 2 * settings.h_lin as i64 + 1;
+    let mut suspect: Vec<i64> = Vec::new();
+    let mut worst_defect = 0.0f64;
+    // Rows and how far their orbits reach into the obstacles, for the regularisation's
+    // alarm (runs from a linear mode only: the floor knows its frequency).
+    let mut clear_rows: Vec<nnm::ClearRow> = Vec::new();
+    // The writer of the points (statements prepared once, Fourier rows batched).
+    let mut writer = mnl_store::PointWriter::new(ctx.store, &name)?;
+    for (j, p) in points.iter().enumerate() {
+        let order = first_order + j as i64;
+        let out = post.row_with_defect(&p.x, p.law_defect)?;
+        let defect = out.law_defect;
+        // Judged relative to the force the law carries (as ECART_LOI_CHOC_MAXI): far into
+        // a stop the force is many RIGI_NOR*JEU and so is a well-resolved defect.
+        if out.law_defect_relative > nnm::LAW_DEFECT_ALARM {
+            suspect.push(order);
+        }
+        worst_defect = worst_defect.max(out.law_defect_relative);
+        // An alarm's input: a row it cannot read is left out, never an error.
+        if floor.is_some() {
+            if let Ok(Some(penetration)) = post.largest_penetration(&p.x) {
+                clear_rows.push(nnm::ClearRow {
+                    order,
+                    energy: p.energy,
+                    frequency: p.frequency,
+                    penetration,
+                });
+            }
+        }
+        let mut cells = row(&name, &cara_choc, order, ncoef, reprise, p, defect);
+        if let Some(i) = exact_col {
+            cells.insert(i, exact_cells.get(j).cloned().unwrap_or(Cell::Null));
+        }
+        table.push_row(cells)?;
+        writer.point(order, p.omega, &p.x)?;
+        writer.fourier(order, &dof_names, &out.displacement)?;
+    }
+    writer.finish()?;
+    table_store::save_table(ctx.store, &name, &table)?;
+    ctx.say(&format!(
+        "  frequency against energy: SELECT NUME_ORDRE, ENERGIE, FREQUENCE FROM {name} ORDER BY NUME_ORDRE"
+    ))?;
+    if let (Some(first), Some(last)) = (suspect.first(), suspect.last()) {
+        ctx.alarm(
+            "MODE_NON_LINE_3",
+            &format!(
+                "{} row(s) between NUME_ORDRE {first} and {last} satisfy their contact law in time only \
+                 to {:.3e} x max(RIGI_NOR*JEU, largest contact force) (column ECART_LOI_CHOC, divided \
+                 by that force in units of RIGI_NOR*JEU when it is larger): either the force series is too poorly \
+                 resolved there (raise NB_HARM_NONL, and NB_HARM_LINE at high energy) or the branch has \
+                 left the physical root of the regularised law; treat those rows as suspect",
+                suspect.len(),
+                worst_defect
+            ),
+        )?;
+    }
+    let floor_rows: Vec<i64> = points
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.at_floor)
+        .map(|(j, _)| first_order + j as i64)
+        .collect();
+    if let (Some(first), Some(last)) = (floor_rows.first(), floor_rows.last()) {
+        ctx.alarm(
+            "MODE_NON_LINE_5",
+            &format!(
+                "{} row(s) between NUME_ORDRE {first} and {last} were accepted with RESIDU above \
+                 PREC_NEWTON: the correction had stopped decreasing at the round-off level of the \
+                 equations there (docs/nnm.md, `Point::residual`); that level \
+                 grows with the amplitude far up a branch (the quadratic law terms) and with a \
+                 stiff regularised law: a larger PARA_REGUL or a smaller RIGI_NOR lowers it, or \
+                 NB_BRANCHE can stop the branch lower",
+                floor_rows.len()
+            ),
+        )?;
+    }
+    // Rows clear of every obstacle, off the linear frequency: the regularisation's shift
+    // (nnm/analysis/below_contact.rs).
+    if let Some(f) = &floor {
+        if let Some(w) = nnm::regularisation_alarm(&problem, f.linear(), &clear_rows) {
+            ctx.alarm("MODE_NON_LINE_9", &w)?;
+        }
+    }
+    // The advice's estimate (a few small Newton solves) only when the alarm is shown.
+    let advise = !ctx.ignored_alarms.iter().any(|a| a == "MODE_NON_LINE_1");
+    for w in nnm::resolution_warnings(&problem, &settings, points, first_order, advise) {
+        ctx.alarm("MODE_NON_LINE_1", &w)?;
+    }
+    // Internal resonances n:1 with a linear mode (nnm/analysis/resonance.rs).
+    if let Some(w) = nnm::resonance_alarm(
+        &problem,
+        &settings,
+        points,
+        first_order,
+        linear_modes.as_deref(),
+    )? {
+        ctx.alarm("MODE_NON_LINE_7", &w)?;
+    }
+    end::report(
+        ctx,
+        outcome.error,
+        outcome.limit.as_deref(),
+        points,
+        outcome.points.len() - kept,
+        settings.n_branches,
+        first_order,
+    )?;
+    Ok(())
+}
+
+/// A restart goes on (DIR_EVOLUTION = −1) or back (+1) relative to the direction the
+/// stored branch was travelling at the start row (restart.rs); said at INFO ≥ 1.
+fn restart_direction(
+    ctx: &mut OpContext<'_>,
+    src: &str,
+    order: i64,
+    direction: i32,
+    start_state: StartState,
+) -> Result<StartState> {
+    let t = table_store::load_table(ctx.store, src)?;
+    let way = if direction < 0 {
+        "on in"
+    } else {
+        "back against"
+    };
+    match restart::travel_at_row(ctx.store, &t, src, order)? {
+        Some(tr) => {
+            if ctx.info >= 1 {
+                ctx.say(&format!(
+                    "  restart from {src} row {order}: DIR_EVOLUTION={direction} goes {way} the direction \
+                     the stored branch travelled there (rows {} -> {})",
+                    tr.from, tr.to
+                ))?;
+            }
+            start_state.travelling(tr.direction)
+        }
+        None => {
+            ctx.alarm(
+                "MODE_NON_LINE_4",
+                &format!(
+                    "row {order} of {src} is the only stored row of its run: the direction the branch \
+                     travelled there is unknown, so DIR_EVOLUTION={direction} goes toward {} \
+                     amplitude, as from a linear mode",
+                    if direction < 0 { "increasing" } else { "decreasing" }
+                ),
+            )?;
+            Ok(start_state)
+        }
+    }
+}
