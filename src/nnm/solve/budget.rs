@@ -45,14 +45,14 @@ pub fn mnl_unknowns(s: &MnlSizes) -> f64 {
     2.0 * s.n_dofs as f64 * nl + own * nn + 2.0
 }
 
-/// Fill of the reduced system's sparse LU factors relative to its entries, with a margin:
+/// Fill of the condensed tangent's sparse LU factors relative to its entries, with a margin:
 /// on the bench's bar (10⁴ and 10⁵ DOFs, H_l 5) the engine measured about 2.5 kB per
 /// nonzero of K ∪ M (docs/performance.md), where this model (K and M counted separately)
 /// gives about 2.5 times as much; meshes with wider fronts than a bar fill more.
 const LU_FILL: f64 = 8.0;
 
-/// Entries of the reduced tangent that the sparse LU factorises (linear_solver.rs,
-/// reduced.rs): per harmonic the pattern of K ∪ M on cos and sin coupled (four blocks;
+/// Entries of the condensed tangent that the sparse LU factorises (linear_solver.rs,
+/// condensed_tangent.rs): per harmonic the pattern of K ∪ M on cos and sin coupled (four blocks;
 /// one for the mean), the dense Ω and γ columns, and per shock its Schur block
 /// (components·(2H_l+1))².
 fn reduced_entries(s: &MnlSizes) -> f64 {
@@ -68,7 +68,7 @@ fn reduced_entries(s: &MnlSizes) -> f64 {
 
 /// Peak memory of MODE_NON_LINE, in bytes.
 ///
-/// Model of the structured solver (docs/nnm.md): the reduced tangent over U, Ω and γ and
+/// Model of the structured solver (docs/nnm.md): the condensed tangent over U, Ω and γ and
 /// its sparse LU factors (`LU_FILL` times its entries, 16 bytes each: value and index);
 /// per shock its contact block (`contact::block_reals`: Krylov workspace, the coupling W,
 /// the time samples of the law, and the dense block where the dense route may be taken);
@@ -93,7 +93,7 @@ pub fn memory_estimate(s: &MnlSizes) -> f64 {
 }
 
 /// Floating-point operations of one series branch of MODE_NON_LINE: one factorisation of
-/// the reduced tangent (taken as `LU_FILL` times its entries squared over its dimension,
+/// the condensed tangent (taken as `LU_FILL` times its entries squared over its dimension,
 /// the work of a banded elimination) and per shock the W columns and `order` solves of
 /// its contact block (dense or Krylov, whichever the cost model of contact.rs picks), and
 /// `order` right-hand sides through the factors.
@@ -196,7 +196,7 @@ mod tests {
     #[test]
     fn a_large_beam_fits_a_workstation() {
         // 10⁴ DOFs, about 12 entries of K ∪ M per row, H_l 5, H_nl 200, two CERCLE
-        // rings: the reduced system (11·10⁴ unknowns) dominates, well under 10 GB.
+        // rings: the condensed tangent (11·10⁴ unknowns) dominates, well under 10 GB.
         let s = MnlSizes {
             n_dofs: 10_000,
             nnz: 240_000,

@@ -25,7 +25,7 @@
 
 use crate::error::{Error, Result};
 use crate::nnm::model::system::System;
-use crate::nnm::solve::reduced::permutation_sign;
+use crate::nnm::solve::condensed_tangent::permutation_sign;
 use faer::Mat;
 
 /// Right-hand sides solved at once: bounds the memory to n·COLUMNS_PER_SOLVE values.

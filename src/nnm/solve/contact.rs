@@ -1075,7 +1075,7 @@ impl ContactBlock {
                     }
                     // The rest of this factorisation's solves on the dense route (W, from
                     // converged Krylov solves, stays: it agrees with the dense one to
-                    // round-off and the reduced matrix was built with it).
+                    // round-off and the condensed matrix was built with it).
                     Err(f) if self.d > DENSE_MAX_DIM => Err(self.krylov_error(f)),
                     Err(_) => {
                         self.counters.dense_fallbacks += 1;

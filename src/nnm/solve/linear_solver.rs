@@ -2,8 +2,8 @@
 //!
 //! - [`StructuredSolver`] (the engine's): V eliminated with the U rows, each shock's contact
 //!   block by its Schur complement (contact.rs), the rest one sparse LU of fixed pattern
-//!   (reduced.rs). The true border t is dense (the previous tangent); the reduced matrix
-//!   carries a *local* border e_j instead (j: the reduced unknown where |t| is largest), and
+//!   (condensed_tangent.rs). The true border t is dense (the previous tangent); the condensed matrix
+//!   carries a *local* border e_j instead (j: the condensed unknown where |t| is largest), and
 //!   every solve of the true system is recovered exactly by one kernel correction: with y
 //!   the solution of [R_X; e_jᵀ] y = (0, 1) (computed once per factorisation, R_X y = 0) and
 //!   z' that of [R_X; e_jᵀ] z' = (r, 0), z = z' + ((ρ − tᵀz')/(tᵀy)) y solves
@@ -21,8 +21,8 @@ use crate::nnm::model::fourier;
 use crate::nnm::model::system::System;
 use crate::nnm::model::vector::dot_in_order as dot;
 use crate::nnm::model::vector::sub_scaled;
+use crate::nnm::solve::condensed_tangent::{CondensedTangent, Linearisation};
 use crate::nnm::solve::contact::{ContactBlock, Method};
-use crate::nnm::solve::reduced::{Linearisation, ReducedSystem};
 use faer::prelude::*;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat, Triplet};
@@ -40,7 +40,7 @@ pub trait TangentSolver {
 
 /// The engine's solver (module doc).
 pub struct StructuredSolver {
-    reduced: ReducedSystem,
+    condensed: CondensedTangent,
     contacts: Vec<ContactBlock>,
     /// Per shock: C W (m × m, column-major).
     schur: Vec<Vec<f64>>,
@@ -48,7 +48,7 @@ pub struct StructuredSolver {
     q: Vec<Vec<f64>>,
     omega: f64,
     gamma: f64,
-    /// D U0, and the Ω and γ columns of the reduced velocity rows (n·nl each).
+    /// D U0, and the Ω and γ columns of the condensed velocity rows (n·nl each).
     du0: Vec<f64>,
     col_omega: Vec<f64>,
     col_gamma: Vec<f64>,
@@ -90,7 +90,7 @@ impl StructuredSolver {
             .map(|sh| vec![0.0; sh.eqs.n_own * lay.n_coef_nonl])
             .collect();
         Ok(StructuredSolver {
-            reduced: ReducedSystem::new(sys)?,
+            condensed: CondensedTangent::new(sys)?,
             contacts,
             schur,
             q,
@@ -128,7 +128,7 @@ impl StructuredSolver {
         best.into_iter().map(|(_, j)| j).collect()
     }
 
-    /// Full vector from a reduced solution `red` and the right-hand side `r` (None: zero),
+    /// Full vector from a condensed solution `red` and the right-hand side `r` (None: zero),
     /// into `z` (length n_unk). Needs `q` (A_ff⁻¹ r_f) when `r` is given.
     fn expand(&mut self, sys: &System, r: Option<&[f64]>, z: &mut [f64]) {
         let lay = sys.lay;
@@ -237,15 +237,15 @@ impl TangentSolver for StructuredSolver {
                 col_gamma: &self.col_gamma,
                 schur: &self.schur,
             };
-            if let Err(e) = self.reduced.factor(&lin, j) {
+            if let Err(e) = self.condensed.factor(&lin, j) {
                 last_err = Some(e);
                 continue;
             }
-            // Kernel: reduced right-hand side e_border, zero elsewhere.
+            // Kernel: condensed right-hand side e_border, zero elsewhere.
             self.red.fill(0.0);
             let nr = self.red.len();
             self.red[nr - 1] = 1.0;
-            self.reduced.solve(&mut self.red)?;
+            self.condensed.solve(&mut self.red)?;
             let mut y = std::mem::take(&mut self.y);
             self.expand(sys, None, &mut y);
             self.y = y;
@@ -297,7 +297,7 @@ impl TangentSolver for StructuredSolver {
         }
         self.red[nnl] = rhs[lay.omega()];
         self.red[nnl + 1] = 0.0;
-        self.reduced.solve(&mut self.red)?;
+        self.condensed.solve(&mut self.red)?;
         let mut r_u = std::mem::take(&mut self.tmp2);
         r_u.copy_from_slice(&rhs[..nnl]);
         self.expand(sys, Some(&r_u), rhs);
@@ -319,7 +319,7 @@ impl TangentSolver for StructuredSolver {
         if !self.factored {
             return Err(Error::internal("determinant sign without a factorisation"));
         }
-        Ok(self.reduced.det_sign() * self.ty.signum())
+        Ok(self.condensed.det_sign() * self.ty.signum())
     }
 }
 

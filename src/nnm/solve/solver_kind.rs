@@ -11,7 +11,7 @@ use crate::nnm::{ContactMethod, Settings};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum SolverKind {
     /// Schur complements of the contact blocks (route per shock by the cost model), V
-    /// eliminated, one sparse LU of the reduced system.
+    /// eliminated, one sparse LU of the condensed tangent.
     #[default]
     Structured,
     /// As `Structured` with every contact block on the given route.

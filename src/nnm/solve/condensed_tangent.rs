@@ -1,4 +1,4 @@
-//! The reduced tangent: the bordered tangent with V and the contact unknowns eliminated.
+//! The condensed tangent: the bordered tangent with V and the contact unknowns eliminated.
 //!
 //! The velocity unknowns follow from the U rows exactly (Ω D δU + D U0 δΩ − δV = r_U, no
 //! division), the contact unknowns from their blocks (δF = A_ff⁻¹ r_f − W δu_s,
@@ -41,7 +41,7 @@ struct Pair {
     has_m: bool,
 }
 
-/// What the values of the reduced matrix depend on besides K and M.
+/// What the values of the condensed matrix depend on besides K and M.
 pub struct Linearisation<'a> {
     pub omega: f64,
     pub gamma: f64,
@@ -52,7 +52,7 @@ pub struct Linearisation<'a> {
     pub schur: &'a [Vec<f64>],
 }
 
-pub struct ReducedSystem {
+pub struct CondensedTangent {
     n: usize,
     n_coef_lin: usize,
     h_lin: usize,
@@ -112,10 +112,10 @@ pub fn permutation_sign(fwd: &[usize]) -> f64 {
 fn lu_error(e: LuError, nr: usize, nnz: usize) -> Error {
     match e {
         LuError::Generic(FaerError::OutOfMemory) => Error::numerical(format!(
-            "out of memory while factorising the reduced tangent ({nr} unknowns, {nnz} nonzeros before fill-in)"
+            "out of memory while factorising the condensed tangent ({nr} unknowns, {nnz} nonzeros before fill-in)"
         )),
         LuError::Generic(e) => Error::numerical(format!(
-            "the reduced tangent ({nr} unknowns) could not be factorised ({e:?})"
+            "the condensed tangent ({nr} unknowns) could not be factorised ({e:?})"
         )),
         LuError::SymbolicSingular { index } => Error::numerical(format!(
             "the bordered tangent is singular (no pivot at step {index} of {nr})"
@@ -124,8 +124,8 @@ fn lu_error(e: LuError, nr: usize, nnz: usize) -> Error {
     }
 }
 
-impl ReducedSystem {
-    pub fn new(sys: &System) -> Result<ReducedSystem> {
+impl CondensedTangent {
+    pub fn new(sys: &System) -> Result<CondensedTangent> {
         let lay = sys.lay;
         let (n, nl) = (lay.n, lay.n_coef_lin);
         let nr = n * nl + 2;
@@ -159,7 +159,7 @@ impl ReducedSystem {
             }
         }
         let mass_rows = (0..n).filter(|&i| has_mass[i]).collect();
-        let mut rs = ReducedSystem {
+        let mut rs = CondensedTangent {
             n,
             n_coef_lin: nl,
             h_lin: lay.h_lin,
@@ -285,7 +285,7 @@ impl ReducedSystem {
         Ok(())
     }
 
-    /// The column ordering, from the structure of the reduced matrix rather than from a
+    /// The column ordering, from the structure of the condensed matrix rather than from a
     /// fill-reducing ordering of all of it: away from the shock DOFs the harmonics do not
     /// couple (per harmonic k, K − (kΩ)²M on cos and sin, coupled by ±γΩkM), so the
     /// matrix is one block per harmonic with the pattern of K ∪ M, bordered by the columns
@@ -413,7 +413,7 @@ impl ReducedSystem {
         Ok(())
     }
 
-    /// Sign of the determinant of the factorised reduced matrix.
+    /// Sign of the determinant of the factorised condensed matrix.
     pub fn det_sign(&self) -> f64 {
         self.det_sign
     }
@@ -422,7 +422,7 @@ impl ReducedSystem {
     pub fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
         if !self.factored || rhs.len() != self.nr {
             return Err(Error::internal(
-                "reduced solve without a factorisation or of the wrong size",
+                "condensed solve without a factorisation or of the wrong size",
             ));
         }
         let nr = self.nr;
