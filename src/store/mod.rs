@@ -92,7 +92,7 @@ pub enum Durability {
     /// of the system during the run may leave the study unreadable; nothing older is at
     /// stake (DEBUT has replaced it), and rerunning the command file rebuilds it. Measured
     /// on sdnd122a: the per-commit syncs and the journal's creation and removal are 7 %
-    /// (quiet machine) to 16 % (loaded) of a run's CPU time (docs/performance.md, seventh
+    /// (quiet machine) to 16 % (loaded) of a run's CPU time (docs/performance_history.md, seventh
     /// round).
     RunEnd,
     /// A continued study (POURSUITE): SQLite's defaults (`synchronous = FULL`, the journal

@@ -12,7 +12,7 @@
 //! x86-64 and for processors with AVX2 and FMA, the version chosen once at run time
 //! (`multiversion`). Rust never contracts a product and a sum into one FMA on its own, so
 //! both versions round alike: the results are the same to the last bit (measured on every
-//! table of sdnd122a), only the speed differs (docs/performance.md, seventh round).
+//! table of sdnd122a), only the speed differs (docs/performance_history.md, seventh round).
 
 use multiversion::multiversion;
 

@@ -77,7 +77,7 @@ pub const KRYLOV_PENALTY: f64 = 4.0;
 /// stiff stops it leaves AMOR_FICTIF one to two orders above what the dense LU leaves
 /// (tests/hard_cases.rs: 2.4e-8 against ≤ 1e-9 on the 20-mass chain, 9.9e-11 against
 /// ≤ 1e-12 at RIGI_NOR = 1e8), so the crossover stays where these constants put it
-/// (docs/performance.md, fifth round).
+/// (docs/performance_history.md, fifth round).
 pub fn cost(method: Method, n_own: usize, nn: usize, ns: usize, solves: usize) -> f64 {
     let d = (n_own * nn) as f64;
     let s = solves as f64;

@@ -13,7 +13,7 @@
 //! the preconditioner need only approximate that inverse: on any n ≥ H + 1 midpoints it is
 //! one fixed linear map of the series of H harmonics, and its transforms on the smallest
 //! such grid cost about two thirds of the exact ones (216 against 320 midpoints at
-//! H = 200; the engine time of sdnd122a 34.6 → 34.1 ms, docs/performance.md,
+//! H = 200; the engine time of sdnd122a 34.6 → 34.1 ms, docs/performance_history.md,
 //! seventh round).
 
 use crate::nnm::model::cosine_sampler::{CosineSampler, CosineScratch};

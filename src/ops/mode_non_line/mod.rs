@@ -15,11 +15,16 @@ mod table;
 
 use crate::args::Args;
 use crate::error::{Error, ErrorKind, Result};
+use crate::model::assembly::AssembledMatrix;
+use crate::nnm::exact_law::ExactLawSettings;
+use crate::nnm::Settings;
 use crate::nnm::{self, Problem, StartState};
 use crate::ops::{common::progress::Progress, OpContext};
+use crate::store::mnl::StoredShock;
 use crate::store::mnl::{self as mnl_store, MnlSetup};
 use crate::store::{matrix, table as table_store};
-use crate::table::{Cell, ColKind};
+use crate::table::{Cell, ColKind, Table};
+use inputs::StopBounds;
 use inputs::{
     check_budget, check_restart_harmonics, orig_obst_notes, settings, shocks_from_args,
     step_control, stop_bounds,
@@ -33,6 +38,138 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         (None, Some(r)) => r.to_string(),
         (None, None) => ctx.result_name()?.to_string(),
     };
+    let (call, mut control) = read_call(ctx, args, &name)?;
+    let start = start_state(ctx, args, &call)?;
+    let (problem, settings, restart_from) = (&call.problem, &call.settings, &call.restart_from);
+
+    // The linear modes (dense, small models only): the frequency floor of a family that
+    // starts from a linear mode, and the internal-resonance alarm after the run.
+    let linear_modes = nnm::linear_modes(problem)?;
+    if restart_from.is_none() {
+        control.frequency_floor = nnm::FrequencyFloor::new(
+            problem,
+            linear_modes.as_deref(),
+            start.point.frequency,
+            settings.h_lin,
+            args.req_fact("RESOLUTION")?.req_real("BAISSE_FREQ_MAXI")?,
+        );
+    }
+    // The rows kept after a wrong-branch end are judged by the same checks.
+    let floor = control.frequency_floor.clone();
+    let work_min = control.work_min.unwrap_or(f64::NEG_INFINITY);
+    let gamma_max = control.gamma_max;
+
+    let outcome = follow(ctx, &name, &call, control, start)?;
+
+    let (table, first_order, reprise) = result_table(ctx, restart_from)?;
+    // Built once: what every row's outputs share (layout, physical laws, FFT plan).
+    let post = nnm::PostProcessor::new(problem, settings)?;
+    // A branch that left the physical root of its law: its trailing suspect rows are not
+    // stored; every other run stores every row.
+    let kept = rows_kept(&post, &outcome, floor.as_ref(), work_min, gamma_max)?;
+    let points = &outcome.points[..kept];
+    // Rows and how far their orbits reach into the obstacles, for the regularisation's
+    // alarm (runs from a linear mode only: the floor knows its frequency).
+    let clearance = floor.is_some();
+    let checks = store_rows(
+        ctx,
+        &name,
+        &call,
+        &post,
+        points,
+        table,
+        first_order,
+        reprise,
+        clearance,
+    )?;
+    row_alarms(
+        ctx,
+        &call,
+        points,
+        first_order,
+        &checks,
+        floor.as_ref(),
+        linear_modes.as_deref(),
+    )?;
+
+    end::report(
+        ctx,
+        outcome.error,
+        outcome.limit.as_deref(),
+        points,
+        outcome.points.len() - kept,
+        settings.n_branches,
+        first_order,
+    )?;
+    Ok(())
+}
+
+/// The result table: a new one, or the reused one extended; with the NUME_ORDRE of its first
+/// new row and the NUME_REPRISE of this call.
+fn result_table(ctx: &OpContext<'_>, restart_from: &Option<String>) -> Result<(Table, i64, i64)> {
+    Ok(match ctx.reuse {
+        Some(r) => {
+            let t = table_store::load_table(ctx.store, r)?;
+            let last = max_int(&t, "NUME_ORDRE");
+            let rep = max_int(&t, "NUME_REPRISE") + 1;
+            (t, last + 1, rep)
+        }
+        None => (
+            new_table(),
+            1,
+            i64::from(restart_from.is_some()) + restart_reprise(ctx, restart_from)?,
+        ),
+    })
+}
+
+/// How many of the run's rows are stored: all, or, after an end on a wrong branch, those
+/// before its trailing rows that are not motions by the run's own checks (end::rows_kept;
+/// the defects are computed only then, the rows' outputs are not kept in memory).
+fn rows_kept(
+    post: &nnm::PostProcessor,
+    outcome: &nnm::Outcome,
+    floor: Option<&nnm::FrequencyFloor>,
+    work_min: f64,
+    gamma_max: Option<f64>,
+) -> Result<usize> {
+    Ok(if end::cuts_rows(outcome.error.as_ref()) {
+        let motions = outcome
+            .points
+            .iter()
+            .map(|p| {
+                let off_the_family =
+                    floor.is_some_and(|f| f.off_the_family(p.frequency, p.energy).is_some());
+                let damped = gamma_max.is_some_and(|max| {
+                    let ratio = nnm::relative_gamma(p);
+                    ratio.is_nan() || ratio > max
+                });
+                Ok(!off_the_family && !damped && post.is_motion(&p.x, p.law_defect, work_min)?)
+            })
+            .collect::<Result<Vec<bool>>>()?;
+        end::rows_kept(outcome.error.as_ref(), &motions)
+    } else {
+        outcome.points.len()
+    })
+}
+
+/// What the call asks for, read once: the matrices, the settings, the shocks (from CHOC, or
+/// from the start table's CARA_CHOC on a restart) and the engine's problem, checked (the
+/// shock table's name, the exact-law settings, the cost) before anything is computed.
+struct Call {
+    k_name: String,
+    m_name: String,
+    cara_choc: String,
+    k: AssembledMatrix,
+    free: Vec<usize>,
+    settings: Settings,
+    exact_settings: Option<ExactLawSettings>,
+    bounds: StopBounds,
+    restart_from: Option<String>,
+    stored_shocks: Vec<StoredShock>,
+    problem: Problem,
+}
+
+fn read_call(ctx: &mut OpContext<'_>, args: &Args, name: &str) -> Result<(Call, nnm::StepControl)> {
     let k_name = args.req_concept("MATR_RIGI")?.name.clone();
     let m_name = args.req_concept("MATR_MASS")?.name.clone();
     let cara_choc = format!("{name}_CHOC");
@@ -64,7 +201,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let free = k.free_dofs();
     let settings = settings(args)?;
     let exact_settings = exact_law::settings(args, &settings)?;
-    let mut control = step_control(args)?;
+    let control = step_control(args)?;
     let bounds = stop_bounds(args)?;
     let etat = args.req_fact("ETAT_INIT")?;
 
@@ -113,8 +250,35 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         exact_law::check(&problem, x)?;
     }
     check_budget(ctx, &problem, &settings, &stored_shocks)?;
+    let call = Call {
+        k_name,
+        m_name,
+        cara_choc,
+        k,
+        free,
+        settings,
+        exact_settings,
+        bounds,
+        restart_from,
+        stored_shocks,
+        problem,
+    };
+    Ok((call, control))
+}
 
-    // Start point.
+/// The first point: a stored row (a restart, in the direction DIR_EVOLUTION asks relative to
+/// the stored travel) or a linear mode scaled by COEF_AMPL.
+fn start_state(ctx: &mut OpContext<'_>, args: &Args, call: &Call) -> Result<StartState> {
+    let Call {
+        restart_from,
+        problem,
+        settings,
+        k,
+        k_name,
+        ..
+    } = call;
+    let etat = args.req_fact("ETAT_INIT")?;
+
     let nume_ordre = etat.req_int("NUME_ORDRE")?;
     let start: StartState = match &restart_from {
         Some(src) => {
@@ -123,7 +287,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                     .keyword("MODE_NON_LINE/ETAT_INIT/NUME_ORDRE")
             })?;
             // A stored point that does not fit these settings is the start row's fault.
-            let start_state = nnm::start_from_point(&problem, &settings, &x).map_err(|e| {
+            let start_state = nnm::start_from_point(problem, settings, &x).map_err(|e| {
                 if e.kind == ErrorKind::Input {
                     e.keyword("ETAT_INIT/NUME_ORDRE")
                 } else {
@@ -132,27 +296,22 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             })?;
             restart_direction(ctx, src, nume_ordre, settings.direction, start_state)?
         }
-        None => start::from_linear_modes(ctx, etat, &problem, &settings, &k, &k_name)?,
+        None => start::from_linear_modes(ctx, etat, problem, settings, k, k_name)?,
     };
+    Ok(start)
+}
 
-    // The linear modes (dense, small models only): the frequency floor of a family that
-    // starts from a linear mode, and the internal-resonance alarm after the run.
-    let linear_modes = nnm::linear_modes(&problem)?;
-    if restart_from.is_none() {
-        control.frequency_floor = nnm::FrequencyFloor::new(
-            &problem,
-            linear_modes.as_deref(),
-            start.point.frequency,
-            settings.h_lin,
-            args.req_fact("RESOLUTION")?.req_real("BAISSE_FREQ_MAXI")?,
-        );
-    }
-    // The rows kept after a wrong-branch end are judged by the same checks.
-    let floor = control.frequency_floor.clone();
-    let work_min = control.work_min.unwrap_or(f64::NEG_INFINITY);
-    let gamma_max = control.gamma_max;
+/// The continuation, its progress, its live view and its report of each branch; stops at the
+/// first branch past a bound of RESOLUTION (ENER_MAX, FREQ_MAX, DEPL_MAX).
+fn follow(
+    ctx: &mut OpContext<'_>,
+    name: &str,
+    call: &Call,
+    control: nnm::StepControl,
+    start: StartState,
+) -> Result<nnm::Outcome> {
+    let (problem, settings, bounds) = (&call.problem, &call.settings, &call.bounds);
 
-    // Continue, reporting each branch.
     let info = ctx.info;
     let mut lines = Vec::new();
     let progress = Progress::new(
@@ -164,8 +323,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let mut stopped_by: Option<String> = None;
     let mut bound_error: Option<Error> = None;
     // The rows of each branch, readable in a live file while the operator runs.
-    let mut live = crate::ops::common::live::LiveView::start(ctx, &name)?;
-    let outcome = nnm::continue_controlled(&problem, &settings, control, start, &mut |rep, pts| {
+    let mut live = crate::ops::common::live::LiveView::start(ctx, name)?;
+    let outcome = nnm::continue_controlled(problem, settings, control, start, &mut |rep, pts| {
         progress.inc();
         live.branch(rep.branch, pts);
         if info >= 1 {
@@ -188,7 +347,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 if rep.at_floor { "  residual accepted at its round-off floor" } else { "" }
             ));
         }
-        match bounds.passed(&problem, &settings, pts) {
+        match bounds.passed(problem, settings, pts) {
             Ok(Some(why)) => {
                 stopped_by = Some(format!("branch {}: {why}", rep.branch));
                 false
@@ -217,46 +376,36 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             "MODE_NON_LINE {name}: stopped at the bound asked for in RESOLUTION: {why}"
         ))?;
     }
+    Ok(outcome)
+}
 
-    // The result table: a new one, or the reused one extended.
-    let (mut table, first_order, reprise) = match ctx.reuse {
-        Some(r) => {
-            let t = table_store::load_table(ctx.store, r)?;
-            let last = max_int(&t, "NUME_ORDRE");
-            let rep = max_int(&t, "NUME_REPRISE") + 1;
-            (t, last + 1, rep)
-        }
-        None => (
-            new_table(),
-            1,
-            i64::from(restart_from.is_some()) + restart_reprise(ctx, &restart_from)?,
-        ),
-    };
-    // Built once: what every row's outputs share (layout, physical laws, FFT plan).
-    let post = nnm::PostProcessor::new(&problem, &settings)?;
-    // A branch that left the physical root of its law: its trailing suspect rows are not
-    // stored (end::rows_kept; their defects computed only then, the rows' outputs are
-    // not kept in memory); every other run stores every row.
-    let kept = if end::cuts_rows(outcome.error.as_ref()) {
-        let motions = outcome
-            .points
-            .iter()
-            .map(|p| {
-                let off_the_family = floor
-                    .as_ref()
-                    .is_some_and(|f| f.off_the_family(p.frequency, p.energy).is_some());
-                let damped = gamma_max.is_some_and(|max| {
-                    let ratio = nnm::relative_gamma(p);
-                    ratio.is_nan() || ratio > max
-                });
-                Ok(!off_the_family && !damped && post.is_motion(&p.x, p.law_defect, work_min)?)
-            })
-            .collect::<Result<Vec<bool>>>()?;
-        end::rows_kept(outcome.error.as_ref(), &motions)
-    } else {
-        outcome.points.len()
-    };
-    let points = &outcome.points[..kept];
+/// The rows of the run stored in the result table (`first_order` on), with their Fourier
+/// coefficients and unknowns; what the row alarms need is returned.
+#[allow(clippy::too_many_arguments)]
+fn store_rows(
+    ctx: &mut OpContext<'_>,
+    name: &str,
+    call: &Call,
+    post: &nnm::PostProcessor,
+    points: &[nnm::Point],
+    mut table: Table,
+    first_order: i64,
+    reprise: i64,
+    clearance: bool,
+) -> Result<RowChecks> {
+    let Call {
+        k_name,
+        m_name,
+        cara_choc,
+        k,
+        free,
+        settings,
+        exact_settings,
+        stored_shocks,
+        problem,
+        ..
+    } = call;
+
     // RESOLUTION/CORR_LOI_EXACTE: the extra column, added to a reused table that lacks
     // it; a reused table that has it gets empty cells from a call without the correction.
     let exact_cells = match &exact_settings {
@@ -264,22 +413,22 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             if table.col(exact_law::COLUMN).is_none() {
                 table.add_column(exact_law::COLUMN, ColKind::R)?;
             }
-            exact_law::cells(ctx, &problem, x, points, first_order)?
+            exact_law::cells(ctx, problem, x, points, first_order)?
         }
         None => Vec::new(),
     };
     let exact_col = table.col(exact_law::COLUMN);
     if ctx.reuse.is_none() {
-        ctx.create(&name, "table_container")?;
+        ctx.create(name, "table_container")?;
         // The table names K and M and rebuilds the problem from them when it is used
         // again: it belongs to these K and M (checked at every use, store::deps).
-        ctx.store.record_dependency(&name, &k_name)?;
-        ctx.store.record_dependency(&name, &m_name)?;
-        ctx.create(&cara_choc, "table_sdaster")?;
-        table_store::save_table(ctx.store, &cara_choc, &cara_choc_table(&stored_shocks)?)?;
+        ctx.store.record_dependency(name, k_name)?;
+        ctx.store.record_dependency(name, m_name)?;
+        ctx.create(cara_choc, "table_sdaster")?;
+        table_store::save_table(ctx.store, cara_choc, &cara_choc_table(stored_shocks)?)?;
         mnl_store::save_setup(
             ctx.store,
-            &name,
+            name,
             &MnlSetup {
                 h_lin: settings.h_lin,
                 h_nonl: settings.h_nonl,
@@ -304,7 +453,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     // alarm (runs from a linear mode only: the floor knows its frequency).
     let mut clear_rows: Vec<nnm::ClearRow> = Vec::new();
     // The writer of the points (statements prepared once, Fourier rows batched).
-    let mut writer = mnl_store::PointWriter::new(ctx.store, &name)?;
+    let mut writer = mnl_store::PointWriter::new(ctx.store, name)?;
     for (j, p) in points.iter().enumerate() {
         let order = first_order + j as i64;
         let out = post.row_with_defect(&p.x, p.law_defect)?;
@@ -316,7 +465,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         }
         worst_defect = worst_defect.max(out.law_defect_relative);
         // An alarm's input: a row it cannot read is left out, never an error.
-        if floor.is_some() {
+        if clearance {
             if let Ok(Some(penetration)) = post.largest_penetration(&p.x) {
                 clear_rows.push(nnm::ClearRow {
                     order,
@@ -326,7 +475,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 });
             }
         }
-        let mut cells = row(&name, &cara_choc, order, ncoef, reprise, p, defect);
+        let mut cells = row(name, cara_choc, order, ncoef, reprise, p, defect);
         if let Some(i) = exact_col {
             cells.insert(i, exact_cells.get(j).cloned().unwrap_or(Cell::Null));
         }
@@ -335,10 +484,44 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         writer.fourier(order, &dof_names, &out.displacement)?;
     }
     writer.finish()?;
-    table_store::save_table(ctx.store, &name, &table)?;
+    table_store::save_table(ctx.store, name, &table)?;
     ctx.say(&format!(
         "  frequency against energy: SELECT NUME_ORDRE, ENERGIE, FREQUENCE FROM {name} ORDER BY NUME_ORDRE"
     ))?;
+    Ok(RowChecks {
+        suspect,
+        worst_defect,
+        clear_rows,
+    })
+}
+
+/// What the stored rows tell the alarms: the rows whose law defect is suspect and the worst
+/// one, and the rows with how far their orbits reach into the obstacles.
+struct RowChecks {
+    suspect: Vec<i64>,
+    worst_defect: f64,
+    clear_rows: Vec<nnm::ClearRow>,
+}
+
+/// The alarms on the stored rows: suspect law defects (MODE_NON_LINE_3), rows at the
+/// round-off floor (5), the regularisation's shift clear of every obstacle (9), poorly
+/// resolved force series (1) and internal resonances (7).
+fn row_alarms(
+    ctx: &mut OpContext<'_>,
+    call: &Call,
+    points: &[nnm::Point],
+    first_order: i64,
+    checks: &RowChecks,
+    floor: Option<&nnm::FrequencyFloor>,
+    linear_modes: Option<&[nnm::LinearMode]>,
+) -> Result<()> {
+    let (problem, settings) = (&call.problem, &call.settings);
+    let RowChecks {
+        suspect,
+        worst_defect,
+        clear_rows,
+    } = checks;
+
     if let (Some(first), Some(last)) = (suspect.first(), suspect.last()) {
         ctx.alarm(
             "MODE_NON_LINE_3",
@@ -376,34 +559,19 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     // Rows clear of every obstacle, off the linear frequency: the regularisation's shift
     // (nnm/analysis/below_contact.rs).
     if let Some(f) = &floor {
-        if let Some(w) = nnm::regularisation_alarm(&problem, f.linear(), &clear_rows) {
+        if let Some(w) = nnm::regularisation_alarm(problem, f.linear(), clear_rows) {
             ctx.alarm("MODE_NON_LINE_9", &w)?;
         }
     }
     // The advice's estimate (a few small Newton solves) only when the alarm is shown.
     let advise = !ctx.ignored_alarms.iter().any(|a| a == "MODE_NON_LINE_1");
-    for w in nnm::resolution_warnings(&problem, &settings, points, first_order, advise) {
+    for w in nnm::resolution_warnings(problem, settings, points, first_order, advise) {
         ctx.alarm("MODE_NON_LINE_1", &w)?;
     }
     // Internal resonances n:1 with a linear mode (nnm/analysis/resonance.rs).
-    if let Some(w) = nnm::resonance_alarm(
-        &problem,
-        &settings,
-        points,
-        first_order,
-        linear_modes.as_deref(),
-    )? {
+    if let Some(w) = nnm::resonance_alarm(problem, settings, points, first_order, linear_modes)? {
         ctx.alarm("MODE_NON_LINE_7", &w)?;
     }
-    end::report(
-        ctx,
-        outcome.error,
-        outcome.limit.as_deref(),
-        points,
-        outcome.points.len() - kept,
-        settings.n_branches,
-        first_order,
-    )?;
     Ok(())
 }
 
