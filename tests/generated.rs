@@ -189,7 +189,7 @@ fn centred_ring_on_one_axis_is_the_two_plane_closed_form() {
 /// energy ½vᵀMv + ½uᵀKu + Φ is conserved to the integrator's accuracy (here 1e-9 relative
 /// over 20 linear periods, through contact and near the centre). With the seed's literal
 /// direction u (not u − c) the same check fails by orders of magnitude more: that is why
-/// `laws.rs` uses u − c.
+/// `law/` uses u − c.
 #[test]
 fn off_centre_ring_force_is_conservative() {
     let (m, kx, ky, g, alpha, eta) = (1.0, 10.0, 17.0, 0.01, 2000.0, 1e-5 * 17.0 * 1e-4);

@@ -20,7 +20,7 @@
 //! - Branch numbers in reports start at 1.
 //!
 //! The method, room by room (docs/nnm.md, "Rooms", lists every file): the problem, its
-//! settings and its laws (model/problem.rs, model/laws.rs, model/system.rs); the tangent's
+//! settings and its laws (model/problem.rs, model/law/, model/system.rs); the tangent's
 //! solvers (solve/); stage 1, the start (continuation/start.rs, continuation/quadrature.rs);
 //! stage 2, the series step (continuation/series_step.rs over continuation/anm.rs); stage 3,
 //! the correction of the branch end (continuation/correction.rs over

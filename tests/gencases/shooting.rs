@@ -1,5 +1,5 @@
 //! Periodic orbits of the generated cases by shooting, independent of the engine: the
-//! equations of motion M ü + K u + Pᵀ F(u) = 0 with the law of `laws.rs`, integrated by
+//! equations of motion M ü + K u + Pᵀ F(u) = 0 with the law of `law/`, integrated by
 //! `ode.rs`, and a Newton on the initial displacement and the half period at a given
 //! ENERGIE.
 //!

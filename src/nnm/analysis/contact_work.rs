@@ -43,7 +43,7 @@ use std::ops::Range;
 struct WorkShock {
     dofs: Vec<usize>,
     /// The contact unknowns holding the force components: f for PLAN/BI_PLAN, fx and fy
-    /// for CERCLE (laws.rs places them first).
+    /// for CERCLE (law/ places them first).
     forces: Range<usize>,
     /// The obstacle's origin relative to the rest position (CERCLE's ORIG_OBST; 0 else).
     origin: [f64; 2],

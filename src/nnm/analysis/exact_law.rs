@@ -204,45 +204,7 @@ fn entries(a: &faer::sparse::SparseColMat<usize, f64>) -> Vec<(usize, usize, f64
 /// Force of one shock's law and its derivative, pointwise: `u` the displacements of its
 /// components at one instant; returns (f, J) with J row-major ncomp × ncomp.
 fn law(sh: &ExactShock, u: [f64; 2]) -> ([f64; 2], [f64; 4]) {
-    let a = sh.alpha;
-    match sh.law {
-        ShockLaw::Plan => {
-            if u[0] > sh.gap {
-                ([a * (u[0] - sh.gap), 0.0], [a, 0.0, 0.0, 0.0])
-            } else {
-                ([0.0; 2], [0.0; 4])
-            }
-        }
-        ShockLaw::BiPlan => {
-            if u[0].abs() > sh.gap {
-                (
-                    [a * (u[0] - sh.gap * u[0].signum()), 0.0],
-                    [a, 0.0, 0.0, 0.0],
-                )
-            } else {
-                ([0.0; 2], [0.0; 4])
-            }
-        }
-        ShockLaw::Cercle { origin, .. } => {
-            let d = [u[0] - origin[0], u[1] - origin[1]];
-            let r = d[0].hypot(d[1]);
-            if r > sh.gap {
-                let s = 1.0 - sh.gap / r;
-                let q = sh.gap / (r * r * r);
-                (
-                    [a * s * d[0], a * s * d[1]],
-                    [
-                        a * (s + q * d[0] * d[0]),
-                        a * q * d[0] * d[1],
-                        a * q * d[1] * d[0],
-                        a * (s + q * d[1] * d[1]),
-                    ],
-                )
-            } else {
-                ([0.0; 2], [0.0; 4])
-            }
-        }
-    }
+    sh.law.with(|l| l.exact_force(u, sh.alpha, sh.gap))
 }
 
 /// The force in the harmonic balance: the exact law, or the regularised one when asked
@@ -270,11 +232,7 @@ fn balance_law(sh: &ExactShock, u: [f64; 2]) -> ([f64; 2], [f64; 4]) {
 /// Penalty energy ½α(δ)₊² of one shock at one instant (δ the penetration).
 fn penalty(sh: &ExactShock, u: [f64; 2]) -> f64 {
     let pen = |d: f64| if d > 0.0 { 0.5 * sh.alpha * d * d } else { 0.0 };
-    match sh.law {
-        ShockLaw::Plan => pen(u[0] - sh.gap),
-        ShockLaw::BiPlan => pen(u[0].abs() - sh.gap),
-        ShockLaw::Cercle { origin, .. } => pen((u[0] - origin[0]).hypot(u[1] - origin[1]) - sh.gap),
-    }
+    pen(sh.law.with(|l| l.penetration(u, sh.gap)))
 }
 
 impl Ctx {

@@ -9,7 +9,7 @@
 
 use crate::nnm::analysis::error_sources;
 use crate::nnm::model::unknowns::Unknowns;
-use crate::nnm::{Point, Problem, Settings, ShockLaw};
+use crate::nnm::{Point, Problem, Settings};
 
 /// Amplitude of the highest tenth of the harmonics relative to the largest harmonic
 /// amplitude, above which the force series counts as poorly resolved.
@@ -106,10 +106,7 @@ pub fn resolution_warnings(
         };
         for ((s, unknowns), shock) in per_shock.iter().enumerate().zip(&problem.shocks) {
             // The force unknowns come first: PLAN, BI_PLAN f; CERCLE fx, fy.
-            let n_force = match shock.law {
-                ShockLaw::Cercle { .. } => 2,
-                _ => 1,
-            };
+            let n_force = shock.law.force_unknowns().len();
             let components: Vec<&[f64]> = unknowns
                 .iter()
                 .take(n_force)

@@ -33,9 +33,7 @@
 
 use crate::error::Result;
 use crate::nnm::model::linear_modes::LinearMode;
-use crate::nnm::{
-    contact_coefficients, displacement_coefficients, Point, Problem, Settings, ShockLaw,
-};
+use crate::nnm::{contact_coefficients, displacement_coefficients, Point, Problem, Settings};
 use std::ops::Div;
 
 /// Relative distance |n·f − f_j|/f_j under which a row counts as on the resonance.
@@ -78,10 +76,7 @@ fn force_components(problem: &Problem) -> Vec<(usize, usize, usize)> {
         .iter()
         .enumerate()
         .flat_map(|(s, sh)| {
-            let comps = match sh.law {
-                ShockLaw::Cercle { .. } => 2,
-                _ => 1,
-            };
+            let comps = sh.law.n_comp();
             (0..comps.min(sh.dofs.len())).map(move |c| (s, c, sh.dofs[c]))
         })
         .collect()

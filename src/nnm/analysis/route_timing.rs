@@ -36,11 +36,7 @@ fn diag(n: usize, v: f64) -> SparseColMat<usize, f64> {
 /// A point in contact: the first DOF at 1.3 JEU in its first harmonic, the second (CERCLE)
 /// at 0.4 JEU in quadrature, contact unknowns from their laws.
 pub(in crate::nnm) fn system_and_point(law: ShockLaw, h_nonl: usize) -> Result<(System, Vec<f64>)> {
-    let dofs = if matches!(law, ShockLaw::Cercle { .. }) {
-        vec![0, 1]
-    } else {
-        vec![0]
-    };
+    let dofs: Vec<usize> = (0..law.n_comp()).collect();
     let p = Problem {
         k: diag(2, 10.0),
         m: diag(2, 1.0),

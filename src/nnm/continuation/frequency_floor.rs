@@ -37,7 +37,7 @@
 
 use crate::nnm::model::linear_modes::LinearMode;
 use crate::nnm::model::point_law::eta_phys;
-use crate::nnm::{Problem, ShockLaw};
+use crate::nnm::Problem;
 
 /// The farthest internal resonance below f_j that explains a dip (relative): the bend of
 /// a family toward f_k/n near first contact, where the contact force is weak, is seen only
@@ -135,10 +135,10 @@ impl FrequencyFloor {
             .filter(|&f| f <= linear && (linear - f) / linear <= NEAR)
             .collect();
         resonances.sort_by(f64::total_cmp);
-        let planes = problem
-            .shocks
-            .iter()
-            .all(|sh| matches!(sh.law, ShockLaw::Plan | ShockLaw::BiPlan));
+        let planes = problem.shocks.iter().all(|sh| {
+            sh.law
+                .with(|l| l.stiffness_at_rest(sh.gap, sh.regul).is_some())
+        });
         let (contact_energy, linear_band) = match (planes, eta_phys(problem)) {
             (true, Ok(eta)) => (
                 contact_energy(problem, &start.shape, linear),
@@ -228,14 +228,17 @@ fn regularisation_shift(problem: &Problem, eta: &[f64], shape: &[f64], frequency
         .iter()
         .zip(eta)
         .map(|(sh, &eta)| {
-            let sides = if sh.law == ShockLaw::BiPlan { 2.0 } else { 1.0 };
+            let stiffness = sh
+                .law
+                .with(|l| l.stiffness_at_rest(sh.gap, eta))
+                .unwrap_or(0.0);
             let phi = sh
                 .dofs
                 .first()
                 .and_then(|&d| shape.get(d))
                 .copied()
                 .unwrap_or(0.0);
-            sides * eta / (sh.gap * sh.gap) * phi * phi
+            stiffness * phi * phi
         })
         .sum::<f64>()
         / (2.0 * omega2)
@@ -250,6 +253,7 @@ fn rest_inside(shock: &crate::nnm::Shock) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::nnm::ShockLaw;
     use crate::nnm::{CercleForm, Shock};
     use faer::sparse::{SparseColMat, Triplet};
 

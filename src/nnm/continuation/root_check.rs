@@ -23,7 +23,7 @@
 
 use crate::error::Result;
 use crate::nnm::continuation::start::shock_displacements;
-use crate::nnm::model::laws;
+use crate::nnm::model::law;
 use crate::nnm::model::system::System;
 
 /// δ of the module doc at `x` (scaled unknowns); 0 without shocks.
@@ -40,7 +40,7 @@ pub(in crate::nnm) fn frequency_defect(sys: &System, x: &[f64]) -> Result<f64> {
     let mut force = vec![0.0; ns];
     for sh in &sys.shocks {
         let u = shock_displacements(sys, sh, x);
-        let own = laws::own_from_u(sh.law, sh.gap, sh.alpha, sh.eta, &u)?;
+        let own = law::own_from_u(sh.law, sh.gap, sh.alpha, sh.eta, &u)?;
         for &(c, v) in &sh.eqs.forces {
             let o = sh.offset + v * lay.n_coef_nonl;
             smp.synth_with(&x[o..o + lay.n_coef_nonl], lay.h_nonl, &mut force, &mut ws);

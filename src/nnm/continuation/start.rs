@@ -9,7 +9,7 @@ use crate::nnm::model::unknowns::Unknowns;
 use crate::nnm::solve::linear_solver::TangentSolver;
 use crate::nnm::solve::solver_kind::{make_solver, SolverKind};
 use crate::nnm::{
-    continuation::anm, continuation::newton, model::fourier, model::laws, Point, Problem, Settings,
+    continuation::anm, continuation::newton, model::fourier, model::law, Point, Problem, Settings,
 };
 
 /// A corrected point to continue from.
@@ -53,7 +53,7 @@ pub(in crate::nnm) fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
     let smp = sys.sampler();
     for sh in &sys.shocks {
         let u = shock_displacements(sys, sh, x);
-        let own = laws::own_from_u(sh.law, sh.gap, sh.alpha, sh.eta, &u)?;
+        let own = law::own_from_u(sh.law, sh.gap, sh.alpha, sh.eta, &u)?;
         for (v, mut s) in own.into_iter().enumerate() {
             let o = sh.offset + v * lay.n_coef_nonl;
             smp.analyse(&mut s, lay.h_nonl, &mut x[o..o + lay.n_coef_nonl]);

@@ -10,7 +10,6 @@
 //!   Fourier space); (max − min)/ENERGIE. Zero for an exact periodic orbit.
 
 use crate::nnm::model::fourier::{self, Sampler};
-use crate::nnm::model::laws::ScaledLaw;
 use crate::nnm::model::system::System;
 use std::f64::consts::FRAC_PI_2;
 
@@ -56,14 +55,8 @@ pub fn energy_ca(sys: &System, x: &[f64]) -> f64 {
     let mut e = quad_form(&sys.k.entries, &u) + quad_form(&sys.m.entries, &v);
     for sh in &sys.shocks {
         let pen = |d: f64| if d > 0.0 { 0.5 * sh.alpha * d * d } else { 0.0 };
-        e += match sh.law {
-            ScaledLaw::Plan => pen(u[sh.dofs[0]] - sh.gap),
-            ScaledLaw::BiPlan => pen(u[sh.dofs[0]].abs() - sh.gap),
-            ScaledLaw::Cercle { ex, ey, .. } => {
-                let r = ((u[sh.dofs[0]] - ex).powi(2) + (u[sh.dofs[1]] - ey).powi(2)).sqrt();
-                pen(r - sh.gap)
-            }
-        };
+        let comps = [u[sh.dofs[0]], sh.dofs.get(1).map_or(0.0, |&d| u[d])];
+        e += pen(sh.law.with(|l| l.energy_penetration(comps, sh.gap)));
     }
     e
 }
@@ -87,15 +80,11 @@ pub fn energy_mean_ca(sys: &System, x: &[f64]) -> f64 {
             smp.synth_with(coefs, lay.h_lin, &mut u[c], &mut ws);
         }
         let pen = |d: f64| if d > 0.0 { 0.5 * sh.alpha * d * d } else { 0.0 };
-        let total: f64 = (0..ns)
-            .map(|j| match sh.law {
-                ScaledLaw::Plan => pen(u[0][j] - sh.gap),
-                ScaledLaw::BiPlan => pen(u[0][j].abs() - sh.gap),
-                ScaledLaw::Cercle { ex, ey, .. } => {
-                    pen((u[0][j] - ex).hypot(u[1][j] - ey) - sh.gap)
-                }
-            })
-            .sum();
+        let total: f64 = sh.law.with(|l| {
+            (0..ns)
+                .map(|j| pen(l.penetration([u[0][j], u[1][j]], sh.gap)))
+                .sum()
+        });
         e += total / ns as f64;
     }
     e

@@ -8,7 +8,7 @@ pub(in crate::nnm) mod cosine_sampler;
 pub(in crate::nnm) mod energy;
 pub mod exact;
 pub(in crate::nnm) mod fourier;
-pub(in crate::nnm) mod laws;
+pub(in crate::nnm) mod law;
 pub(in crate::nnm) mod linear_modes;
 pub(in crate::nnm) mod low_synth;
 pub(in crate::nnm) mod point;

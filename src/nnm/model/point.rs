@@ -2,8 +2,6 @@
 //! conversions between the engine's scaled unknowns and physical ones.
 
 use crate::nnm::model::energy;
-use crate::nnm::model::laws::ScaledLaw;
-use crate::nnm::model::problem::CercleForm;
 use crate::nnm::model::system::System;
 
 #[derive(Clone, Debug)]
@@ -50,19 +48,10 @@ pub(in crate::nnm) fn unit_factors(sys: &System) -> Vec<f64> {
         lay.n * lay.n_coef_lin,
     ));
     for sh in &sys.shocks {
-        let per: &[f64] = match sh.law {
-            ScaledLaw::Plan => &[force],
-            ScaledLaw::BiPlan => &[force, 1.0],
-            ScaledLaw::Cercle {
-                form: CercleForm::Radial,
-                ..
-            } => &[force, force, scaling.length, force],
-            ScaledLaw::Cercle {
-                form: CercleForm::Secant,
-                ..
-            } => &[force, force, scaling.stiffness, 1.0],
-        };
-        for &u in per {
+        let per = sh
+            .law
+            .with(|l| l.own_units(force, scaling.length, scaling.stiffness));
+        for &u in &per {
             f.extend(std::iter::repeat_n(u, lay.n_coef_nonl));
         }
     }

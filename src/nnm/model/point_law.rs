@@ -1,7 +1,7 @@
 //! The regularised contact laws of the engine evaluated pointwise in physical units, with
 //! their derivatives: the tangent stiffness J(t) = ∂F/∂u that the variational equation needs.
 //!
-//! Same laws as `laws.rs` (which works on Fourier series in scaled units); written out
+//! Same laws as `law/` (which works on Fourier series in scaled units); written out
 //! here in closed form per sample. With α = RIGI_NOR, g = JEU and
 //! η = PARA_REGUL·k_ref·JEU² (`eta_phys`):
 //! - PLAN:    f² − α f (u − g) − α η = 0, positive root; df/du = α f / √(α²(u−g)² + 4αη).
@@ -20,7 +20,7 @@
 
 use crate::error::{Error, Result};
 use crate::nnm::model::system::Scaling;
-use crate::nnm::{CercleForm, Problem, ShockLaw};
+use crate::nnm::{Problem, ShockLaw};
 
 /// Physical regularisation η of each shock: PARA_REGUL·k_ref·JEU², with k_ref the engine's
 /// reference stiffness (1/(K⁻¹)pp at the last component of the first shock with the
@@ -47,136 +47,32 @@ pub struct PointLaw {
     pub eta: f64,
 }
 
-/// PLAN force and df/du at penetration d = u − g, without cancellation on either side.
-/// The root is the engine's (`nnm::laws::plan_force`, c = η).
-fn plan(d: f64, alpha: f64, eta: f64) -> (f64, f64) {
-    let q = (alpha * alpha * d * d + 4.0 * alpha * eta).sqrt();
-    let f = crate::nnm::model::laws::plan_force(d, alpha, eta);
-    (f, alpha * f / q)
-}
-
-/// BI_PLAN force and df/du. For u > 0 the root lies in (max(0, α(u−g)), α u), where
-/// ψ(f) = f (1 − ((f − αu)/(αg))²) − (η/g²) u goes from negative to positive; the law is odd.
-fn biplan(u: f64, alpha: f64, g: f64, eta: f64) -> Result<(f64, f64)> {
-    let ep = eta / (g * g);
-    let ag = alpha * g;
-    if alpha <= ep {
-        return Err(Error::input(format!(
-            "BI_PLAN: PARA_REGUL is too large for RIGI_NOR (η/JEU² = {ep:e} ≥ RIGI_NOR = {alpha:e}); \
-             the regularised law has no restoring branch"
-        ))
-        .keyword("CHOC/PARA_REGUL"));
-    }
-    let (sign, ua) = if u < 0.0 { (-1.0, -u) } else { (1.0, u) };
-    // The root is the engine's bisection (`nnm::laws::biplan_force`, whose η is η/g²).
-    let f = crate::nnm::model::laws::biplan_force(ua, g, alpha, ep);
-    // Implicit derivative of ψ(f, u) = 0 (the same in u and −u since the law is odd).
-    let w = (f - alpha * ua) / ag;
-    let psi_f = 1.0 - w * w - 2.0 * f * w / ag;
-    let psi_u = 2.0 * f * w / g - ep;
-    if !(psi_f.is_finite() && psi_f > 0.0) {
-        return Err(Error::numerical(format!(
-            "BI_PLAN: the regularised law is singular at u = {u:e} (∂ψ/∂f = {psi_f:e})"
-        )));
-    }
-    Ok((sign * f, -psi_u / psi_f))
-}
-
 impl PointLaw {
-    /// A ring's force magnitude φ(r) and φ'(r) at radial distance r ≥ 0.
-    fn radial(&self, form: CercleForm, r: f64) -> Result<(f64, f64)> {
-        match form {
-            CercleForm::Radial => Ok(plan(r - self.gap, self.alpha, self.eta)),
-            CercleForm::Secant => biplan(r, self.alpha, self.gap, self.eta),
-        }
-    }
-
     /// Number of displacement components (1, or 2 for CERCLE).
     pub fn n_comp(&self) -> usize {
-        match self.law {
-            ShockLaw::Cercle { .. } => 2,
-            _ => 1,
-        }
+        self.law.n_comp()
     }
 
     /// Force components at displacement `u`, without their Jacobian and without
     /// allocating (the first `n_comp` entries; the law check samples it at every instant).
     pub fn force(&self, u: &[f64]) -> Result<[f64; 2]> {
-        let comp = |i: usize| {
-            u.get(i)
-                .copied()
-                .ok_or_else(|| Error::internal("contact law component missing"))
-        };
-        match self.law {
-            ShockLaw::Plan => Ok([
-                crate::nnm::model::laws::plan_force(comp(0)? - self.gap, self.alpha, self.eta),
-                0.0,
-            ]),
-            ShockLaw::BiPlan => Ok([biplan(comp(0)?, self.alpha, self.gap, self.eta)?.0, 0.0]),
-            ShockLaw::Cercle { origin, form } => {
-                let (dx, dy) = (comp(0)? - origin[0], comp(1)? - origin[1]);
-                let r = dx.hypot(dy);
-                let (f, _) = self.radial(form, r)?;
-                if r == 0.0 {
-                    return Ok([0.0, 0.0]);
-                }
-                Ok([f * dx / r, f * dy / r])
-            }
-        }
+        self.law
+            .with(|l| l.force(u, self.alpha, self.gap, self.eta))
     }
 
     /// The penetration of the nonsmooth law at displacement `u` (PLAN u − g, BI_PLAN
     /// |u| − g, CERCLE |u − e| − g): negative while the structure is clear of the obstacle.
     pub fn penetration(&self, u: &[f64]) -> Result<f64> {
-        let comp = |i: usize| {
-            u.get(i)
-                .copied()
-                .ok_or_else(|| Error::internal("contact law component missing"))
-        };
-        Ok(match self.law {
-            ShockLaw::Plan => comp(0)? - self.gap,
-            ShockLaw::BiPlan => comp(0)?.abs() - self.gap,
-            ShockLaw::Cercle { origin, .. } => {
-                (comp(0)? - origin[0]).hypot(comp(1)? - origin[1]) - self.gap
-            }
-        })
+        let n = self.n_comp();
+        if u.len() < n {
+            return Err(Error::internal("contact law component missing"));
+        }
+        let comps = [u[0], if n > 1 { u[1] } else { 0.0 }];
+        Ok(self.law.with(|l| l.penetration(comps, self.gap)))
     }
 
     /// Force components and their Jacobian (row-major n_comp × n_comp) at displacement `u`.
     pub fn eval(&self, u: &[f64]) -> Result<(Vec<f64>, Vec<f64>)> {
-        let comp = |i: usize| {
-            u.get(i)
-                .copied()
-                .ok_or_else(|| Error::internal("contact law component missing"))
-        };
-        match self.law {
-            ShockLaw::Plan => {
-                let (f, df) = plan(comp(0)? - self.gap, self.alpha, self.eta);
-                Ok((vec![f], vec![df]))
-            }
-            ShockLaw::BiPlan => {
-                let (f, df) = biplan(comp(0)?, self.alpha, self.gap, self.eta)?;
-                Ok((vec![f], vec![df]))
-            }
-            ShockLaw::Cercle { origin, form } => {
-                let (dx, dy) = (comp(0)? - origin[0], comp(1)? - origin[1]);
-                let r = dx.hypot(dy);
-                let (f, df) = self.radial(form, r)?;
-                if r == 0.0 {
-                    // The centre: no force, and the radial tangent in every direction
-                    // (φ/r → φ'(0) with 'SECANTE'; module doc for 'RAYON').
-                    return Ok((vec![0.0, 0.0], vec![df, 0.0, 0.0, df]));
-                }
-                let (nx, ny) = (dx / r, dy / r);
-                let t = f / r;
-                let j = vec![
-                    df * nx * nx + t * (1.0 - nx * nx),
-                    (df - t) * nx * ny,
-                    (df - t) * nx * ny,
-                    df * ny * ny + t * (1.0 - ny * ny),
-                ];
-                Ok((vec![f * nx, f * ny], j))
-            }
-        }
+        self.law.with(|l| l.eval(u, self.alpha, self.gap, self.eta))
     }
 }

@@ -3,43 +3,8 @@
 
 use faer::sparse::SparseColMat;
 
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum ShockLaw {
-    Plan,
-    BiPlan,
-    Cercle { origin: [f64; 2], form: CercleForm },
-}
-
-impl ShockLaw {
-    /// The contact unknowns that hold the force components the structure receives (laws.rs
-    /// places them first): f for PLAN and BI_PLAN, f_x and f_y for CERCLE.
-    pub fn force_unknowns(self) -> std::ops::Range<usize> {
-        match self {
-            ShockLaw::Cercle { .. } => 0..2,
-            ShockLaw::Plan | ShockLaw::BiPlan => 0..1,
-        }
-    }
-
-    /// The obstacle's origin relative to the rest position: CERCLE's ORIG_OBST, 0 for the
-    /// planes.
-    pub fn origin(self) -> [f64; 2] {
-        match self {
-            ShockLaw::Cercle { origin, .. } => origin,
-            ShockLaw::Plan | ShockLaw::BiPlan => [0.0, 0.0],
-        }
-    }
-}
-
-/// Which regularisation of the ring law (CHOC/LOI_CERCLE; laws.rs gives both).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum CercleForm {
-    /// R5.07.01 eq. (12), Code_Aster's: PLAN's regularised law on the radial distance r,
-    /// the force along d/r (unknowns f_x, f_y, r, f).
-    Radial,
-    /// aster-nl's: BI_PLAN's law at the radial distance through a secant stiffness λ
-    /// (unknowns f_x, f_y, λ, z), regular through the ring centre.
-    Secant,
-}
+// The law of a shock, and what each law is: model/law/, where the variants are registered.
+pub use crate::nnm::model::law::{CercleForm, ShockLaw};
 
 #[derive(Clone, Debug)]
 pub struct Shock {

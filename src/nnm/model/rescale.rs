@@ -9,7 +9,7 @@
 //! halved the series step to nothing and the run stalled. Re-expressed in a length of the
 //! motion's size, every equation is of order one again and round-off stays relative.
 //!
-//! The laws are written for any length unit (laws.rs: the gap enters as s = JEU/length, the
+//! The laws are written for any length unit (law/: the gap enters as s = JEU/length, the
 //! regularisation as PARA_REGUL·k_ref times powers of s), so a new unit changes no law,
 //! only the numbers that represent it. Stiffness, mass and pulsation units are kept: k_ref
 //! and m_ref fix the regularisation's meaning (system::Scaling::new).
@@ -21,7 +21,7 @@
 use crate::error::Error;
 use crate::nnm::model::point::unit_factors;
 use crate::nnm::model::system::{Scaling, System};
-use crate::nnm::{CercleForm, Point, Problem, ShockLaw};
+use crate::nnm::{Point, Problem, ShockLaw};
 
 /// Scaled displacement amplitude (largest |coefficient| of U) above which the lengths are
 /// rescaled. Large enough that the branches of the testcases (sdnd122a reaches 134 JEU
@@ -55,11 +55,7 @@ pub(in crate::nnm) fn rescaled(problem: &Problem, sys: &System, x: &[f64]) -> Op
 /// testcases/hard/biplan_long (a one-DOF BI_PLAN stop run to ENER_MAX 1e15 J) the rescaled
 /// run stopped short and its test failed; they keep Code_Aster's unit.
 pub(in crate::nnm) fn rescalable(law: ShockLaw) -> bool {
-    match law {
-        ShockLaw::Plan => true,
-        ShockLaw::BiPlan => false,
-        ShockLaw::Cercle { form, .. } => form == CercleForm::Radial,
-    }
+    law.rescalable()
 }
 
 /// Every stop of `problem` is [`rescalable`] (a run, above, and a restart, start.rs).

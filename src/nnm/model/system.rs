@@ -9,7 +9,7 @@
 use crate::error::{Error, Result};
 use crate::nnm::model::cosine_sampler::{CosineSampler, CosineScratch};
 use crate::nnm::model::fourier::{self, FftScratch, Sampler};
-use crate::nnm::model::laws::{self, LawEqs, ScaledLaw, Var};
+use crate::nnm::model::law::{self, LawEqs, Var};
 use crate::nnm::model::low_synth::{self, LowSynth};
 use crate::nnm::model::vector;
 use crate::nnm::{Problem, Settings, ShockLaw};
@@ -193,7 +193,8 @@ impl Scaling {
 /// One shock in scaled units, with the position of its unknowns in X.
 #[derive(Clone, Debug)]
 pub struct ShockSys {
-    pub law: ScaledLaw,
+    /// The law, its origin in scaled units (`ShockLaw::scaled`).
+    pub law: ShockLaw,
     pub dofs: Vec<usize>,
     /// JEU in scaled units.
     pub gap: f64,
@@ -329,7 +330,7 @@ impl Layout {
         let mut offsets = Vec::with_capacity(problem.shocks.len());
         for s in &problem.shocks {
             offsets.push(offset);
-            offset += own_count(s.law) * nn;
+            offset += s.law.n_own() * nn;
         }
         let lay = Layout {
             n,
@@ -340,17 +341,6 @@ impl Layout {
             n_unk: offset + 2,
         };
         (lay, offsets)
-    }
-}
-
-/// Number of contact unknowns (series) of a law: PLAN f; BI_PLAN f, z; CERCLE fx, fy, r, φ
-/// ('RAYON') or fx, fy, λ, z ('SECANTE')
-/// (`laws::equations` gives the same `n_own`; a test checks it).
-pub fn own_count(law: ShockLaw) -> usize {
-    match law {
-        ShockLaw::Plan => 1,
-        ShockLaw::BiPlan => 2,
-        ShockLaw::Cercle { .. } => 4,
     }
 }
 
@@ -449,10 +439,7 @@ pub fn validate(problem: &Problem, settings: &Settings) -> Result<()> {
             .keyword("RESOLUTION/PREC_MAN"));
     }
     for (i, s) in problem.shocks.iter().enumerate() {
-        let want = match s.law {
-            ShockLaw::Cercle { .. } => 2,
-            _ => 1,
-        };
+        let want = s.law.n_comp();
         let ctx = |e: Error| e.hint(format!("shock number {}", i + 1));
         if s.dofs.len() != want || s.dofs.iter().any(|&d| d >= n) {
             return Err(ctx(Error::input(format!(
@@ -497,17 +484,9 @@ impl System {
         let (lay, offsets) = Layout::of(problem, settings);
         let mut shocks = Vec::new();
         for (s, &offset) in problem.shocks.iter().zip(&offsets) {
-            let law = match s.law {
-                ShockLaw::Plan => ScaledLaw::Plan,
-                ShockLaw::BiPlan => ScaledLaw::BiPlan,
-                ShockLaw::Cercle { origin, form } => ScaledLaw::Cercle {
-                    ex: origin[0] / scaling.length,
-                    ey: origin[1] / scaling.length,
-                    form,
-                },
-            };
+            let law = s.law.scaled(scaling.length);
             let (gs, alpha) = (s.gap / scaling.length, s.stiffness / scaling.stiffness);
-            let eqs = laws::equations(law, gs, alpha, s.regul);
+            let eqs = law::equations(law, gs, alpha, s.regul);
             let mut vars: Vec<Var> = Vec::new();
             for v in eqs.quad.iter().flat_map(|t| [t.a, t.b]) {
                 if !vars.contains(&v) {

@@ -22,7 +22,7 @@ impl Unknowns {
         let shocks = offsets
             .into_iter()
             .zip(&problem.shocks)
-            .map(|(o, s)| (o, system::own_count(s.law)))
+            .map(|(o, s)| (o, s.law.n_own()))
             .collect();
         Ok(Unknowns { lay, shocks })
     }
@@ -162,7 +162,7 @@ mod tests {
             let ours: Vec<(usize, usize)> = offsets
                 .iter()
                 .zip(&p.shocks)
-                .map(|(&o, sh)| (o, system::own_count(sh.law)))
+                .map(|(&o, sh)| (o, sh.law.n_own()))
                 .collect();
             assert_eq!(ours, engine);
 

@@ -33,7 +33,7 @@
 
 use crate::error::{Error, Result};
 use crate::nnm::model::fourier::{self, FftScratch, Sampler};
-use crate::nnm::model::laws::{LawEqs, Var};
+use crate::nnm::model::law::{LawEqs, Var};
 use crate::nnm::model::system::{is_cosine_series, Layout, ShockSys};
 use crate::nnm::solve::dense_lu::{try_zeroed, DenseLu};
 use crate::nnm::solve::gmres::{self, Gmres, Preconditioned};

@@ -3,7 +3,7 @@
 //! The check is written apart from the engine: the harmonic balance of eq. (12) in physical
 //! units, with the truncated products computed by an exact convolution of complex Fourier
 //! coefficients (the engine multiplies by FFT on sampled instants, in scaled units, from the
-//! term lists of laws.rs). Its residual is evaluated at the rows the engine stores; rows of
+//! term lists of law/). Its residual is evaluated at the rows the engine stores; rows of
 //! the regularised ring must make it vanish to the engine's convergence level, and the same
 //! rows must fail it when PARA_REGUL is changed by 10 %.
 //!

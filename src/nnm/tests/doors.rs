@@ -82,7 +82,7 @@ fn reexports(mod_rs: &str) -> BTreeMap<String, String> {
 }
 
 /// The first path segment of every use of `crate::nnm::` in `text`, groups flattened one
-/// level (`crate::nnm::{model::laws, Point}` gives `model` and `Point`).
+/// level (`crate::nnm::{model::law, Point}` gives `model` and `Point`).
 fn heads(text: &str) -> Vec<String> {
     let key = "crate::nnm::";
     let mut out = Vec::new();
@@ -198,7 +198,7 @@ fn the_door_check_sees_groups_and_reexported_names() {
     );
     assert_eq!(names.get("Point").map(String::as_str), Some("model"));
     assert!(!names.contains_key("continue_branches"));
-    let text = "use crate::nnm::{model::laws, solve::contact::{self, Method}, PostProcessor};\n\
+    let text = "use crate::nnm::{model::law, solve::contact::{self, Method}, PostProcessor};\n\
                 fn f() { crate::nnm::analysis::orbit::time_history(); }\n\
                 #[cfg(test)]\nmod tests { use crate::nnm::continuation::start; }";
     let heads = heads(production(text));

@@ -337,7 +337,7 @@ fn ring(delta: f64, regul: f64) -> Problem {
 
 /// A centred ring with motion along one of its components is two planes at ±JEU: CERCLE
 /// must give the BI_PLAN branch (same JEU, RIGI_NOR, PARA_REGUL). Pointwise the two laws are
-/// the same function (laws.rs), but CERCLE carries the force as λ·d, so its harmonic balance
+/// the same function (model/law/), but CERCLE carries the force as λ·d, so its harmonic balance
 /// is another truncation of the same regularised system: FREQUENCE at equal ENERGIE agrees
 /// to the truncation error of the force series. Required: 1e-6 at H_nl = 120, at three
 /// energies in contact (first contact at ½·k·JEU² = 5e-4), interpolated (LOG, as
@@ -791,7 +791,7 @@ fn det_sign_log10(mut a: Vec<f64>, n: usize) -> (f64, f64) {
 /// (A_ff, the block the determinant test of condensed_det.rs and a pointwise preconditioner
 /// rely on) keeps the sign of its determinant along a branch through the ring centre, an
 /// off-centre one and a whirl, as BI_PLAN's does (run alongside); pointwise that
-/// determinant is ψ_f(r) > 0 (laws.rs). The test can fail: a three-unknown vector form
+/// determinant is ψ_f(r) > 0 (model/law/). The test can fail: a three-unknown vector form
 /// (F(1 − z) = η w) has pointwise determinant (1 − z)·ψ_f, also positive, but its factor
 /// 1 − z = η r/φ is tiny in contact, the truncated series of z overshoots 1 there, and the
 /// sign of det A_ff flipped 9 times in 20 rows on the centred branch below (measured).

@@ -54,7 +54,7 @@ pub(super) fn check_budget(
 ) -> Result<()> {
     use crate::nnm::budget;
     use crate::ops::common::resources;
-    // Own unknowns and displacement components per law (laws.rs).
+    // Own unknowns and displacement components per law (model/law/).
     let shocks = shocks
         .iter()
         .map(|c| budget::ShockSizes {

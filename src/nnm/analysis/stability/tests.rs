@@ -237,7 +237,7 @@ fn a_negative_stiffness_mode_gives_a_real_multiplier_above_one() {
 fn eta_phys_and_the_laws_match_the_engine_scaled_laws() {
     // k_ref = 1/(K⁻¹)pp at the stop's DOF: K = [[11, −1], [−1, 11]] gives 120/11 (not
     // K_pp = 11), so η_phys = PARA_REGUL·(120/11)·JEU².
-    use crate::nnm::model::laws::{own_from_u, ScaledLaw};
+    use crate::nnm::model::law::own_from_u;
     use crate::nnm::model::system::Scaling;
     for law in [ShockLaw::Plan, ShockLaw::BiPlan] {
         let p = pair(1.0, vec![shock(law, vec![1])]);
@@ -251,11 +251,7 @@ fn eta_phys_and_the_laws_match_the_engine_scaled_laws() {
             eta,
         };
         let us: Vec<f64> = (0..41).map(|i| -0.03 + 0.0015 * i as f64).collect();
-        let scaled = if law == ShockLaw::Plan {
-            ScaledLaw::Plan
-        } else {
-            ScaledLaw::BiPlan
-        };
+        let scaled = law.scaled(scaling.length);
         let u_s: Vec<f64> = us.iter().map(|u| u / scaling.length).collect();
         let own = own_from_u(
             scaled,

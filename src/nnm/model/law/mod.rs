@@ -1,5 +1,9 @@
-//! Regularised contact laws recast as quadratic equations, in scaled units (lengths divided
-//! by the largest JEU g_ref, forces by k_ref·g_ref; see `system::Scaling`).
+//! The contact laws, one file each (plan.rs, bi_plan.rs, cercle.rs): a law owns its own
+//! unknowns, its equations recast as quadratic ones in scaled units (lengths divided by the
+//! largest JEU g_ref, forces by k_ref·g_ref; see `system::Scaling`), its start from
+//! displacement samples, its pointwise force and tangent in physical units, its
+//! penetration, and whether it can be rescaled far up a branch (`ContactLaw`). A law is
+//! registered once, in `ShockLaw::with` below: the rest of the engine asks the law.
 //!
 //! Each law lists its own unknown series and its equations as constant, linear and quadratic
 //! terms; the tangent is derived from the same list (system.rs), so residual and Jacobian
@@ -48,8 +52,27 @@
 //! the truncated series of z overshoots 1 and the harmonic-balance block changes sign
 //! (tests.rs, cercle_law_block_keeps_its_determinant_sign_along_branches); λ avoids it.
 
-use crate::error::{Error, Result};
-use crate::nnm::model::problem::CercleForm;
+use crate::error::Result;
+
+mod bi_plan;
+mod cercle;
+mod plan;
+
+use bi_plan::BiPlan;
+use cercle::Cercle;
+pub use cercle::CercleForm;
+use plan::Plan;
+
+/// The contact law of a shock, as the user chose it (CHOC/OBSTACLE, LOI_CERCLE, ORIG_OBST).
+/// A new law is one variant here, one arm of [`ShockLaw::with`], and its own file.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ShockLaw {
+    Plan,
+    BiPlan,
+    Cercle { origin: [f64; 2], form: CercleForm },
+}
+#[cfg(test)]
+use {bi_plan::biplan_force, plan::plan_force};
 
 /// A variable a law equation depends on: one of its own unknown series (H_nl harmonics) or a
 /// displacement component of its DOFs (H_l harmonics, zero-padded to H_nl).
@@ -76,18 +99,6 @@ pub struct Lin {
     pub var: Var,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum ScaledLaw {
-    Plan,
-    BiPlan,
-    /// Ring centre in scaled units.
-    Cercle {
-        ex: f64,
-        ey: f64,
-        form: CercleForm,
-    },
-}
-
 /// The equations of one shock: as many as its own unknowns.
 #[derive(Clone, Debug)]
 pub struct LawEqs {
@@ -107,234 +118,130 @@ fn lin_term(eq: usize, coef: f64, var: Var) -> Lin {
     Lin { eq, coef, var }
 }
 
-/// The equations of a law with scaled gap `s`, stiffness `alpha`, PARA_REGUL `eta`.
-pub fn equations(law: ScaledLaw, s: f64, alpha: f64, eta: f64) -> LawEqs {
-    use Var::{Own, U};
-    match law {
-        ScaledLaw::Plan => LawEqs {
-            n_own: 1,
-            quad: vec![
-                quad_term(0, 1.0 / alpha, Own(0), Own(0)),
-                quad_term(0, -1.0, Own(0), U(0)),
-            ],
-            lin: vec![lin_term(0, s, Own(0))],
-            cst: vec![(0, -eta * s * s)],
-            forces: vec![(0, 0)],
-        },
-        ScaledLaw::BiPlan => {
-            let c = 1.0 / (s * s);
-            LawEqs {
-                n_own: 2,
-                quad: vec![
-                    quad_term(0, -1.0, Own(0), Own(1)),
-                    quad_term(1, -c / (alpha * alpha), Own(0), Own(0)),
-                    quad_term(1, 2.0 * c / alpha, Own(0), U(0)),
-                    quad_term(1, -c, U(0), U(0)),
-                ],
-                lin: vec![
-                    lin_term(0, 1.0, Own(0)),
-                    lin_term(0, -eta, U(0)),
-                    lin_term(1, 1.0, Own(1)),
-                ],
-                cst: vec![],
-                forces: vec![(0, 0)],
-            }
+/// What a contact law is to the engine. Scaled quantities: s = JEU/g_ref, α = RIGI_NOR/k_ref,
+/// η = PARA_REGUL, the displacement and the origin in units of g_ref. Physical ones: α =
+/// RIGI_NOR, gap = JEU, η = PARA_REGUL·k_ref·JEU² (point_law.rs), metres.
+pub trait ContactLaw {
+    /// Displacement components the law reads (1, or 2 for a ring).
+    fn n_comp(&self) -> usize;
+
+    /// Its own unknown series.
+    fn n_own(&self) -> usize;
+
+    /// The physical value of one scaled unit of each own unknown, given the units of force,
+    /// length and stiffness.
+    fn own_units(&self, force: f64, length: f64, stiffness: f64) -> Vec<f64>;
+
+    /// The own unknowns that hold the force components the structure receives (placed
+    /// first): f for the planes, f_x and f_y for a ring.
+    fn force_unknowns(&self) -> std::ops::Range<usize> {
+        0..1
+    }
+
+    /// The obstacle's origin relative to the rest position (a ring's ORIG_OBST), in the
+    /// units the law was built in.
+    fn origin(&self) -> [f64; 2] {
+        [0.0, 0.0]
+    }
+
+    /// Its equations stay well conditioned when the lengths are re-expressed in a unit of
+    /// the motion's size far up a branch (rescale.rs).
+    fn rescalable(&self) -> bool;
+
+    /// Its equations, scaled.
+    fn equations(&self, s: f64, alpha: f64, eta: f64) -> LawEqs;
+
+    /// Samples of its own unknowns from samples of its displacement components, scaled (a
+    /// start point: consistent with the law sample by sample).
+    fn own_from_u(&self, s: f64, alpha: f64, eta: f64, u: &[Vec<f64>]) -> Result<Vec<Vec<f64>>>;
+
+    /// The penetration of the nonsmooth law at displacement `u` (its first `n_comp`
+    /// components are read): negative while the structure is clear of the obstacle.
+    fn penetration(&self, u: [f64; 2], gap: f64) -> f64;
+
+    /// The penetration ENERGIE's penalty term is computed from (energy.rs), as the stored
+    /// tables computed it.
+    fn energy_penetration(&self, u: [f64; 2], gap: f64) -> f64 {
+        self.penetration(u, gap)
+    }
+
+    /// Force components at displacement `u` (the first `n_comp` entries), physical units.
+    fn force(&self, u: &[f64], alpha: f64, gap: f64, eta: f64) -> Result<[f64; 2]>;
+
+    /// Force components and their Jacobian (row-major n_comp × n_comp), physical units.
+    fn eval(&self, u: &[f64], alpha: f64, gap: f64, eta: f64) -> Result<(Vec<f64>, Vec<f64>)>;
+
+    /// The exact (unregularised) penalty law at `u`: force α·(penetration)₊ along the
+    /// obstacle's normal and its Jacobian (row-major 2 × 2, the first n_comp rows and
+    /// columns used), physical units (CORR_LOI_EXACTE, the accuracy advice).
+    fn exact_force(&self, u: [f64; 2], alpha: f64, gap: f64) -> ([f64; 2], [f64; 4]);
+
+    /// The stiffness of the regularised law at rest, η/JEU² per side a plane has (the shift
+    /// of the linear frequency it causes before any contact), or None for a law whose
+    /// regularised force at rest is not a spring about the rest position (a ring).
+    fn stiffness_at_rest(&self, gap: f64, eta: f64) -> Option<f64>;
+}
+
+impl ShockLaw {
+    /// The law behind the typed spec: the one place where a law is registered.
+    pub fn with<R>(self, f: impl FnOnce(&dyn ContactLaw) -> R) -> R {
+        match self {
+            ShockLaw::Plan => f(&Plan),
+            ShockLaw::BiPlan => f(&BiPlan),
+            ShockLaw::Cercle { origin, form } => f(&Cercle { origin, form }),
         }
-        ScaledLaw::Cercle {
-            ex,
-            ey,
-            form: CercleForm::Radial,
-        } => radial_equations(ex, ey, s, alpha, eta),
-        ScaledLaw::Cercle {
-            ex,
-            ey,
-            form: CercleForm::Secant,
-        } => {
-            // Own(0) = Fx, Own(1) = Fy, Own(2) = λ, Own(3) = z; components c = 0 (x), 1 (y),
-            // centre e_c, d_c = u_c − e_c.
-            let c = 1.0 / (s * s);
-            let mut quad = Vec::with_capacity(9);
-            let mut lin = Vec::with_capacity(9);
-            let mut cst = vec![(2, -eta), (3, 0.0)];
-            for (comp, e) in [(0usize, ex), (1, ey)] {
-                // F_c − λ d_c = 0.
-                lin.push(lin_term(comp, 1.0, Own(comp)));
-                quad.push(quad_term(comp, -1.0, Own(2), U(comp)));
-                lin.push(lin_term(comp, e, Own(2)));
-                // −(F_c/α − u_c + e_c)²/s², expanded, in the equation of z.
-                quad.push(quad_term(3, -c / (alpha * alpha), Own(comp), Own(comp)));
-                quad.push(quad_term(3, 2.0 * c / alpha, Own(comp), U(comp)));
-                quad.push(quad_term(3, -c, U(comp), U(comp)));
-                lin.push(lin_term(3, -2.0 * c * e / alpha, Own(comp)));
-                lin.push(lin_term(3, 2.0 * c * e, U(comp)));
-                cst[1].1 -= c * e * e;
-            }
-            // λ − η − λ z = 0.
-            lin.push(lin_term(2, 1.0, Own(2)));
-            quad.push(quad_term(2, -1.0, Own(2), Own(3)));
-            lin.push(lin_term(3, 1.0, Own(3)));
-            cst.retain(|&(_, v)| v != 0.0);
-            lin.retain(|v| v.coef != 0.0);
-            LawEqs {
-                n_own: 4,
-                quad,
-                lin,
-                cst,
-                forces: vec![(0, 0), (1, 1)],
-            }
+    }
+
+    /// The same law with its origin in units of `length` (the scaled equations').
+    pub fn scaled(self, length: f64) -> ShockLaw {
+        match self {
+            ShockLaw::Cercle { origin, form } => ShockLaw::Cercle {
+                origin: [origin[0] / length, origin[1] / length],
+                form,
+            },
+            law => law,
         }
+    }
+
+    pub fn n_comp(self) -> usize {
+        self.with(|l| l.n_comp())
+    }
+
+    pub fn n_own(self) -> usize {
+        self.with(|l| l.n_own())
+    }
+
+    /// See [`ContactLaw::force_unknowns`].
+    pub fn force_unknowns(self) -> std::ops::Range<usize> {
+        self.with(|l| l.force_unknowns())
+    }
+
+    /// See [`ContactLaw::origin`].
+    pub fn origin(self) -> [f64; 2] {
+        self.with(|l| l.origin())
+    }
+
+    pub fn rescalable(self) -> bool {
+        self.with(|l| l.rescalable())
     }
 }
 
-/// R5.07.01 eq. (12) in scaled units: Own(0) = fx, Own(1) = fy, Own(2) = r, Own(3) = φ.
-fn radial_equations(ex: f64, ey: f64, s: f64, alpha: f64, eta: f64) -> LawEqs {
-    use Var::{Own, U};
-    let mut quad = Vec::with_capacity(10);
-    let mut lin = Vec::with_capacity(8);
-    let mut cst = vec![(2, 0.0), (3, -eta * s * s)];
-    for (comp, e) in [(0usize, ex), (1, ey)] {
-        // f_c r − φ (u_c − e_c) = 0.
-        quad.push(quad_term(comp, 1.0, Own(comp), Own(2)));
-        quad.push(quad_term(comp, -1.0, Own(3), U(comp)));
-        lin.push(lin_term(comp, e, Own(3)));
-        // −(u_c − e_c)², expanded, in the equation of r.
-        quad.push(quad_term(2, -1.0, U(comp), U(comp)));
-        lin.push(lin_term(2, 2.0 * e, U(comp)));
-        cst[0].1 -= e * e;
-    }
-    // r² in the equation of r; φ²/α − φ r + s φ in the equation of φ.
-    quad.push(quad_term(2, 1.0, Own(2), Own(2)));
-    quad.push(quad_term(3, 1.0 / alpha, Own(3), Own(3)));
-    quad.push(quad_term(3, -1.0, Own(3), Own(2)));
-    lin.push(lin_term(3, s, Own(3)));
-    cst.retain(|&(_, v)| v != 0.0);
-    lin.retain(|v| v.coef != 0.0);
-    LawEqs {
-        n_own: 4,
-        quad,
-        lin,
-        cst,
-        forces: vec![(0, 0), (1, 1)],
-    }
-}
-
-/// Positive root of f²/α − f d − c = 0 (c > 0), without cancellation. Also CALC_STABILITE's
-/// pointwise law (`point_law.rs`): one root for both.
-pub(crate) fn plan_force(d: f64, alpha: f64, c: f64) -> f64 {
-    let q = (d * d + 4.0 * c / alpha).sqrt();
-    if d > 0.0 {
-        0.5 * alpha * (d + q)
-    } else if q - d > 0.0 {
-        2.0 * c / (q - d)
-    } else {
-        0.0
-    }
-}
-
-/// Root of f(1 − (f/α − u)²/s²) = η u on the branch that is α(u ∓ s) in contact and
-/// η u/(1 − u²/s²) inside the gap: for u > 0 it lies in (max(0, α(u−s)), α u), where the
-/// function goes from negative to positive; the law is odd in u. Also CALC_STABILITE's.
-pub(crate) fn biplan_force(u: f64, s: f64, alpha: f64, eta: f64) -> f64 {
-    if u == 0.0 {
-        return 0.0;
-    }
-    let (sign, u) = if u < 0.0 { (-1.0, -u) } else { (1.0, u) };
-    let phi = |f: f64| f * (1.0 - (f / alpha - u).powi(2) / (s * s)) - eta * u;
-    let (mut lo, mut hi) = ((alpha * (u - s)).max(0.0), alpha * u);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if phi(mid) < 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-        if hi - lo <= 1e-15 * hi.abs().max(1e-300) {
-            break;
-        }
-    }
-    sign * 0.5 * (lo + hi)
+/// The equations of a law with scaled gap `s`, stiffness `alpha`, PARA_REGUL `eta` (the
+/// law's origin already scaled, `ShockLaw::scaled`).
+pub fn equations(law: ShockLaw, s: f64, alpha: f64, eta: f64) -> LawEqs {
+    law.with(|l| l.equations(s, alpha, eta))
 }
 
 /// Samples of a law's own unknowns from samples of its displacement components (a start
 /// point: consistent with the law sample by sample, then projected on the harmonics).
 pub fn own_from_u(
-    law: ScaledLaw,
+    law: ShockLaw,
     s: f64,
     alpha: f64,
     eta: f64,
     u: &[Vec<f64>],
 ) -> Result<Vec<Vec<f64>>> {
-    let c = eta * s * s;
-    let comp = |i: usize| {
-        u.get(i)
-            .ok_or_else(|| Error::internal("law component missing"))
-    };
-    match law {
-        ScaledLaw::Plan => Ok(vec![comp(0)?
-            .iter()
-            .map(|&x| plan_force(x - s, alpha, c))
-            .collect()]),
-        ScaledLaw::BiPlan => {
-            let f: Vec<f64> = comp(0)?
-                .iter()
-                .map(|&x| biplan_force(x, s, alpha, eta))
-                .collect();
-            let z = f
-                .iter()
-                .zip(comp(0)?)
-                .map(|(&f, &x)| (f / alpha - x).powi(2) / (s * s))
-                .collect();
-            Ok(vec![f, z])
-        }
-        ScaledLaw::Cercle {
-            ex,
-            ey,
-            form: CercleForm::Radial,
-        } => {
-            let (ux, uy) = (comp(0)?, comp(1)?);
-            let n = ux.len().min(uy.len());
-            let mut own = vec![vec![0.0; n]; 4];
-            for i in 0..n {
-                let (dx, dy) = (ux[i] - ex, uy[i] - ey);
-                let r = dx.hypot(dy);
-                let phi = plan_force(r - s, alpha, c);
-                // The physical root r = |d|; exactly at the centre the direction is free
-                // and the instant carries no force (module doc).
-                let (nx, ny) = if r > 0.0 {
-                    (dx / r, dy / r)
-                } else {
-                    (0.0, 0.0)
-                };
-                own[0][i] = phi * nx;
-                own[1][i] = phi * ny;
-                own[2][i] = r;
-                own[3][i] = phi;
-            }
-            Ok(own)
-        }
-        ScaledLaw::Cercle {
-            ex,
-            ey,
-            form: CercleForm::Secant,
-        } => {
-            let (ux, uy) = (comp(0)?, comp(1)?);
-            let n = ux.len().min(uy.len());
-            let mut own = vec![vec![0.0; n]; 4];
-            for i in 0..n {
-                let (dx, dy) = (ux[i] - ex, uy[i] - ey);
-                let r = dx.hypot(dy);
-                // BI_PLAN's magnitude at the radial distance; λ = φ/r → φ'(0) = η at the
-                // centre.
-                let phi = biplan_force(r, s, alpha, eta);
-                let lambda = if r > 0.0 { phi / r } else { eta };
-                own[0][i] = lambda * dx;
-                own[1][i] = lambda * dy;
-                own[2][i] = lambda;
-                own[3][i] = (phi / alpha - r).powi(2) / (s * s);
-            }
-            Ok(own)
-        }
-    }
+    law.with(|l| l.own_from_u(s, alpha, eta, u))
 }
 
 #[cfg(test)]
@@ -414,13 +321,16 @@ mod tests {
     /// that they solve those equations to round-off. Returns (r, u, own, Jacobian).
     #[allow(clippy::type_complexity)]
     fn ring_roots(
-        law: ScaledLaw,
+        law: ShockLaw,
         s: f64,
         a: f64,
         eta: f64,
         radii: &[f64],
     ) -> Vec<(f64, [f64; 2], Vec<f64>, Vec<f64>)> {
-        let ScaledLaw::Cercle { ex, ey, .. } = law else {
+        let ShockLaw::Cercle {
+            origin: [ex, ey], ..
+        } = law
+        else {
             panic!("a ring")
         };
         let eqs = equations(law, s, a, eta);
@@ -451,9 +361,8 @@ mod tests {
         // quadratic formula here), and the Jacobian's determinant must be 2r³ψ with
         // ψ = √((r − s)² + 4ηs²/α) (module doc): zero at the centre, positive elsewhere.
         let (s, a, eta, ex, ey) = (1.3, 50.0, 1e-3, 0.2, -0.1);
-        let law = ScaledLaw::Cercle {
-            ex,
-            ey,
+        let law = ShockLaw::Cercle {
+            origin: [ex, ey],
             form: CercleForm::Radial,
         };
         for (r, u, own, jac) in
@@ -489,9 +398,8 @@ mod tests {
         // the listed equations (to round-off), and the determinant of their Jacobian must be
         // BI_PLAN's ψ_f = 1 − z − 2φ(φ/α − r)/(α s²) at r, positive; 1 at the centre.
         let (s, a, eta, ex, ey) = (1.0, 50.0, 1e-3, 0.2, -0.1);
-        let law = ScaledLaw::Cercle {
-            ex,
-            ey,
+        let law = ShockLaw::Cercle {
+            origin: [ex, ey],
             form: CercleForm::Secant,
         };
         for (r, _, own, jac) in ring_roots(
