@@ -5,12 +5,12 @@
 //! Every other operator goes through [`crate::ops::lookup`].
 
 use crate::args::Args;
-use crate::bench::measure;
 use crate::catalog;
 use crate::check_groups::MeshGroups;
 use crate::error::{Error, Result};
 use crate::lang::{self, Env, Host, Source};
 use crate::ops::{self, OpContext, TestOutcome, Units};
+use crate::process;
 use crate::store::Store;
 use crate::table::Cell;
 use crate::value::{CommandCall, ConceptRef, Keyword, Span, TableValue, Value};
@@ -265,7 +265,7 @@ impl Runner<'_> {
         // (checked in the operator's transaction).
         let used = concept_arguments(args);
         let started = Instant::now();
-        let cpu_started = measure::self_cpu();
+        let cpu_started = process::self_cpu();
         let mut ctx = OpContext::new(store, &call.op, &mut *self.out, &self.units, &mut tests);
         ctx.result = call.result.as_deref();
         ctx.reuse = call.reuse.as_ref().map(|c| c.name.as_str());
@@ -281,7 +281,7 @@ impl Runner<'_> {
         let value = ctx.value.take();
         let deferred = ctx.deferred_error.take();
         let elapsed = started.elapsed();
-        let cpu = Duration::from_secs_f64((measure::self_cpu() - cpu_started).max(0.0));
+        let cpu = Duration::from_secs_f64((process::self_cpu() - cpu_started).max(0.0));
         // TEST_* lines are printed by the operators; keep the score even if it failed later.
         self.summary.tests.extend(tests);
         outcome?;

@@ -42,6 +42,7 @@ pub mod model;
 pub mod nnm;
 pub mod ops;
 pub mod plot;
+pub mod process;
 pub mod store;
 pub mod study;
 pub mod suggest;

@@ -1,48 +1,14 @@
-//! CPU time and peak memory: of this process (getrusage, /proc/self) and of child
-//! processes (wait4), medians and fitted growth exponents.
+//! CPU time and peak memory of child processes (wait4), medians and fitted growth
+//! exponents; this process's own are read by `crate::process`.
 
 use crate::error::{Error, ErrorKind, Result};
+use crate::process::seconds;
+pub use crate::process::{peak_kb, reset_peak, rss_kb, self_cpu};
 use std::path::Path;
 use std::process::{Command, Stdio};
 
 fn io(e: impl std::fmt::Display) -> Error {
     Error::new(ErrorKind::Io, format!("bench: {e}"))
-}
-
-fn seconds(t: libc::timeval) -> f64 {
-    t.tv_sec as f64 + 1e-6 * t.tv_usec as f64
-}
-
-/// User + system CPU seconds of this process so far (all threads).
-pub fn self_cpu() -> f64 {
-    // SAFETY: getrusage writes one rusage struct, which we own.
-    let mut ru: libc::rusage = unsafe { std::mem::zeroed() };
-    let rc = unsafe { libc::getrusage(libc::RUSAGE_SELF, &mut ru) };
-    if rc != 0 {
-        return f64::NAN;
-    }
-    seconds(ru.ru_utime) + seconds(ru.ru_stime)
-}
-
-fn status_kb(key: &str) -> Option<u64> {
-    let s = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = s.lines().find(|l| l.starts_with(key))?;
-    line.split_whitespace().nth(1)?.parse().ok()
-}
-
-/// Current resident set (kB).
-pub fn rss_kb() -> u64 {
-    status_kb("VmRSS:").unwrap_or(0)
-}
-
-/// Peak resident set since the start or the last `reset_peak` (kB).
-pub fn peak_kb() -> u64 {
-    status_kb("VmHWM:").unwrap_or(0)
-}
-
-/// Reset the peak resident set to the current one (Linux: "5" > /proc/self/clear_refs).
-pub fn reset_peak() -> bool {
-    std::fs::write("/proc/self/clear_refs", "5").is_ok()
 }
 
 /// A finished child process: exit code, CPU seconds (user + system), peak RSS (kB), output.
