@@ -28,13 +28,13 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         .unwrap_or(0.0);
     let k = matrix::load_matrix(ctx.store, &setup.matr_rigi)?;
     let m = matrix::load_matrix(ctx.store, &setup.matr_mass)?;
-    let (problem, settings, free) = engine_problem(&setup, &k, &m)?;
+    let (problem, harmonics, free) = engine_problem(&setup, &k, &m)?;
     // Defaults are the catalog's (commands/REST_MODE_NONL.toml), filled by the validation.
     match args.req_text("TYPE_RESU")? {
         "MODE_MECA" => {
             let coefs =
-                nnm::displacement_coefficients(&problem, &settings, &x).map_err(stored_point)?;
-            let ncoef = 2 * settings.h_lin + 1;
+                nnm::displacement_coefficients(&problem, harmonics, &x).map_err(stored_point)?;
+            let ncoef = 2 * harmonics.h_lin + 1;
             let modes = (0..ncoef)
                 .map(|j| {
                     // Coefficient j of every free DOF (each has 2 h_lin + 1; not a keyword
@@ -49,7 +49,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                         omega2: (2.0 * std::f64::consts::PI * freq).powi(2),
                         mass_gene: 0.0,
                         rigi_gene: 0.0,
-                        label: coef_label(j, settings.h_lin),
+                        label: coef_label(j, harmonics.h_lin),
                         shape: k.expand(&reduced)?,
                     })
                 })
@@ -76,7 +76,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 &format!("the time history of {n} DOF(s) at {n_inst} instants"),
                 nnm::budget::time_history_bytes(n, force_components, n_inst),
             )?;
-            let th = nnm::time_history(&problem, &settings, &x, n_inst).map_err(stored_point)?;
+            let th = nnm::time_history(&problem, harmonics, &x, n_inst).map_err(stored_point)?;
             let mut t = Table::new(format!("REST_MODE_NONL {src} NUME_ORDRE={order}"));
             for (c, kind) in [
                 ("NUME_ORDRE", ColKind::I),

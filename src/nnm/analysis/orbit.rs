@@ -6,7 +6,7 @@ use crate::error::{Error, Result};
 use crate::nnm::continuation::start::system_for_point;
 use crate::nnm::model::point::to_scaled;
 use crate::nnm::model::unknowns::Unknowns;
-use crate::nnm::{model::fourier, Problem, Settings};
+use crate::nnm::{model::fourier, Harmonics, Problem};
 
 /// One period sampled in time, physical units.
 #[derive(Clone, Debug)]
@@ -26,11 +26,11 @@ pub struct TimeHistory {
 /// ends included), physical units.
 pub fn time_history(
     problem: &Problem,
-    settings: &Settings,
+    harmonics: impl Into<Harmonics>,
     x: &[f64],
     n_inst: usize,
 ) -> Result<TimeHistory> {
-    let sys = system_for_point(problem, settings, x)?;
+    let sys = system_for_point(problem, harmonics.into(), x)?;
     let xs = to_scaled(&sys, x);
     let lay = sys.lay;
     let scaling = sys.scaling;
@@ -117,12 +117,17 @@ const MAX_SAMPLES_PER_HARMONIC: usize = 8;
 /// The largest |u_i(t)| over the DOFs and one period (physical units), sampled at
 /// 8·NB_HARM_LINE + 2 instants (the sampled maximum of a sum of H harmonics is within a few
 /// per cent of the true one at that density).
-pub fn largest_displacement(problem: &Problem, settings: &Settings, x: &[f64]) -> Result<f64> {
+pub fn largest_displacement(
+    problem: &Problem,
+    harmonics: impl Into<Harmonics>,
+    x: &[f64],
+) -> Result<f64> {
+    let harmonics = harmonics.into();
     let th = time_history(
         problem,
-        settings,
+        harmonics,
         x,
-        MAX_SAMPLES_PER_HARMONIC * settings.h_lin + 2,
+        MAX_SAMPLES_PER_HARMONIC * harmonics.h_lin + 2,
     )?;
     Ok(th
         .displacement
@@ -135,19 +140,19 @@ pub fn largest_displacement(problem: &Problem, settings: &Settings, x: &[f64]) -
 /// For many points of one problem, build a `PostProcessor` (analysis/post.rs) once instead.
 pub fn displacement_coefficients(
     problem: &Problem,
-    settings: &Settings,
+    harmonics: impl Into<Harmonics>,
     x: &[f64],
 ) -> Result<Vec<Vec<f64>>> {
-    Unknowns::new(problem, settings)?.displacement(x)
+    Unknowns::new(problem, harmonics)?.displacement(x)
 }
 
 /// Fourier coefficients of the velocity of each DOF (physical).
 pub fn velocity_coefficients(
     problem: &Problem,
-    settings: &Settings,
+    harmonics: impl Into<Harmonics>,
     x: &[f64],
 ) -> Result<Vec<Vec<f64>>> {
-    Unknowns::new(problem, settings)?.velocity(x)
+    Unknowns::new(problem, harmonics)?.velocity(x)
 }
 
 /// Fourier coefficients (0, C1..CH_nl, S1..SH_nl) of each contact unknown of each shock
@@ -155,8 +160,8 @@ pub fn velocity_coefficients(
 /// physical.
 pub fn contact_coefficients(
     problem: &Problem,
-    settings: &Settings,
+    harmonics: impl Into<Harmonics>,
     x: &[f64],
 ) -> Result<Vec<Vec<Vec<f64>>>> {
-    Unknowns::new(problem, settings)?.contact(x)
+    Unknowns::new(problem, harmonics)?.contact(x)
 }

@@ -12,7 +12,7 @@ use crate::nnm::analysis::contact_work::ContactWork;
 use crate::nnm::analysis::law_check::LawCheck;
 use crate::nnm::continuation::end_check::EndCheck;
 use crate::nnm::model::unknowns::Unknowns;
-use crate::nnm::{Problem, Settings};
+use crate::nnm::{Harmonics, Problem};
 
 /// The outputs of one point (physical units).
 #[derive(Clone, Debug)]
@@ -40,8 +40,8 @@ pub struct PostProcessor {
 }
 
 impl PostProcessor {
-    pub fn new(problem: &Problem, settings: &Settings) -> Result<PostProcessor> {
-        let unknowns = Unknowns::new(problem, settings)?;
+    pub fn new(problem: &Problem, harmonics: impl Into<Harmonics>) -> Result<PostProcessor> {
+        let unknowns = Unknowns::new(problem, harmonics)?;
         let check = LawCheck::new(problem, unknowns.layout())?;
         let work = ContactWork::new(problem, unknowns.layout())?;
         Ok(PostProcessor {
@@ -153,11 +153,15 @@ impl PostProcessor {
 /// Largest |f_series(t) − f_law(u(t))| / (α·JEU) over the shocks and over 2(2H_nl+1)
 /// instants of one period; 0 without shocks. For many points of one problem, build a
 /// [`PostProcessor`] once instead.
-pub fn contact_law_defect(problem: &Problem, settings: &Settings, x: &[f64]) -> Result<f64> {
+pub fn contact_law_defect(
+    problem: &Problem,
+    harmonics: impl Into<Harmonics>,
+    x: &[f64],
+) -> Result<f64> {
     if problem.shocks.is_empty() {
         return Ok(0.0);
     }
-    PostProcessor::new(problem, settings)?.law_defect(x)
+    PostProcessor::new(problem, harmonics)?.law_defect(x)
 }
 
 /// The driver's checks of a branch end (continuation/end_check.rs) are the row's.

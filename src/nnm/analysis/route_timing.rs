@@ -7,7 +7,7 @@ use crate::nnm::continuation::start::init_contact;
 use crate::nnm::model::system::{Scaling, System};
 use crate::nnm::solve::contact::{self, ContactBlock, Method};
 use crate::nnm::solve::linear_solver::solves_per_factorisation;
-use crate::nnm::{model::fourier, CercleForm, Problem, Settings, Shock, ShockLaw};
+use crate::nnm::{model::fourier, CercleForm, Harmonics, Problem, Shock, ShockLaw};
 use faer::sparse::{SparseColMat, Triplet};
 use std::time::Instant;
 
@@ -48,21 +48,8 @@ pub(in crate::nnm) fn system_and_point(law: ShockLaw, h_nonl: usize) -> Result<(
             regul: 5e-5,
         }],
     };
-    let s = Settings {
-        h_lin: 5,
-        h_nonl,
-        n_branches: 1,
-        n_points_per_branch: 1,
-        order: 20,
-        prec_man: 1e-8,
-        prec_newton: 1e-9,
-        iter_newton_max: 15,
-        bif_terms: 3,
-        bif_tol: 1e-4,
-        det_test: true,
-        direction: 1,
-    };
-    let sys = System::new(&p, &s, Scaling::new(&p, 1.0, 0)?, 0)?;
+    let h = Harmonics { h_lin: 5, h_nonl };
+    let sys = System::of_harmonics(&p, h, Scaling::new(&p, 1.0, 0)?, 0)?;
     let lay = sys.lay;
     let mut x = vec![0.0; lay.n_unk];
     x[lay.u(0) + fourier::ic(1)] = 1.3;

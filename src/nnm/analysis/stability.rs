@@ -49,7 +49,7 @@ mod tests;
 use crate::error::{Error, Result};
 use crate::nnm::model::point_law::{eta_phys, PointLaw};
 use crate::nnm::model::unknowns::Unknowns;
-use crate::nnm::{model::fourier, Problem, Settings};
+use crate::nnm::{model::fourier, Harmonics, Problem};
 use faer::{Mat, Side};
 
 /// Time integrator of the variational equation (SCHEMA_TEMPS/SCHEMA).
@@ -288,10 +288,11 @@ pub struct FloquetAnalyser {
 }
 
 impl FloquetAnalyser {
-    pub fn new(problem: &Problem, settings: &Settings) -> Result<FloquetAnalyser> {
+    pub fn new(problem: &Problem, harmonics: impl Into<Harmonics>) -> Result<FloquetAnalyser> {
+        let harmonics = harmonics.into();
         Ok(FloquetAnalyser {
-            unknowns: Unknowns::new(problem, settings)?,
-            h_lin: settings.h_lin,
+            unknowns: Unknowns::new(problem, harmonics)?,
+            h_lin: harmonics.h_lin,
             structure: Structure::new(problem)?,
         })
     }
@@ -334,13 +335,13 @@ impl FloquetAnalyser {
 /// For many points of one problem, build the analyser once instead.
 pub fn floquet(
     problem: &Problem,
-    settings: &Settings,
+    harmonics: impl Into<Harmonics>,
     x: &[f64],
     n_steps: usize,
     integrator: Integrator,
     tolerance: f64,
 ) -> Result<Floquet> {
-    FloquetAnalyser::new(problem, settings)?.floquet(x, n_steps, integrator, tolerance)
+    FloquetAnalyser::new(problem, harmonics)?.floquet(x, n_steps, integrator, tolerance)
 }
 
 /// Φ(T) of the linearised system with the chosen integrator.

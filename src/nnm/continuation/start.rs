@@ -4,6 +4,7 @@
 
 use crate::error::{Error, Result};
 use crate::nnm::model::point::{finite, make_point, to_scaled};
+use crate::nnm::model::problem::Harmonics;
 use crate::nnm::model::system::{self, Scaling, ShockSys, System};
 use crate::nnm::model::unknowns::Unknowns;
 use crate::nnm::solve::linear_solver::TangentSolver;
@@ -373,14 +374,14 @@ pub fn start_from_mode_using(
 /// Scaling and reference DOF for a stored physical point.
 pub(in crate::nnm) fn system_for_point(
     problem: &Problem,
-    settings: &Settings,
+    harmonics: Harmonics,
     x: &[f64],
 ) -> Result<System> {
-    Unknowns::new(problem, settings)?.check(x)?;
+    Unknowns::new(problem, harmonics)?.check(x)?;
     let n = problem.k.nrows();
-    let nl = fourier::len(settings.h_lin);
+    let nl = fourier::len(harmonics.h_lin);
     let amp =
-        |i: usize| x[i * nl + fourier::ic(1)].hypot(x[i * nl + fourier::is(settings.h_lin, 1)]);
+        |i: usize| x[i * nl + fourier::ic(1)].hypot(x[i * nl + fourier::is(harmonics.h_lin, 1)]);
     let p = (0..n)
         .max_by(|&a, &b| amp(a).total_cmp(&amp(b)))
         .unwrap_or(0);
@@ -391,12 +392,14 @@ pub(in crate::nnm) fn system_for_point(
     let scaling = crate::nnm::model::rescale::outgrown(&scaling, all, amp(p) / scaling.length)
         .unwrap_or(scaling);
     let amps: Vec<f64> = (0..n).map(amp).collect();
-    System::new(problem, settings, scaling, phase_dof(&amps))
+    System::of_harmonics(problem, harmonics, scaling, phase_dof(&amps))
 }
 
 /// Restart from a stored point (physical `Point::x`), Newton-corrected.
 pub fn start_from_point(problem: &Problem, settings: &Settings, x: &[f64]) -> Result<StartState> {
-    let sys = system_for_point(problem, settings, x)?;
+    // The continuation's settings are checked first, as every start does.
+    system::validate(problem, settings)?;
+    let sys = system_for_point(problem, settings.into(), x)?;
     let xs = to_scaled(&sys, x);
     start(sys, settings, xs, SolverKind::default(), Guess::StoredPoint)
 }

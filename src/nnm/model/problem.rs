@@ -38,6 +38,23 @@ pub struct Problem {
     pub shocks: Vec<Shock>,
 }
 
+/// The harmonic counts of a run (NB_HARM_LINE, NB_HARM_NONL): the layout of its points, and
+/// all that reading a stored point back needs (REST_MODE_NONL, CALC_STABILITE, the rows).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Harmonics {
+    pub h_lin: usize,
+    pub h_nonl: usize,
+}
+
+impl From<&Settings> for Harmonics {
+    fn from(s: &Settings) -> Harmonics {
+        Harmonics {
+            h_lin: s.h_lin,
+            h_nonl: s.h_nonl,
+        }
+    }
+}
+
 #[derive(Clone, Debug)]
 pub struct Settings {
     pub h_lin: usize,

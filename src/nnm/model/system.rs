@@ -11,6 +11,7 @@ use crate::nnm::model::cosine_sampler::{CosineSampler, CosineScratch};
 use crate::nnm::model::fourier::{self, FftScratch, Sampler};
 use crate::nnm::model::law::{self, LawEqs, Var};
 use crate::nnm::model::low_synth::{self, LowSynth};
+use crate::nnm::model::problem::Harmonics;
 use crate::nnm::model::vector;
 use crate::nnm::{Problem, Settings, ShockLaw};
 use faer::prelude::*;
@@ -317,13 +318,14 @@ impl Layout {
     /// The layout of X for `problem` and `settings` and the offset in X of each shock's
     /// contact unknowns, as `System::new` places them, without building a system (no
     /// scaling, matrices or FFT plan): what reading stored points needs.
-    pub fn of(problem: &Problem, settings: &Settings) -> (Layout, Vec<usize>) {
+    pub fn of(problem: &Problem, harmonics: impl Into<Harmonics>) -> (Layout, Vec<usize>) {
+        let h = harmonics.into();
         let n = problem.k.nrows();
-        let hl = settings.h_lin;
+        let hl = h.h_lin;
         let hn = if problem.shocks.is_empty() {
             hl
         } else {
-            settings.h_nonl
+            h.h_nonl
         };
         let (nl, nn) = (fourier::len(hl), fourier::len(hn));
         let mut offset = 2 * n * nl;
@@ -391,6 +393,22 @@ struct QuadWork {
 
 /// Validate the problem and settings against each other (keyword-named errors).
 pub fn validate(problem: &Problem, settings: &Settings) -> Result<()> {
+    // In this order: the matrices, the harmonics, the continuation's settings, the shocks.
+    validate_matrices(problem)?;
+    validate_harmonics(problem, settings.into())?;
+    validate_continuation(settings)?;
+    validate_shocks(problem)
+}
+
+/// What reading a stored point needs of a problem: its matrices, its harmonic counts and
+/// its shocks (not the continuation's settings, which restitution does not use).
+pub fn validate_problem(problem: &Problem, harmonics: Harmonics) -> Result<()> {
+    validate_matrices(problem)?;
+    validate_harmonics(problem, harmonics)?;
+    validate_shocks(problem)
+}
+
+fn validate_matrices(problem: &Problem) -> Result<()> {
     let n = problem.k.nrows();
     if problem.k.ncols() != n || problem.m.nrows() != n || problem.m.ncols() != n || n == 0 {
         return Err(Error::input(format!(
@@ -414,6 +432,10 @@ pub fn validate(problem: &Problem, settings: &Settings) -> Result<()> {
                 .keyword("MATR_RIGI"),
         );
     }
+    Ok(())
+}
+
+fn validate_harmonics(problem: &Problem, settings: Harmonics) -> Result<()> {
     if settings.h_lin == 0 {
         return Err(
             Error::input("NB_HARM_LINE must be at least 1").keyword("RESOLUTION/NB_HARM_LINE")
@@ -426,6 +448,10 @@ pub fn validate(problem: &Problem, settings: &Settings) -> Result<()> {
         ))
         .keyword("RESOLUTION/NB_HARM_NONL"));
     }
+    Ok(())
+}
+
+fn validate_continuation(settings: &Settings) -> Result<()> {
     if settings.order < 2 {
         return Err(
             Error::input("NB_ORDRE_MAN must be at least 2").keyword("RESOLUTION/NB_ORDRE_MAN")
@@ -438,6 +464,11 @@ pub fn validate(problem: &Problem, settings: &Settings) -> Result<()> {
         return Err(Error::input("PREC_MAN and PREC_NEWTON must be positive")
             .keyword("RESOLUTION/PREC_MAN"));
     }
+    Ok(())
+}
+
+fn validate_shocks(problem: &Problem) -> Result<()> {
+    let n = problem.k.nrows();
     for (i, s) in problem.shocks.iter().enumerate() {
         let want = s.law.n_comp();
         let ctx = |e: Error| e.hint(format!("shock number {}", i + 1));
@@ -481,7 +512,28 @@ impl System {
         ref_dof: usize,
     ) -> Result<System> {
         validate(problem, settings)?;
-        let (lay, offsets) = Layout::of(problem, settings);
+        Self::build(problem, settings.into(), scaling, ref_dof)
+    }
+
+    /// A system built from the harmonic counts alone, for what needs no continuation
+    /// settings (reading a stored point, timing a contact block).
+    pub fn of_harmonics(
+        problem: &Problem,
+        harmonics: Harmonics,
+        scaling: Scaling,
+        ref_dof: usize,
+    ) -> Result<System> {
+        validate_problem(problem, harmonics)?;
+        Self::build(problem, harmonics, scaling, ref_dof)
+    }
+
+    fn build(
+        problem: &Problem,
+        harmonics: Harmonics,
+        scaling: Scaling,
+        ref_dof: usize,
+    ) -> Result<System> {
+        let (lay, offsets) = Layout::of(problem, harmonics);
         let mut shocks = Vec::new();
         for (s, &offset) in problem.shocks.iter().zip(&offsets) {
             let law = s.law.scaled(scaling.length);

@@ -4,8 +4,9 @@
 
 use crate::error::{Error, Result};
 use crate::nnm::model::point::finite;
+use crate::nnm::model::problem::Harmonics;
 use crate::nnm::model::system::{self, Layout};
-use crate::nnm::{Problem, Settings};
+use crate::nnm::Problem;
 
 /// Where each series of a stored point (a physical `Point::x`) sits.
 #[derive(Clone, Debug)]
@@ -16,9 +17,10 @@ pub(crate) struct Unknowns {
 }
 
 impl Unknowns {
-    pub fn new(problem: &Problem, settings: &Settings) -> Result<Unknowns> {
-        system::validate(problem, settings)?;
-        let (lay, offsets) = Layout::of(problem, settings);
+    pub fn new(problem: &Problem, harmonics: impl Into<Harmonics>) -> Result<Unknowns> {
+        let harmonics = harmonics.into();
+        system::validate_problem(problem, harmonics)?;
+        let (lay, offsets) = Layout::of(problem, harmonics);
         let shocks = offsets
             .into_iter()
             .zip(&problem.shocks)
@@ -207,5 +209,28 @@ mod tests {
         assert!(unknowns.displacement(&x).is_err());
         assert!(unknowns.velocity(&x).is_err());
         assert!(unknowns.contact(&x).is_err());
+    }
+
+    /// Reading a stored point needs its harmonic counts alone: continuation settings that a
+    /// run refuses (NB_ORDRE_MAN below 2) do not stop restitution, and a run still refuses
+    /// them.
+    #[test]
+    fn restitution_needs_the_harmonic_counts_alone() {
+        let p = problems().remove(0);
+        let mut s = settings(3, 7, 1, 1);
+        s.order = 0;
+        let h = Harmonics::from(&s);
+        assert_eq!((h.h_lin, h.h_nonl), (3, 7));
+        let n = Unknowns::new(&p, h).unwrap().layout().n_unk;
+        assert_eq!(n, Layout::of(&p, &s).0.n_unk);
+        let e = system::validate(&p, &s).unwrap_err();
+        assert_eq!(e.keyword.as_deref(), Some("RESOLUTION/NB_ORDRE_MAN"));
+        system::validate_problem(&p, h).unwrap();
+        // Harmonics of their own are still checked.
+        let bad = Harmonics {
+            h_lin: 0,
+            h_nonl: 7,
+        };
+        assert!(Unknowns::new(&p, bad).is_err());
     }
 }

@@ -836,7 +836,7 @@ fn cercle_law_block_keeps_its_determinant_sign_along_branches() {
         let mut signs = Vec::new();
         let mut logs = Vec::new();
         for q in pts {
-            let sys = system_for_point(p, &s, &q.x).unwrap();
+            let sys = system_for_point(p, (&s).into(), &q.x).unwrap();
             let x = to_scaled(&sys, &q.x);
             let sh = &sys.shocks[0];
             let nn = sys.lay.n_coef_nonl;

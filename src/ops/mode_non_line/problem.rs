@@ -4,7 +4,7 @@
 use crate::error::{Error, Result};
 use crate::model::assembly::AssembledMatrix;
 use crate::model::dof::Cmp;
-use crate::nnm::{CercleForm, Problem, Settings, Shock, ShockLaw};
+use crate::nnm::{CercleForm, Harmonics, Problem, Shock, ShockLaw};
 use crate::store::mnl::{MnlSetup, StoredShock};
 use crate::table::{Cell, ColKind, Table};
 
@@ -77,13 +77,13 @@ pub fn engine_shock(s: &StoredShock, i: usize, k: &AssembledMatrix) -> Result<Sh
     })
 }
 
-/// The engine problem of a stored MODE_NON_LINE run, with settings carrying its harmonics
-/// (the continuation fields are not used by restitution), and the free DOFs.
+/// The engine problem of a stored MODE_NON_LINE run, its harmonic counts (all that reading
+/// its rows back needs) and the free DOFs.
 pub fn engine_problem(
     setup: &MnlSetup,
     k: &AssembledMatrix,
     m: &AssembledMatrix,
-) -> Result<(Problem, Settings, Vec<usize>)> {
+) -> Result<(Problem, Harmonics, Vec<usize>)> {
     let free = k.free_dofs();
     let shocks = setup
         .shocks
@@ -96,21 +96,11 @@ pub fn engine_problem(
         m: m.reduced()?,
         shocks,
     };
-    let settings = Settings {
+    let harmonics = Harmonics {
         h_lin: setup.h_lin,
         h_nonl: setup.h_nonl,
-        n_branches: 1,
-        n_points_per_branch: 1,
-        order: 20,
-        prec_man: 1e-9,
-        prec_newton: 1e-8,
-        iter_newton_max: 15,
-        bif_terms: 3,
-        bif_tol: 1e-4,
-        det_test: false,
-        direction: -1,
     };
-    Ok((problem, settings, free))
+    Ok((problem, harmonics, free))
 }
 
 /// Index of the row with NUME_ORDRE = `order`.
