@@ -231,8 +231,7 @@ fn balance_law(sh: &ExactShock, u: [f64; 2]) -> ([f64; 2], [f64; 4]) {
 
 /// Penalty energy ½α(δ)₊² of one shock at one instant (δ the penetration).
 fn penalty(sh: &ExactShock, u: [f64; 2]) -> f64 {
-    let pen = |d: f64| if d > 0.0 { 0.5 * sh.alpha * d * d } else { 0.0 };
-    pen(sh.law.with(|l| l.penetration(u, sh.gap)))
+    sh.law.with(|l| l.mean_energy(u, sh.alpha, sh.gap))
 }
 
 impl Ctx {

@@ -54,9 +54,8 @@ pub fn energy_ca(sys: &System, x: &[f64]) -> f64 {
     let (u, v) = state_at(sys, x, FRAC_PI_2);
     let mut e = quad_form(&sys.k.entries, &u) + quad_form(&sys.m.entries, &v);
     for sh in &sys.shocks {
-        let pen = |d: f64| if d > 0.0 { 0.5 * sh.alpha * d * d } else { 0.0 };
         let comps = [u[sh.dofs[0]], sh.dofs.get(1).map_or(0.0, |&d| u[d])];
-        e += pen(sh.law.with(|l| l.energy_penetration(comps, sh.gap)));
+        e += sh.law.with(|l| l.energy(comps, sh.alpha, sh.gap));
     }
     e
 }
@@ -79,10 +78,9 @@ pub fn energy_mean_ca(sys: &System, x: &[f64]) -> f64 {
             let coefs = &x[lay.u(d)..lay.u(d) + lay.n_coef_lin];
             smp.synth_with(coefs, lay.h_lin, &mut u[c], &mut ws);
         }
-        let pen = |d: f64| if d > 0.0 { 0.5 * sh.alpha * d * d } else { 0.0 };
         let total: f64 = sh.law.with(|l| {
             (0..ns)
-                .map(|j| pen(l.penetration([u[0][j], u[1][j]], sh.gap)))
+                .map(|j| l.mean_energy([u[0][j], u[1][j]], sh.alpha, sh.gap))
                 .sum()
         });
         e += total / ns as f64;

@@ -479,27 +479,9 @@ fn validate_shocks(problem: &Problem) -> Result<()> {
             ))
             .keyword("CHOC/NOM_CMP")));
         }
-        if !(s.gap.is_finite() && s.gap > 0.0) {
-            return Err(ctx(Error::input(format!(
-                "JEU must be positive, got {}",
-                s.gap
-            ))
-            .keyword("CHOC/JEU")));
-        }
-        if !(s.stiffness.is_finite() && s.stiffness > 0.0) {
-            return Err(ctx(Error::input(format!(
-                "RIGI_NOR must be positive, got {}",
-                s.stiffness
-            ))
-            .keyword("CHOC/RIGI_NOR")));
-        }
-        if !(s.regul.is_finite() && s.regul > 0.0) {
-            return Err(ctx(Error::input(format!(
-                "PARA_REGUL must be positive (the regularised law is singular at 0), got {}",
-                s.regul
-            ))
-            .keyword("CHOC/PARA_REGUL")));
-        }
+        s.law
+            .with(|l| l.validate(s.gap, s.stiffness, s.regul))
+            .map_err(ctx)?;
     }
     Ok(())
 }

@@ -52,7 +52,7 @@
 //! the truncated series of z overshoots 1 and the harmonic-balance block changes sign
 //! (tests.rs, cercle_law_block_keeps_its_determinant_sign_along_branches); λ avoids it.
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 
 mod bi_plan;
 mod cercle;
@@ -118,10 +118,42 @@ fn lin_term(eq: usize, coef: f64, var: Var) -> Lin {
     Lin { eq, coef, var }
 }
 
+/// ½α·d² for a penetration d > 0, 0 otherwise: the penalty energy of a stop.
+fn penalty(alpha: f64, d: f64) -> f64 {
+    if d > 0.0 {
+        0.5 * alpha * d * d
+    } else {
+        0.0
+    }
+}
+
 /// What a contact law is to the engine. Scaled quantities: s = JEU/g_ref, α = RIGI_NOR/k_ref,
 /// η = PARA_REGUL, the displacement and the origin in units of g_ref. Physical ones: α =
 /// RIGI_NOR, gap = JEU, η = PARA_REGUL·k_ref·JEU² (point_law.rs), metres.
 pub trait ContactLaw {
+    /// Its parameters (JEU, RIGI_NOR, PARA_REGUL as given) are ones it can be solved with:
+    /// by default each finite and positive (the regularised laws are singular at η = 0).
+    fn validate(&self, gap: f64, stiffness: f64, regul: f64) -> Result<()> {
+        if !(gap.is_finite() && gap > 0.0) {
+            return Err(
+                Error::input(format!("JEU must be positive, got {gap}")).keyword("CHOC/JEU")
+            );
+        }
+        if !(stiffness.is_finite() && stiffness > 0.0) {
+            return Err(
+                Error::input(format!("RIGI_NOR must be positive, got {stiffness}"))
+                    .keyword("CHOC/RIGI_NOR"),
+            );
+        }
+        if !(regul.is_finite() && regul > 0.0) {
+            return Err(Error::input(format!(
+                "PARA_REGUL must be positive (the regularised law is singular at 0), got {regul}"
+            ))
+            .keyword("CHOC/PARA_REGUL"));
+        }
+        Ok(())
+    }
+
     /// Displacement components the law reads (1, or 2 for a ring).
     fn n_comp(&self) -> usize;
 
@@ -163,6 +195,18 @@ pub trait ContactLaw {
     /// tables computed it.
     fn energy_penetration(&self, u: [f64; 2], gap: f64) -> f64 {
         self.penetration(u, gap)
+    }
+
+    /// The energy stored in the law at `u` that ENERGIE counts, Code_Aster's: the penalty
+    /// ½α(penetration)₊² of the nonsmooth stop (the regularisation's own is left out).
+    fn energy(&self, u: [f64; 2], alpha: f64, gap: f64) -> f64 {
+        penalty(alpha, self.energy_penetration(u, gap))
+    }
+
+    /// The same energy from `penetration`, for averages over the period (ENERGIE_MOYENNE)
+    /// and the exact law's energy.
+    fn mean_energy(&self, u: [f64; 2], alpha: f64, gap: f64) -> f64 {
+        penalty(alpha, self.penetration(u, gap))
     }
 
     /// Force components at displacement `u` (the first `n_comp` entries), physical units.
