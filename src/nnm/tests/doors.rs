@@ -1,5 +1,6 @@
-//! The rooms of the engine keep their one-way doors, and docs/nnm.md lists their files as
-//! they are. Both read the sources, so neither can drift from them.
+//! The rooms of the engine keep their one-way doors, a contact law is named only where it is
+//! registered or read from the user, and docs/nnm.md lists the files as they are. All three
+//! read the sources, so none can drift from them.
 //!
 //! A room is a folder of `src/nnm/` (`model`, `solve`, `continuation`, `analysis`, lowest
 //! first); `follow.rs` and `mod.rs` stand above them all. A file may use its own room and
@@ -281,5 +282,65 @@ fn docs_nnm_lists_every_file_as_it_is() {
     assert!(
         current == table,
         "docs/nnm.md's file table is out of date: regenerate it with `UPDATE_DOCS=1 cargo test doors`"
+    );
+}
+
+/// The production files that may name a contact law's variant: its registration, the
+/// reading of CHOC, and the few places that list laws as such (the bench's route timing,
+/// the ring's advice, the accuracy study's cases). Everything else asks the law
+/// (model/law/), so a new law stays in its own file and its registration.
+const NAMES_LAWS: [&str; 5] = [
+    "nnm/model/law/mod.rs",
+    "ops/mode_non_line/problem.rs",
+    "nnm/analysis/route_timing.rs",
+    "nnm/analysis/below_contact.rs",
+    "study/cases.rs",
+];
+
+/// Every `.rs` file under `dir`, sorted, relative to `base`.
+fn all_sources(dir: &Path, base: &Path, out: &mut Vec<PathBuf>) {
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    entries.sort();
+    for p in entries {
+        if p.is_dir() {
+            all_sources(&p, base, out);
+        } else if p.extension().is_some_and(|e| e == "rs") {
+            out.push(p.strip_prefix(base).unwrap().to_path_buf());
+        }
+    }
+}
+
+#[test]
+fn only_the_registration_and_the_readers_name_a_contact_law() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    all_sources(&src, &src, &mut files);
+    let naming: Vec<String> = files
+        .iter()
+        .filter(|rel| {
+            let name = rel.file_name().unwrap().to_string_lossy();
+            !(rel.components().any(|c| c.as_os_str() == "tests")
+                || name.ends_with("_tests.rs")
+                || name == "tests.rs")
+        })
+        .filter(|rel| {
+            let text = std::fs::read_to_string(src.join(rel)).unwrap();
+            let prod = production(&text);
+            ["ShockLaw::Plan", "ShockLaw::BiPlan", "ShockLaw::Cercle"]
+                .iter()
+                .any(|v| prod.contains(v))
+        })
+        .map(|rel| rel.to_string_lossy().into_owned())
+        .collect();
+    let mut allowed: Vec<String> = NAMES_LAWS.iter().map(|s| s.to_string()).collect();
+    allowed.sort();
+    let mut naming_sorted = naming.clone();
+    naming_sorted.sort();
+    assert_eq!(
+        naming_sorted, allowed,
+        "production files that name a contact law's variant (ask the law instead, model/law/)"
     );
 }

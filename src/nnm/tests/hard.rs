@@ -480,7 +480,7 @@ fn hard_cercle_whirl_around_the_ring() {
 fn hard_ring_through_its_centre_next_to_another_shock() {
     // A PLAN shock first, then a ring centred on the planar orbit of DOF 0 (the orbit goes
     // through the centre twice a period): the continuation runs into contact with the ring
-    // with every branch end converged and no NaN. (Equality with BI_PLAN: tests.rs.)
+    // with every branch end converged and no NaN. (Equality with BI_PLAN: nnm/tests/mod.rs.)
     let p = Problem {
         k: sparse(2, &[(0, 0, 10.0), (1, 1, 25.0)]),
         m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),

@@ -35,7 +35,7 @@
 //!   With a centred ring and motion along one component (dx ≡ 0) the first equation gives
 //!   fx ≡ 0 and, pointwise, the rest is BI_PLAN's law (f = λ u); in harmonic balance the
 //!   force series is λ·u truncated instead of f, another truncation of the same regularised
-//!   system (the BI_PLAN branch is recovered to the truncation error, tests.rs).
+//!   system (the BI_PLAN branch is recovered to the truncation error, nnm/tests/mod.rs).
 //!   The two forms agree in contact and differ inside the ring (a force of magnitude ≈ η s
 //!   along d/r for 'RAYON', a weak spring for 'SECANTE'); both differences vanish as η → 0.
 //!
@@ -50,7 +50,7 @@
 //! lie at α(2u ± √(u² + 3s²))/3, outside it). A three-unknown vector form F(1 − z) = η d
 //! has determinant (1 − z)·ψ_f instead; its factor 1 − z = η r/φ is tiny in contact, where
 //! the truncated series of z overshoots 1 and the harmonic-balance block changes sign
-//! (tests.rs, cercle_law_block_keeps_its_determinant_sign_along_branches); λ avoids it.
+//! (nnm/tests/mod.rs, cercle_law_block_keeps_its_determinant_sign_along_branches); λ avoids it.
 
 use crate::error::{Error, Result};
 
