@@ -21,7 +21,7 @@
 use crate::error::Error;
 use crate::nnm::model::point::unit_factors;
 use crate::nnm::model::system::{Scaling, System};
-use crate::nnm::{Point, Problem, ShockLaw};
+use crate::nnm::{Point, Problem};
 
 /// Scaled displacement amplitude (largest |coefficient| of U) above which the lengths are
 /// rescaled. Large enough that the branches of the testcases (sdnd122a reaches 134 JEU
@@ -36,7 +36,7 @@ pub(in crate::nnm) fn motion_amplitude(sys: &System, x: &[f64]) -> f64 {
 }
 
 /// The scaling whose length unit is the motion's amplitude, when `x` has outgrown the
-/// current unit by [`RESCALE_AT`] and every stop of `problem` is [`rescalable`]; None
+/// current unit by [`RESCALE_AT`] and every stop of `problem` is rescalable ([`all_rescalable`]); None
 /// otherwise.
 pub(in crate::nnm) fn rescaled(problem: &Problem, sys: &System, x: &[f64]) -> Option<Scaling> {
     outgrown(
@@ -53,18 +53,15 @@ pub(in crate::nnm) fn rescaled(problem: &Problem, sys: &System, x: &[f64]) -> Op
 /// and the secant ring ('SECANTE') compute z = (f/α − u)²/s² from terms of size
 /// (u/JEU)²: in a smaller s the cancellation is no better, and measured on
 /// testcases/hard/biplan_long (a one-DOF BI_PLAN stop run to ENER_MAX 1e15 J) the rescaled
-/// run stopped short and its test failed; they keep Code_Aster's unit.
-pub(in crate::nnm) fn rescalable(law: ShockLaw) -> bool {
-    law.rescalable()
-}
-
-/// Every stop of `problem` is [`rescalable`] (a run, above, and a restart, start.rs).
+/// run stopped short and its test failed; they keep Code_Aster's unit. Each law says which
+/// it is (`ContactLaw::rescalable`, model/law/); this asks every stop of `problem` (a run,
+/// above, and a restart, start.rs).
 pub(in crate::nnm) fn all_rescalable(problem: &Problem) -> bool {
-    problem.shocks.iter().all(|s| rescalable(s.law))
+    problem.shocks.iter().all(|s| s.law.rescalable())
 }
 
 /// Why a branch end accepted at its round-off floor (newton.rs) ends the run, if it does:
-/// when some stop is not [`rescalable`] and the motion exceeds [`RESCALE_AT`] times the
+/// when some stop is not rescalable ([`all_rescalable`]) and the motion exceeds [`RESCALE_AT`] times the
 /// largest JEU, the floor is the amplitude's doing (BI_PLAN's and the secant ring's
 /// equations lose digits like (amplitude/JEU)², in any length unit), and every branch
 /// further up would end at a higher one. Issue 34 asks that no row past first contact be
@@ -107,7 +104,7 @@ pub(in crate::nnm) fn floor_far_up(
 
 /// The one rule of a change of length unit, for a run (above) and for a restart from a
 /// stored row (start.rs): `amplitude` is the motion's in units of `scaling.length`; only
-/// problems whose stops are all [`rescalable`] (`all_rescalable`) change unit.
+/// problems whose stops are all rescalable ([`all_rescalable`]) change unit.
 pub(in crate::nnm) fn outgrown(
     scaling: &Scaling,
     all_rescalable: bool,

@@ -22,8 +22,8 @@ fn rank(room: &str) -> Option<usize> {
     ROOMS.iter().position(|r| *r == room)
 }
 
-/// Every `.rs` file under `dir`, sorted, as paths relative to `src/nnm`.
-fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
+/// Every `.rs` file under `dir`, sorted, as paths relative to `base`.
+fn sources(dir: &Path, base: &Path, out: &mut Vec<PathBuf>) {
     let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -31,16 +31,19 @@ fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
     entries.sort();
     for p in entries {
         if p.is_dir() {
-            sources(&p, out);
+            sources(&p, base, out);
         } else if p.extension().is_some_and(|e| e == "rs") {
-            out.push(p.strip_prefix(nnm_dir()).unwrap().to_path_buf());
+            out.push(p.strip_prefix(base).unwrap().to_path_buf());
         }
     }
 }
 
+/// Test code: a `tests` folder (the engine's, an operator's), `*_tests.rs`, `tests.rs`.
 fn is_test_file(rel: &Path) -> bool {
     let name = rel.file_name().unwrap().to_string_lossy();
-    rel.starts_with("tests") || name.ends_with("_tests.rs") || name == "tests.rs"
+    rel.components().any(|c| c.as_os_str() == "tests")
+        || name.ends_with("_tests.rs")
+        || name == "tests.rs"
 }
 
 /// The production part of a file: what precedes its inline test module.
@@ -147,7 +150,7 @@ fn upward_doors() -> Vec<(PathBuf, Vec<String>)> {
     let dir = nnm_dir();
     let names = reexports(&std::fs::read_to_string(dir.join("mod.rs")).unwrap());
     let mut files = Vec::new();
-    sources(&dir, &mut files);
+    sources(&dir, &dir, &mut files);
     let mut found = Vec::new();
     for rel in files {
         let Some(own) = rel
@@ -241,7 +244,7 @@ const TABLE_END: &str = "<!-- end of files -->";
 fn file_table() -> String {
     let dir = nnm_dir();
     let mut files = Vec::new();
-    sources(&dir, &mut files);
+    sources(&dir, &dir, &mut files);
     let mut table = format!("{TABLE_START}\n| room | file | what it holds |\n|---|---|---|\n");
     for rel in files {
         let text = std::fs::read_to_string(dir.join(&rel)).unwrap();
@@ -297,35 +300,14 @@ const NAMES_LAWS: [&str; 5] = [
     "study/cases.rs",
 ];
 
-/// Every `.rs` file under `dir`, sorted, relative to `base`.
-fn all_sources(dir: &Path, base: &Path, out: &mut Vec<PathBuf>) {
-    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .collect();
-    entries.sort();
-    for p in entries {
-        if p.is_dir() {
-            all_sources(&p, base, out);
-        } else if p.extension().is_some_and(|e| e == "rs") {
-            out.push(p.strip_prefix(base).unwrap().to_path_buf());
-        }
-    }
-}
-
 #[test]
 fn only_the_registration_and_the_readers_name_a_contact_law() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let mut files = Vec::new();
-    all_sources(&src, &src, &mut files);
+    sources(&src, &src, &mut files);
     let naming: Vec<String> = files
         .iter()
-        .filter(|rel| {
-            let name = rel.file_name().unwrap().to_string_lossy();
-            !(rel.components().any(|c| c.as_os_str() == "tests")
-                || name.ends_with("_tests.rs")
-                || name == "tests.rs")
-        })
+        .filter(|rel| !is_test_file(rel))
         .filter(|rel| {
             let text = std::fs::read_to_string(src.join(rel)).unwrap();
             let prod = production(&text);

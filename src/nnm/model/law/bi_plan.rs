@@ -6,7 +6,7 @@
 //! differentiation. z is built from terms of size (u/JEU)², so a smaller length unit does
 //! not help the cancellation: BI_PLAN keeps Code_Aster's unit far up a branch.
 
-use super::{lin_term, quad_term, ContactLaw, LawEqs, Var};
+use super::{component as comp, lin_term, quad_term, samples, ContactLaw, LawEqs, Var};
 use crate::error::{Error, Result};
 
 /// The two-sided stop.
@@ -65,12 +65,6 @@ pub(super) fn biplan_pointwise(u: f64, alpha: f64, g: f64, eta: f64) -> Result<(
     Ok((sign * f, -psi_u / psi_f))
 }
 
-fn comp(u: &[f64], i: usize) -> Result<f64> {
-    u.get(i)
-        .copied()
-        .ok_or_else(|| Error::internal("contact law component missing"))
-}
-
 impl ContactLaw for BiPlan {
     fn n_comp(&self) -> usize {
         1
@@ -110,9 +104,7 @@ impl ContactLaw for BiPlan {
     }
 
     fn own_from_u(&self, s: f64, alpha: f64, eta: f64, u: &[Vec<f64>]) -> Result<Vec<Vec<f64>>> {
-        let u0 = u
-            .first()
-            .ok_or_else(|| Error::internal("law component missing"))?;
+        let u0 = samples(u, 0)?;
         let f: Vec<f64> = u0.iter().map(|&x| biplan_force(x, s, alpha, eta)).collect();
         let z = f
             .iter()

@@ -17,8 +17,8 @@
 
 use super::bi_plan::{biplan_force, biplan_pointwise};
 use super::plan::{plan_force, plan_pointwise};
-use super::{lin_term, quad_term, ContactLaw, LawEqs, Var};
-use crate::error::{Error, Result};
+use super::{component as comp, lin_term, quad_term, samples, ContactLaw, LawEqs, Var};
+use crate::error::Result;
 
 /// Which regularisation of the ring law (CHOC/LOI_CERCLE).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -37,12 +37,6 @@ pub enum CercleForm {
 pub struct Cercle {
     pub origin: [f64; 2],
     pub form: CercleForm,
-}
-
-fn comp(u: &[f64], i: usize) -> Result<f64> {
-    u.get(i)
-        .copied()
-        .ok_or_else(|| Error::internal("contact law component missing"))
 }
 
 /// R5.07.01 eq. (12) in scaled units: Own(0) = fx, Own(1) = fy, Own(2) = r, Own(3) = φ.
@@ -161,12 +155,8 @@ impl ContactLaw for Cercle {
 
     fn own_from_u(&self, s: f64, alpha: f64, eta: f64, u: &[Vec<f64>]) -> Result<Vec<Vec<f64>>> {
         let c = eta * s * s;
-        let component = |i: usize| {
-            u.get(i)
-                .ok_or_else(|| Error::internal("law component missing"))
-        };
         let [ex, ey] = self.origin;
-        let (ux, uy) = (component(0)?, component(1)?);
+        let (ux, uy) = (samples(u, 0)?, samples(u, 1)?);
         let n = ux.len().min(uy.len());
         let mut own = vec![vec![0.0; n]; 4];
         match self.form {

@@ -118,6 +118,20 @@ fn lin_term(eq: usize, coef: f64, var: Var) -> Lin {
     Lin { eq, coef, var }
 }
 
+/// Displacement component `i` of one instant (a missing one is a bug of the caller).
+fn component(u: &[f64], i: usize) -> Result<f64> {
+    u.get(i)
+        .copied()
+        .ok_or_else(|| Error::internal("contact law component missing"))
+}
+
+/// The samples of displacement component `i` (a missing one is a bug of the caller).
+fn samples(u: &[Vec<f64>], i: usize) -> Result<&[f64]> {
+    u.get(i)
+        .map(Vec::as_slice)
+        .ok_or_else(|| Error::internal("law component missing"))
+}
+
 /// ½α·d² for a penetration d > 0, 0 otherwise: the penalty energy of a stop.
 fn penalty(alpha: f64, d: f64) -> f64 {
     if d > 0.0 {

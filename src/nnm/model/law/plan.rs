@@ -6,8 +6,8 @@
 //! α f / √(α²(u−g)² + 4αη). Every term is homogeneous in the lengths but the small η s², so
 //! far up a branch the unknowns can be rescaled (rescale.rs).
 
-use super::{lin_term, quad_term, ContactLaw, LawEqs, Var};
-use crate::error::{Error, Result};
+use super::{component as comp, lin_term, quad_term, samples, ContactLaw, LawEqs, Var};
+use crate::error::Result;
 
 /// The unilateral stop.
 #[derive(Clone, Copy, Debug)]
@@ -32,12 +32,6 @@ pub(super) fn plan_pointwise(d: f64, alpha: f64, eta: f64) -> (f64, f64) {
     let q = (alpha * alpha * d * d + 4.0 * alpha * eta).sqrt();
     let f = plan_force(d, alpha, eta);
     (f, alpha * f / q)
-}
-
-fn comp(u: &[f64], i: usize) -> Result<f64> {
-    u.get(i)
-        .copied()
-        .ok_or_else(|| Error::internal("contact law component missing"))
 }
 
 impl ContactLaw for Plan {
@@ -73,9 +67,7 @@ impl ContactLaw for Plan {
 
     fn own_from_u(&self, s: f64, alpha: f64, eta: f64, u: &[Vec<f64>]) -> Result<Vec<Vec<f64>>> {
         let c = eta * s * s;
-        let u0 = u
-            .first()
-            .ok_or_else(|| Error::internal("law component missing"))?;
+        let u0 = samples(u, 0)?;
         Ok(vec![u0
             .iter()
             .map(|&x| plan_force(x - s, alpha, c))
