@@ -76,7 +76,7 @@ enum Command {
         /// Scratch directory for case files and databases.
         #[arg(long, default_value = "target/bench")]
         dir: PathBuf,
-        /// Sections to run: whole, hnl, n, det, routes, compare (default: all).
+        /// Sections to run: whole, hnl, n, det, routes, compare, reduced (default: all).
         #[arg(long)]
         only: Vec<String>,
         /// The --old binary reads DIR_EVOLUTION=1 as forward (before the DIR_EVOLUTION
@@ -94,6 +94,9 @@ enum Command {
         det: bool,
         #[arg(long)]
         no_det: bool,
+        /// Run on a reduction basis: coef:C, modes:N or freq:F (as REDUCTION).
+        #[arg(long)]
+        reduce: Option<String>,
         #[arg(long, default_value = "target/bench")]
         dir: PathBuf,
     },
@@ -175,10 +178,12 @@ fn main() -> ExitCode {
             solver,
             det,
             no_det,
+            reduce,
             dir,
         } => {
             let det = det || !no_det;
-            match aster_nl::bench::run_case(&model, &solver, det, &dir, &mut std::io::stdout()) {
+            let out = &mut std::io::stdout();
+            match aster_nl::bench::run_case(&model, &solver, det, reduce.as_deref(), &dir, out) {
                 Ok(()) => ExitCode::SUCCESS,
                 Err(e) => fail(&e, None),
             }

@@ -10,10 +10,12 @@
 //! (`reference`: the whole tangent in one sparse LU, the dense determinant test), for
 //! engine-level comparisons where the old binary cannot run the case.
 
+pub mod curves;
 pub mod measure;
 pub mod models;
 
 use crate::error::{Error, ErrorKind, Result};
+use crate::linalg::craig_bampton::ModeCut;
 use crate::nnm::{self, ContactMethod, SolverKind};
 use measure::{exponent, median, run_child, ChildRun};
 use models::Case;
@@ -40,11 +42,23 @@ fn io(e: impl std::fmt::Display) -> Error {
     Error::new(ErrorKind::Io, format!("bench: {e}"))
 }
 
+/// REDUCTION/COEF_COUPURE's default, read from the catalog (commands/MODE_NON_LINE.toml):
+/// the bench's default basis is MODE_NON_LINE's.
+pub fn default_coef_coupure() -> Result<f64> {
+    crate::catalog::get("MODE_NON_LINE")
+        .and_then(|op| op.fact.iter().find(|f| f.name == "REDUCTION"))
+        .and_then(|f| f.simp.iter().find(|s| s.name == "COEF_COUPURE"))
+        .and_then(|s| s.default.as_ref())
+        .and_then(|v| v.as_f64())
+        .ok_or_else(|| io("the catalog has no default for MODE_NON_LINE/REDUCTION/COEF_COUPURE"))
+}
+
 /// Largest count (elements, masses, harmonics, branches, points) a model spec may give.
 const MAX_COUNT: usize = 1_000_000;
 
 /// A model named on the command line of `bench-case`:
-/// wall:H_nl:branches | utube:H_nl:branches:points:offset | beam:elements:H_l:H_nl:branches |
+/// wall:H_nl:branches | utube:H_nl:branches:points:offset |
+/// beam:elements:H_l:H_nl:branches[:points] |
 /// spans:spans:elements:H_l:H_nl:branches (the bar on spans + 1 supports, `elements` in
 /// all, models::spans) | chain:masses:H_l:H_nl:branches.
 pub fn parse_model(spec: &str) -> Result<Case> {
@@ -69,7 +83,14 @@ pub fn parse_model(spec: &str) -> Result<Case> {
     match p.first().copied() {
         Some("wall") => Ok(models::wall(int(1)?, int(2)?)),
         Some("utube") => Ok(models::utube(int(1)?, int(2)?, int(3)?, num(4)?)),
-        Some("beam") => Ok(models::beam(int(1)?, int(2)?, int(3)?, int(4)?)),
+        Some("beam") => {
+            let mut case = models::beam(int(1)?, int(2)?, int(3)?, int(4)?);
+            // An optional fifth number: points per branch (NB_PAS_MAN), 1 otherwise.
+            if p.len() > 5 {
+                case.mnl.points = int(5)?;
+            }
+            Ok(case)
+        }
         Some("spans") => Ok(models::spans(int(1)?, int(2)?, int(3)?, int(4)?, int(5)?)),
         Some("chain") => Ok(models::chain(int(1)?, int(2)?, int(3)?, int(4)?)),
         _ => Err(io(format!(
@@ -91,11 +112,30 @@ pub fn parse_solver(s: &str) -> Result<SolverKind> {
     }
 }
 
-/// The child side: prepare the model, time the engine, print one `BENCH` line.
+/// REDUCTION of a `bench-case`: `coef:C` (cut-off C × H_l × the linear frequency, as
+/// COEF_COUPURE), `modes:N` (NB_MODE), `freq:F` (FREQ_COUPURE, Hz).
+pub fn parse_reduction(spec: &str, h_lin: usize, f_lin: f64) -> Result<ModeCut> {
+    let bad = || io(format!("reduction '{spec}': coef:C, modes:N or freq:F"));
+    let (kind, value) = spec.split_once(':').ok_or_else(bad)?;
+    let v: f64 = value.parse().map_err(|_| bad())?;
+    if !(v.is_finite() && v >= 0.0) {
+        return Err(bad());
+    }
+    match kind {
+        "coef" => Ok(ModeCut::UpTo(v * h_lin as f64 * f_lin)),
+        "modes" if v.fract() == 0.0 && v <= MAX_COUNT as f64 => Ok(ModeCut::Count(v as usize)),
+        "freq" => Ok(ModeCut::UpTo(v)),
+        _ => Err(bad()),
+    }
+}
+
+/// The child side: prepare the model, time the engine (and the reduction, when asked: its
+/// basis, the projection and the start's coordinates), print one `BENCH` line.
 pub fn run_case(
     model: &str,
     solver: &str,
     det: bool,
+    reduction: Option<&str>,
     dir: &Path,
     out: &mut dyn Write,
 ) -> Result<()> {
@@ -106,25 +146,45 @@ pub fn run_case(
     let rss0 = measure::rss_kb();
     measure::reset_peak();
     let t0 = measure::self_cpu();
+    let f_lin = prep.omega / (2.0 * std::f64::consts::PI);
+    let (problem, mode, omega, coords) = match reduction {
+        Some(spec) => {
+            let cut = parse_reduction(spec, prep.settings.h_lin, f_lin)?;
+            let basis = nnm::shock_basis(&prep.problem, cut, usize::MAX)?;
+            let problem = nnm::reduced_problem(&prep.problem, &basis)?;
+            let coords = basis.size();
+            let (q, omega) =
+                nnm::Reduced::new(basis, &prep.problem)?.start_mode(&problem, &prep.mode)?;
+            (problem, q, omega, coords)
+        }
+        None => (
+            prep.problem.clone(),
+            prep.mode.clone(),
+            prep.omega,
+            prep.problem.k.nrows(),
+        ),
+    };
+    let reduce_cpu = measure::self_cpu() - t0;
     let mut error = String::from("-");
     let mut points = 0;
     // Frequency of the last point against the linear one: a shift says the shocks acted.
     let mut f_last = f64::NAN;
-    match nnm::start_from_mode_using(
-        &prep.problem,
-        &prep.settings,
-        &prep.mode,
-        prep.coef_ampl,
-        prep.omega,
-        kind,
-    ) {
+    // ENERGIE and FREQUENCE of every point: the reduced route is compared with the full one
+    // at common energies (`aster-nl bench --only reduced`).
+    let mut curve = String::new();
+    match nnm::start_from_mode_using(&problem, &prep.settings, &mode, prep.coef_ampl, omega, kind) {
         Ok(start_state) => {
-            let o =
-                nnm::continue_branches(&prep.problem, &prep.settings, start_state, &mut |_, _| {});
+            let o = nnm::continue_branches(&problem, &prep.settings, start_state, &mut |_, _| {});
             points = o.points.len();
             if let Some(p) = o.points.last() {
                 f_last = p.frequency;
             }
+            curve = o
+                .points
+                .iter()
+                .map(|p| format!("{:.17e}/{:.17e}", p.energy, p.frequency))
+                .collect::<Vec<_>>()
+                .join(",");
             if let Some(e) = o.error {
                 error = e.message.replace(' ', "_");
             }
@@ -135,13 +195,14 @@ pub fn run_case(
     let peak = measure::peak_kb();
     writeln!(
         out,
-        "BENCH cpu={cpu:.6} peak_kb={peak} base_kb={rss0} points={points} n={} nnz={} unknowns={} f_lin={:.6} f_last={f_last:.6} error={error}",
+        "BENCH cpu={cpu:.6} peak_kb={peak} base_kb={rss0} points={points} n={} nnz={} unknowns={} f_lin={:.6} f_last={f_last:.6} reduce_cpu={reduce_cpu:.6} coords={coords} error={error}",
         prep.problem.k.nrows(),
         prep.nnz,
-        nnm::unknown_count(&prep.problem, &prep.settings),
-        prep.omega / (2.0 * std::f64::consts::PI)
+        nnm::unknown_count(&problem, &prep.settings),
+        f_lin
     )
-    .map_err(io)
+    .map_err(io)?;
+    writeln!(out, "CURVE {curve}").map_err(io)
 }
 
 /// One engine measurement (parsed from a child's BENCH line).
@@ -154,6 +215,12 @@ struct EngineRun {
     n: usize,
     nnz: usize,
     error: String,
+    /// CPU of the reduction (basis, projection, start coordinates), included in `cpu`.
+    reduce_cpu: f64,
+    /// Coordinates the engine solved on (the DOFs without a reduction).
+    coords: usize,
+    /// (ENERGIE, FREQUENCE) of every point.
+    curve: Vec<(f64, f64)>,
 }
 
 fn parse_bench_line(out: &str) -> Option<EngineRun> {
@@ -169,8 +236,20 @@ fn parse_bench_line(out: &str) -> Option<EngineRun> {
             "n" => r.n = v.parse().ok()?,
             "nnz" => r.nnz = v.parse().ok()?,
             "error" => r.error = v.replace('_', " "),
+            "reduce_cpu" => r.reduce_cpu = v.parse().ok()?,
+            "coords" => r.coords = v.parse().ok()?,
             _ => {}
         }
+    }
+    if let Some(c) = out.lines().find_map(|l| l.strip_prefix("CURVE ")) {
+        r.curve = c
+            .split(',')
+            .filter(|p| !p.is_empty())
+            .map(|p| {
+                let (e, f) = p.split_once('/')?;
+                Some((e.parse().ok()?, f.parse().ok()?))
+            })
+            .collect::<Option<Vec<_>>>()?;
     }
     Some(r)
 }
@@ -216,14 +295,21 @@ impl Bench<'_> {
         repeats: usize,
     ) -> Result<EngineRun> {
         let exe = self.exe.clone();
-        self.engine_of(&exe, model, solver, det, repeats)
+        self.engine_of(&exe, model, solver, det, None, repeats)
+    }
+
+    /// Median engine run of `model` on the reduction `spec` (`bench-case --reduce`).
+    fn reduced_engine(&mut self, model: &str, spec: &str, repeats: usize) -> Result<EngineRun> {
+        let exe = self.exe.clone();
+        self.engine_of(&exe, model, "auto", true, Some(spec), repeats)
     }
 
     /// Median engine run of the old binary (`--old`, its own `bench-case`), when there is
     /// one and it can run the model; None otherwise.
     fn old_engine(&mut self, model: &str, repeats: usize) -> Option<EngineRun> {
         let old = self.opts.old.clone()?;
-        self.engine_of(&old, model, "auto", true, repeats).ok()
+        self.engine_of(&old, model, "auto", true, None, repeats)
+            .ok()
     }
 
     /// Median engine run of `model` by `exe` (`repeats` child processes).
@@ -233,13 +319,14 @@ impl Bench<'_> {
         model: &str,
         solver: &str,
         det: bool,
+        reduce: Option<&str>,
         repeats: usize,
     ) -> Result<EngineRun> {
         let dir = self.opts.dir.join(model.replace(':', "_"));
         std::fs::create_dir_all(&dir).map_err(io)?;
         let mut runs = Vec::new();
         for _ in 0..repeats.max(1) {
-            let args = [
+            let mut args = vec![
                 "bench-case",
                 model,
                 "--solver",
@@ -248,6 +335,9 @@ impl Bench<'_> {
                 "--dir",
                 dir.to_str().unwrap_or("."),
             ];
+            if let Some(spec) = reduce {
+                args.extend(["--reduce", spec]);
+            }
             let c = run_child(exe, &args, &dir)?;
             let r = parse_bench_line(&c.stdout).ok_or_else(|| {
                 io(format!(
@@ -496,6 +586,107 @@ impl Bench<'_> {
                 fmt_s(r.cpu),
                 fmt_s(r.cpu / br as f64),
                 fmt_mb(r.peak_kb),
+            ))?;
+        }
+        Ok(())
+    }
+
+    /// REDUCTION (issue 40): the bar of the `n` section on the default basis against the
+    /// full model, cost against the DOFs with each stage's fitted exponent; and, on the
+    /// 1000-DOF bar with 20 points per branch (rows dense enough to interpolate), how the
+    /// frequency at common energies converges with the modes kept.
+    fn reduced_section(&mut self) -> Result<()> {
+        let default = format!("coef:{}", default_coef_coupure()?);
+        self.say("\n## REDUCTION: the bar with two rings on a Craig–Bampton basis (H_l 5, H_nl 200, engine only)\n")?;
+        self.say(&format!(
+            "Default cut-off ({default}: COEF_COUPURE × NB_HARM_LINE × the linear frequency). \
+             \"reduction\" is the basis, the projection and the start's coordinates; \
+             \"nonlinear\" the continuation on the reduced problem.\n"
+        ))?;
+        self.say("| DOFs | branches | coordinates | reduction CPU | nonlinear CPU | CPU | peak RSS | full model CPU | full model peak RSS | speed-up |")?;
+        self.say("|---|---|---|---|---|---|---|---|---|---|")?;
+        // (model, branches, with the full model beside it). 10⁵ DOFs: the bar on 15
+        // supports (a single span of 10⁵ DOFs has a stiffness no double precision solves,
+        // the `n` section's 10⁵ row says why); its full model is the `n` section's.
+        let sizes: &[(&str, usize, bool)] = if self.opts.quick {
+            &[("beam:26:5:200:2", 2, true), ("beam:101:5:200:2", 2, true)]
+        } else {
+            &[
+                ("beam:26:5:200:50", 50, true),
+                ("beam:101:5:200:50", 50, true),
+                ("beam:251:5:200:50", 50, true),
+                ("beam:1001:5:200:50", 50, true),
+                ("beam:2501:5:200:50", 50, true),
+                ("spans:15:25600:5:200:50", 50, false),
+            ]
+        };
+        let (mut red_pts, mut nl_pts) = (Vec::new(), Vec::new());
+        for &(model, br, with_full) in sizes {
+            let r = self.reduced_engine(model, &default, 1)?;
+            let full = if with_full {
+                Some(self.engine(model, "auto", true, 1)?)
+            } else {
+                None
+            };
+            // A run that failed says nothing about growth.
+            if r.error == "-" {
+                red_pts.push((r.n as f64, r.reduce_cpu));
+                nl_pts.push((r.n as f64, r.cpu - r.reduce_cpu));
+            }
+            self.say(&format!(
+                "| {} | {br} | {}{} | {} | {} | {} | {} | {} | {} | {} |",
+                r.n,
+                r.coords,
+                if r.error != "-" {
+                    format!(" ({})", r.error)
+                } else {
+                    String::new()
+                },
+                fmt_s(r.reduce_cpu),
+                fmt_s(r.cpu - r.reduce_cpu),
+                fmt_s(r.cpu),
+                fmt_mb(r.peak_kb),
+                full.as_ref().map_or("—".into(), |f| fmt_s(f.cpu)),
+                full.as_ref().map_or("—".into(), |f| fmt_mb(f.peak_kb)),
+                full.as_ref()
+                    .map_or("—".into(), |f| format!("{:.1}×", f.cpu / r.cpu)),
+            ))?;
+        }
+        self.say(&format!(
+            "\nfitted exponents against the DOFs: reduction {:.2}, nonlinear stage {:.2}",
+            exponent(&red_pts),
+            exponent(&nl_pts)
+        ))?;
+        if self.opts.quick {
+            return Ok(());
+        }
+        self.say(
+            "\n### Convergence with the modes kept (1000-DOF bar, 50 branches × 20 points)\n",
+        )?;
+        self.say("Largest relative difference of FREQUENCE from the full model's at the same ENERGIE (local cubic interpolation of the full rows in log ENERGIE; its own error, every other row from the others, in the first line).\n")?;
+        self.say("| basis | coordinates | largest difference | rows compared | CPU |")?;
+        self.say("|---|---|---|---|---|")?;
+        let model = "beam:251:5:200:50:20";
+        let full = self.engine(model, "auto", true, 1)?;
+        self.say(&format!(
+            "| full model (interpolation error: {}) | {} | — | {} | {} |",
+            curves::interpolation_error(&full.curve).map_or("—".into(), |e| format!("{e:.1e}")),
+            full.n,
+            full.curve.len(),
+            fmt_s(full.cpu)
+        ))?;
+        for spec in [
+            "modes:0", "modes:5", "modes:10", "modes:20", "modes:40", "coef:16", "coef:32",
+            "coef:64",
+        ] {
+            let r = self.reduced_engine(model, spec, 1)?;
+            let d = curves::worst_difference(&full.curve, &r.curve, f64::abs);
+            self.say(&format!(
+                "| {spec} | {} | {} | {} | {} |",
+                r.coords,
+                d.map_or("—".into(), |d| format!("{:.1e}", d.0)),
+                d.map_or(0, |d| d.1),
+                fmt_s(r.cpu)
             ))?;
         }
         Ok(())
@@ -756,6 +947,9 @@ pub fn run(opts: &Options, out: &mut dyn Write) -> Result<()> {
     if b.wants("compare") {
         b.compare_section()?;
     }
+    if b.wants("reduced") {
+        b.reduced_section()?;
+    }
     Ok(())
 }
 
@@ -777,6 +971,26 @@ mod tests {
             }
         }
         Vec::new()
+    }
+
+    /// CALC_MODES on the clamped bar of 1000 free DOFs (dense solver): the top of the
+    /// spectrum of its stiffness is beyond double precision (a non-positive μ of the
+    /// inverse form), which once failed the whole command; those modes are dropped, and the
+    /// first one is Euler-Bernoulli's clamped–clamped bending mode of the bar's thinner
+    /// side, (4.730)²/(2π)·√(EI/(ρAL⁴)), within its discretisation error.
+    #[test]
+    fn calc_modes_of_the_thousand_dof_bar() {
+        let dir = tempfile::tempdir().unwrap();
+        let prep = models::prepare(&models::beam(251, 1, 8, 1), dir.path()).unwrap();
+        assert_eq!(prep.problem.k.nrows(), 1000);
+        let (e, rho, hy, hz): (f64, f64, f64, f64) = (2e11, 7800.0, 0.0137, 0.01);
+        let i = hy * hz.powi(3) / 12.0;
+        let f1 =
+            4.730041f64.powi(2) / (2.0 * std::f64::consts::PI) * (e * i / (rho * hy * hz)).sqrt();
+        let f = prep.omega / (2.0 * std::f64::consts::PI);
+        // 250 Hermite elements: the error of mode 1 is about 1e-9 relative; the constant
+        // 4.730041 carries 1e-7.
+        assert!((f - f1).abs() < 1e-6 * f1, "{f} against {f1}");
     }
 
     #[test]

@@ -2,5 +2,6 @@
 //! eigen solvers of CALC_MODES (`eigen/`: the driver in `eigen/mod.rs`, its parts dense,
 //! shift-invert Lanczos, shifted factorisation, symmetric storage, normalisation).
 
+pub mod craig_bampton;
 pub mod eigen;
 pub mod sparse;

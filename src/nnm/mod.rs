@@ -76,6 +76,7 @@ pub use follow::{continue_branches, continue_controlled, continue_while};
 pub use model::linear_modes::{linear_modes, LinearMode};
 pub use model::point::Point;
 pub use model::problem::{CercleForm, Harmonics, Problem, Settings, Shock, ShockLaw};
+pub use model::reduced::{reduced_problem, shock_basis, Reduced};
 pub use model::system::unknown_count;
 pub use solve::contact::Method as ContactMethod;
 pub use solve::linear_solver::{BorderedSolver, SparseLu};

@@ -23,7 +23,9 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let setup = mnl_store::load_setup(ctx.store, &src)?;
     let k = matrix::load_matrix(ctx.store, &setup.matr_rigi)?;
     let m = matrix::load_matrix(ctx.store, &setup.matr_mass)?;
-    let (problem, harmonics, _) = engine_problem(&setup, &k, &m)?;
+    // A reduced run's stability is that of the reduced model its rows solve.
+    let run = engine_problem(ctx.store, &src, &setup, &k, &m)?;
+    let (problem, harmonics) = (&run.problem, run.harmonics);
     // Defaults are the catalog's (commands/CALC_STABILITE.toml), filled by the validation.
     let tolerance = args.req_real("TOLERANCE")?;
     let schema = args.req_fact("SCHEMA_TEMPS")?;
@@ -61,7 +63,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         ),
         crate::nnm::budget::floquet_flops(n, n_inst) * rows.len() as f64,
     )?;
-    let analyser = FloquetAnalyser::new(&problem, harmonics)?;
+    let analyser = FloquetAnalyser::new(problem, harmonics)?;
     let progress = Progress::new(ctx.progress, rows.len() as u64, "CALC_STABILITE", "rows");
     let (mut stable, mut unstable, mut undecided) = (0usize, 0usize, 0usize);
     // Rows whose monodromy does not map the orbit's own tangent onto itself within

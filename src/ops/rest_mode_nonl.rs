@@ -28,12 +28,14 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         .unwrap_or(0.0);
     let k = matrix::load_matrix(ctx.store, &setup.matr_rigi)?;
     let m = matrix::load_matrix(ctx.store, &setup.matr_mass)?;
-    let (problem, harmonics, free) = engine_problem(&setup, &k, &m)?;
+    let run = engine_problem(ctx.store, &src, &setup, &k, &m)?;
+    let (problem, harmonics, free) = (&run.problem, run.harmonics, &run.free);
     // Defaults are the catalog's (commands/REST_MODE_NONL.toml), filled by the validation.
     match args.req_text("TYPE_RESU")? {
         "MODE_MECA" => {
-            let coefs =
-                nnm::displacement_coefficients(&problem, harmonics, &x).map_err(stored_point)?;
+            let coefs = run.on_free_dofs(
+                nnm::displacement_coefficients(problem, harmonics, &x).map_err(stored_point)?,
+            );
             let ncoef = 2 * harmonics.h_lin + 1;
             let modes = (0..ncoef)
                 .map(|j| {
@@ -69,14 +71,17 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         _ => {
             // At least 2 (the catalog's bound).
             let n_inst = args.req_count("NB_INST")?;
-            let n = problem.k.nrows();
+            let n = free.len();
             let force_components: usize = setup.shocks.iter().map(|s| s.cmps.len().max(1)).sum();
             crate::ops::common::resources::check_memory(
                 "REST_MODE_NONL/NB_INST",
                 &format!("the time history of {n} DOF(s) at {n_inst} instants"),
                 nnm::budget::time_history_bytes(n, force_components, n_inst),
             )?;
-            let th = nnm::time_history(&problem, harmonics, &x, n_inst).map_err(stored_point)?;
+            let mut th = nnm::time_history(problem, harmonics, &x, n_inst).map_err(stored_point)?;
+            for series in [&mut th.displacement, &mut th.velocity, &mut th.acceleration] {
+                *series = run.on_free_dofs(std::mem::take(series));
+            }
             let mut t = Table::new(format!("REST_MODE_NONL {src} NUME_ORDRE={order}"));
             for (c, kind) in [
                 ("NUME_ORDRE", ColKind::I),

@@ -4,9 +4,14 @@
 //!   (little-endian f64 blob), enough to restart a branch or rebuild any quantity.
 //! - `mnl_fourier(concept, NUME_ORDRE, NOEUD, NOM_CMP, HARM, COEF_C, COEF_S)`: the Fourier
 //!   coefficients of every displacement, queryable in SQL (HARM 0 has COEF_S = 0).
+//! - `mnl_basis(concept, NUME_VECT, omega2, residual, n, v)`: the columns of the
+//!   Craig–Bampton basis of a run with REDUCTION (blobs over the free DOFs; omega2 and the
+//!   mode's relative residual NULL for a constraint mode),
+//!   what turns its stored points back into physical displacements.
 //! - `concept_data(concept, 'mnl_setup')`: harmonics, numbering and shocks of the run.
 
 use crate::error::{Error, Result};
+use crate::linalg::craig_bampton::Reduction;
 use crate::store::{Schema, Store};
 use rusqlite::params;
 use serde::{Deserialize, Serialize};
@@ -30,6 +35,15 @@ CREATE TABLE IF NOT EXISTS mnl_fourier (
     COEF_S REAL NOT NULL
 );
 CREATE INDEX IF NOT EXISTS mnl_fourier_row ON mnl_fourier(concept, NUME_ORDRE);
+CREATE TABLE IF NOT EXISTS mnl_basis (
+    concept TEXT NOT NULL REFERENCES concepts(name) ON DELETE CASCADE,
+    NUME_VECT INTEGER NOT NULL,
+    omega2 REAL,
+    residual REAL,
+    n INTEGER NOT NULL,
+    v BLOB NOT NULL,
+    PRIMARY KEY (concept, NUME_VECT)
+);
 CREATE TABLE IF NOT EXISTS mnl_floquet (
     concept TEXT NOT NULL REFERENCES concepts(name) ON DELETE CASCADE,
     NUME_ORDRE INTEGER NOT NULL,
@@ -72,6 +86,19 @@ pub struct MnlSetup {
     pub shocks: Vec<StoredShock>,
     /// Name of the CARA_CHOC sub-table concept.
     pub cara_choc: String,
+    /// REDUCTION: the run's unknowns are reduced coordinates on the basis stored in
+    /// `mnl_basis`. Absent for a run on the full model (and in studies written before).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reduction: Option<StoredReduction>,
+}
+
+/// What a reduced run's basis is, beside its columns (`mnl_basis`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StoredReduction {
+    /// The retained DOFs (indices into the free DOFs of MATR_RIGI), the first coordinates.
+    pub retained: Vec<usize>,
+    /// Fixed-interface modes kept.
+    pub modes: usize,
 }
 
 pub fn ensure_schema(store: &Store) -> Result<()> {
@@ -84,6 +111,7 @@ pub fn drop_data(store: &Store, name: &str) -> Result<()> {
         "DELETE FROM mnl_points WHERE concept = ?1",
         "DELETE FROM mnl_fourier WHERE concept = ?1",
         "DELETE FROM mnl_floquet WHERE concept = ?1",
+        "DELETE FROM mnl_basis WHERE concept = ?1",
     ] {
         store.exec(sql, params![name])?;
     }
@@ -316,8 +344,84 @@ pub fn save_multipliers(
     Ok(())
 }
 
+/// Store the columns of a reduced run's basis (replacing any stored before).
+pub fn save_basis(store: &Store, name: &str, basis: &Reduction) -> Result<()> {
+    ensure_schema(store)?;
+    store.exec("DELETE FROM mnl_basis WHERE concept = ?1", params![name])?;
+    let b = basis.retained.len();
+    let mut stmt = store.conn().prepare_cached(
+        "INSERT INTO mnl_basis(concept, NUME_VECT, omega2, residual, n, v)
+         VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
+    )?;
+    for (j, col) in basis.columns.iter().enumerate() {
+        let mode = j.checked_sub(b);
+        let omega2 = mode.and_then(|i| basis.omega2.get(i).copied());
+        let residual = mode.and_then(|i| basis.residuals.get(i).copied());
+        stmt.execute(params![
+            name,
+            j as i64 + 1,
+            omega2,
+            residual,
+            col.len() as i64,
+            to_blob(col)
+        ])?;
+    }
+    Ok(())
+}
+
+/// The basis of a reduced run, as `save_basis` stored it.
+pub fn load_basis(store: &Store, name: &str, red: &StoredReduction) -> Result<Reduction> {
+    ensure_schema(store)?;
+    let mut stmt = store.conn().prepare_cached(
+        "SELECT NUME_VECT, omega2, residual, n, v FROM mnl_basis WHERE concept = ?1
+         ORDER BY NUME_VECT",
+    )?;
+    let rows = stmt.query_map(params![name], |r| {
+        Ok((
+            r.get::<_, i64>(0)?,
+            r.get::<_, Option<f64>>(1)?,
+            r.get::<_, Option<f64>>(2)?,
+            r.get::<_, i64>(3)?,
+            r.get::<_, Vec<u8>>(4)?,
+        ))
+    })?;
+    let damaged = |what: String| Error::store(format!("{name}: stored reduction basis {what}"));
+    let (mut columns, mut omega2, mut residuals) = (Vec::new(), Vec::new(), Vec::new());
+    for (j, row) in rows.enumerate() {
+        let (order, w, residual, n, blob) = row?;
+        let col = from_blob(&blob);
+        if order != j as i64 + 1 || col.len() as i64 != n {
+            return Err(damaged(format!("is damaged at vector {order}")));
+        }
+        if let Some(w) = w {
+            omega2.push(w);
+            // A mode without its residual is not known exact: its couplings are computed.
+            residuals.push(residual.unwrap_or(f64::INFINITY));
+        }
+        columns.push(col);
+    }
+    let n = columns.first().map_or(0, Vec::len);
+    if columns.len() != red.retained.len() + red.modes
+        || omega2.len() != red.modes
+        || columns.iter().any(|c| c.len() != n)
+    {
+        return Err(damaged(format!(
+            "has {} vectors, {} expected",
+            columns.len(),
+            red.retained.len() + red.modes
+        )));
+    }
+    Ok(Reduction {
+        n,
+        retained: red.retained.clone(),
+        omega2,
+        residuals,
+        columns,
+    })
+}
+
 /// Copy everything MODE_NON_LINE stored for `from` (setup, points, Fourier coefficients,
-/// multipliers) to the new concept `to`.
+/// reduction basis, multipliers) to the new concept `to`.
 pub fn copy_data(store: &Store, from: &str, to: &str) -> Result<()> {
     ensure_schema(store)?;
     save_setup(store, to, &load_setup(store, from)?)?;
@@ -332,6 +436,11 @@ pub fn copy_data(store: &Store, from: &str, to: &str) -> Result<()> {
         params![from, to],
     )?;
     store.exec(
+        "INSERT INTO mnl_basis(concept, NUME_VECT, omega2, residual, n, v)
+         SELECT ?2, NUME_VECT, omega2, residual, n, v FROM mnl_basis WHERE concept = ?1",
+        params![from, to],
+    )?;
+    store.exec(
         "INSERT INTO mnl_floquet(concept, NUME_ORDRE, NUME_MULT, PARTIE_REELLE, PARTIE_IMAG, MODULE)
          SELECT ?2, NUME_ORDRE, NUME_MULT, PARTIE_REELLE, PARTIE_IMAG, MODULE FROM mnl_floquet WHERE concept = ?1",
         params![from, to],
@@ -342,6 +451,65 @@ pub fn copy_data(store: &Store, from: &str, to: &str) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_reduction_basis_round_trips_is_copied_and_dropped() {
+        let s = Store::in_memory().unwrap();
+        for c in ["MNL", "COPY"] {
+            s.register_concept(c, "table_container", "MODE_NON_LINE", "a.comm", 1)
+                .unwrap();
+        }
+        let basis = Reduction {
+            n: 3,
+            retained: vec![1],
+            omega2: vec![4.0, 9.5],
+            residuals: vec![1e-14, 3e-6],
+            columns: vec![
+                vec![0.5, 1.0, -0.25],
+                vec![0.1, 0.0, 0.7],
+                vec![1e-300, 0.0, 3.0],
+            ],
+        };
+        save_basis(&s, "MNL", &basis).unwrap();
+        let stored = StoredReduction {
+            retained: vec![1],
+            modes: 2,
+        };
+        let back = load_basis(&s, "MNL", &stored).unwrap();
+        assert_eq!((back.n, &back.retained), (3, &basis.retained));
+        assert_eq!(
+            (&back.omega2, &back.columns),
+            (&basis.omega2, &basis.columns)
+        );
+        assert_eq!(back.residuals, basis.residuals);
+        // A setup that expects another count is refused, not misread.
+        let wrong = StoredReduction {
+            retained: vec![1],
+            modes: 3,
+        };
+        assert!(load_basis(&s, "MNL", &wrong).is_err());
+        save_setup(
+            &s,
+            "MNL",
+            &MnlSetup {
+                h_lin: 1,
+                h_nonl: 4,
+                matr_rigi: "K".into(),
+                matr_mass: "M".into(),
+                shocks: vec![],
+                cara_choc: "MNL_CHOC".into(),
+                reduction: Some(stored.clone()),
+            },
+        )
+        .unwrap();
+        copy_data(&s, "MNL", "COPY").unwrap();
+        assert_eq!(
+            load_basis(&s, "COPY", &stored).unwrap().columns,
+            basis.columns
+        );
+        drop_data(&s, "MNL").unwrap();
+        assert!(load_basis(&s, "MNL", &stored).is_err());
+    }
 
     #[test]
     fn point_round_trip_is_exact() {

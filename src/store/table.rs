@@ -43,6 +43,7 @@ pub const INTERNAL_TABLES: &[&str] = &[
     "mnl_points",
     "mnl_fourier",
     "mnl_floquet",
+    "mnl_basis",
     "meshes",
     "mesh_group_defs",
 ];

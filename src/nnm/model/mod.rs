@@ -14,6 +14,7 @@ pub(in crate::nnm) mod low_synth;
 pub(in crate::nnm) mod point;
 pub(in crate::nnm) mod point_law;
 pub(in crate::nnm) mod problem;
+pub(in crate::nnm) mod reduced;
 pub(in crate::nnm) mod rescale;
 pub(in crate::nnm) mod system;
 pub(in crate::nnm) mod unknowns;

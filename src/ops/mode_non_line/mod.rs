@@ -1,14 +1,16 @@
 //! MODE_NON_LINE: branches of nonlinear normal modes with shocks (EHMAN).
 //!
 //! Glue only: reads the matrices, the start (a linear mode or a row of an earlier
-//! MODE_NON_LINE table), the shocks and the settings, runs `nnm`, and stores the result
-//! table (a real SQL table), the CARA_CHOC sub-table, every point's unknowns and the
-//! displacement Fourier coefficients.
+//! MODE_NON_LINE table), the shocks and the settings, reduces the problem on a
+//! Craig–Bampton basis when REDUCTION asks (reduction.rs), runs `nnm`, and stores the
+//! result table (a real SQL table), the CARA_CHOC sub-table, every point's unknowns, the
+//! displacement Fourier coefficients of every DOF and the basis.
 
 mod end;
 mod exact_law;
 mod inputs;
 pub(crate) mod problem;
+mod reduction;
 mod restart;
 mod start;
 mod table;
@@ -166,7 +168,10 @@ struct Call {
     bounds: StopBounds,
     restart_from: Option<String>,
     stored_shocks: Vec<StoredShock>,
+    /// The problem the engine solves: on the free DOFs, or on the reduction basis.
     problem: Problem,
+    /// REDUCTION (or a restart from a reduced run): the basis of `problem`'s coordinates.
+    reduction: Option<nnm::Reduced>,
 }
 
 fn read_call(ctx: &mut OpContext<'_>, args: &Args, name: &str) -> Result<(Call, nnm::StepControl)> {
@@ -207,16 +212,19 @@ fn read_call(ctx: &mut OpContext<'_>, args: &Args, name: &str) -> Result<(Call, 
 
     // Shocks: from CHOC on a first run, from the stored CARA_CHOC on a restart.
     let restart_from = etat.concept("MODE_NON_LINE").map(|c| c.name.clone());
-    let stored_shocks = match &restart_from {
-        Some(src) => {
+    let restart_setup = match &restart_from {
+        Some(src) => Some(mnl_store::load_setup(ctx.store, src)?),
+        None => None,
+    };
+    let stored_shocks = match (&restart_from, &restart_setup) {
+        (Some(src), Some(setup)) => {
             if args.has("CHOC") {
                 ctx.alarm(
                     "MODE_NON_LINE_2",
                     "CHOC is ignored on a restart: the shocks come from the CARA_CHOC of the start table",
                 )?;
             }
-            let setup = mnl_store::load_setup(ctx.store, src)?;
-            check_restart_harmonics(&setup, &settings)?;
+            check_restart_harmonics(setup, &settings)?;
             // The contact data of the start row, as Code_Aster reads them: from the
             // sub-table named in its CARA_CHOC cell.
             let t = table_store::load_table(ctx.store, src)?;
@@ -225,10 +233,10 @@ fn read_call(ctx: &mut OpContext<'_>, args: &Args, name: &str) -> Result<(Call, 
                 .and_then(|r| t.cell(r, "CARA_CHOC"))
                 .and_then(Cell::as_text)
                 .map(str::to_string)
-                .unwrap_or(setup.cara_choc);
+                .unwrap_or_else(|| setup.cara_choc.clone());
             shocks_from_cara_choc(&table_store::load_table(ctx.store, &sub)?, &sub)?
         }
-        None => shocks_from_args(ctx, args)?,
+        _ => shocks_from_args(ctx, args)?,
     };
     if ctx.info >= 1 {
         for line in orig_obst_notes(&stored_shocks) {
@@ -240,11 +248,19 @@ fn read_call(ctx: &mut OpContext<'_>, args: &Args, name: &str) -> Result<(Call, 
         .enumerate()
         .map(|(i, s)| engine_shock(s, i, &k))
         .collect::<Result<Vec<_>>>()?;
-    let problem = Problem {
+    let full = Problem {
         k: k.reduced()?,
         m: m.reduced()?,
         shocks,
     };
+    let (problem, reduction) = reduce_if_asked(
+        ctx,
+        args,
+        full,
+        (&restart_from, restart_setup.as_ref()),
+        &settings,
+        (&k, &k_name),
+    )?;
 
     if let Some(x) = &exact_settings {
         exact_law::check(&problem, x)?;
@@ -262,8 +278,62 @@ fn read_call(ctx: &mut OpContext<'_>, args: &Args, name: &str) -> Result<(Call, 
         restart_from,
         stored_shocks,
         problem,
+        reduction,
     };
     Ok((call, control))
+}
+
+/// The problem the engine solves: the full one, or its reduction (REDUCTION on a first run;
+/// a restart goes on with the basis of the run it starts from).
+fn reduce_if_asked(
+    ctx: &mut OpContext<'_>,
+    args: &Args,
+    full: Problem,
+    (restart_from, restart_setup): (&Option<String>, Option<&MnlSetup>),
+    settings: &Settings,
+    (k, k_name): (&AssembledMatrix, &str),
+) -> Result<(Problem, Option<nnm::Reduced>)> {
+    let asked = reduction::ask(args)?;
+    let basis = match (restart_from, restart_setup) {
+        (Some(src), Some(setup)) => {
+            if asked.is_some() {
+                ctx.alarm(
+                    "MODE_NON_LINE_2",
+                    "REDUCTION is ignored on a restart: the run goes on with the model of the start table's run (its basis, if it had one)",
+                )?;
+            }
+            match &setup.reduction {
+                Some(r) => Some(mnl_store::load_basis(ctx.store, src, r)?),
+                None => None,
+            }
+        }
+        _ => match asked {
+            Some(ask) => {
+                let etat = args.req_fact("ETAT_INIT")?;
+                let f_start = start::linear_frequency(ctx, etat, k, k_name)?;
+                Some(reduction::basis(&full, ask.cut(settings.h_lin, f_start))?)
+            }
+            None => None,
+        },
+    };
+    let Some(basis) = basis else {
+        return Ok((full, None));
+    };
+    let problem = nnm::reduced_problem(&full, &basis)?;
+    if ctx.info >= 1 {
+        ctx.say(&format!(
+            "  REDUCTION: {} free DOF(s) -> {} coordinate(s): {} shock DOF(s) and {} fixed-interface mode(s){}",
+            basis.n,
+            basis.size(),
+            basis.retained.len(),
+            basis.omega2.len(),
+            match crate::linalg::craig_bampton::highest_frequency(&basis) {
+                Some(f) => format!(", the highest at {f:.6e} Hz"),
+                None => String::new(),
+            }
+        ))?;
+    }
+    Ok((problem, Some(nnm::Reduced::new(basis, &full)?)))
 }
 
 /// The first point: a stored row (a restart, in the direction DIR_EVOLUTION asks relative to
@@ -296,7 +366,14 @@ fn start_state(ctx: &mut OpContext<'_>, args: &Args, call: &Call) -> Result<Star
             })?;
             restart_direction(ctx, src, nume_ordre, settings.direction, start_state)?
         }
-        None => start::from_linear_modes(ctx, etat, problem, settings, k, k_name)?,
+        None => start::from_linear_modes(
+            ctx,
+            etat,
+            (problem, call.reduction.as_ref()),
+            settings,
+            k,
+            k_name,
+        )?,
     };
     Ok(start)
 }
@@ -403,6 +480,7 @@ fn store_rows(
         exact_settings,
         stored_shocks,
         problem,
+        reduction,
         ..
     } = call;
 
@@ -436,8 +514,12 @@ fn store_rows(
                 matr_mass: m_name.clone(),
                 shocks: stored_shocks.clone(),
                 cara_choc: cara_choc.clone(),
+                reduction: reduction.as_ref().map(|r| reduction::stored(&r.basis)),
             },
         )?;
+        if let Some(r) = reduction {
+            mnl_store::save_basis(ctx.store, name, &r.basis)?;
+        }
     }
     let dof_names: Vec<(String, String)> = free
         .iter()
@@ -481,7 +563,13 @@ fn store_rows(
         }
         table.push_row(cells)?;
         writer.point(order, p.omega, &p.x)?;
-        writer.fourier(order, &dof_names, &out.displacement)?;
+        match reduction {
+            // Every DOF's coefficients, expanded from the reduced coordinates'.
+            Some(r) => {
+                writer.fourier(order, &dof_names, &r.basis.expand_series(&out.displacement))?
+            }
+            None => writer.fourier(order, &dof_names, &out.displacement)?,
+        }
     }
     writer.finish()?;
     table_store::save_table(ctx.store, name, &table)?;
@@ -567,6 +655,17 @@ fn row_alarms(
     let advise = !ctx.ignored_alarms.iter().any(|a| a == "MODE_NON_LINE_1");
     for w in nnm::resolution_warnings(problem, settings, points, first_order, advise) {
         ctx.alarm("MODE_NON_LINE_1", &w)?;
+    }
+    // A reduction basis whose cut-off is below the harmonics the rows carry.
+    if let Some(r) = &call.reduction {
+        let rows: Vec<(i64, f64)> = points
+            .iter()
+            .enumerate()
+            .map(|(j, p)| (first_order + j as i64, p.frequency))
+            .collect();
+        if let Some(w) = reduction::cut_off_alarm(&r.basis, settings.h_lin, &rows) {
+            ctx.alarm("MODE_NON_LINE_10", &w)?;
+        }
     }
     // Internal resonances n:1 with a linear mode (nnm/analysis/resonance.rs).
     if let Some(w) = nnm::resonance_alarm(problem, settings, points, first_order, linear_modes)? {

@@ -2,10 +2,12 @@
 //! matrices back into the engine's problem.
 
 use crate::error::{Error, Result};
+use crate::linalg::craig_bampton::Reduction;
 use crate::model::assembly::AssembledMatrix;
 use crate::model::dof::Cmp;
 use crate::nnm::{CercleForm, Harmonics, Problem, Shock, ShockLaw};
-use crate::store::mnl::{MnlSetup, StoredShock};
+use crate::store::mnl::{self as mnl_store, MnlSetup, StoredShock};
+use crate::store::Store;
 use crate::table::{Cell, ColKind, Table};
 
 /// Translate a stored shock into the engine's reduced-DOF form (the DOFs left free by the
@@ -77,13 +79,37 @@ pub fn engine_shock(s: &StoredShock, i: usize, k: &AssembledMatrix) -> Result<Sh
     })
 }
 
-/// The engine problem of a stored MODE_NON_LINE run, its harmonic counts (all that reading
-/// its rows back needs) and the free DOFs.
+/// What reading a stored MODE_NON_LINE run back needs.
+pub struct StoredRun {
+    /// The problem its points solve (on the reduction basis for a run with REDUCTION).
+    pub problem: Problem,
+    /// Its harmonic counts (all that reading its rows back needs).
+    pub harmonics: Harmonics,
+    /// The free DOFs of its matrices.
+    pub free: Vec<usize>,
+    /// REDUCTION's basis: expands the problem's coordinates to the free DOFs.
+    pub basis: Option<Reduction>,
+}
+
+impl StoredRun {
+    /// Per free DOF, the series given per coordinate of the problem (identity without a
+    /// basis).
+    pub fn on_free_dofs(&self, per_coordinate: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
+        match &self.basis {
+            Some(b) => b.expand_series(&per_coordinate),
+            None => per_coordinate,
+        }
+    }
+}
+
+/// The engine problem of the stored MODE_NON_LINE run `name`.
 pub fn engine_problem(
+    store: &Store,
+    name: &str,
     setup: &MnlSetup,
     k: &AssembledMatrix,
     m: &AssembledMatrix,
-) -> Result<(Problem, Harmonics, Vec<usize>)> {
+) -> Result<StoredRun> {
     let free = k.free_dofs();
     let shocks = setup
         .shocks
@@ -91,7 +117,7 @@ pub fn engine_problem(
         .enumerate()
         .map(|(i, s)| engine_shock(s, i, k))
         .collect::<Result<Vec<_>>>()?;
-    let problem = Problem {
+    let full = Problem {
         k: k.reduced()?,
         m: m.reduced()?,
         shocks,
@@ -100,7 +126,19 @@ pub fn engine_problem(
         h_lin: setup.h_lin,
         h_nonl: setup.h_nonl,
     };
-    Ok((problem, harmonics, free))
+    let (problem, basis) = match &setup.reduction {
+        Some(r) => {
+            let basis = mnl_store::load_basis(store, name, r)?;
+            (crate::nnm::reduced_problem(&full, &basis)?, Some(basis))
+        }
+        None => (full, None),
+    };
+    Ok(StoredRun {
+        problem,
+        harmonics,
+        free,
+        basis,
+    })
 }
 
 /// Index of the row with NUME_ORDRE = `order`.

@@ -6,19 +6,17 @@ use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::model::assembly::AssembledMatrix;
 use crate::model::modes::ModeMeca;
-use crate::nnm::{self, Problem, Settings, StartState};
+use crate::nnm::{self, Problem, Reduced, Settings, StartState};
 use crate::ops::OpContext;
 use crate::store::modes as mode_store;
 
-/// The corrected start point from the linear mode(s) named in ETAT_INIT.
-pub fn from_linear_modes(
+/// The linear modes of ETAT_INIT/MODE_LINE, checked against the numbering of K.
+fn load(
     ctx: &OpContext<'_>,
     etat: &Args,
-    problem: &Problem,
-    settings: &Settings,
     k: &AssembledMatrix,
     k_name: &str,
-) -> Result<StartState> {
+) -> Result<(String, ModeMeca)> {
     let modes_name = &etat.req_concept("MODE_LINE")?.name;
     let modes = mode_store::load_modes(ctx.store, modes_name)?;
     if modes.numbering.dofs != k.numbering.dofs {
@@ -27,9 +25,46 @@ pub fn from_linear_modes(
         ))
         .keyword(etat.key_path("MODE_LINE")));
     }
-    let nume_ordre = etat.req_int("NUME_ORDRE")?;
-    let (shape, omega) = pick(&modes, modes_name, nume_ordre, k)
+    Ok((modes_name.clone(), modes))
+}
+
+/// The frequency (Hz) of the starting linear mode (REDUCTION's cut-off is relative to it).
+pub fn linear_frequency(
+    ctx: &OpContext<'_>,
+    etat: &Args,
+    k: &AssembledMatrix,
+    k_name: &str,
+) -> Result<f64> {
+    let (modes_name, modes) = load(ctx, etat, k, k_name)?;
+    let (_, omega) = pick(&modes, &modes_name, etat.req_int("NUME_ORDRE")?, k)
         .map_err(|e| e.keyword(etat.key_path("NUME_ORDRE")))?;
+    Ok(omega / (2.0 * std::f64::consts::PI))
+}
+
+/// The corrected start point from the linear mode(s) named in ETAT_INIT; on a reduced
+/// problem, the modes in its coordinates.
+pub fn from_linear_modes(
+    ctx: &OpContext<'_>,
+    etat: &Args,
+    (problem, reduction): (&Problem, Option<&Reduced>),
+    settings: &Settings,
+    k: &AssembledMatrix,
+    k_name: &str,
+) -> Result<StartState> {
+    let (modes_name, modes) = load(ctx, etat, k, k_name)?;
+    let modes_name = &modes_name;
+    // A full-model shape and pulsation, as the problem's coordinates see them.
+    let on_problem = |(shape, omega): (Vec<f64>, f64)| -> Result<(Vec<f64>, f64)> {
+        match reduction {
+            Some(r) => r.start_mode(problem, &shape),
+            None => Ok((shape, omega)),
+        }
+    };
+    let nume_ordre = etat.req_int("NUME_ORDRE")?;
+    let (shape, omega) = on_problem(
+        pick(&modes, modes_name, nume_ordre, k)
+            .map_err(|e| e.keyword(etat.key_path("NUME_ORDRE")))?,
+    )?;
     let coef = etat.req_real("COEF_AMPL")?;
     let Some(quad_order) = etat.int("NUME_ORDRE_QUAD") else {
         return nnm::start_from_mode(problem, settings, &shape, coef, omega);
@@ -42,8 +77,9 @@ pub fn from_linear_modes(
         .keyword(quad_kw)
         .hint("give the other mode of the degenerate pair, e.g. NUME_ORDRE=1, NUME_ORDRE_QUAD=2"));
     }
-    let (quad, omega_quad) =
-        pick(&modes, modes_name, quad_order, k).map_err(|e| e.keyword(quad_kw.clone()))?;
+    let (quad, omega_quad) = on_problem(
+        pick(&modes, modes_name, quad_order, k).map_err(|e| e.keyword(quad_kw.clone()))?,
+    )?;
     nnm::check_degenerate_pair(omega, omega_quad).map_err(|e| Error {
         message: format!(
             "NUME_ORDRE_QUAD={quad_order} and NUME_ORDRE={nume_ordre}: {}",
