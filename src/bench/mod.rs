@@ -8,7 +8,9 @@
 //! in-process, then times the engine alone (start + continuation) with the tangent solver
 //! asked for. The old engine's linear algebra is also available inside the new binary
 //! (`reference`: the whole tangent in one sparse LU, the dense determinant test), for
-//! engine-level comparisons where the old binary cannot run the case.
+//! engine-level comparisons where the old binary cannot run the case. With `--reduce`,
+//! `bench-case` runs the engine on a REDUCTION basis, the basis timed apart, and prints
+//! every point's ENERGIE and FREQUENCE for comparison with the full model (curves.rs).
 
 pub mod curves;
 pub mod measure;

@@ -205,7 +205,7 @@ impl Reduction {
 /// The Craig–Bampton basis of the free-DOF matrices `k`, `m` retaining the DOFs `retained`
 /// (distinct indices into the free DOFs) with the fixed-interface modes `cut` asks for, in
 /// at most `max_columns` columns (refused before any mode is computed when more are needed:
-/// the caller sizes it from the memory available).
+/// the caller sizes it from the memory available and a bound of its own).
 pub fn craig_bampton(
     k: &SparseColMat<usize, f64>,
     m: &SparseColMat<usize, f64>,
@@ -296,7 +296,8 @@ pub fn craig_bampton(
     if retained.len() + modes_asked > max_columns {
         return Err(Error::validation(format!(
             "the reduction basis would have {} columns of {n} DOFs ({} shock DOF(s), \
-             {modes_asked} mode(s)), more than the {max_columns} the available memory holds",
+             {modes_asked} mode(s)), more than the {max_columns} allowed (by the memory \
+             available, and at most a few thousand: a basis is meant to be small)",
             retained.len() + modes_asked,
             retained.len()
         ))

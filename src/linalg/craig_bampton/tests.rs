@@ -247,3 +247,16 @@ fn an_inexact_mode_keeps_its_couplings() {
         assert!(coupling > 1e-8 * scale, "{coupling:e}");
     }
 }
+
+/// A basis larger than the caller allows is refused before any mode is computed, whether
+/// the modes are counted or lie below a cut-off (Sylvester's count).
+#[test]
+fn a_basis_larger_than_allowed_is_refused() {
+    let n = 30;
+    let (k, m) = chain(n);
+    let e = craig_bampton(&k, &m, &[6, 21], ModeCut::Count(10), 8).unwrap_err();
+    assert!(e.message.contains("12 columns"), "{}", e.message);
+    let all = craig_bampton(&k, &m, &[6, 21], ModeCut::UpTo(1e6), 20).unwrap_err();
+    assert!(all.message.contains("30 columns"), "{}", all.message);
+    assert!(craig_bampton(&k, &m, &[6, 21], ModeCut::Count(10), 12).is_ok());
+}
