@@ -162,10 +162,9 @@ fn the_engines_linear_modes_of_a_wide_basis_are_the_full_models() {
     }
 }
 
-/// Bad input to REDUCTION: two cut-offs at once (a structure its shock DOFs do not hold:
-/// linalg/craig_bampton/tests.rs).
-#[test]
-fn reduction_refuses_two_cut_offs() {
+/// The test case with its REDUCTION of RED replaced by `reduction`, run in a directory of
+/// its own: (exit code, output).
+fn run_with_reduction(reduction: &str) -> (Option<i32>, String) {
     let dir = tempfile::tempdir().unwrap();
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("testcases");
     std::fs::copy(
@@ -174,54 +173,10 @@ fn reduction_refuses_two_cut_offs() {
     )
     .unwrap();
     let text = std::fs::read_to_string(src.join("beam_rings_reduced.comm")).unwrap();
-    let run = |text: &str| {
-        let comm = dir.path().join("c.comm");
-        std::fs::write(&comm, text).unwrap();
-        let o = Command::new(env!("CARGO_BIN_EXE_aster-nl"))
-            .arg("run")
-            .arg(&comm)
-            .arg("--db")
-            .arg(dir.path().join("c.db"))
-            .output()
-            .unwrap();
-        (
-            o.status.code(),
-            format!(
-                "{}{}",
-                String::from_utf8_lossy(&o.stdout),
-                String::from_utf8_lossy(&o.stderr)
-            ),
-        )
-    };
-    let two = text.replace(
-        "REDUCTION=_F()",
-        "REDUCTION=_F(NB_MODE=4, FREQ_COUPURE=1000.)",
-    );
-    let (code, out) = run(&two);
-    assert_ne!(code, Some(0), "{out}");
-    assert!(
-        out.contains("REDUCTION") && out.contains("NB_MODE"),
-        "{out}"
-    );
-}
-
-/// A cut-off below the harmonics the rows carry is announced (MODE_NON_LINE_10): 100 Hz
-/// keeps no fixed-interface mode of the bar held at its rings (the first is at 253 Hz),
-/// while NB_HARM_LINE 3 × 52 Hz asks for more; the default basis does not raise it.
-#[test]
-fn a_cut_off_below_the_harmonics_is_announced() {
-    let dir = tempfile::tempdir().unwrap();
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("testcases");
-    std::fs::copy(
-        src.join("beam_rings_reduced.mail"),
-        dir.path().join("c.mail"),
-    )
-    .unwrap();
-    let text = std::fs::read_to_string(src.join("beam_rings_reduced.comm")).unwrap();
-    let low = text.replace("REDUCTION=_F()", "REDUCTION=_F(FREQ_COUPURE=100.)");
-    assert_ne!(low, text);
+    let edited = text.replace("REDUCTION=_F()", reduction);
+    assert_ne!(edited, text);
     let comm = dir.path().join("c.comm");
-    std::fs::write(&comm, &low).unwrap();
+    std::fs::write(&comm, edited).unwrap();
     let o = Command::new(env!("CARGO_BIN_EXE_aster-nl"))
         .arg("run")
         .arg(&comm)
@@ -234,6 +189,27 @@ fn a_cut_off_below_the_harmonics_is_announced() {
         String::from_utf8_lossy(&o.stdout),
         String::from_utf8_lossy(&o.stderr)
     );
+    (o.status.code(), out)
+}
+
+/// Bad input to REDUCTION: two cut-offs at once (a structure its shock DOFs do not hold,
+/// and a basis larger than allowed: linalg/craig_bampton/tests.rs).
+#[test]
+fn reduction_refuses_two_cut_offs() {
+    let (code, out) = run_with_reduction("REDUCTION=_F(NB_MODE=4, FREQ_COUPURE=1000.)");
+    assert_ne!(code, Some(0), "{out}");
+    assert!(
+        out.contains("REDUCTION") && out.contains("NB_MODE"),
+        "{out}"
+    );
+}
+
+/// A cut-off below the harmonics the rows carry is announced (MODE_NON_LINE_10): 100 Hz
+/// keeps no fixed-interface mode of the bar held at its rings (the first is at 253 Hz),
+/// while NB_HARM_LINE 3 × 52 Hz asks for more; the default basis does not raise it.
+#[test]
+fn a_cut_off_below_the_harmonics_is_announced() {
+    let (_, out) = run_with_reduction("REDUCTION=_F(FREQ_COUPURE=100.)");
     assert!(
         out.contains("-> 4 coordinate(s): 4 shock DOF(s) and 0 fixed-interface mode(s)"),
         "{out}"
