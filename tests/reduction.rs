@@ -13,11 +13,11 @@ use rusqlite::Connection;
 use std::path::Path;
 use std::process::Command;
 
-fn run_case(db: &Path) -> String {
-    let comm = Path::new(env!("CARGO_MANIFEST_DIR")).join("testcases/beam_rings_reduced.comm");
+/// `aster-nl run comm --db db`: (exit code, output).
+fn run_file(comm: &Path, db: &Path) -> (Option<i32>, String) {
     let o = Command::new(env!("CARGO_BIN_EXE_aster-nl"))
         .arg("run")
-        .arg(&comm)
+        .arg(comm)
         .arg("--db")
         .arg(db)
         .output()
@@ -27,7 +27,13 @@ fn run_case(db: &Path) -> String {
         String::from_utf8_lossy(&o.stdout),
         String::from_utf8_lossy(&o.stderr)
     );
-    assert_eq!(o.status.code(), Some(0), "{out}");
+    (o.status.code(), out)
+}
+
+fn run_case(db: &Path) -> String {
+    let comm = Path::new(env!("CARGO_MANIFEST_DIR")).join("testcases/beam_rings_reduced.comm");
+    let (code, out) = run_file(&comm, db);
+    assert_eq!(code, Some(0), "{out}");
     assert!(out.contains("tests: 6 OK, 0 NOOK"), "{out}");
     out
 }
@@ -177,19 +183,7 @@ fn run_with_reduction(reduction: &str) -> (Option<i32>, String) {
     assert_ne!(edited, text);
     let comm = dir.path().join("c.comm");
     std::fs::write(&comm, edited).unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_aster-nl"))
-        .arg("run")
-        .arg(&comm)
-        .arg("--db")
-        .arg(dir.path().join("c.db"))
-        .output()
-        .unwrap();
-    let out = format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    );
-    (o.status.code(), out)
+    run_file(&comm, &dir.path().join("c.db"))
 }
 
 /// Bad input to REDUCTION: two cut-offs at once (a structure its shock DOFs do not hold,

@@ -262,6 +262,15 @@ struct Bench<'a> {
     out: &'a mut dyn Write,
 }
 
+/// " (why)" after a count when the run failed, nothing otherwise.
+fn error_note(r: &EngineRun) -> String {
+    if r.error != "-" {
+        format!(" ({})", r.error)
+    } else {
+        String::new()
+    }
+}
+
 fn fmt_s(v: f64) -> String {
     if !v.is_finite() {
         "—".into()
@@ -527,11 +536,7 @@ impl Bench<'_> {
                 "| {} | {br} | {}{} | {} | {} | {} | {} | {} | {:.0} B |",
                 r.n,
                 r.points,
-                if r.error != "-" {
-                    format!(" ({})", r.error)
-                } else {
-                    String::new()
-                },
+                error_note(&r),
                 o.as_ref().map_or("—".into(), |o| fmt_s(o.cpu)),
                 fmt_s(r.cpu),
                 o.as_ref()
@@ -639,11 +644,7 @@ impl Bench<'_> {
                 "| {} | {br} | {}{} | {} | {} | {} | {} | {} | {} | {} |",
                 r.n,
                 r.coords,
-                if r.error != "-" {
-                    format!(" ({})", r.error)
-                } else {
-                    String::new()
-                },
+                error_note(&r),
                 fmt_s(r.reduce_cpu),
                 fmt_s(r.cpu - r.reduce_cpu),
                 fmt_s(r.cpu),

@@ -2,7 +2,7 @@
 //! for `aster-nl bench`: where the cost model's choice lands against the measured
 //! crossover.
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::nnm::continuation::start::init_contact;
 use crate::nnm::model::system::{Scaling, System};
 use crate::nnm::solve::contact::{self, ContactBlock, Method};
@@ -28,9 +28,10 @@ pub struct RouteRow {
     pub model_choice: Method,
 }
 
-fn diag(n: usize, v: f64) -> SparseColMat<usize, f64> {
+fn diag(n: usize, v: f64) -> Result<SparseColMat<usize, f64>> {
     let t: Vec<Triplet<usize, usize, f64>> = (0..n).map(|i| Triplet::new(i, i, v)).collect();
-    SparseColMat::try_new_from_triplets(n, n, &t).expect("diagonal")
+    SparseColMat::try_new_from_triplets(n, n, &t)
+        .map_err(|e| Error::internal(format!("diagonal matrix: {e:?}")))
 }
 
 /// A point in contact: the first DOF at 1.3 JEU in its first harmonic, the second (CERCLE)
@@ -38,8 +39,8 @@ fn diag(n: usize, v: f64) -> SparseColMat<usize, f64> {
 pub(in crate::nnm) fn system_and_point(law: ShockLaw, h_nonl: usize) -> Result<(System, Vec<f64>)> {
     let dofs: Vec<usize> = (0..law.n_comp()).collect();
     let p = Problem {
-        k: diag(2, 10.0),
-        m: diag(2, 1.0),
+        k: diag(2, 10.0)?,
+        m: diag(2, 1.0)?,
         shocks: vec![Shock {
             law,
             dofs,

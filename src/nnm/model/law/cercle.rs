@@ -17,7 +17,7 @@
 
 use super::bi_plan::{biplan_force, biplan_pointwise};
 use super::plan::{plan_force, plan_pointwise};
-use super::{component as comp, lin_term, quad_term, samples, ContactLaw, LawEqs, Var};
+use super::{component as comp, lin_term, quad_term, samples, ContactLaw, LawEqs, Lin, Term, Var};
 use crate::error::Result;
 
 /// Which regularisation of the ring law (CHOC/LOI_CERCLE).
@@ -60,6 +60,12 @@ fn radial_equations(ex: f64, ey: f64, s: f64, alpha: f64, eta: f64) -> LawEqs {
     quad.push(quad_term(3, 1.0 / alpha, Own(3), Own(3)));
     quad.push(quad_term(3, -1.0, Own(3), Own(2)));
     lin.push(lin_term(3, s, Own(3)));
+    ring_eqs(quad, lin, cst)
+}
+
+/// A ring's equations from their terms, the zero ones dropped: four own unknowns, the
+/// forces on the two components being the first two.
+fn ring_eqs(quad: Vec<Term>, mut lin: Vec<Lin>, mut cst: Vec<(usize, f64)>) -> LawEqs {
     cst.retain(|&(_, v)| v != 0.0);
     lin.retain(|v| v.coef != 0.0);
     LawEqs {
@@ -96,15 +102,7 @@ fn secant_equations(ex: f64, ey: f64, s: f64, alpha: f64, eta: f64) -> LawEqs {
     lin.push(lin_term(2, 1.0, Own(2)));
     quad.push(quad_term(2, -1.0, Own(2), Own(3)));
     lin.push(lin_term(3, 1.0, Own(3)));
-    cst.retain(|&(_, v)| v != 0.0);
-    lin.retain(|v| v.coef != 0.0);
-    LawEqs {
-        n_own: 4,
-        quad,
-        lin,
-        cst,
-        forces: vec![(0, 0), (1, 1)],
-    }
+    ring_eqs(quad, lin, cst)
 }
 
 impl Cercle {
