@@ -12,6 +12,7 @@
 //! - [`linalg`]: sparse/dense linear algebra glue and eigen solvers over faer.
 //! - [`nnm`]: the nonlinear normal mode engine (EHMAN), pure numerics, no SQL.
 //! - [`table`], [`function`]: in-memory tables and functions (filters, sorts, interpolation).
+//! - [`transient`]: transient dynamics with shocks (DYNA_VIBRA TRAN, DIS_CHOC), no SQL.
 //! - [`plot`]: pictures (PNG, SVG), no SQL.
 //! - [`ops`]: one thin file per operator.
 //! - [`interp`]: runs a command file, one store transaction per operator, or checks it
@@ -49,4 +50,5 @@ pub mod suggest;
 pub mod sweep;
 pub mod table;
 pub mod text_file;
+pub mod transient;
 pub mod value;

@@ -239,7 +239,7 @@ fn check_goes_past_unsupported_operators_and_unknown_names() {
          _F(GROUP_NO='NO2', DY=0., DZ=0.)))\n\
          F = FORMULE(VALE='2.*X', NOM_PARA='X')\n\
          {PORT_MATRICES}\
-         DYN = DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='PHYS', MATR_RIGI=RIGIDITE, FONC=F)\n\
+         DYN = DYNA_NON_LINE(MODELE=MODELE, FONC=F)\n\
          MNL = MODE_NON_LINE(MATR_RIGI=RIGIDITE, MATR_MASS=MASSE, \
          ETAT_INIT=_F(MODE_LINE=MODES, NUME_ORDRE=1), \
          CHOC=_F(OBSTACLE='PLAN', GROUP_NO='N2', NOM_CMP='DX', JEU=-0.01, RIGI_NOR=50.), \
@@ -262,7 +262,7 @@ fn check_goes_past_unsupported_operators_and_unknown_names() {
         "GROUP_NO 'NO2' is not in the mesh",
         "did you mean 'N2'? the mesh has 2 GROUP_NO(s): N1, N2",
         "FORMULE is a Code_Aster operator that aster-nl does not support",
-        "DYNA_VIBRA is a Code_Aster operator that aster-nl does not support",
+        "DYNA_NON_LINE is a Code_Aster operator that aster-nl does not support",
         "MODE_NON_LINE/CHOC/JEU: expected a value > 0.0, got -0.01",
         "unknown keyword NB_BRANCH",
         "did you mean NB_BRANCHE?",

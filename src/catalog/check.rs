@@ -1,7 +1,7 @@
 //! Consistency of the catalogs themselves (run by the tests): defaults match their type,
 //! bounds and `into`; rules and `when` name existing keywords; no duplicate names.
 
-use super::def::{OperatorDef, Statut, When};
+use super::def::{OperatorDef, Rule, RuleKind, Statut, When};
 use super::validate::{check_simple, is_concept_type, value_eq, Level};
 
 /// Concept types the catalogs may name. A new kind of concept is added here on purpose,
@@ -23,6 +23,12 @@ pub const CONCEPT_TYPES: &[&str] = &[
     "table_container",
     "fonction_sdaster",
     "dyna_trans",
+    "nume_ddl_gene",
+    "matr_asse_gene_r",
+    "vect_asse_gene",
+    "cham_no_sdaster",
+    "table_fonction",
+    "tran_gene",
 ];
 
 /// Every problem found in the embedded catalogs (parse errors included); empty when fine.
@@ -114,13 +120,24 @@ fn check_when(level: &Level, name: &str, w: &When, out: &mut Vec<String>) {
 }
 
 /// Two definitions of one name are allowed only as alternatives under disjoint `when`
-/// conditions on the same keyword (Code_Aster BLOCs defining a keyword differently).
-fn disjoint(a: Option<&When>, b: Option<&When>) -> bool {
+/// conditions (Code_Aster BLOCs defining a keyword differently): different values of the
+/// same keyword, or the presence of two keywords that an unconditional rule of the level
+/// (UN_PARMI, AU_PLUS_UN, EXCLUS) forbids together.
+fn disjoint(a: Option<&When>, b: Option<&When>, rules: &[Rule]) -> bool {
     match (a, b) {
         (Some(a), Some(b)) if a.keyword == b.keyword => match (&a.equals, &b.equals) {
             (Some(x), Some(y)) => !x.iter().any(|v| y.iter().any(|w| value_eq(v, w))),
             _ => false,
         },
+        (Some(a), Some(b)) if a.equals.is_none() && b.equals.is_none() => rules.iter().any(|r| {
+            r.when.is_none()
+                && matches!(
+                    r.kind,
+                    RuleKind::UnParmi | RuleKind::AuPlusUn | RuleKind::Exclus
+                )
+                && r.keywords.contains(&a.keyword)
+                && r.keywords.contains(&b.keyword)
+        }),
         _ => false,
     }
 }
@@ -140,7 +157,7 @@ fn check_level(level: &Level, out: &mut Vec<String>) {
         .collect();
     for (i, (n, w)) in entries.iter().enumerate() {
         for (m, v) in entries.iter().skip(i + 1) {
-            if n == m && !disjoint(*w, *v) {
+            if n == m && !disjoint(*w, *v, level.rules) {
                 out.push(format!(
                     "{p}: keyword {n} defined twice (without disjoint `when`)"
                 ));

@@ -471,7 +471,7 @@ fn concept_types_with_alternatives_and_any() {
     let e = single_error(&tab("fonction_sdaster"), "IMPR_TABLE/TABLE", 2);
     assert_eq!(
         e.message,
-        "expected a concept of type table_sdaster or table_container or dyna_trans, got T of type fonction_sdaster"
+        "expected a concept of type table_sdaster or table_container or dyna_trans or tran_gene, got T of type fonction_sdaster"
     );
     // DETRUIRE takes concepts of any type, as a list.
     let c = call(
@@ -1172,7 +1172,7 @@ fn when_blocks() {
     );
     assert_eq!(
         e.message,
-        "keyword NOM_CMP is only allowed when RESULTAT is given"
+        "keyword NOM_CMP is only allowed when RESU_GENE is given, or when RESULTAT is given"
     );
     // The solver branch follows METHODE, defaults included.
     let mut c = mnl(vec![k(

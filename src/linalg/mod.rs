@@ -4,4 +4,5 @@
 
 pub mod craig_bampton;
 pub mod eigen;
+pub mod projection;
 pub mod sparse;

@@ -145,7 +145,15 @@ pub fn run_with_option(ctx: &mut OpContext<'_>, args: &Args, option: &str) -> Re
         modes,
     };
     ctx.create(&name, "mode_meca")?;
-    mode_store::save_modes(ctx.store, &name, &result)
+    mode_store::save_modes(ctx.store, &name, &result)?;
+    mode_store::save_matrices(
+        ctx.store,
+        &name,
+        &mode_store::ModeMatrices {
+            rigi: k_name.clone(),
+            mass: m_name.clone(),
+        },
+    )
 }
 
 fn mode_request(args: &Args, option: &str, op: &str) -> Result<ModeRequest> {

@@ -1,6 +1,6 @@
 //! DETRUIRE: remove concepts and all their data, including the SQL table of a table
-//! concept and the CARA_CHOC sub-table of a MODE_NON_LINE result (naming that sub-table
-//! too is not an error). The concepts are named either by the newer syntax (NOM=(...)) or
+//! concept, the CARA_CHOC sub-table of a MODE_NON_LINE result and the shocks' table of a
+//! DYNA_VIBRA result (naming such a sub-table too is not an error). The concepts are named either by the newer syntax (NOM=(...)) or
 //! by the classic one (CONCEPT=_F(NOM=(...)), repeatable); INFO=2 prints each name removed.
 
 use super::OpContext;
@@ -30,6 +30,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 );
             }
             let mut gone = crate::store::mnl::owned_concepts(ctx.store, &n)?;
+            gone.extend(crate::store::tran_gene::owned_concepts(ctx.store, &n)?);
             for sub in &gone {
                 ctx.store.delete_concept(sub)?;
             }

@@ -22,12 +22,16 @@ pub mod calc_matr_elem;
 pub mod calc_modes;
 pub mod calc_stabilite;
 pub mod calc_table;
+pub mod crea_champ;
 pub mod crea_maillage;
 pub mod crea_table;
 pub mod defi_fonction;
 pub mod defi_group;
+pub mod defi_list_reel;
 pub mod defi_materiau;
+pub mod defi_obstacle;
 pub mod detruire;
+pub mod dyna_vibra;
 pub mod extr_table;
 pub mod impr_fonction;
 pub mod impr_resu;
@@ -37,7 +41,11 @@ pub mod mode_iter_simult;
 pub mod mode_non_line;
 pub mod modi_maillage;
 pub mod nume_ddl;
+pub mod nume_ddl_gene;
+pub mod proj_matr_base;
+pub mod proj_vect_base;
 pub mod recu_fonction;
+pub mod rest_gene_phys;
 pub mod rest_mode_nonl;
 pub mod test_fonction;
 pub mod test_resu;
@@ -320,6 +328,14 @@ pub const OPERATORS: &[(&str, OpFn)] = &[
     ("CREA_MAILLAGE", crea_maillage::run),
     ("DEFI_GROUP", defi_group::run),
     ("MODI_MAILLAGE", modi_maillage::run),
+    ("CREA_CHAMP", crea_champ::run),
+    ("DEFI_OBSTACLE", defi_obstacle::run),
+    ("NUME_DDL_GENE", nume_ddl_gene::run),
+    ("PROJ_MATR_BASE", proj_matr_base::run),
+    ("PROJ_VECT_BASE", proj_vect_base::run),
+    ("DYNA_VIBRA", dyna_vibra::run),
+    ("REST_GENE_PHYS", rest_gene_phys::run),
+    ("DEFI_LIST_REEL", defi_list_reel::run),
 ];
 
 /// The operator that implements `name`, if we have one. Operators handled by the

@@ -3,12 +3,15 @@
 //! that turns back, a table extended by a `reuse=` restart) are sorted by abscissa with
 //! alarm FONCT0_62; rows repeating an abscissa already taken are dropped, with a note.
 //!
+//! RECU_FONCTION from a DYNA_VIBRA result (RESU_GENE=): a physical component restored from
+//! the generalized coordinates, or a shock's FN, FT1, ... by INTITULE or node.
+//!
 //! RECU_FONCTION from a `dyna_trans` (RESULTAT=, NOM_CHAM=, NOEUD= | GROUP_NO=, NOM_CMP=):
 //! the time history of one component, NOM_PARA='INST' and NOM_RESU the component's name,
 //! as in Code_Aster.
 
-use super::common::dyna_trans;
 use super::common::table_args::{filters, load_table_arg};
+use super::common::{dyna_trans, tran_gene};
 use super::defi_fonction::function_with_options;
 use super::OpContext;
 use crate::args::Args;
@@ -71,12 +74,71 @@ fn points(t: &Table, table: &str, px: &str, py: &str) -> Result<(Vec<f64>, Vec<f
 }
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
-    // The catalog's UN_PARMI(TABLE, RESULTAT) leaves one of them.
+    // The catalog's UN_PARMI(TABLE, RESULTAT, RESU_GENE) leaves one of them.
     if args.concept("RESULTAT").is_some() {
         from_result(ctx, args)
+    } else if args.concept("RESU_GENE").is_some() {
+        from_resu_gene(ctx, args)
     } else {
         from_table(ctx, args)
     }
+}
+
+/// From a DYNA_VIBRA result: a physical component (NOM_CHAM, NOEUD | GROUP_NO, NOM_CMP)
+/// restored at the archived instants, or a shock's parameter (PARA_Y) by INTITULE,
+/// NOEUD_CHOC or GROUP_NO_CHOC. The instants increase.
+fn from_resu_gene(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    let name = ctx.result_name()?.to_string();
+    let result = args.req_concept("RESU_GENE")?.name.clone();
+    let kw = |k: &str| args.key_path(k);
+    let payload = crate::store::tran_gene::load_payload(ctx.store, &result)?;
+    let node_of = |key: &str, group_key: &str| -> Result<Option<String>> {
+        if let Some(n) = args.text(key) {
+            return Ok(Some(n.to_string()));
+        }
+        let Some(group) = args.text(group_key) else {
+            return Ok(None);
+        };
+        let (_, modes) = super::common::gene::numbering_and_basis(
+            ctx.store,
+            &payload.numbering,
+            None,
+            "RECU_FONCTION",
+        )?;
+        super::common::nodes::one_node_of_group(
+            ctx.store,
+            &modes.numbering.mesh,
+            group,
+            super::common::nodes::OneNode {
+                reason: "RECU_FONCTION extracts the history of one node",
+                hint: None,
+            },
+            kw(group_key),
+        )
+        .map(Some)
+    };
+    let (x, y, para, resu) = if let Some(field) = args.text("NOM_CHAM") {
+        let node = node_of("NOEUD", "GROUP_NO")?
+            .ok_or_else(|| Error::validation("give NOEUD or GROUP_NO").keyword(kw("NOEUD")))?;
+        let cmp = args.req_text("NOM_CMP")?.to_string();
+        let (x, y) = tran_gene::physical_history(ctx.store, &result, field, &node, &cmp, &kw)?;
+        (x, y, "INST".to_string(), cmp)
+    } else {
+        let node = node_of("NOEUD_CHOC", "GROUP_NO_CHOC")?;
+        let para_y = args.req_text("PARA_Y")?.to_string();
+        let (x, y) = tran_gene::shock_history(
+            ctx.store,
+            &result,
+            args.text("INTITULE"),
+            node.as_deref(),
+            &para_y,
+            &kw,
+        )?;
+        (x, y, args.req_text("PARA_X")?.to_string(), para_y)
+    };
+    let f = function_with_options(args, &name, &para, &resu, x, y)?;
+    ctx.create(&name, "fonction_sdaster")?;
+    save_function(ctx.store, &name, &f)
 }
 
 /// The time history of one component of a `dyna_trans`: its instants are increasing (one

@@ -19,6 +19,7 @@
 pub mod deps;
 pub mod dyna_trans;
 pub mod function;
+pub mod gene;
 pub mod live;
 pub mod matrix;
 pub mod mesh;
@@ -30,6 +31,7 @@ pub mod recovery;
 pub mod study_file;
 pub mod study_lock;
 pub mod table;
+pub mod tran_gene;
 
 use crate::error::{Error, Result};
 use rusqlite::{params, Connection, OptionalExtension, Params};
@@ -77,6 +79,7 @@ pub(crate) enum Schema {
     Matrix = 4,
     Modes = 8,
     Mnl = 16,
+    Gene = 32,
 }
 
 /// When a study's writes are forced to the disk (`fsync`). Either way each operator is one
@@ -510,6 +513,7 @@ impl Store {
         mesh::delete_mesh(self, name)?;
         modes::drop_data(self, name)?;
         mnl::drop_data(self, name)?;
+        gene::drop_data(self, name)?;
         Ok(())
     }
 

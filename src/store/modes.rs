@@ -3,7 +3,8 @@
 //! - `modes(concept, NUME_ORDRE, FREQ, OMEGA2, MASS_GENE, RIGI_GENE, LABEL)`: one row per
 //!   mode, queryable as `SELECT NUME_ORDRE, FREQ FROM modes WHERE concept='MODES'`.
 //! - `mode_shapes(concept, NUME_ORDRE, dof, NOEUD, NOM_CMP, value)`: every shape value.
-//! - `concept_data(concept, 'numbering')`: the DOF numbering (json).
+//! - `concept_data(concept, 'numbering')`: the DOF numbering (json);
+//! - `concept_data(concept, 'matrices')`: the MATR_RIGI and MATR_MASS it was computed from.
 
 use crate::error::{Error, Result};
 use crate::model::modes::{Mode, ModeMeca};
@@ -88,6 +89,34 @@ pub fn save_modes(store: &Store, name: &str, modes: &ModeMeca) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The matrices a basis was computed from (Code_Aster's reference of a mode_meca to its
+/// MATR_RIGI and MATR_MASS): PROJ_VECT_BASE reads the mass as the metric of coordinates.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ModeMatrices {
+    pub rigi: String,
+    pub mass: String,
+}
+
+pub fn save_matrices(store: &Store, name: &str, m: &ModeMatrices) -> Result<()> {
+    store.put_json(name, "matrices", m)
+}
+
+/// The matrices of `name`, `None` for a basis stored without them (before aster-nl kept
+/// them, or one REST_MODE_NONL wrote).
+pub fn load_matrices(store: &Store, name: &str) -> Result<Option<ModeMatrices>> {
+    let n: i64 = store
+        .row(
+            "SELECT COUNT(*) FROM concept_data WHERE concept = ?1 AND key = 'matrices'",
+            params![name],
+            |r| r.get(0),
+        )?
+        .unwrap_or(0);
+    if n == 0 {
+        return Ok(None);
+    }
+    store.get_json(name, "matrices").map(Some)
 }
 
 pub fn load_modes(store: &Store, name: &str) -> Result<ModeMeca> {

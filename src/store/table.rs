@@ -44,6 +44,8 @@ pub const INTERNAL_TABLES: &[&str] = &[
     "mnl_fourier",
     "mnl_floquet",
     "mnl_basis",
+    "gene_entries",
+    "field_values",
     "meshes",
     "mesh_group_defs",
 ];

@@ -9,6 +9,10 @@ pub mod live;
 // One component of a dyna_trans by NOM_CHAM, NOEUD | GROUP_NO, NOM_CMP (TEST_RESU,
 // RECU_FONCTION).
 pub mod dyna_trans;
+// The basis of a generalized numbering (PROJ_MATR_BASE, PROJ_VECT_BASE, DYNA_VIBRA).
+pub mod gene;
+// The archived instants INST, NUME_ORDRE, INTERPOL ask for (REST_GENE_PHYS, RECU_FONCTION).
+pub mod instants;
 // The stored results IMPR_RESU writes to MED, as nodal fields on their mesh.
 pub mod med_fields;
 // The node of NOEUD= or of a one-node GROUP_NO= (TEST_RESU, MODE_NON_LINE's CHOC).
@@ -25,6 +29,8 @@ pub mod resources;
 pub mod section;
 // The location keywords (TOUT, GROUP_MA, MAILLE, GROUP_NO, NOEUD) as a mesh selection.
 pub mod selection;
+// Time histories of a DYNA_VIBRA result (RECU_FONCTION's RESU_GENE).
+pub mod tran_gene;
 // The table keywords (FILTRE, TRI, TABLE) shared by the table operators.
 pub mod table_args;
 // The comparison behind every TEST_* operator.

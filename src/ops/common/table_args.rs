@@ -14,7 +14,12 @@ use crate::value::{ConceptRef, Value};
 /// a `dyna_trans` (REST_MODE_NONL), whose rows are one table as well. Which of them an
 /// operator takes is its catalog's business (IMPR_TABLE, TEST_TABLE and RECU_FONCTION
 /// take a `dyna_trans`; CALC_TABLE and EXTR_TABLE do not), checked by the validation.
-pub const TABLE_TYPES: &[&str] = &["table_sdaster", "table_container", "dyna_trans"];
+pub const TABLE_TYPES: &[&str] = &[
+    "table_sdaster",
+    "table_container",
+    "dyna_trans",
+    "tran_gene",
+];
 
 fn items(v: Option<&Value>) -> Vec<&Value> {
     match v {

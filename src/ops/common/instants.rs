@@ -1,0 +1,90 @@
+//! The archived instants a reader of a transient result asks for (REST_GENE_PHYS,
+//! RECU_FONCTION): every one, some by NUME_ORDRE, or instants matched within PRECISION or
+//! interpolated linearly between the two archived ones around them.
+
+use crate::args::Args;
+use crate::error::{Error, Result};
+
+/// One instant of the output: a weighted pair of archived instants (w on `lo`, 1 − w on
+/// `hi`; an archived instant has lo = hi).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pick {
+    pub t: f64,
+    pub lo: usize,
+    pub hi: usize,
+    pub w: f64,
+}
+
+/// The instants `a` asks for among the archived `times` (increasing).
+pub fn picks(a: &Args, times: &[f64]) -> Result<Vec<Pick>> {
+    let exact = |i: usize| Pick {
+        t: times[i],
+        lo: i,
+        hi: i,
+        w: 1.0,
+    };
+    if let Some(orders) = a.ints("NUME_ORDRE") {
+        return orders
+            .iter()
+            .map(|&k| {
+                usize::try_from(k)
+                    .ok()
+                    .filter(|&k| (1..=times.len()).contains(&k))
+                    .map(|k| exact(k - 1))
+                    .ok_or_else(|| {
+                        Error::validation(format!(
+                            "NUME_ORDRE={k}: the result has {} archived instants (1 to {})",
+                            times.len(),
+                            times.len()
+                        ))
+                        .keyword(a.key_path("NUME_ORDRE"))
+                    })
+            })
+            .collect();
+    }
+    let Some(wanted) = a.reals("INST").or_else(|| a.reals("LIST_INST")) else {
+        return Ok((0..times.len()).map(exact).collect());
+    };
+    let interpolate = a.text("INTERPOL") == Some("LIN");
+    let relative = a.text("CRITERE") != Some("ABSOLU");
+    let precision = a.real("PRECISION").unwrap_or(1e-6);
+    wanted
+        .iter()
+        .map(|&t| {
+            let tol = if relative { precision * t.abs() } else { precision };
+            if let Some(i) = times.iter().position(|&s| (s - t).abs() <= tol) {
+                return Ok(exact(i));
+            }
+            let hi = times.partition_point(|&s| s < t);
+            if interpolate && hi > 0 && hi < times.len() {
+                let (t0, t1) = (times[hi - 1], times[hi]);
+                return Ok(Pick {
+                    t,
+                    lo: hi - 1,
+                    hi,
+                    w: (t1 - t) / (t1 - t0),
+                });
+            }
+            let (first, last) = (times.first().copied(), times.last().copied());
+            Err(Error::validation(match (interpolate, first, last) {
+                (true, Some(f), Some(l)) => {
+                    format!("INST = {t:e} is outside the archived interval [{f:e}, {l:e}]")
+                }
+                _ => format!(
+                    "INST = {t:e} is not an archived instant (within PRECISION = {precision:e})"
+                ),
+            })
+            .keyword(a.key_path(if a.has("INST") { "INST" } else { "LIST_INST" }))
+            .hint("give INTERPOL='LIN' to interpolate between archived instants, or archive it (DYNA_VIBRA's ARCHIVAGE/INST)"))
+        })
+        .collect()
+}
+
+/// The value at `p` of a quantity sampled at the archived instants by `at`.
+pub fn value(p: &Pick, at: impl Fn(usize) -> f64) -> f64 {
+    if p.lo == p.hi {
+        at(p.lo)
+    } else {
+        p.w * at(p.lo) + (1.0 - p.w) * at(p.hi)
+    }
+}

@@ -1,0 +1,363 @@
+//! DYNA_VIBRA (TYPE_CALCUL='TRAN'): a transient response with localized shocks, on a modal
+//! basis (GENE: result `tran_gene`) or on the physical DOFs (PHYS: result `dyna_trans`).
+//! Glue only: the keywords are read into the integrator's inputs (`space.rs`, `shocks.rs`,
+//! here), the integration is `crate::transient`, the tables are written by `output.rs`.
+
+mod output;
+mod shocks;
+mod space;
+
+use super::common::progress::Progress;
+use super::OpContext;
+use crate::args::Args;
+use crate::error::{Error, Result};
+use crate::store::{function as function_store, model};
+use crate::transient::{
+    contact_pulsations, integrate, optimized_tangential_damping, Archive, Forcing, Scheme, Shock,
+    Structure, TimeGrid,
+};
+use space::Space;
+
+pub(crate) use output::field_header;
+pub use shocks::ShockName;
+
+pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    let name = ctx.result_name()?.to_string();
+    let (space, structure) = Space::read(ctx, args)?;
+    let mesh = model::load_mesh(ctx.store, space.mesh())?;
+    let (mut shocks, names) = shocks::read(ctx, args, &space, &mesh)?;
+    default_tangential_damping(args, &space, &mut shocks)?;
+    let n = space.size();
+    let (q0, v0) = initial_state(ctx, args, &space, n)?;
+    let forcing = excitations(ctx, args, &space)?;
+    let scheme = scheme(args)?;
+    let times = time_grid(args)?;
+    let archive = archive(args, &times)?;
+    check_step(ctx, &scheme, &times, structure.as_ref(), &shocks, &names)?;
+    let progress = Progress::new(ctx.progress, 1000, "DYNA_VIBRA", "‰ of the interval");
+    let mut done = 0u64;
+    let trajectory = integrate(
+        structure.as_ref(),
+        &mut shocks,
+        &forcing,
+        (&q0, &v0),
+        scheme,
+        times,
+        &archive,
+        &mut |fraction| {
+            let now = (fraction * 1000.0) as u64;
+            while done < now.min(1000) {
+                progress.inc();
+                done += 1;
+            }
+        },
+    )
+    .map_err(|e| in_operator(e.into()))?;
+    progress.finish();
+    if ctx.info >= 2 {
+        say_events(ctx, &names, &trajectory)?;
+    }
+    output::store(ctx, &name, &space, &names, &trajectory)?;
+    ctx.say(&format!(
+        "DYNA_VIBRA {name}: {} archived instants from {:e} to {:e} s, {} steps ({} rejected), {} shock(s), {} contact change(s) located",
+        trajectory.t.len(),
+        times.t0,
+        times.t_end,
+        trajectory.steps_taken,
+        trajectory.steps_rejected,
+        names.len(),
+        trajectory.events.len()
+    ))
+}
+
+/// Fewer steps per contact than a fixed-step scheme needs. A contact lasts about π/ω_c,
+/// ω_c the shock's normal stiffness against the mass its node carries
+/// (`transient::contact_time`). NEWMARK with ω_c·PAS above 1 steps over contacts and gains
+/// energy at each release (measured: the energy of a one-DOF impact oscillator grows
+/// without bound at 1.5 times DIFF_CENTRE's limit): refused. Fewer than 10 steps per
+/// contact: alarm DYNA_VIBRA_1 (the impacts are resolved coarsely). DIFF_CENTRE's own
+/// limit, 2/ω_max, is checked by the integrator.
+fn check_step(
+    ctx: &mut OpContext<'_>,
+    scheme: &Scheme,
+    times: &TimeGrid,
+    structure: &dyn Structure,
+    shocks: &[Shock],
+    names: &[ShockName],
+) -> Result<()> {
+    if matches!(scheme, Scheme::Adaptive(_)) || shocks.is_empty() {
+        return Ok(());
+    }
+    let (_, h) = times.fixed_steps();
+    let pulsations = contact_pulsations(structure, shocks).map_err(|e| in_operator(e.into()))?;
+    for (w, name) in pulsations.iter().zip(names) {
+        if *w <= 0.0 {
+            continue;
+        }
+        let duration = std::f64::consts::PI / w;
+        if matches!(scheme, Scheme::Newmark { .. }) && w * h > 1.0 {
+            return Err(Error::input(format!(
+                "PAS = {h:e} is longer than 1/ω_c = {:e} s for shock {}: its contact lasts about \
+                 {duration:e} s (π/ω_c, ω_c = √(RIGI_NOR/m), m the mass its node carries), and \
+                 NEWMARK with such a step steps over contacts and gains energy at each release",
+                1.0 / w,
+                name.intitule
+            ))
+            .keyword("DYNA_VIBRA/INCREMENT/PAS")
+            .hint(format!(
+                "take PAS below {:e} (10 steps per contact), or SCHEMA='RUNGE_KUTTA_54', which \
+                 ends a step at every contact change",
+                duration / 10.0
+            )));
+        }
+        if h > duration / 10.0 {
+            ctx.alarm(
+                "DYNA_VIBRA_1",
+                &format!(
+                    "shock {}: a contact lasts about {duration:e} s (π/ω_c) and PAS = {h:e} \
+                     gives it {:.1} steps: impacts are resolved coarsely. Take PAS below {:e}, \
+                     or SCHEMA='RUNGE_KUTTA_54'",
+                    name.intitule,
+                    duration / h,
+                    duration / 10.0
+                ),
+            )?;
+        }
+    }
+    Ok(())
+}
+
+/// INFO=2: the contact changes the adaptive schemes located (the first 100).
+fn say_events(
+    ctx: &mut OpContext<'_>,
+    names: &[ShockName],
+    tr: &crate::transient::Trajectory,
+) -> Result<()> {
+    const SHOWN: usize = 100;
+    for e in tr.events.iter().take(SHOWN) {
+        let shock = names.get(e.shock).map_or("?", |n| n.intitule.as_str());
+        let what = if e.onset {
+            "contact begins"
+        } else {
+            "contact ends"
+        };
+        ctx.say(&format!("  t = {:.9e} s  {shock}: {what}", e.t))?;
+    }
+    if tr.events.len() > SHOWN {
+        ctx.say(&format!(
+            "  ... and {} more contact changes",
+            tr.events.len() - SHOWN
+        ))?;
+    }
+    Ok(())
+}
+
+/// An error of the integrator with its keyword as a path of this operator.
+fn in_operator(mut e: Error) -> Error {
+    if let Some(k) = e.keyword.as_deref() {
+        if !k.starts_with("DYNA_VIBRA") {
+            e.keyword = Some(format!("DYNA_VIBRA/{k}"));
+        }
+    }
+    e
+}
+
+/// AMOR_TAN not given with RIGI_TAN > 0 on a modal basis: the damping Code_Aster derives
+/// from RIGI_TAN and the modal masses and frequencies (docs/dyna_vibra.md).
+fn default_tangential_damping(args: &Args, space: &Space, shocks: &mut [Shock]) -> Result<()> {
+    let Space::Gene { modes, .. } = space else {
+        return Ok(());
+    };
+    let occurrences = if args.has("COMPORTEMENT") {
+        args.facts_or_empty("COMPORTEMENT")
+    } else {
+        args.facts_or_empty("CHOC")
+    };
+    let mass: Vec<f64> = modes.modes.iter().map(|m| m.mass_gene).collect();
+    let omega2: Vec<f64> = modes.modes.iter().map(|m| m.omega2).collect();
+    let ratios = damping_ratios(args, mass.len())?;
+    for (shock, occ) in shocks.iter_mut().zip(occurrences) {
+        if occ.has("AMOR_TAN") || shock.spec.rigi_tan <= 0.0 {
+            continue;
+        }
+        shock.spec.amor_tan = optimized_tangential_damping(shock, &mass, &omega2, &ratios)
+            .map_err(|e| shocks::in_occurrence(e.into(), occ))?;
+    }
+    Ok(())
+}
+
+/// AMOR_MODAL's ratios for n coordinates (the last repeated), zero without it.
+pub(crate) fn damping_ratios(args: &Args, n: usize) -> Result<Vec<f64>> {
+    let Some(amor) = args.fact("AMOR_MODAL") else {
+        return Ok(vec![0.0; n]);
+    };
+    let given = amor.req_reals("AMOR_REDUIT")?;
+    let last = given.last().copied().unwrap_or(0.0);
+    Ok((0..n)
+        .map(|i| given.get(i).copied().unwrap_or(last))
+        .collect())
+}
+
+fn initial_state(
+    ctx: &OpContext<'_>,
+    args: &Args,
+    space: &Space,
+    n: usize,
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    let mut q0 = vec![0.0; n];
+    let mut v0 = vec![0.0; n];
+    if let Some(init) = args.fact("ETAT_INIT") {
+        if init.has("RESULTAT") {
+            return space.state_of_result(ctx, init);
+        }
+        if init.has("DEPL") {
+            q0 = space.vector(ctx, init, "DEPL")?;
+        }
+        if init.has("VITE") {
+            v0 = space.vector(ctx, init, "VITE")?;
+        }
+    }
+    Ok((q0, v0))
+}
+
+fn excitations(ctx: &OpContext<'_>, args: &Args, space: &Space) -> Result<Vec<Forcing>> {
+    let key = match space {
+        Space::Gene { .. } => "VECT_ASSE_GENE",
+        Space::Phys { .. } => "VECT_ASSE",
+    };
+    let mut out = Vec::new();
+    for occ in args.facts_or_empty("EXCIT") {
+        if !occ.has(key) {
+            return Err(
+                Error::validation(format!("this BASE_CALCUL takes its force as {key}"))
+                    .keyword(occ.key_path(key)),
+            );
+        }
+        let f = space.vector(ctx, occ, key)?;
+        let forcing = match occ.concept("FONC_MULT") {
+            Some(c) => {
+                let g = function_store::load_function(ctx.store, &c.name)?;
+                // A value the function cannot give (outside an EXCLU domain) makes the
+                // force NaN, which the integrator stops on, naming the instant.
+                Forcing {
+                    generalized_force: f,
+                    multiplier: Box::new(move |t| g.eval(t).unwrap_or(f64::NAN)),
+                }
+            }
+            None => Forcing::constant(f, occ.req_real("COEF_MULT")?),
+        };
+        out.push(forcing);
+    }
+    Ok(out)
+}
+
+fn scheme(args: &Args) -> Result<Scheme> {
+    let st = args.req_fact("SCHEMA_TEMPS")?;
+    let name = st.req_text("SCHEMA")?;
+    let mut scheme = Scheme::from_name(name).ok_or_else(|| {
+        Error::validation(format!("SCHEMA='{name}' is not available"))
+            .keyword(st.key_path("SCHEMA"))
+    })?;
+    match &mut scheme {
+        Scheme::Newmark { beta, gamma } => {
+            *beta = st.req_real("BETA")?;
+            *gamma = st.req_real("GAMMA")?;
+        }
+        Scheme::Adaptive(o) => {
+            o.tolerance = st.req_real("TOLERANCE")?;
+            o.pas_mini = st.real("PAS_MINI");
+            o.pas_maxi = st.real("PAS_MAXI");
+            o.nmax_iter_pas = usize::try_from(st.req_int("NMAX_ITER_PAS")?).unwrap_or(1);
+        }
+        Scheme::DiffCentre => {}
+    }
+    Ok(scheme)
+}
+
+fn time_grid(args: &Args) -> Result<TimeGrid> {
+    let inc = args.req_fact("INCREMENT")?;
+    let grid = match inc.reals("LIST_INST") {
+        Some(list) => uniform_grid(inc, &list)?,
+        None => TimeGrid {
+            t0: inc.req_real("INST_INIT")?,
+            t_end: inc.req_real("INST_FIN")?,
+            dt: inc.req_real("PAS")?,
+        },
+    };
+    if grid.t_end <= grid.t0 || grid.t_end.is_nan() || grid.t0.is_nan() {
+        return Err(Error::validation(format!(
+            "INST_FIN = {:e} is not after INST_INIT = {:e}",
+            grid.t_end, grid.t0
+        ))
+        .keyword(inc.key_path("INST_FIN")));
+    }
+    if grid.dt > grid.t_end - grid.t0 {
+        return Err(Error::validation(format!(
+            "PAS = {:e} is longer than the interval [{:e}, {:e}]",
+            grid.dt, grid.t0, grid.t_end
+        ))
+        .keyword(inc.key_path("PAS")));
+    }
+    Ok(grid)
+}
+
+/// INCREMENT/LIST_INST: its first instant (or INST_INIT), its last (or INST_FIN) and its
+/// step, which must be the same all along.
+fn uniform_grid(inc: &Args, list: &[f64]) -> Result<TimeGrid> {
+    let kw = inc.key_path("LIST_INST");
+    let (Some(&first), Some(&last)) = (list.first(), list.last()) else {
+        return Err(Error::validation("LIST_INST is empty").keyword(kw));
+    };
+    if list.len() < 2 {
+        return Err(Error::validation("LIST_INST needs at least two instants").keyword(kw));
+    }
+    let dt = list[1] - list[0];
+    if let Some(i) = list
+        .windows(2)
+        .position(|w| w[1] <= w[0] || ((w[1] - w[0]) - dt).abs() > 1e-6 * dt.abs())
+    {
+        return Err(Error::validation(format!(
+            "LIST_INST has unequal steps ({:e} then {:e} at instant {}): DYNA_VIBRA's schemes take one step",
+            dt,
+            list[i + 1] - list[i],
+            i + 2
+        ))
+        .keyword(kw)
+        .hint("give INCREMENT=_F(INST_FIN=..., PAS=...) and the instants to keep in ARCHIVAGE/INST"));
+    }
+    Ok(TimeGrid {
+        t0: inc.real("INST_INIT").unwrap_or(first),
+        t_end: inc.real("INST_FIN").unwrap_or(last),
+        dt,
+    })
+}
+
+fn archive(args: &Args, times: &TimeGrid) -> Result<Archive> {
+    let Some(a) = args.fact("ARCHIVAGE") else {
+        return Ok(Archive::Every(1));
+    };
+    if let Some(list) = a.reals("INST").or_else(|| a.reals("LIST_INST")) {
+        let span = times.t_end - times.t0;
+        // Instants a rounding of the file puts a hair outside the interval are its ends.
+        let slack = 1e-9 * span;
+        if let Some(t) = list
+            .iter()
+            .find(|&&t| t < times.t0 - slack || t > times.t_end + slack)
+        {
+            return Err(Error::validation(format!(
+                "INST = {t:e} is outside the interval [{:e}, {:e}]",
+                times.t0, times.t_end
+            ))
+            .keyword(a.key_path("INST")));
+        }
+        let mut list: Vec<f64> = list
+            .into_iter()
+            .map(|t| t.clamp(times.t0, times.t_end))
+            .collect();
+        list.sort_by(f64::total_cmp);
+        list.dedup();
+        return Ok(Archive::Instants(list));
+    }
+    let every = a.int("PAS_ARCH").unwrap_or(1);
+    Ok(Archive::Every(usize::try_from(every).unwrap_or(1).max(1)))
+}

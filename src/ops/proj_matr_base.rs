@@ -1,0 +1,57 @@
+//! PROJ_MATR_BASE: the generalized matrix ΦᵀAΦ of an assembled matrix on a basis.
+
+use super::common::gene::{numbering_and_basis, vectors};
+use super::OpContext;
+use crate::args::Args;
+use crate::error::{Error, Result};
+use crate::linalg::projection::project_matrix;
+use crate::model::MatrixKind;
+use crate::store::gene::{self, GeneMatrix, GeneMeta};
+use crate::store::matrix;
+
+pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    let name = ctx.result_name()?.to_string();
+    let num_name = args.req_concept("NUME_DDL_GENE")?.name.clone();
+    let base = args.req_concept("BASE")?.name.clone();
+    let (num, modes) = numbering_and_basis(ctx.store, &num_name, Some(&base), "PROJ_MATR_BASE")?;
+    let a_name = args.req_concept("MATR_ASSE")?.name.clone();
+    let a = matrix::load_matrix(ctx.store, &a_name)?;
+    if a.numbering.dofs != modes.numbering.dofs {
+        return Err(Error::input(format!(
+            "{a_name} is not assembled on the DOF numbering of the basis {base}"
+        ))
+        .keyword("PROJ_MATR_BASE/MATR_ASSE")
+        .hint(
+            "assemble the matrix with the NUME_DDL of the matrices the modes were computed from",
+        ));
+    }
+    let mut values = project_matrix(a.size(), &a.triplets, &vectors(&modes))?;
+    if num.storage == "DIAG" {
+        // Code_Aster's diagonal storage keeps the diagonal only (a basis orthogonal for
+        // the matrix: the rest is round-off).
+        for (k, v) in values.iter_mut().enumerate() {
+            if k / num.size != k % num.size {
+                *v = 0.0;
+            }
+        }
+    }
+    let kind = match a.kind {
+        MatrixKind::RigiMeca => "RIGI",
+        MatrixKind::MassMeca => "MASS",
+    };
+    ctx.create(&name, "matr_asse_gene_r")?;
+    ctx.store.record_dependency(&name, &num_name)?;
+    gene::save_matrix(
+        ctx.store,
+        &name,
+        &GeneMatrix {
+            meta: GeneMeta {
+                numbering: num_name,
+                basis: base,
+                size: num.size,
+                kind: kind.to_string(),
+            },
+            values,
+        },
+    )
+}

@@ -1,0 +1,113 @@
+//! Persistence of DYNA_VIBRA's results besides their time-history tables:
+//! - a `tran_gene` (BASE_CALCUL='GENE') is a table concept with one row per archived instant
+//!   and generalized coordinate: NUME_ORDRE, INST, NUME_CMP (1..n), DEPL, VITE, ACCE;
+//! - the shocks' samples are the table concept `<name>_CHOC`: NUME_ORDRE, INST, INTITULE,
+//!   NOEUD, FN, FT1, FT2, VN, VT1, VT2, DXLOC, DYLOC, DZLOC;
+//! - `concept_data(concept, 'tran_gene')`: [`Payload`], what a reader needs to restore
+//!   physical fields (the basis) and to find a shock by node or INTITULE.
+
+use super::Store;
+use crate::error::Result;
+use serde::{Deserialize, Serialize};
+
+const KEY: &str = "tran_gene";
+
+/// A shock of the result.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StoredShock {
+    pub intitule: String,
+    pub node1: String,
+    pub node2: Option<String>,
+    pub obstacle: String,
+}
+
+/// What a DYNA_VIBRA result is computed on.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Payload {
+    /// 'GENE' or 'PHYS'.
+    pub base: String,
+    /// GENE: the NUME_DDL_GENE and its basis (mode_meca); PHYS: empty.
+    pub numbering: String,
+    pub basis: String,
+    pub shocks: Vec<StoredShock>,
+    /// The table concept of the shocks' samples, if there are shocks.
+    pub shock_table: Option<String>,
+}
+
+pub fn save_payload(store: &Store, concept: &str, p: &Payload) -> Result<()> {
+    store.put_json(concept, KEY, p)
+}
+
+pub fn load_payload(store: &Store, concept: &str) -> Result<Payload> {
+    store.get_json(concept, KEY)
+}
+
+/// The name of the shocks' table of result `concept`.
+pub fn shock_table_name(concept: &str) -> String {
+    format!("{concept}_CHOC")
+}
+
+/// Concepts that belong to `concept` and go with it (DETRUIRE): its shocks' table.
+pub fn owned_concepts(store: &Store, concept: &str) -> Result<Vec<String>> {
+    let has: i64 = store
+        .row(
+            "SELECT COUNT(*) FROM concept_data WHERE concept = ?1 AND key = ?2",
+            rusqlite::params![concept, KEY],
+            |r| r.get(0),
+        )?
+        .unwrap_or(0);
+    if has == 0 {
+        return Ok(Vec::new());
+    }
+    Ok(load_payload(store, concept)?
+        .shock_table
+        .into_iter()
+        .collect())
+}
+
+/// The archived generalized coordinates of a `tran_gene`: instants, and q, v, a row-major
+/// (`n` values per instant).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Coordinates {
+    pub n: usize,
+    pub t: Vec<f64>,
+    pub q: Vec<f64>,
+    pub v: Vec<f64>,
+    pub a: Vec<f64>,
+}
+
+/// The coordinates of `concept` with `n` generalized unknowns, read from its table.
+pub fn load_coordinates(store: &Store, concept: &str, n: usize) -> Result<Coordinates> {
+    let mut stmt = store.conn().prepare(&format!(
+        "SELECT NUME_ORDRE, INST, NUME_CMP, DEPL, VITE, ACCE FROM {} ORDER BY NUME_ORDRE, NUME_CMP",
+        super::table::quote_ident(concept)
+    ))?;
+    let mut out = Coordinates {
+        n,
+        ..Coordinates::default()
+    };
+    let mut rows = stmt.query([])?;
+    let mut expected = 0usize;
+    while let Some(r) = rows.next()? {
+        let (order, t, cmp): (i64, f64, i64) = (r.get(0)?, r.get(1)?, r.get(2)?);
+        let at = expected % n.max(1);
+        if cmp != at as i64 + 1 || order != (expected / n.max(1)) as i64 + 1 {
+            return Err(crate::error::Error::store(format!(
+                "{concept}: row NUME_ORDRE={order}, NUME_CMP={cmp} out of sequence (rows removed or added outside aster-nl)"
+            )));
+        }
+        if at == 0 {
+            out.t.push(t);
+        }
+        out.q.push(r.get(3)?);
+        out.v.push(r.get(4)?);
+        out.a.push(r.get(5)?);
+        expected += 1;
+    }
+    if n == 0 || !expected.is_multiple_of(n) {
+        return Err(crate::error::Error::store(format!(
+            "{concept}: {expected} rows for {n} generalized unknowns"
+        )));
+    }
+    Ok(out)
+}

@@ -1,0 +1,204 @@
+//! The driver: checks the inputs, computes the initial acceleration, sizes the archive,
+//! checks DIFF_CENTRE's stability limit, and runs the fixed-step or the adaptive loop.
+
+use super::adaptive::run_adaptive;
+use super::archive::Recorder;
+use super::dis_choc::Shock;
+use super::error::{check_len, invalid, try_zeros, TransientError};
+use super::fixed::{run_fixed, Start, Stepper};
+use super::problem::{Archive, Forcing, TimeGrid, Trajectory};
+use super::scheme::diff_centre::{stability_limit, DiffCentre};
+use super::scheme::newmark::Newmark;
+use super::scheme::Scheme;
+use super::structure::Structure;
+use super::system::{commit, finite, Model, Work};
+
+/// Most rows reserved up front for an archive whose size is not known in advance (the
+/// adaptive schemes with PAS_ARCH); it grows beyond by `try_reserve`.
+const INITIAL_ROWS_CAP: usize = 1 << 16;
+
+fn check_inputs(
+    n: usize,
+    shocks: &[Shock],
+    forcing: &[Forcing],
+    init: (&[f64], &[f64]),
+    times: &TimeGrid,
+    archive: &Archive,
+) -> Result<(), TransientError> {
+    check_len("ETAT_INIT/DEPL", init.0.len(), n)?;
+    check_len("ETAT_INIT/VITE", init.1.len(), n)?;
+    if !(finite(init.0) && finite(init.1)) {
+        return Err(invalid("ETAT_INIT", "the initial state is not finite"));
+    }
+    for f in forcing {
+        check_len("EXCIT/VECT_ASSE_GENE", f.generalized_force.len(), n)?;
+    }
+    for s in shocks {
+        if let Some(i) = s.max_index() {
+            if i >= n {
+                return Err(TransientError::Dimension {
+                    what: "a shock's rows".into(),
+                    expected: n,
+                    got: i + 1,
+                });
+            }
+        }
+    }
+    let TimeGrid { t0, t_end, dt } = *times;
+    if !(t0.is_finite() && t_end.is_finite() && t_end > t0) {
+        return Err(invalid(
+            "INCREMENT/INST_FIN",
+            format!("INST_FIN = {t_end:e} must be after INST_INIT = {t0:e}"),
+        ));
+    }
+    if !(dt.is_finite() && dt > 0.0) {
+        return Err(invalid(
+            "INCREMENT/PAS",
+            format!("PAS = {dt:e} must be > 0"),
+        ));
+    }
+    match archive {
+        Archive::Every(0) => Err(invalid("ARCHIVAGE/PAS_ARCH", "must be ≥ 1")),
+        Archive::Every(_) => Ok(()),
+        Archive::Instants(list) => {
+            let tol = 1e-9 * (t_end - t0);
+            let sorted = list.windows(2).all(|w| w[1] > w[0]);
+            let inside = list.iter().all(|&x| x >= t0 - tol && x <= t_end + tol);
+            if list.is_empty() || !sorted || !inside {
+                Err(invalid(
+                    "ARCHIVAGE/INST",
+                    "the instants must be increasing and within [INST_INIT, INST_FIN]",
+                ))
+            } else {
+                Ok(())
+            }
+        }
+    }
+}
+
+fn check_scheme(scheme: &Scheme) -> Result<(), TransientError> {
+    match scheme {
+        Scheme::DiffCentre => Ok(()),
+        Scheme::Newmark { beta, gamma } => {
+            if beta.is_finite() && *beta > 0.0 && gamma.is_finite() && *gamma >= 0.0 {
+                Ok(())
+            } else {
+                Err(invalid(
+                    "SCHEMA_TEMPS/BETA",
+                    format!("BETA = {beta:e} must be > 0 and GAMMA = {gamma:e} ≥ 0"),
+                ))
+            }
+        }
+        Scheme::Adaptive(o) => {
+            if !(o.tolerance.is_finite() && o.tolerance > 0.0) {
+                return Err(invalid("SCHEMA_TEMPS/TOLERANCE", "must be > 0"));
+            }
+            if let (Some(lo), Some(hi)) = (o.pas_mini, o.pas_maxi) {
+                if !(lo > 0.0 && hi >= lo) {
+                    return Err(invalid(
+                        "SCHEMA_TEMPS/PAS_MINI",
+                        "PAS_MINI must be > 0 and ≤ PAS_MAXI",
+                    ));
+                }
+            }
+            if o.pas_maxi.is_some_and(|h| h.is_nan() || h <= 0.0) {
+                return Err(invalid("SCHEMA_TEMPS/PAS_MAXI", "must be > 0"));
+            }
+            Ok(())
+        }
+    }
+}
+
+/// Integrates M q̈ + C q̇ + K q = Σ f_i·g_i(t) + Σ_s Φ_sᵀ F_s from `init` = (q0, v0) over
+/// `times` with `scheme`, archiving as `archive` asks; `progress` receives the fraction
+/// of the interval done. The shocks' states are advanced (they hold the final state).
+// The operator's signature: each argument is one keyword group of DYNA_VIBRA.
+#[allow(clippy::too_many_arguments)]
+pub fn integrate(
+    structure: &dyn Structure,
+    shocks: &mut [Shock],
+    forcing: &[Forcing],
+    init: (&[f64], &[f64]),
+    scheme: Scheme,
+    times: TimeGrid,
+    archive: &Archive,
+    progress: &mut dyn FnMut(f64),
+) -> Result<Trajectory, TransientError> {
+    let n = structure.n();
+    check_inputs(n, shocks, forcing, init, &times, archive)?;
+    check_scheme(&scheme)?;
+    let model = Model { structure, forcing };
+    let mut ws = Work::new(n, shocks)?;
+    let mut q = try_zeros("the state", n)?;
+    let mut v = try_zeros("the state", n)?;
+    let mut a = try_zeros("the state", n)?;
+    q.copy_from_slice(init.0);
+    v.copy_from_slice(init.1);
+    model.acceleration(shocks, times.t0, &q, &v, &mut a, &mut ws)?;
+    if !finite(&a) {
+        return Err(TransientError::NonFinite { t: times.t0 });
+    }
+    commit(shocks, &ws.evals);
+    let (nsteps, h) = times.fixed_steps();
+    let rows = match (archive, &scheme) {
+        (Archive::Instants(list), _) => list.len(),
+        (Archive::Every(k), Scheme::Adaptive(_)) => {
+            ((times.t_end - times.t0) / times.dt / *k as f64 + 2.0).min(INITIAL_ROWS_CAP as f64)
+                as usize
+        }
+        (Archive::Every(k), _) => nsteps / k + 2,
+    };
+    let mut rec = Recorder::new(n, shocks.len(), rows)?;
+    if let Archive::Every(_) = archive {
+        rec.push(times.t0, &q, &v, &a, &ws.evals)?;
+    }
+    let (taken, rejected, events) = match scheme {
+        Scheme::Adaptive(opts) => {
+            let st = run_adaptive(
+                &model, shocks, &opts, &q, &v, &a, times, archive, &mut rec, &mut ws, progress,
+            )?;
+            (st.taken, st.rejected, st.events)
+        }
+        Scheme::DiffCentre | Scheme::Newmark { .. } => {
+            let mut stepper = match scheme {
+                Scheme::Newmark { beta, gamma } => {
+                    Stepper::Newmark(Box::new(Newmark::new(structure, shocks, beta, gamma, h)?))
+                }
+                _ => {
+                    let (limit, omega_max) = stability_limit(structure, shocks)?;
+                    if h > limit {
+                        return Err(TransientError::Unstable {
+                            dt: h,
+                            limit,
+                            omega_max,
+                        });
+                    }
+                    Stepper::Diff(DiffCentre::new(n)?)
+                }
+            };
+            let start = Start {
+                q: &mut q,
+                v: &mut v,
+                a: &mut a,
+            };
+            // t0's listed instants are archived inside, before the commit.
+            let taken = run_fixed(
+                &model,
+                shocks,
+                &mut stepper,
+                start,
+                times,
+                archive,
+                &mut rec,
+                &mut ws,
+                progress,
+            )?;
+            (taken, 0, Vec::new())
+        }
+    };
+    let mut traj = rec.traj;
+    traj.steps_taken = taken;
+    traj.steps_rejected = rejected;
+    traj.events = events;
+    Ok(traj)
+}

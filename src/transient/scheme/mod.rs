@@ -1,0 +1,87 @@
+//! The time schemes by Code_Aster's names (SCHEMA_TEMPS/SCHEMA), one file each:
+//! DIFF_CENTRE (diff_centre.rs), NEWMARK (newmark.rs), and the adaptive explicit
+//! Runge–Kutta pairs RUNGE_KUTTA_54 / RUNGE_KUTTA_32 (runge_kutta.rs, their tableaux; the
+//! adaptive loop with event location is `transient/adaptive.rs`).
+//!
+//! Names without a scheme of their own map onto the adaptive Runge–Kutta
+//! ([`Scheme::from_name`]), a documented equivalent with adaptive step and event location
+//! at contact changes: DEVOGE (Code_Aster's adaptive 5th-order Devogelaere scheme) →
+//! RUNGE_KUTTA_54; ADAPT_ORDRE2 and ADAPT_ORDRE1 (Code_Aster's adaptive central difference
+//! and Euler, order 2 and 1) → RUNGE_KUTTA_32, of order 3 with a 2nd-order error estimate.
+//! ITMI, TRBDF2 and WILSON have no equivalent here (`None`).
+
+pub(crate) mod diff_centre;
+pub(crate) mod newmark;
+pub(crate) mod runge_kutta;
+
+/// Which embedded pair an adaptive scheme uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RkPair {
+    /// Dormand–Prince 5(4), 7 stages (FSAL).
+    DormandPrince54,
+    /// Bogacki–Shampine 3(2), 4 stages (FSAL).
+    BogackiShampine32,
+}
+
+/// Settings of the adaptive schemes (SCHEMA_TEMPS keywords).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AdaptiveOptions {
+    pub pair: RkPair,
+    /// TOLERANCE (Code_Aster's default 1e-5): the local error of a step, relative to the
+    /// largest |q| (resp. |v|) met so far, per component, in the max norm.
+    pub tolerance: f64,
+    /// PAS_MINI: below it the integration stops with an error (default: 1e-12 of the
+    /// interval).
+    pub pas_mini: Option<f64>,
+    /// PAS_MAXI (default: the interval).
+    pub pas_maxi: Option<f64>,
+    /// NMAX_ITER_PAS: consecutive rejections of one step allowed (Code_Aster's default 16).
+    pub nmax_iter_pas: usize,
+    /// The most steps (accepted and rejected) before a runaway integration is stopped.
+    pub max_steps: usize,
+}
+
+impl AdaptiveOptions {
+    pub fn new(pair: RkPair) -> AdaptiveOptions {
+        AdaptiveOptions {
+            pair,
+            tolerance: 1e-5,
+            pas_mini: None,
+            pas_maxi: None,
+            nmax_iter_pas: 16,
+            max_steps: 50_000_000,
+        }
+    }
+}
+
+/// SCHEMA_TEMPS.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Scheme {
+    /// Explicit central difference (Code_Aster's default in GENE), velocity-Verlet form.
+    DiffCentre,
+    /// Newmark (BETA, GAMMA; defaults 0.25, 0.5: average acceleration), shock forces
+    /// iterated at the end of the step (newmark.rs).
+    Newmark { beta: f64, gamma: f64 },
+    /// Adaptive explicit Runge–Kutta with event location at contact changes.
+    Adaptive(AdaptiveOptions),
+}
+
+impl Scheme {
+    /// Code_Aster's SCHEMA names, with defaults (module doc for the mapping).
+    pub fn from_name(name: &str) -> Option<Scheme> {
+        Some(match name.trim() {
+            "DIFF_CENTRE" => Scheme::DiffCentre,
+            "NEWMARK" => Scheme::Newmark {
+                beta: 0.25,
+                gamma: 0.5,
+            },
+            "RUNGE_KUTTA_54" | "DEVOGE" => {
+                Scheme::Adaptive(AdaptiveOptions::new(RkPair::DormandPrince54))
+            }
+            "RUNGE_KUTTA_32" | "ADAPT_ORDRE1" | "ADAPT_ORDRE2" => {
+                Scheme::Adaptive(AdaptiveOptions::new(RkPair::BogackiShampine32))
+            }
+            _ => return None,
+        })
+    }
+}

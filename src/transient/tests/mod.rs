@@ -1,0 +1,62 @@
+//! Tests of the transient module, one concern per file: an exact event-driven reference
+//! (reference.rs) and the convergence against it (impact.rs), energy (energy.rs), the
+//! Coulomb oscillator of sdnd100a (coulomb.rs), obstacle geometry and forces
+//! (geometry.rs), stability (stability.rs), the sparse structure (sparse.rs).
+
+mod coulomb;
+mod energy;
+mod geometry;
+mod impact;
+mod reference;
+mod sparse;
+mod stability;
+
+use super::*;
+
+/// One DOF along global Y against a one-sided stop at y = g: a PLAN_Y obstacle whose
+/// walls are at g and g − 2J, J = 10 (never reached), stiffness `kn`, damping `cn`.
+pub(super) fn stop_shock(g: f64, kn: f64, cn: f64) -> Shock {
+    let j = 10.0;
+    let spec = ShockSpec {
+        obstacle: ObstacleKind::PlanY,
+        orig_obst: [0.0, g - j, 0.0],
+        norm_obst: [0.0, 0.0, 1.0],
+        angl_vril: None,
+        node1: [0.0; 3],
+        node2: None,
+        jeu: j,
+        dist1: 0.0,
+        dist2: 0.0,
+        rigi_nor: kn,
+        amor_nor: cn,
+        rigi_tan: 0.0,
+        amor_tan: 0.0,
+        friction: Friction::None,
+    };
+    Shock::new(spec, NodeRows::from_modes(&[0.0], &[1.0], &[0.0]), None).unwrap()
+}
+
+/// m = 1, k given, no damping.
+pub(super) fn one_dof(k: f64) -> DenseStructure {
+    DenseStructure::diagonal(vec![1.0], vec![k], None).unwrap()
+}
+
+pub(super) fn run(
+    structure: &dyn Structure,
+    shocks: &mut [Shock],
+    init: (&[f64], &[f64]),
+    scheme: Scheme,
+    grid: TimeGrid,
+    archive: &Archive,
+) -> Result<Trajectory, TransientError> {
+    integrate(
+        structure,
+        shocks,
+        &[],
+        init,
+        scheme,
+        grid,
+        archive,
+        &mut |_| {},
+    )
+}
