@@ -76,7 +76,7 @@ enum Command {
         /// Scratch directory for case files and databases.
         #[arg(long, default_value = "target/bench")]
         dir: PathBuf,
-        /// Sections to run: whole, hnl, n, det, routes, compare, reduced (default: all).
+        /// Sections to run: whole, hnl, n, det, routes, compare, reduced, transient (default: all).
         #[arg(long)]
         only: Vec<String>,
         /// The --old binary reads DIR_EVOLUTION=1 as forward (before the DIR_EVOLUTION

@@ -51,6 +51,11 @@ fn the_coulomb_oscillator_loses_two_c_per_half_swing_then_sticks() {
 }
 
 #[test]
+fn a_damped_oscillator_under_a_step_force_by_coef_mult_and_fonc_mult() {
+    run_case("dyna_vibra_forced.comm", 10);
+}
+
+#[test]
 fn a_transient_started_on_a_nonlinear_mode_comes_back_after_each_period() {
     run_case("dyna_vibra_nnm_check.comm", 6);
 }
@@ -113,18 +118,96 @@ fn newmark_with_a_step_longer_than_a_contact_is_refused_and_a_coarse_step_warned
     };
     let (code, out, names) = run("NEWMARK", "5.e-3");
     assert_ne!(code, Some(0), "{out}");
-    assert!(out.contains("INCREMENT/PAS") && out.contains("1e-3"), "{out}");
+    assert!(
+        out.contains("INCREMENT/PAS") && out.contains("1e-3"),
+        "{out}"
+    );
     assert!(!names.iter().any(|n| n == "TR"), "{names:?}");
     // 6.3 steps per contact: accepted, with the alarm naming the step to take.
     for scheme in ["NEWMARK", "DIFF_CENTRE"] {
         let (code, out, _) = run(scheme, "5.e-4");
         assert_eq!(code, Some(0), "{out}");
-        assert!(out.contains("<DYNA_VIBRA_1>") && out.contains("6.3 steps"), "{out}");
+        assert!(
+            out.contains("<DYNA_VIBRA_1>") && out.contains("6.3 steps"),
+            "{out}"
+        );
     }
     // 10 steps per contact or more: no alarm.
     let (code, out, _) = run("NEWMARK", "2.5e-4");
     assert_eq!(code, Some(0), "{out}");
     assert!(!out.contains("DYNA_VIBRA_1"), "{out}");
+}
+
+/// The rows (INST, NUME_CMP, DEPL, VITE) of table concept `name` in the database `db`.
+fn rows(db: &Path, name: &str) -> Vec<(f64, i64, f64, f64)> {
+    let conn = rusqlite::Connection::open(db).unwrap();
+    let mut stmt = conn
+        .prepare(&format!(
+            "SELECT INST, NUME_CMP, DEPL, VITE FROM \"{name}\" ORDER BY NUME_ORDRE, NUME_CMP"
+        ))
+        .unwrap();
+    stmt.query_map([], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?, r.get(3)?)))
+        .unwrap()
+        .collect::<Result<Vec<_>, _>>()
+        .unwrap()
+}
+
+#[test]
+fn dyna_tran_modal_in_either_spelling_is_dyna_vibra() {
+    // Version 10's names (MASS_GENE, METHODE, AMOR_REDUIT, VITE_INIT_GENE, CHOC) and the
+    // later ones (MATR_MASS, SCHEMA_TEMPS, AMOR_MODAL, VITE) give DYNA_VIBRA's run to the
+    // bit: DEVOGE is RUNGE_KUTTA_54 with its default TOLERANCE.
+    let choc = SHOCK.replace("COMPORTEMENT=_F(RELATION='DIS_CHOC', ", "CHOC=_F(");
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(case("dyna_vibra_impact.comm")).unwrap();
+    let head = text.split("TI = (").next().unwrap();
+    std::fs::copy(
+        case("dyna_vibra_impact.mail"),
+        dir.path().join("impact.mail"),
+    )
+    .unwrap();
+    let comm = dir.path().join("impact.comm");
+    std::fs::write(
+        &comm,
+        format!(
+            "{head}\n\
+             A = DYNA_TRAN_MODAL(MASS_GENE=MGEN, RIGI_GENE=KGEN, METHODE='DEVOGE', AMOR_REDUIT=0.01, \
+             ETAT_INIT=_F(VITE_INIT_GENE=VGEN), INCREMENT=_F(INST_FIN=0.05, PAS=1.e-4), {choc})\n\
+             B = DYNA_TRAN_MODAL(MATR_MASS=MGEN, MATR_RIGI=KGEN, SCHEMA_TEMPS=_F(SCHEMA='DEVOGE'), \
+             AMOR_MODAL=_F(AMOR_REDUIT=0.01), ETAT_INIT=_F(VITE=VGEN), \
+             INCREMENT=_F(INST_FIN=0.05, PAS=1.e-4), {choc})\n\
+             C = DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='GENE', MATR_MASS=MGEN, MATR_RIGI=KGEN, \
+             SCHEMA_TEMPS=_F(SCHEMA='RUNGE_KUTTA_54'), AMOR_MODAL=_F(AMOR_REDUIT=0.01), \
+             ETAT_INIT=_F(VITE=VGEN), INCREMENT=_F(INST_FIN=0.05, PAS=1.e-4), {SHOCK})\n\
+             FIN()\n"
+        ),
+    )
+    .unwrap();
+    let db = dir.path().join("case.db");
+    let (code, out) = run_file(&comm, &db);
+    assert_eq!(code, Some(0), "{out}");
+    let c = rows(&db, "C");
+    assert!(c.len() > 10, "{}", c.len());
+    assert_eq!(rows(&db, "A"), c);
+    assert_eq!(rows(&db, "B"), c);
+}
+
+#[test]
+fn a_dyna_tran_modal_error_names_the_keyword_as_written() {
+    let call = "A = DYNA_TRAN_MODAL(MASS_GENE=MASS, RIGI_GENE=KGEN, METHODE='EULER', \
+                INCREMENT=_F(INST_FIN=0.05, PAS=1.e-5))";
+    let (code, out, _) = run_impact_with(call);
+    assert_ne!(code, Some(0), "{out}");
+    // MASS is an assembled matrix: the catalog of DYNA_TRAN_MODAL refuses it by its name.
+    assert!(out.contains("MASS_GENE"), "{out}");
+    let call = format!(
+        "A = DYNA_TRAN_MODAL(MASS_GENE=MGEN, RIGI_GENE=KGEN, METHODE='EULER', \
+         ETAT_INIT=_F(VITE_INIT_GENE=VGEN), INCREMENT=_F(INST_FIN=0.05, PAS=5.e-3), {})",
+        SHOCK.replace("COMPORTEMENT=_F(RELATION='DIS_CHOC', ", "CHOC=_F(")
+    );
+    let (code, out, _) = run_impact_with(&call);
+    assert_ne!(code, Some(0), "{out}");
+    assert!(out.contains("DYNA_TRAN_MODAL/INCREMENT/PAS"), "{out}");
 }
 
 #[test]
@@ -177,4 +260,101 @@ fn rest_gene_phys_outside_the_archived_interval_is_refused() {
     assert_ne!(code, Some(0), "{out}");
     assert!(out.contains("INST") && out.contains("outside"), "{out}");
     assert!(names.iter().any(|n| n == "TR") && names.iter().any(|n| n == "TR_CHOC"));
+}
+
+/// A chain of ten masses from a wall (testcases/chain_fixed_free.mail: k = 50, m = 0.5),
+/// a shock at its free end N10, on a basis of its `modes` lowest modes: (code, output).
+fn chain_with_modes(modes: usize) -> (Option<i32>, String) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("chain_fixed_free.mail"), dir.path().join("chain.mail")).unwrap();
+    let comm = dir.path().join("chain.comm");
+    std::fs::write(
+        &comm,
+        format!(
+            "DEBUT()\n\
+             MAIL = LIRE_MAILLAGE(FORMAT='ASTER', UNITE=20)\n\
+             MODELE = AFFE_MODELE(MAILLAGE=MAIL, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='DIS_T'))\n\
+             CARA = AFFE_CARA_ELEM(MODELE=MODELE, DISCRET=(_F(GROUP_MA='RESSORTS', CARA='K_T_D_L', VALE=(50., 0., 0.)), \
+             _F(GROUP_MA='MASSES', CARA='M_T_D_N', VALE=0.5)))\n\
+             CL = AFFE_CHAR_CINE(MODELE=MODELE, MECA_IMPO=(_F(GROUP_NO='WALL', DX=0.), _F(GROUP_NO='ALL', DY=0., DZ=0.)))\n\
+             ASSEMBLAGE(MODELE=MODELE, CARA_ELEM=CARA, CHAR_CINE=CL, NUME_DDL=CO('NUME'), \
+             MATR_ASSE=(_F(MATRICE=CO('K'), OPTION='RIGI_MECA'), _F(MATRICE=CO('M'), OPTION='MASS_MECA')))\n\
+             MODES = CALC_MODES(MATR_RIGI=K, MATR_MASS=M, OPTION='PLUS_PETITE', CALC_FREQ=_F(NMAX_FREQ={modes}))\n\
+             NG = NUME_DDL_GENE(BASE=MODES, STOCKAGE='DIAG')\n\
+             MG = PROJ_MATR_BASE(BASE=MODES, NUME_DDL_GENE=NG, MATR_ASSE=M)\n\
+             KG = PROJ_MATR_BASE(BASE=MODES, NUME_DDL_GENE=NG, MATR_ASSE=K)\n\
+             PLAN = DEFI_OBSTACLE(TYPE='PLAN_Y')\n\
+             TR = DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='GENE', MATR_MASS=MG, MATR_RIGI=KG, \
+             SCHEMA_TEMPS=_F(SCHEMA='RUNGE_KUTTA_54'), INCREMENT=_F(INST_FIN=0.1, PAS=1.e-3), \
+             COMPORTEMENT=_F(RELATION='DIS_CHOC', NOEUD_1='N10', OBSTACLE=PLAN, \
+             ORIG_OBST=(9., 0., 0.), NORM_OBST=(0., 1., 0.), JEU=1.01, RIGI_NOR=1.e3))\n\
+             FIN()\n"
+        ),
+    )
+    .unwrap();
+    run_file(&comm, &dir.path().join("case.db"))
+}
+
+#[test]
+fn a_basis_without_the_static_flexibility_of_the_shock_is_named() {
+    // Mode j of the fixed-free chain, mass-normalised, has the flexibility
+    // sin²(Nθ_j)/((2N + 1) k sin²(θ_j/2)) at the free end, θ_j = (2j − 1)π/(2N + 1); the
+    // static one is N/k. With N = 10 the first mode holds 84.8 % of it.
+    let (n, k) = (10.0f64, 50.0f64);
+    let theta = std::f64::consts::PI / (2.0 * n + 1.0);
+    let share =
+        (n * theta).sin().powi(2) / ((2.0 * n + 1.0) * k * (theta / 2.0).sin().powi(2)) / (n / k);
+    let (code, out) = chain_with_modes(1);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("<DYNA_VIBRA_2>"), "{out}");
+    assert!(
+        out.contains(&format!("holds {:.1} %", 100.0 * share)),
+        "{share}: {out}"
+    );
+    // Every mode: the whole flexibility, no alarm.
+    let (code, out) = chain_with_modes(10);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(!out.contains("DYNA_VIBRA_2"), "{out}");
+}
+
+#[test]
+fn proche_finds_the_mode_nearest_each_frequency_once() {
+    // The chain's exact frequencies: 2 sqrt(k/m) sin((2j - 1) pi / (2 (2N + 1))) / (2 pi).
+    let f = |j: f64| {
+        2.0 * (100.0f64).sqrt() * ((2.0 * j - 1.0) * std::f64::consts::PI / 42.0).sin()
+            / (2.0 * std::f64::consts::PI)
+    };
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(case("chain_fixed_free.mail"), dir.path().join("chain.mail")).unwrap();
+    let comm = dir.path().join("chain.comm");
+    // Near mode 2 twice (once from each side) and near mode 5: two modes.
+    std::fs::write(
+        &comm,
+        format!(
+            "DEBUT()\n\
+             MAIL = LIRE_MAILLAGE(FORMAT='ASTER', UNITE=20)\n\
+             MODELE = AFFE_MODELE(MAILLAGE=MAIL, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='DIS_T'))\n\
+             CARA = AFFE_CARA_ELEM(MODELE=MODELE, DISCRET=(_F(GROUP_MA='RESSORTS', CARA='K_T_D_L', VALE=(50., 0., 0.)), \
+             _F(GROUP_MA='MASSES', CARA='M_T_D_N', VALE=0.5)))\n\
+             CL = AFFE_CHAR_CINE(MODELE=MODELE, MECA_IMPO=(_F(GROUP_NO='WALL', DX=0.), _F(GROUP_NO='ALL', DY=0., DZ=0.)))\n\
+             ASSEMBLAGE(MODELE=MODELE, CARA_ELEM=CARA, CHAR_CINE=CL, NUME_DDL=CO('NUME'), \
+             MATR_ASSE=(_F(MATRICE=CO('K'), OPTION='RIGI_MECA'), _F(MATRICE=CO('M'), OPTION='MASS_MECA')))\n\
+             MODES = CALC_MODES(MATR_RIGI=K, MATR_MASS=M, OPTION='PROCHE', CALC_FREQ=_F(FREQ=({}, {}, {})))\n\
+             TEST_RESU(RESU=(_F(RESULTAT=MODES, NUME_ORDRE=1, PARA='FREQ', VALE_REFE={}, REFERENCE='ANALYTIQUE', PRECISION=1.e-8),\n\
+             _F(RESULTAT=MODES, NUME_ORDRE=2, PARA='FREQ', VALE_REFE={}, REFERENCE='ANALYTIQUE', PRECISION=1.e-8)))\n\
+             FIN()\n",
+            0.97 * f(2.0),
+            1.02 * f(2.0),
+            f(5.0) + 0.1,
+            f(2.0),
+            f(5.0)
+        ),
+    )
+    .unwrap();
+    let (code, out) = run_file(&comm, &dir.path().join("case.db"));
+    assert_eq!(code, Some(0), "{out}");
+    assert!(
+        out.contains("MODES: 2 mode(s)") && out.contains("tests: 2 OK, 0 NOOK"),
+        "{out}"
+    );
 }

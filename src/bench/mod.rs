@@ -15,6 +15,7 @@
 pub mod curves;
 pub mod measure;
 pub mod models;
+mod transient;
 
 use crate::error::{Error, ErrorKind, Result};
 use crate::linalg::craig_bampton::ModeCut;
@@ -33,7 +34,7 @@ pub struct Options {
     pub repeats: usize,
     /// Scratch directory (case files, databases).
     pub dir: PathBuf,
-    /// Sections to run (empty: all): whole, hnl, n, det, routes, compare.
+    /// Sections to run (empty: all): whole, hnl, n, det, routes, compare, reduced, transient.
     pub only: Vec<String>,
     /// The old binary reads DIR_EVOLUTION=1 as forward (before the DIR_EVOLUTION change):
     /// its command files (generated ones and the sdnd122 copies) get the sign flipped.
@@ -952,6 +953,9 @@ pub fn run(opts: &Options, out: &mut dyn Write) -> Result<()> {
     }
     if b.wants("reduced") {
         b.reduced_section()?;
+    }
+    if b.wants("transient") {
+        b.transient_section()?;
     }
     Ok(())
 }

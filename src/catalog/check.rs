@@ -29,6 +29,7 @@ pub const CONCEPT_TYPES: &[&str] = &[
     "cham_no_sdaster",
     "table_fonction",
     "tran_gene",
+    "vect_elem_depl_r",
 ];
 
 /// Every problem found in the embedded catalogs (parse errors included); empty when fine.

@@ -80,33 +80,83 @@ pub fn operator_names() -> Vec<&'static str> {
 /// Code_Aster operators that aster-nl does not implement, with what to do instead: a
 /// file using one gets a clear error naming it, not "unknown operator".
 const UNSUPPORTED: &[(&str, &str)] = &[
-    ("DEFI_FICHIER", "map logical units with --unit N=FILE or the F lines of a .export"),
+    (
+        "DEFI_FICHIER",
+        "map logical units with --unit N=FILE or the F lines of a .export",
+    ),
     ("INFO_MODE", "CALC_MODES prints the frequencies it finds"),
-    ("NORM_MODE", "CALC_MODES normalises with its NORM_MODE keyword"),
+    (
+        "NORM_MODE",
+        "CALC_MODES normalises with its NORM_MODE keyword",
+    ),
     ("EXTR_MODE", "filter the modes with CALC_MODES's CALC_FREQ"),
-    ("MACRO_MATR_ASSE", "use ASSEMBLAGE, or CALC_MATR_ELEM + NUME_DDL + ASSE_MATRICE"),
+    (
+        "MACRO_MATR_ASSE",
+        "use ASSEMBLAGE, or CALC_MATR_ELEM + NUME_DDL + ASSE_MATRICE",
+    ),
     ("COMB_MATR_ASSE", "assemble the combined stiffness directly"),
-    ("MODE_ITER_INV", "use CALC_MODES (OPTION='CENTRE' or 'BANDE')"),
+    (
+        "MODE_ITER_INV",
+        "use CALC_MODES (OPTION='CENTRE' or 'BANDE')",
+    ),
     ("CALC_MODAL", "use CALC_MODES"),
-    ("DYNA_LINE_TRAN", "transient responses are not computed"),
+    (
+        "DYNA_LINE_TRAN",
+        "use DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='PHYS', ...)",
+    ),
+    (
+        "MODE_STATIQUE",
+        "static modes are not computed: DYNA_VIBRA runs on a CALC_MODES basis and its alarm \
+         DYNA_VIBRA_2 says when that basis misses a shock's static flexibility",
+    ),
+    (
+        "DEFI_BASE_MODALE",
+        "give the CALC_MODES result itself as BASE to NUME_DDL_GENE and PROJ_*_BASE",
+    ),
+    (
+        "PROJ_BASE",
+        "use NUME_DDL_GENE, PROJ_MATR_BASE and PROJ_VECT_BASE",
+    ),
+    (
+        "POST_DYNA_MODA_T",
+        "query the shocks' table <result>_CHOC of DYNA_VIBRA (FN, FT1, ...) with CALC_TABLE, \
+         IMPR_TABLE or RECU_FONCTION",
+    ),
     ("DYNA_NON_LINE", "transient responses are not computed"),
-    ("DYNA_TRAN_MODAL", "use DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='GENE', ...) with the same matrices and CHOC"),
     ("STAT_NON_LINE", "static analyses are not computed"),
     ("MECA_STATIQUE", "static analyses are not computed"),
     ("CALC_CHAMP", "fields are not post-processed"),
     ("POST_ELEM", "post-processing of fields is not available"),
-    ("POST_RELEVE_T", "query the result tables of the database instead"),
-    ("CREA_RESU", "results come from CALC_MODES, MODE_NON_LINE and REST_MODE_NONL"),
+    (
+        "POST_RELEVE_T",
+        "query the result tables of the database instead",
+    ),
+    (
+        "CREA_RESU",
+        "results come from CALC_MODES, MODE_NON_LINE and REST_MODE_NONL",
+    ),
     ("PROJ_CHAMP", "fields are not projected"),
-    ("CALC_FONCTION", "RECU_FONCTION and DEFI_FONCTION build functions"),
+    (
+        "CALC_FONCTION",
+        "RECU_FONCTION and DEFI_FONCTION build functions",
+    ),
     ("DEFI_CONSTANTE", "use a Python variable"),
     ("FORMULE", "use a Python expression"),
-    ("DEFI_NAPPE", "functions of two parameters are not available"),
+    (
+        "DEFI_NAPPE",
+        "functions of two parameters are not available",
+    ),
     ("LIRE_TABLE", "build the table with CREA_TABLE"),
     ("INCLUDE", "put the included commands in the file"),
     ("IMPR_CO", "`aster-nl tables DB` lists the concepts"),
-    ("TEST_FICHIER", "test values with TEST_TABLE, TEST_FONCTION or TEST_RESU"),
-    ("MACR_LIGN_COUPE", "post-processing of fields is not available"),
+    (
+        "TEST_FICHIER",
+        "test values with TEST_TABLE, TEST_FONCTION or TEST_RESU",
+    ),
+    (
+        "MACR_LIGN_COUPE",
+        "post-processing of fields is not available",
+    ),
 ];
 
 /// What to do instead of `op`, if it is a Code_Aster operator that aster-nl does not

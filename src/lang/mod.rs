@@ -115,7 +115,7 @@ impl Default for Limits {
 }
 
 /// The Python names of a running file.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct Env {
     /// Execution bounds (defaults suit real studies).
     pub limits: Limits,
@@ -125,6 +125,35 @@ pub struct Env {
     pub(crate) funcs: HashMap<String, String>,
     /// Names bound to the `math` module (`import math [as m]`).
     pub(crate) modules: HashSet<String>,
+}
+
+/// The math names a Code_Aster command file sees without importing them: its supervisor
+/// evaluates command files where `sin, cos, tan, asin, acos, atan2, atan, sinh, cosh, tanh`
+/// and `pi, exp, log, log10, sqrt` are already imported (its validation files, e.g.
+/// sdnd100a, write `cos(pi / 4.)` with no import). Other math names need
+/// `from math import ...`, as in Code_Aster.
+pub const CODE_ASTER_MATH: &[&str] = &[
+    "sin", "cos", "tan", "asin", "acos", "atan2", "atan", "sinh", "cosh", "tanh", "exp", "log",
+    "log10", "sqrt",
+];
+
+impl Default for Env {
+    /// A file's names at its start: Code_Aster's preloaded math names ([`CODE_ASTER_MATH`]
+    /// and `pi`).
+    fn default() -> Self {
+        let mut env = Env {
+            limits: Limits::default(),
+            vars: HashMap::new(),
+            funcs: HashMap::new(),
+            modules: HashSet::new(),
+        };
+        for f in CODE_ASTER_MATH {
+            env.import_fn(f, f);
+        }
+        env.vars
+            .insert("pi".into(), Value::Real(std::f64::consts::PI));
+        env
+    }
 }
 
 impl Env {

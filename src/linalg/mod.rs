@@ -4,5 +4,6 @@
 
 pub mod craig_bampton;
 pub mod eigen;
+pub mod flexibility;
 pub mod projection;
 pub mod sparse;

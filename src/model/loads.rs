@@ -1,4 +1,5 @@
-//! Kinematic conditions: AFFE_CHAR_CINE (MECA_IMPO) and AFFE_CHAR_MECA (DDL_IMPO).
+//! Kinematic conditions: AFFE_CHAR_CINE (MECA_IMPO) and AFFE_CHAR_MECA (DDL_IMPO); and
+//! AFFE_CHAR_MECA's nodal forces (FORCE_NODALE), which ASSE_VECTEUR assembles.
 //!
 //! Both are applied by eliminating the blocked DOFs (Code_Aster dualises AFFE_CHAR_MECA
 //! with Lagrange multipliers; for homogeneous conditions both give the same modes).
@@ -29,12 +30,24 @@ pub struct BlockedDof {
     pub value: f64,
 }
 
+/// A force (FX, FY, FZ) or moment (MX, MY, MZ) at a node, by the DOF it works on.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct NodalForce {
+    pub node: String,
+    pub cmp: Cmp,
+    pub value: f64,
+}
+
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct KinematicLoad {
     pub kind: LoadKind,
     pub model: String,
     /// In definition order; a DOF given twice keeps its last value.
     pub blocked: Vec<BlockedDof>,
+    /// FORCE_NODALE, in definition order; a DOF given twice keeps its last value. Absent
+    /// in loads stored before forces were read.
+    #[serde(default)]
+    pub forces: Vec<NodalForce>,
 }
 
 /// One component imposed by a condition, and the keyword path that gave it.
@@ -149,7 +162,59 @@ impl KinematicLoad {
             kind,
             model: model_name.to_string(),
             blocked,
+            forces: Vec::new(),
         })
+    }
+
+    /// FORCE_NODALE's occurrences (each a [`Condition`] whose components are the DOFs the
+    /// forces work on: FX on DX, ..., MZ on DRZ) as forces at nodes. As Code_Aster, a
+    /// component must exist on every node selected explicitly; a later occurrence
+    /// overrides an earlier one at the same node and DOF.
+    pub fn nodal_forces(
+        model: &Model,
+        mesh: &Mesh,
+        occurrences: &[Condition],
+    ) -> Result<Vec<NodalForce>> {
+        let carried = model.node_components(mesh);
+        let mut forces: Vec<NodalForce> = Vec::new();
+        let mut seen: HashMap<(usize, Cmp), usize> = HashMap::new();
+        for cond in occurrences {
+            for n in model_select_nodes(mesh, &cond.on)? {
+                let (Some(node), Some(cmps)) = (mesh.nodes.get(n), carried.get(&n)) else {
+                    if cond.on.all {
+                        continue;
+                    }
+                    return Err(Error::input(format!(
+                        "node {} carries no DOF in the model: a force there acts on nothing",
+                        mesh.nodes.get(n).map_or("?", |x| x.name.as_str())
+                    ))
+                    .keyword(cond.keyword.clone()));
+                };
+                for c in &cond.components {
+                    if !cmps.contains(&c.cmp) {
+                        if cond.on.all {
+                            continue;
+                        }
+                        return Err(Error::input(format!(
+                            "node {} has no DOF {} for this force in the model",
+                            node.name, c.cmp
+                        ))
+                        .keyword(c.keyword.clone()));
+                    }
+                    if let Some(f) = seen.get(&(n, c.cmp)).and_then(|&i| forces.get_mut(i)) {
+                        f.value = c.value;
+                    } else {
+                        seen.insert((n, c.cmp), forces.len());
+                        forces.push(NodalForce {
+                            node: node.name.clone(),
+                            cmp: c.cmp,
+                            value: c.value,
+                        });
+                    }
+                }
+            }
+        }
+        Ok(forces)
     }
 
     /// Blocked DOFs with a nonzero imposed value (ignored by modal analysis).

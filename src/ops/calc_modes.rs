@@ -54,7 +54,10 @@ pub fn run_with_option(ctx: &mut OpContext<'_>, args: &Args, option: &str) -> Re
         );
     }
     check_definite(ctx, &kr, &mr, &k, k_name, m_name)?;
-    let set = eigen::solve_modes(&kr, &mr, &request, &EigenOptions::default())?;
+    let set = match &request {
+        Request::One(r) => eigen::solve_modes(&kr, &mr, r, &EigenOptions::default())?,
+        Request::Nearest(freqs) => nearest_modes(&kr, &mr, freqs)?,
+    };
     if ctx.info >= 2 {
         ctx.say(&format!(
             "{op}: {} DOFs ({} free), solver: {}",
@@ -65,7 +68,10 @@ pub fn run_with_option(ctx: &mut OpContext<'_>, args: &Args, option: &str) -> Re
     }
     let calc_freq = args.req_fact("CALC_FREQ")?;
     let stop_band_empty = args.req_text("STOP_BANDE_VIDE")? != "NON";
-    if set.omega2.is_empty() && matches!(request, ModeRequest::Band { .. }) && stop_band_empty {
+    if set.omega2.is_empty()
+        && matches!(request, Request::One(ModeRequest::Band { .. }))
+        && stop_band_empty
+    {
         return Err(Error::input("no mode in the requested band")
             .keyword(format!("{op}/CALC_FREQ/FREQ"))
             .hint("widen FREQ, or set STOP_BANDE_VIDE='NON' to accept an empty result"));
@@ -156,13 +162,78 @@ pub fn run_with_option(ctx: &mut OpContext<'_>, args: &Args, option: &str) -> Re
     )
 }
 
-fn mode_request(args: &Args, option: &str, op: &str) -> Result<ModeRequest> {
+/// What a call asks the solver: one request, or (OPTION='PROCHE') the mode nearest each
+/// of several frequencies.
+enum Request {
+    One(ModeRequest),
+    Nearest(Vec<f64>),
+}
+
+/// OPTION='PROCHE': the mode nearest each frequency, each found as CENTRE's one mode
+/// closest to it; a mode nearest two of them is kept once. In increasing frequency.
+fn nearest_modes(
+    k: &faer::sparse::SparseColMat<usize, f64>,
+    m: &faer::sparse::SparseColMat<usize, f64>,
+    freqs: &[f64],
+) -> Result<eigen::ModeSet> {
+    let mut found: Vec<(f64, Vec<f64>, f64)> = Vec::new();
+    let mut method = String::new();
+    for &f in freqs {
+        let set = eigen::solve_modes(
+            k,
+            m,
+            &ModeRequest::Centre { f, n: 1 },
+            &EigenOptions::default(),
+        )?;
+        method = set.method.clone();
+        for ((w2, v), r) in set.omega2.into_iter().zip(set.vectors).zip(set.residuals) {
+            // The same mode found again from another frequency (ω² equal to round-off).
+            let again = found
+                .iter()
+                .any(|(o, _, _)| (o - w2).abs() <= 1e-10 * o.abs().max(w2.abs()));
+            if !again {
+                found.push((w2, v, r));
+            }
+        }
+    }
+    found.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut set = eigen::ModeSet {
+        omega2: Vec::new(),
+        vectors: Vec::new(),
+        residuals: Vec::new(),
+        method,
+    };
+    for (w2, v, r) in found {
+        set.omega2.push(w2);
+        set.vectors.push(v);
+        set.residuals.push(r);
+    }
+    Ok(set)
+}
+
+fn mode_request(args: &Args, option: &str, op: &str) -> Result<Request> {
     let cf = args.req_fact("CALC_FREQ")?;
     // FREQ has no default: absent, it is an empty list (refused below for BANDE, CENTRE).
     let freqs = cf.reals("FREQ").unwrap_or_default();
     // At least 1: the catalog's bound.
     let n = cf.req_count("NMAX_FREQ")?;
-    match option {
+    if option == "PROCHE" {
+        if freqs.is_empty() {
+            return Err(Error::validation(
+                "OPTION='PROCHE' needs the frequencies to find the nearest modes of, FREQ=(f1, ...)",
+            )
+            .keyword(format!("{op}/CALC_FREQ/FREQ")));
+        }
+        return Ok(Request::Nearest(freqs));
+    }
+    if freqs.len() > 2 {
+        return Err(Error::validation(format!(
+            "OPTION='{option}' takes at most two frequencies, got {}",
+            freqs.len()
+        ))
+        .keyword(format!("{op}/CALC_FREQ/FREQ")));
+    }
+    Ok(Request::One(match option {
         "PLUS_PETITE" => Ok(ModeRequest::Smallest { n }),
         "BANDE" => match freqs.as_slice() {
             [f1, f2] if f1 < f2 => Ok(ModeRequest::Band {
@@ -185,7 +256,7 @@ fn mode_request(args: &Args, option: &str, op: &str) -> Result<ModeRequest> {
             Error::validation(format!("OPTION='{other}' is not supported"))
                 .keyword(format!("{op}/OPTION")),
         ),
-    }
+    }?))
 }
 
 /// NORM_MODE on the reduced (free) DOFs.

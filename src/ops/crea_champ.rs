@@ -43,19 +43,33 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     gene::save_field(ctx.store, &name, &field)
 }
 
-/// The mesh the field lives on: MAILLAGE, or that of MODELE, NUME_DDL or CHAM_NO.
+/// The mesh the field lives on: that of each of MAILLAGE, MODELE, NUME_DDL and CHAM_NO
+/// given, which must be the same.
 fn mesh_of(ctx: &OpContext<'_>, args: &Args) -> Result<String> {
+    let mut meshes: Vec<(&str, String)> = Vec::new();
     if let Some(m) = args.concept("MAILLAGE") {
-        return Ok(m.name.clone());
+        meshes.push(("MAILLAGE", m.name.clone()));
     }
     if let Some(m) = args.concept("MODELE") {
-        return Ok(model::load_model(ctx.store, &m.name)?.mesh);
+        meshes.push(("MODELE", model::load_model(ctx.store, &m.name)?.mesh));
     }
     if let Some(n) = args.concept("NUME_DDL") {
-        return Ok(matrix::load_numbering(ctx.store, &n.name)?.mesh);
+        meshes.push(("NUME_DDL", matrix::load_numbering(ctx.store, &n.name)?.mesh));
     }
     if let Some(f) = args.concept("CHAM_NO") {
-        return Ok(gene::load_field(ctx.store, &f.name)?.mesh);
+        meshes.push(("CHAM_NO", gene::load_field(ctx.store, &f.name)?.mesh));
     }
-    Err(Error::validation("give MAILLAGE, MODELE, NUME_DDL or CHAM_NO").keyword("CREA_CHAMP"))
+    let Some((_, first)) = meshes.first().cloned() else {
+        return Err(
+            Error::validation("give MAILLAGE, MODELE, NUME_DDL or CHAM_NO").keyword("CREA_CHAMP"),
+        );
+    };
+    if let Some((key, other)) = meshes.iter().find(|(_, m)| *m != first) {
+        return Err(Error::input(format!(
+            "{key} is on mesh {other}, {} on mesh {first}",
+            meshes[0].0
+        ))
+        .keyword(format!("CREA_CHAMP/{key}")));
+    }
+    Ok(first)
 }

@@ -17,11 +17,13 @@ pub mod affe_char_meca;
 pub mod affe_materiau;
 pub mod affe_modele;
 pub mod asse_matrice;
+pub mod asse_vecteur;
 pub mod assemblage;
 pub mod calc_matr_elem;
 pub mod calc_modes;
 pub mod calc_stabilite;
 pub mod calc_table;
+pub mod calc_vect_elem;
 pub mod crea_champ;
 pub mod crea_maillage;
 pub mod crea_table;
@@ -31,6 +33,7 @@ pub mod defi_list_reel;
 pub mod defi_materiau;
 pub mod defi_obstacle;
 pub mod detruire;
+pub mod dyna_tran_modal;
 pub mod dyna_vibra;
 pub mod extr_table;
 pub mod impr_fonction;
@@ -336,6 +339,9 @@ pub const OPERATORS: &[(&str, OpFn)] = &[
     ("DYNA_VIBRA", dyna_vibra::run),
     ("REST_GENE_PHYS", rest_gene_phys::run),
     ("DEFI_LIST_REEL", defi_list_reel::run),
+    ("DYNA_TRAN_MODAL", dyna_tran_modal::run),
+    ("CALC_VECT_ELEM", calc_vect_elem::run),
+    ("ASSE_VECTEUR", asse_vecteur::run),
 ];
 
 /// The operator that implements `name`, if we have one. Operators handled by the

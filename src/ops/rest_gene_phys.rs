@@ -85,21 +85,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     }
     ctx.create(&name, "dyna_trans")?;
     table_store::save_table(ctx.store, &name, &t)?;
-    let blocked = modes
-        .numbering
-        .dofs
-        .iter()
-        .zip(&modes.numbering.eliminated)
-        .filter(|(_, &e)| e)
-        .map(|(d, _)| (d.node.clone(), d.cmp.name().to_string()))
-        .collect();
     dyna_store::save_layout(
         ctx.store,
         &name,
-        &dyna_store::Layout {
-            mesh: modes.numbering.mesh.clone(),
-            blocked,
-        },
+        &dyna_store::Layout::of(&modes.numbering, &modes.numbering.eliminated),
     )?;
     ctx.say(&format!(
         "REST_GENE_PHYS {name}: {} at {} instants and {} DOFs of {src}",

@@ -139,21 +139,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             ctx.create(&name, "dyna_trans")?;
             table_store::save_table(ctx.store, &name, &t)?;
             // The DOFs without rows, for a reader to say why (the complement of `free`).
-            let blocked = k
-                .numbering
-                .dofs
-                .iter()
-                .zip(&k.eliminated)
-                .filter(|(_, &e)| e)
-                .map(|(dof, _)| (dof.node.clone(), dof.cmp.name().to_string()))
-                .collect();
             dyna_store::save_layout(
                 ctx.store,
                 &name,
-                &dyna_store::Layout {
-                    mesh: k.numbering.mesh.clone(),
-                    blocked,
-                },
+                &dyna_store::Layout::of(&k.numbering, &k.eliminated),
             )?;
             ctx.create(&forces, "table_sdaster")?;
             table_store::save_table(ctx.store, &forces, &f)?;

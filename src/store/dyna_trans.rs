@@ -25,6 +25,23 @@ pub struct Layout {
     pub blocked: Vec<(String, String)>,
 }
 
+impl Layout {
+    /// The layout of a time history on `numbering`'s DOFs, `eliminated` (one per DOF) the
+    /// ones without rows.
+    pub fn of(numbering: &crate::model::DofNumbering, eliminated: &[bool]) -> Layout {
+        Layout {
+            mesh: numbering.mesh.clone(),
+            blocked: numbering
+                .dofs
+                .iter()
+                .zip(eliminated)
+                .filter(|(_, &e)| e)
+                .map(|(dof, _)| (dof.node.clone(), dof.cmp.name().to_string()))
+                .collect(),
+        }
+    }
+}
+
 pub fn save_layout(store: &Store, concept: &str, layout: &Layout) -> Result<()> {
     store.put_json(concept, KEY, layout)
 }

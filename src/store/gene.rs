@@ -6,7 +6,9 @@
 //! - `cham_no_sdaster` (CREA_CHAMP): `field_values(concept, NOEUD, NOM_CMP, value)`, one
 //!   row per node and component, and the mesh in `concept_data` (key `field`);
 //! - an obstacle (DEFI_OBSTACLE, Code_Aster's `table_fonction`): its type in `concept_data`
-//!   (key `obstacle`).
+//!   (key `obstacle`);
+//! - `vect_elem_depl_r` (CALC_VECT_ELEM): the loads it names, in `concept_data` (key
+//!   `vect_elem`).
 //!
 //! Queryable as, e.g., `SELECT row, value FROM gene_entries WHERE concept = 'VITINI'`.
 
@@ -35,6 +37,7 @@ CREATE TABLE IF NOT EXISTS field_values (
 const GENE: &str = "gene";
 const FIELD: &str = "field";
 const OBSTACLE: &str = "obstacle";
+const VECT_ELEM: &str = "vect_elem";
 
 pub fn ensure_schema(store: &Store) -> Result<()> {
     store.ensure_schema(Schema::Gene, SCHEMA)
@@ -89,6 +92,21 @@ pub struct GeneVector {
 pub struct NodalField {
     pub mesh: String,
     pub values: Vec<(String, String, f64)>,
+}
+
+/// Elementary load vectors (CALC_VECT_ELEM): the loads whose nodal forces ASSE_VECTEUR
+/// sums.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct VectElem {
+    pub charges: Vec<String>,
+}
+
+pub fn save_vect_elem(store: &Store, name: &str, v: &VectElem) -> Result<()> {
+    store.put_json(name, VECT_ELEM, v)
+}
+
+pub fn load_vect_elem(store: &Store, name: &str) -> Result<VectElem> {
+    store.get_json(name, VECT_ELEM)
 }
 
 /// The geometry of an obstacle as DEFI_OBSTACLE defines it.

@@ -3,6 +3,7 @@
 //! Glue only: the keywords are read into the integrator's inputs (`space.rs`, `shocks.rs`,
 //! here), the integration is `crate::transient`, the tables are written by `output.rs`.
 
+mod basis_check;
 mod output;
 mod shocks;
 mod space;
@@ -27,6 +28,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let mesh = model::load_mesh(ctx.store, space.mesh())?;
     let (mut shocks, names) = shocks::read(ctx, args, &space, &mesh)?;
     default_tangential_damping(args, &space, &mut shocks)?;
+    basis_check::check(ctx, &space, &shocks, &names)?;
     let n = space.size();
     let (q0, v0) = initial_state(ctx, args, &space, n)?;
     let forcing = excitations(ctx, args, &space)?;

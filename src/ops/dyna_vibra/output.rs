@@ -53,20 +53,10 @@ pub fn store(
         ..
     } = space
     {
-        let blocked = numbering
-            .dofs
-            .iter()
-            .zip(eliminated)
-            .filter(|(_, &e)| e)
-            .map(|(dof, _)| (dof.node.clone(), dof.cmp.name().to_string()))
-            .collect();
         dyna_store::save_layout(
             ctx.store,
             name,
-            &dyna_store::Layout {
-                mesh: numbering.mesh.clone(),
-                blocked,
-            },
+            &dyna_store::Layout::of(numbering, eliminated),
         )?;
     }
     let shock_table = if shocks.is_empty() {
