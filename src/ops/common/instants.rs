@@ -47,7 +47,7 @@ pub fn picks(a: &Args, times: &[f64]) -> Result<Vec<Pick>> {
     };
     let interpolate = a.text("INTERPOL") == Some("LIN");
     let relative = a.text("CRITERE") != Some("ABSOLU");
-    let precision = a.real("PRECISION").unwrap_or(1e-6);
+    let precision = a.req_real("PRECISION")?;
     wanted
         .iter()
         .map(|&t| {

@@ -264,7 +264,7 @@ fn instant(init: &Args, times: &[f64]) -> Result<usize> {
     let Some(t) = init.real("INST_INIT") else {
         return Ok(times.len() - 1);
     };
-    let precision = init.real("PRECISION").unwrap_or(1e-6);
+    let precision = init.req_real("PRECISION")?;
     let tol = if init.text("CRITERE") == Some("ABSOLU") {
         precision
     } else {
