@@ -51,6 +51,12 @@ fn the_coulomb_oscillator_loses_two_c_per_half_swing_then_sticks() {
 }
 
 #[test]
+fn two_masses_meeting_through_a_bi_plan_match_the_impact_oscillator() {
+    let out = run_case("dyna_vibra_two_masses.comm", 24);
+    assert!(out.contains("23 contact change(s) located"), "{out}");
+}
+
+#[test]
 fn a_damped_oscillator_under_a_step_force_by_coef_mult_and_fonc_mult() {
     run_case("dyna_vibra_forced.comm", 10);
 }
