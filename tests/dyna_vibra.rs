@@ -217,6 +217,35 @@ fn a_dyna_tran_modal_error_names_the_keyword_as_written() {
 }
 
 #[test]
+fn a_run_of_more_steps_than_nb_pas_maxi_is_refused_before_it_starts() {
+    // 1e12 steps: refused at once, naming the count, instead of running for days.
+    let call = format!(
+        "TR = DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='GENE', MATR_MASS=MGEN, \
+         MATR_RIGI=KGEN, SCHEMA_TEMPS=_F(SCHEMA='NEWMARK'), ETAT_INIT=_F(VITE=VGEN), \
+         INCREMENT=_F(INST_FIN=1.e7, PAS=1.e-5), ARCHIVAGE=_F(PAS_ARCH=1000000000), {SHOCK})"
+    );
+    let (code, out, names) = run_impact_with(&call);
+    assert_ne!(code, Some(0), "{out}");
+    assert!(
+        out.contains("1e12 steps") && out.contains("NB_PAS_MAXI"),
+        "{out}"
+    );
+    assert!(!names.iter().any(|n| n == "TR"), "{names:?}");
+    // The adaptive schemes stop at NB_PAS_MAXI.
+    let call = format!(
+        "TR = DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='GENE', MATR_MASS=MGEN, \
+         MATR_RIGI=KGEN, SCHEMA_TEMPS=_F(SCHEMA='RUNGE_KUTTA_54'), ETAT_INIT=_F(VITE=VGEN), \
+         INCREMENT=_F(INST_FIN=0.5, PAS=1.e-4, NB_PAS_MAXI=100), {SHOCK})"
+    );
+    let (code, out, _) = run_impact_with(&call);
+    assert_ne!(code, Some(0), "{out}");
+    assert!(
+        out.contains("more than 100 steps") && out.contains("NB_PAS_MAXI"),
+        "{out}"
+    );
+}
+
+#[test]
 fn a_shock_on_a_node_the_mesh_lacks_names_the_keyword() {
     let call = format!(
         "TR = DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='GENE', MATR_MASS=MGEN, \

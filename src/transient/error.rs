@@ -117,7 +117,10 @@ impl From<TransientError> for Error {
                 .keyword("SCHEMA_TEMPS/NMAX_ITER_PAS")
                 .hint("raise NMAX_ITER_PAS or loosen TOLERANCE"),
             TransientError::StepLimit { .. } => Error::new(ErrorKind::Numerical, message)
-                .hint("loosen TOLERANCE, raise PAS_MINI, or shorten the interval"),
+                .keyword("INCREMENT/NB_PAS_MAXI")
+                .hint(
+                    "loosen TOLERANCE, raise PAS_MINI, shorten the interval, or raise NB_PAS_MAXI",
+                ),
             TransientError::NotConverged { .. } => Error::new(ErrorKind::Numerical, message)
                 .keyword("INCREMENT/PAS")
                 .hint("take a smaller PAS"),

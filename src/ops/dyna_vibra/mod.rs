@@ -32,8 +32,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let n = space.size();
     let (q0, v0) = initial_state(ctx, args, &space, n)?;
     let forcing = excitations(ctx, args, &space)?;
-    let scheme = scheme(args)?;
     let times = time_grid(args)?;
+    let scheme = scheme(args, &times)?;
     let archive = archive(args, &times)?;
     check_step(ctx, &scheme, &times, structure.as_ref(), &shocks, &names)?;
     let progress = Progress::new(ctx.progress, 1000, "DYNA_VIBRA", "‰ of the interval");
@@ -253,7 +253,11 @@ fn excitations(ctx: &OpContext<'_>, args: &Args, space: &Space) -> Result<Vec<Fo
     Ok(out)
 }
 
-fn scheme(args: &Args) -> Result<Scheme> {
+/// SCHEMA_TEMPS, with INCREMENT/NB_PAS_MAXI: a fixed-step run of more steps is refused
+/// before it starts, an adaptive one stops there.
+fn scheme(args: &Args, times: &TimeGrid) -> Result<Scheme> {
+    let inc = args.req_fact("INCREMENT")?;
+    let most = usize::try_from(inc.req_int("NB_PAS_MAXI")?).unwrap_or(usize::MAX);
     let st = args.req_fact("SCHEMA_TEMPS")?;
     let name = st.req_text("SCHEMA")?;
     let mut scheme = Scheme::from_name(name).ok_or_else(|| {
@@ -266,12 +270,29 @@ fn scheme(args: &Args) -> Result<Scheme> {
             *gamma = st.req_real("GAMMA")?;
         }
         Scheme::Adaptive(o) => {
+            o.max_steps = most;
             o.tolerance = st.req_real("TOLERANCE")?;
             o.pas_mini = st.real("PAS_MINI");
             o.pas_maxi = st.real("PAS_MAXI");
             o.nmax_iter_pas = usize::try_from(st.req_int("NMAX_ITER_PAS")?).unwrap_or(1);
         }
         Scheme::DiffCentre => {}
+    }
+    if !matches!(scheme, Scheme::Adaptive(_)) {
+        let span = times.t_end - times.t0;
+        // The count before it is made an integer: a PAS 1e-20 of the interval must not wrap.
+        let steps = (span / times.dt).ceil();
+        if steps > most as f64 {
+            return Err(Error::input(format!(
+                "INCREMENT gives {steps:e} steps of PAS = {:e} over [{:e}, {:e}], more than \
+                 NB_PAS_MAXI = {most}: such a run would not end in a reasonable time",
+                times.dt, times.t0, times.t_end
+            ))
+            .keyword(inc.key_path("PAS"))
+            .hint(
+                "check PAS and INST_FIN, or raise NB_PAS_MAXI if the run is meant to be that long",
+            ));
+        }
     }
     Ok(scheme)
 }
