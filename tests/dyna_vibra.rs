@@ -300,6 +300,22 @@ fn rest_gene_phys_outside_the_archived_interval_is_refused() {
 /// A chain of ten masses from a wall (testcases/chain_fixed_free.mail: k = 50, m = 0.5),
 /// a shock at its free end N10, on a basis of its `modes` lowest modes: (code, output).
 fn chain_with_modes(modes: usize) -> (Option<i32>, String) {
+    run_chain(&format!(
+        "MODES = CALC_MODES(MATR_RIGI=K, MATR_MASS=M, OPTION='PLUS_PETITE', CALC_FREQ=_F(NMAX_FREQ={modes}))\n\
+         NG = NUME_DDL_GENE(BASE=MODES, STOCKAGE='DIAG')\n\
+         MG = PROJ_MATR_BASE(BASE=MODES, NUME_DDL_GENE=NG, MATR_ASSE=M)\n\
+         KG = PROJ_MATR_BASE(BASE=MODES, NUME_DDL_GENE=NG, MATR_ASSE=K)\n\
+         PLAN = DEFI_OBSTACLE(TYPE='PLAN_Y')\n\
+         TR = DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='GENE', MATR_MASS=MG, MATR_RIGI=KG, \
+         SCHEMA_TEMPS=_F(SCHEMA='RUNGE_KUTTA_54'), INCREMENT=_F(INST_FIN=0.1, PAS=1.e-3), \
+         COMPORTEMENT=_F(RELATION='DIS_CHOC', NOEUD_1='N10', OBSTACLE=PLAN, \
+         ORIG_OBST=(9., 0., 0.), NORM_OBST=(0., 1., 0.), JEU=1.01, RIGI_NOR=1.e3))"
+    ))
+}
+
+/// The chain of testcases/chain_fixed_free.mail assembled (matrices K, M on NUME), then
+/// `body`: (code, output).
+fn run_chain(body: &str) -> (Option<i32>, String) {
     let dir = tempfile::tempdir().unwrap();
     std::fs::copy(case("chain_fixed_free.mail"), dir.path().join("chain.mail")).unwrap();
     let comm = dir.path().join("chain.comm");
@@ -314,15 +330,7 @@ fn chain_with_modes(modes: usize) -> (Option<i32>, String) {
              CL = AFFE_CHAR_CINE(MODELE=MODELE, MECA_IMPO=(_F(GROUP_NO='WALL', DX=0.), _F(GROUP_NO='ALL', DY=0., DZ=0.)))\n\
              ASSEMBLAGE(MODELE=MODELE, CARA_ELEM=CARA, CHAR_CINE=CL, NUME_DDL=CO('NUME'), \
              MATR_ASSE=(_F(MATRICE=CO('K'), OPTION='RIGI_MECA'), _F(MATRICE=CO('M'), OPTION='MASS_MECA')))\n\
-             MODES = CALC_MODES(MATR_RIGI=K, MATR_MASS=M, OPTION='PLUS_PETITE', CALC_FREQ=_F(NMAX_FREQ={modes}))\n\
-             NG = NUME_DDL_GENE(BASE=MODES, STOCKAGE='DIAG')\n\
-             MG = PROJ_MATR_BASE(BASE=MODES, NUME_DDL_GENE=NG, MATR_ASSE=M)\n\
-             KG = PROJ_MATR_BASE(BASE=MODES, NUME_DDL_GENE=NG, MATR_ASSE=K)\n\
-             PLAN = DEFI_OBSTACLE(TYPE='PLAN_Y')\n\
-             TR = DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='GENE', MATR_MASS=MG, MATR_RIGI=KG, \
-             SCHEMA_TEMPS=_F(SCHEMA='RUNGE_KUTTA_54'), INCREMENT=_F(INST_FIN=0.1, PAS=1.e-3), \
-             COMPORTEMENT=_F(RELATION='DIS_CHOC', NOEUD_1='N10', OBSTACLE=PLAN, \
-             ORIG_OBST=(9., 0., 0.), NORM_OBST=(0., 1., 0.), JEU=1.01, RIGI_NOR=1.e3))\n\
+             {body}\n\
              FIN()\n"
         ),
     )
@@ -359,34 +367,17 @@ fn proche_finds_the_mode_nearest_each_frequency_once() {
         2.0 * (100.0f64).sqrt() * ((2.0 * j - 1.0) * std::f64::consts::PI / 42.0).sin()
             / (2.0 * std::f64::consts::PI)
     };
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::copy(case("chain_fixed_free.mail"), dir.path().join("chain.mail")).unwrap();
-    let comm = dir.path().join("chain.comm");
     // Near mode 2 twice (once from each side) and near mode 5: two modes.
-    std::fs::write(
-        &comm,
-        format!(
-            "DEBUT()\n\
-             MAIL = LIRE_MAILLAGE(FORMAT='ASTER', UNITE=20)\n\
-             MODELE = AFFE_MODELE(MAILLAGE=MAIL, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='DIS_T'))\n\
-             CARA = AFFE_CARA_ELEM(MODELE=MODELE, DISCRET=(_F(GROUP_MA='RESSORTS', CARA='K_T_D_L', VALE=(50., 0., 0.)), \
-             _F(GROUP_MA='MASSES', CARA='M_T_D_N', VALE=0.5)))\n\
-             CL = AFFE_CHAR_CINE(MODELE=MODELE, MECA_IMPO=(_F(GROUP_NO='WALL', DX=0.), _F(GROUP_NO='ALL', DY=0., DZ=0.)))\n\
-             ASSEMBLAGE(MODELE=MODELE, CARA_ELEM=CARA, CHAR_CINE=CL, NUME_DDL=CO('NUME'), \
-             MATR_ASSE=(_F(MATRICE=CO('K'), OPTION='RIGI_MECA'), _F(MATRICE=CO('M'), OPTION='MASS_MECA')))\n\
-             MODES = CALC_MODES(MATR_RIGI=K, MATR_MASS=M, OPTION='PROCHE', CALC_FREQ=_F(FREQ=({}, {}, {})))\n\
-             TEST_RESU(RESU=(_F(RESULTAT=MODES, NUME_ORDRE=1, PARA='FREQ', VALE_REFE={}, REFERENCE='ANALYTIQUE', PRECISION=1.e-8),\n\
-             _F(RESULTAT=MODES, NUME_ORDRE=2, PARA='FREQ', VALE_REFE={}, REFERENCE='ANALYTIQUE', PRECISION=1.e-8)))\n\
-             FIN()\n",
-            0.97 * f(2.0),
-            1.02 * f(2.0),
-            f(5.0) + 0.1,
-            f(2.0),
-            f(5.0)
-        ),
-    )
-    .unwrap();
-    let (code, out) = run_file(&comm, &dir.path().join("case.db"));
+    let (code, out) = run_chain(&format!(
+        "MODES = CALC_MODES(MATR_RIGI=K, MATR_MASS=M, OPTION='PROCHE', CALC_FREQ=_F(FREQ=({}, {}, {})))\n\
+         TEST_RESU(RESU=(_F(RESULTAT=MODES, NUME_ORDRE=1, PARA='FREQ', VALE_REFE={}, REFERENCE='ANALYTIQUE', PRECISION=1.e-8),\n\
+         _F(RESULTAT=MODES, NUME_ORDRE=2, PARA='FREQ', VALE_REFE={}, REFERENCE='ANALYTIQUE', PRECISION=1.e-8)))",
+        0.97 * f(2.0),
+        1.02 * f(2.0),
+        f(5.0) + 0.1,
+        f(2.0),
+        f(5.0)
+    ));
     assert_eq!(code, Some(0), "{out}");
     assert!(
         out.contains("MODES: 2 mode(s)") && out.contains("tests: 2 OK, 0 NOOK"),
