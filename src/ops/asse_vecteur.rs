@@ -13,6 +13,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let numbering = matrix::load_numbering(ctx.store, &num_name)?;
     // (DOF index in the numbering) -> summed value, in the numbering's order.
     let mut sums: BTreeMap<usize, f64> = BTreeMap::new();
+    let index = numbering.index_map();
     for v in args.concepts("VECT_ELEM").unwrap_or_default() {
         for charge in gene::load_vect_elem(ctx.store, &v.name)?.charges {
             let load = model::load_load(ctx.store, &charge)?;
@@ -24,13 +25,16 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 .keyword("ASSE_VECTEUR/VECT_ELEM"));
             }
             for f in &load.forces {
-                let i = numbering.index_of(&f.node, f.cmp).ok_or_else(|| {
-                    Error::input(format!(
-                        "load {charge} has a force on {} {}, a DOF {num_name} does not number",
-                        f.node, f.cmp
-                    ))
-                    .keyword("ASSE_VECTEUR/NUME_DDL")
-                })?;
+                let i = index
+                    .get(&(f.node.as_str(), f.cmp))
+                    .copied()
+                    .ok_or_else(|| {
+                        Error::input(format!(
+                            "load {charge} has a force on {} {}, a DOF {num_name} does not number",
+                            f.node, f.cmp
+                        ))
+                        .keyword("ASSE_VECTEUR/NUME_DDL")
+                    })?;
                 *sums.entry(i).or_insert(0.0) += f.value;
             }
         }

@@ -7,6 +7,7 @@ use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::linalg::projection::{coordinates, project_vector};
 use crate::model::modes::ModeMeca;
+use crate::model::Cmp;
 use crate::store::gene::{self, GeneMeta, GeneVector, NodalField};
 use crate::store::{matrix, modes as mode_store, Store};
 
@@ -61,12 +62,9 @@ pub(crate) fn on_numbering(field: &NodalField, modes: &ModeMeca, f_name: &str) -
         .keyword("PROJ_VECT_BASE/VECT_ASSE"));
     }
     let mut u = vec![0.0; modes.numbering.len()];
+    let index = modes.numbering.index_map();
     for (node, cmp, v) in &field.values {
-        let at = modes
-            .numbering
-            .dofs
-            .iter()
-            .position(|d| d.node == *node && d.cmp.name() == cmp);
+        let at = Cmp::parse(cmp).and_then(|c| index.get(&(node.as_str(), c)).copied());
         match at {
             Some(i) if !modes.numbering.eliminated[i] => u[i] = *v,
             Some(_) => {}

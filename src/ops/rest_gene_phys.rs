@@ -35,7 +35,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     };
     let mesh = model::load_mesh(ctx.store, &modes.numbering.mesh)?;
     let sel = selection(args);
-    let nodes: Option<Vec<&str>> =
+    let nodes: Option<std::collections::HashSet<&str>> =
         if sel.all || !(sel.names_nodes() || sel.cell_groups.given() || sel.cells.given()) {
             None
         } else {

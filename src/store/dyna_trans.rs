@@ -136,3 +136,34 @@ pub fn components_at(store: &Store, concept: &str, node: &str) -> Result<Vec<Str
         .collect::<rusqlite::Result<_>>()?;
     Ok(cmps)
 }
+
+/// The stored instants of `concept`, by increasing NUME_ORDRE.
+pub fn instants(store: &Store, concept: &str) -> Result<Vec<f64>> {
+    let mut stmt = store.conn().prepare(&format!(
+        "SELECT INST FROM {} GROUP BY NUME_ORDRE ORDER BY NUME_ORDRE",
+        super::table::quote_ident(concept)
+    ))?;
+    let t = stmt
+        .query_map([], |r| r.get(0))?
+        .collect::<rusqlite::Result<_>>()?;
+    Ok(t)
+}
+
+/// (NOEUD, NOM_CMP, DEPL, VITE) of every row of instant `nume_ordre`, in one query (a start
+/// from a result reads a whole instant; a query per DOF scans the table once per DOF).
+pub fn displacements_and_velocities(
+    store: &Store,
+    concept: &str,
+    nume_ordre: i64,
+) -> Result<Vec<(String, String, f64, f64)>> {
+    let mut stmt = store.conn().prepare(&format!(
+        "SELECT NOEUD, NOM_CMP, DEPL, VITE FROM {} WHERE NUME_ORDRE = ?1",
+        super::table::quote_ident(concept)
+    ))?;
+    let rows = stmt
+        .query_map(params![nume_ordre], |r| {
+            Ok((r.get(0)?, r.get(1)?, r.get(2)?, r.get(3)?))
+        })?
+        .collect::<rusqlite::Result<_>>()?;
+    Ok(rows)
+}

@@ -17,6 +17,17 @@ pub enum DenseMatrix {
 }
 
 impl DenseMatrix {
+    /// A row-major n × n matrix: diagonal when every off-diagonal entry is zero (a basis
+    /// orthogonal for it, the fast path), full otherwise.
+    pub fn from_row_major(n: usize, values: &[f64]) -> DenseMatrix {
+        let diagonal = (0..n).all(|i| (0..n).all(|j| i == j || values[i * n + j] == 0.0));
+        if diagonal {
+            DenseMatrix::Diagonal((0..n).map(|i| values[i * n + i]).collect())
+        } else {
+            DenseMatrix::Full(Mat::from_fn(n, n, |i, j| values[i * n + j]))
+        }
+    }
+
     fn n(&self) -> usize {
         match self {
             DenseMatrix::Diagonal(d) => d.len(),

@@ -15,6 +15,34 @@ pub struct Pick {
     pub w: f64,
 }
 
+/// The index of order number `k` (1-based) among `times`; errors name `kw`.
+pub fn by_order(k: i64, times: &[f64], kw: String) -> Result<usize> {
+    usize::try_from(k)
+        .ok()
+        .filter(|&k| (1..=times.len()).contains(&k))
+        .map(|k| k - 1)
+        .ok_or_else(|| {
+            Error::validation(format!(
+                "NUME_ORDRE={k}: the result has {} archived instants (1 to {})",
+                times.len(),
+                times.len()
+            ))
+            .keyword(kw)
+        })
+}
+
+/// The index of the archived instant within PRECISION of `t` (relative to |t| unless
+/// `a`'s CRITERE is 'ABSOLU'), if any.
+pub fn matching(a: &Args, times: &[f64], t: f64) -> Result<Option<usize>> {
+    let precision = a.req_real("PRECISION")?;
+    let tol = if a.text("CRITERE") == Some("ABSOLU") {
+        precision
+    } else {
+        precision * t.abs()
+    };
+    Ok(times.iter().position(|&s| (s - t).abs() <= tol))
+}
+
 /// The instants `a` asks for among the archived `times` (increasing).
 pub fn picks(a: &Args, times: &[f64]) -> Result<Vec<Pick>> {
     let exact = |i: usize| Pick {
@@ -26,33 +54,18 @@ pub fn picks(a: &Args, times: &[f64]) -> Result<Vec<Pick>> {
     if let Some(orders) = a.ints("NUME_ORDRE") {
         return orders
             .iter()
-            .map(|&k| {
-                usize::try_from(k)
-                    .ok()
-                    .filter(|&k| (1..=times.len()).contains(&k))
-                    .map(|k| exact(k - 1))
-                    .ok_or_else(|| {
-                        Error::validation(format!(
-                            "NUME_ORDRE={k}: the result has {} archived instants (1 to {})",
-                            times.len(),
-                            times.len()
-                        ))
-                        .keyword(a.key_path("NUME_ORDRE"))
-                    })
-            })
+            .map(|&k| by_order(k, times, a.key_path("NUME_ORDRE")).map(exact))
             .collect();
     }
     let Some(wanted) = a.reals("INST").or_else(|| a.reals("LIST_INST")) else {
         return Ok((0..times.len()).map(exact).collect());
     };
     let interpolate = a.text("INTERPOL") == Some("LIN");
-    let relative = a.text("CRITERE") != Some("ABSOLU");
     let precision = a.req_real("PRECISION")?;
     wanted
         .iter()
         .map(|&t| {
-            let tol = if relative { precision * t.abs() } else { precision };
-            if let Some(i) = times.iter().position(|&s| (s - t).abs() <= tol) {
+            if let Some(i) = matching(a, times, t)? {
                 return Ok(exact(i));
             }
             let hi = times.partition_point(|&s| s < t);

@@ -8,10 +8,12 @@ use crate::error::{Error, Result};
 use crate::model::modes::ModeMeca;
 use crate::model::{AssembledMatrix, Cmp, DofNumbering};
 use crate::ops::common::gene::numbering_and_basis;
+use crate::ops::common::instants::{by_order, matching};
 use crate::ops::proj_vect_base::on_numbering;
 use crate::ops::OpContext;
 use crate::store::{dyna_trans as dyna_store, gene, matrix, tran_gene};
 use crate::transient::{DenseMatrix, DenseStructure, NodeRows, SparseStructure, Structure};
+use std::collections::HashMap;
 
 /// The coordinates of the run.
 pub enum Space {
@@ -212,15 +214,32 @@ impl Space {
                     ))
                     .keyword(kw));
                 }
+                let stored = dyna_store::stored_fields(ctx.store, &c.name)?;
+                if !(stored.contains(&"DEPL") && stored.contains(&"VITE")) {
+                    return Err(Error::input(format!(
+                        "{} holds {} only: a start needs its DEPL and VITE",
+                        c.name,
+                        stored.join(" and ")
+                    ))
+                    .keyword(kw));
+                }
+                let times = dyna_store::instants(ctx.store, &c.name)?;
+                let i = instant(init, &times)?;
+                let rows =
+                    dyna_store::displacements_and_velocities(ctx.store, &c.name, i as i64 + 1)?;
+                let index = numbering.index_map();
+                // Full index -> (DEPL, VITE) of the instant.
+                let mut at: HashMap<usize, (f64, f64)> = HashMap::with_capacity(rows.len());
+                for (node, cmp, d, v) in &rows {
+                    if let Some(&k) = Cmp::parse(cmp).and_then(|c| index.get(&(node.as_str(), c))) {
+                        at.insert(k, (*d, *v));
+                    }
+                }
                 let mut q = Vec::with_capacity(free.len());
                 let mut v = Vec::with_capacity(free.len());
                 for &f in free {
-                    let dof = &numbering.dofs[f];
-                    let depl =
-                        dyna_store::samples(ctx.store, &c.name, "DEPL", &dof.node, dof.cmp.name())?;
-                    let vite =
-                        dyna_store::samples(ctx.store, &c.name, "VITE", &dof.node, dof.cmp.name())?;
-                    if depl.values.is_empty() || vite.values.len() != depl.values.len() {
+                    let Some(&(d, w)) = at.get(&f) else {
+                        let dof = &numbering.dofs[f];
                         return Err(Error::input(format!(
                             "{} has no DEPL and VITE of {} {}, a free DOF of the matrices",
                             c.name,
@@ -229,10 +248,9 @@ impl Space {
                         ))
                         .keyword(kw)
                         .hint("start from a result on the same model and boundary conditions"));
-                    }
-                    let i = instant(init, &depl.inst)?;
-                    q.push(depl.values[i]);
-                    v.push(vite.values[i]);
+                    };
+                    q.push(d);
+                    v.push(w);
                 }
                 Ok((q, v))
             }
@@ -249,36 +267,18 @@ fn instant(init: &Args, times: &[f64]) -> Result<usize> {
         );
     }
     if let Some(k) = init.int("NUME_ORDRE") {
-        return usize::try_from(k)
-            .ok()
-            .filter(|&k| (1..=times.len()).contains(&k))
-            .map(|k| k - 1)
-            .ok_or_else(|| {
-                Error::validation(format!(
-                    "NUME_ORDRE={k}: the result has {} stored instants",
-                    times.len()
-                ))
-                .keyword(init.key_path("NUME_ORDRE"))
-            });
+        return by_order(k, times, init.key_path("NUME_ORDRE"));
     }
     let Some(t) = init.real("INST_INIT") else {
         return Ok(times.len() - 1);
     };
-    let precision = init.req_real("PRECISION")?;
-    let tol = if init.text("CRITERE") == Some("ABSOLU") {
-        precision
-    } else {
-        precision * t.abs()
-    };
-    times
-        .iter()
-        .position(|&s| (s - t).abs() <= tol)
-        .ok_or_else(|| {
-            Error::validation(format!(
-                "INST_INIT = {t:e} is not a stored instant of the result (within PRECISION = {precision:e})"
-            ))
-            .keyword(init.key_path("INST_INIT"))
-        })
+    matching(init, times, t)?.ok_or_else(|| {
+        Error::validation(format!(
+            "INST_INIT = {t:e} is not a stored instant of the result (within PRECISION = {:e})",
+            init.real("PRECISION").unwrap_or_default()
+        ))
+        .keyword(init.key_path("INST_INIT"))
+    })
 }
 
 fn read_gene(ctx: &OpContext<'_>, args: &Args) -> Result<(Space, Box<dyn Structure>)> {
@@ -306,7 +306,7 @@ fn read_gene(ctx: &OpContext<'_>, args: &Args) -> Result<(Space, Box<dyn Structu
         }
     }
     let (num, modes) = numbering_and_basis(ctx.store, &numbering, None, "DYNA_VIBRA")?;
-    let dense = |values: &[f64]| dense_matrix(num.size, values);
+    let dense = |values: &[f64]| DenseMatrix::from_row_major(num.size, values);
     let stiffness = mats[1]
         .as_ref()
         .map(|m| dense(&m.1.values))
@@ -389,15 +389,4 @@ fn read_phys(ctx: &OpContext<'_>, args: &Args) -> Result<(Space, Box<dyn Structu
         },
         Box::new(structure),
     ))
-}
-
-/// A generalized matrix (row-major n × n) as the integrator takes it: diagonal when every
-/// off-diagonal entry is zero (a basis orthogonal for it: the fast path), full otherwise.
-fn dense_matrix(n: usize, values: &[f64]) -> DenseMatrix {
-    let diagonal = (0..n).all(|i| (0..n).all(|j| i == j || values[i * n + j] == 0.0));
-    if diagonal {
-        DenseMatrix::Diagonal((0..n).map(|i| values[i * n + i]).collect())
-    } else {
-        DenseMatrix::Full(faer::Mat::from_fn(n, n, |i, j| values[i * n + j]))
-    }
 }

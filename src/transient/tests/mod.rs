@@ -16,8 +16,18 @@ use super::*;
 /// One DOF along global Y against a one-sided stop at y = g: a PLAN_Y obstacle whose
 /// walls are at g and g − 2J, J = 10 (never reached), stiffness `kn`, damping `cn`.
 pub(super) fn stop_shock(g: f64, kn: f64, cn: f64) -> Shock {
+    Shock::new(
+        stop_spec(g, kn, cn),
+        NodeRows::from_modes(&[0.0], &[1.0], &[0.0]),
+        None,
+    )
+    .unwrap()
+}
+
+/// The obstacle of [`stop_shock`], for rows of other coordinates.
+pub(super) fn stop_spec(g: f64, kn: f64, cn: f64) -> ShockSpec {
     let j = 10.0;
-    let spec = ShockSpec {
+    ShockSpec {
         obstacle: ObstacleKind::PlanY,
         orig_obst: [0.0, g - j, 0.0],
         norm_obst: [0.0, 0.0, 1.0],
@@ -32,8 +42,7 @@ pub(super) fn stop_shock(g: f64, kn: f64, cn: f64) -> Shock {
         rigi_tan: 0.0,
         amor_tan: 0.0,
         friction: Friction::None,
-    };
-    Shock::new(spec, NodeRows::from_modes(&[0.0], &[1.0], &[0.0]), None).unwrap()
+    }
 }
 
 /// m = 1, k given, no damping.

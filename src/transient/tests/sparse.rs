@@ -31,23 +31,7 @@ fn sparse_and_dense_structures_agree() {
     };
     let dense = DenseStructure::full(dense_of(&mt), dense_of(&kt), Some(dense_of(&ct))).unwrap();
     let shock = || {
-        let j = 10.0;
-        let spec = ShockSpec {
-            obstacle: ObstacleKind::PlanY,
-            orig_obst: [0.0, 0.05 - j, 0.0],
-            norm_obst: [0.0, 0.0, 1.0],
-            angl_vril: None,
-            node1: [0.0; 3],
-            node2: None,
-            jeu: j,
-            dist1: 0.0,
-            dist2: 0.0,
-            rigi_nor: 1e3,
-            amor_nor: 1.0,
-            rigi_tan: 0.0,
-            amor_tan: 0.0,
-            friction: Friction::None,
-        };
+        let spec = super::stop_spec(0.05, 1e3, 1.0);
         Shock::new(spec, NodeRows::selection([None, Some(2), None]), None).unwrap()
     };
     let grid = TimeGrid {

@@ -58,23 +58,7 @@ fn newmark_stays_bounded_beyond_the_explicit_limit() {
     let (g, kn) = (0.5, 100.0);
     let s = DenseStructure::diagonal(vec![1.0, 1.0], vec![1.0, 1e6], None).unwrap();
     let mk = || {
-        let j = 10.0;
-        let spec = ShockSpec {
-            obstacle: ObstacleKind::PlanY,
-            orig_obst: [0.0, g - j, 0.0],
-            norm_obst: [0.0, 0.0, 1.0],
-            angl_vril: None,
-            node1: [0.0; 3],
-            node2: None,
-            jeu: j,
-            dist1: 0.0,
-            dist2: 0.0,
-            rigi_nor: kn,
-            amor_nor: 0.0,
-            rigi_tan: 0.0,
-            amor_tan: 0.0,
-            friction: Friction::None,
-        };
+        let spec = super::stop_spec(g, kn, 0.0);
         vec![Shock::new(
             spec,
             NodeRows::from_modes(&[0.0, 0.0], &[1.0, 0.1], &[0.0, 0.0]),
