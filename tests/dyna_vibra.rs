@@ -51,6 +51,11 @@ fn the_coulomb_oscillator_loses_two_c_per_half_swing_then_sticks() {
 }
 
 #[test]
+fn a_slider_held_on_an_inclined_line_by_liaison_ddl_loses_two_c_per_half_swing() {
+    run_case("dyna_vibra_slider_inclined.comm", 11);
+}
+
+#[test]
 fn two_masses_meeting_through_a_bi_plan_match_the_impact_oscillator() {
     let out = run_case("dyna_vibra_two_masses.comm", 24);
     assert!(out.contains("23 contact change(s) located"), "{out}");

@@ -4,6 +4,7 @@
 use super::elem::{ElemMatrices, MatrixKind};
 use super::loads::KinematicLoad;
 use super::numbering::DofNumbering;
+use super::relations::Dependence;
 use crate::error::{Error, Result};
 use crate::linalg::sparse;
 use crate::mesh::Mesh;
@@ -18,19 +19,65 @@ pub struct AssembledMatrix {
     pub triplets: Vec<(usize, usize, f64)>,
     /// DOFs eliminated: the numbering's (AFFE_CHAR_MECA) and AFFE_CHAR_CINE's.
     pub eliminated: Vec<bool>,
+    /// The DOFs the numbering's linear relations (LIAISON_DDL) express in terms of the
+    /// free ones; decided once here, from the relations and `eliminated`.
+    dependence: Dependence,
 }
 
 impl AssembledMatrix {
+    pub fn new(
+        numbering: DofNumbering,
+        kind: MatrixKind,
+        triplets: Vec<(usize, usize, f64)>,
+        eliminated: Vec<bool>,
+    ) -> AssembledMatrix {
+        let dependence = Dependence::build(&eliminated, &numbering.relations);
+        AssembledMatrix {
+            numbering,
+            kind,
+            triplets,
+            eliminated,
+            dependence,
+        }
+    }
+
     pub fn size(&self) -> usize {
         self.numbering.len()
     }
 
-    /// Full indices of the free DOFs, in order: reduced index i is full index
-    /// `free_dofs()[i]`.
+    /// Whether `other` is assembled on the same DOFs, blocked DOFs and relations (two
+    /// matrices of one problem).
+    pub fn same_dofs(&self, other: &AssembledMatrix) -> bool {
+        self.numbering.dofs == other.numbering.dofs
+            && self.eliminated == other.eliminated
+            && self.dependence == other.dependence
+    }
+
+    /// The DOFs LIAISON_DDL relations express in terms of the free ones.
+    pub fn dependence(&self) -> &Dependence {
+        &self.dependence
+    }
+
+    /// An error for operators that work on the free DOFs of the physical numbering and
+    /// write their results per free DOF, which do not take LIAISON_DDL relations yet.
+    pub fn refuse_relations(&self, operator: &str) -> Result<()> {
+        if self.dependence.is_empty() {
+            return Ok(());
+        }
+        Err(Error::input(format!(
+            "the matrices carry LIAISON_DDL relations, which {operator} does not take on the physical DOFs"
+        ))
+        .hint("relations are supported by CALC_MODES and the modal route: project on the modes (PROJ_MATR_BASE) and integrate with DYNA_VIBRA BASE_CALCUL='GENE'"))
+    }
+
+    /// Full indices of the free DOFs (neither blocked nor expressed by a relation), in
+    /// order: reduced index i is full index `free_dofs()[i]`.
     pub fn free_dofs(&self) -> Vec<usize> {
-        (0..self.size())
-            .filter(|&i| !self.eliminated.get(i).copied().unwrap_or(false))
-            .collect()
+        (0..self.size()).filter(|&i| self.is_free(i)).collect()
+    }
+
+    fn is_free(&self, i: usize) -> bool {
+        !self.eliminated.get(i).copied().unwrap_or(false) && !self.dependence.is_dependent(i)
     }
 
     /// Reduced index of the DOF (node, component), if it exists and is free.
@@ -40,10 +87,10 @@ impl AssembledMatrix {
 
     /// Reduced index of the DOF of full index `full`, if it exists and is free.
     pub fn reduced_index(&self, full: usize) -> Option<usize> {
-        if full >= self.size() || self.eliminated.get(full).copied().unwrap_or(false) {
+        if full >= self.size() || !self.is_free(full) {
             return None;
         }
-        Some(self.eliminated.iter().take(full).filter(|e| !**e).count())
+        Some((0..full).filter(|&i| self.is_free(i)).count())
     }
 
     /// The values of a full-numbering vector (e.g. a stored mode shape) on the free DOFs,
@@ -56,7 +103,8 @@ impl AssembledMatrix {
     }
 
     /// A vector on the free DOFs (e.g. a mode shape) written in the full numbering, zero on
-    /// the eliminated DOFs. Errors if its length is not the number of free DOFs.
+    /// the eliminated DOFs, the DOFs of LIAISON_DDL relations from their expressions.
+    /// Errors if its length is not the number of free DOFs.
     pub fn expand(&self, reduced: &[f64]) -> Result<Vec<f64>> {
         let free = self.free_dofs();
         if reduced.len() != free.len() {
@@ -72,12 +120,66 @@ impl AssembledMatrix {
                 *x = v;
             }
         }
+        self.dependence.complete(&mut full);
         Ok(full)
     }
 
-    /// The matrix restricted to the free DOFs.
+    /// A linear function of the displacement given as a row r over the numbering (rᵀu),
+    /// as a row over the free DOFs: Tᵀr, so that rᵀ(T·q) = (Tᵀr)ᵀq. Without relations, r
+    /// on the free DOFs.
+    pub fn row_on_free(&self, full: &[f64]) -> Vec<f64> {
+        let free = self.free_dofs();
+        let mut map = vec![None; self.size()];
+        for (r, &i) in free.iter().enumerate() {
+            if let Some(m) = map.get_mut(i) {
+                *m = Some(r);
+            }
+        }
+        let mut out = vec![0.0; free.len()];
+        for (i, &ri) in full.iter().enumerate().filter(|(_, v)| **v != 0.0) {
+            let terms: Vec<(usize, f64)> = match self.dependence.expression(i) {
+                Some(expr) => expr.to_vec(),
+                None => vec![(i, 1.0)],
+            };
+            for (j, t) in terms {
+                if let Some(o) = map.get(j).copied().flatten().and_then(|r| out.get_mut(r)) {
+                    *o += t * ri;
+                }
+            }
+        }
+        out
+    }
+
+    /// The matrix on the free DOFs: its rows and columns of blocked DOFs removed and,
+    /// with LIAISON_DDL relations, TᵀAT (u = T·q, module `relations`).
     pub fn reduced(&self) -> Result<SparseColMat<usize, f64>> {
-        sparse::reduced(self.size(), &self.triplets, &self.eliminated)
+        if self.dependence.is_empty() {
+            return sparse::reduced(self.size(), &self.triplets, &self.eliminated);
+        }
+        let free = self.free_dofs();
+        let mut map = vec![None; self.size()];
+        for (r, &i) in free.iter().enumerate() {
+            if let Some(m) = map.get_mut(i) {
+                *m = Some(r);
+            }
+        }
+        let t = self.dependence.transform(&self.triplets, &map);
+        sparse::from_triplets(free.len(), free.len(), &t)
+    }
+
+    /// [`Self::reduced`] as sorted triplets, one per nonzero position (both triangles).
+    pub fn reduced_triplets(&self) -> Result<Vec<(usize, usize, f64)>> {
+        let a = self.reduced()?;
+        let mut out = Vec::new();
+        for j in 0..a.ncols() {
+            let rows = a.symbolic().row_idx_of_col_raw(j);
+            let vals = a.val_of_col(j);
+            for (&i, &v) in rows.iter().zip(vals) {
+                out.push((i, j, v));
+            }
+        }
+        out.sort_by(|x, y| (x.0, x.1).cmp(&(y.0, y.1)));
+        Ok(out)
     }
 
     /// The full matrix (eliminated DOFs included).
@@ -171,10 +273,10 @@ pub fn assemble(
         }
     }
     let eliminated = numbering.mark(cine).map_err(AssemblyError::Other)?;
-    Ok(AssembledMatrix {
-        numbering: numbering.clone(),
+    Ok(AssembledMatrix::new(
+        numbering.clone(),
         kind,
-        triplets: sparse::consolidate(raw),
+        sparse::consolidate(raw),
         eliminated,
-    })
+    ))
 }

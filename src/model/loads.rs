@@ -48,6 +48,24 @@ pub struct KinematicLoad {
     /// in loads stored before forces were read.
     #[serde(default)]
     pub forces: Vec<NodalForce>,
+    /// LIAISON_DDL, in definition order. Absent in loads stored before relations were read.
+    #[serde(default)]
+    pub relations: Vec<NodalRelation>,
+}
+
+/// One term of a linear relation: `coef` times component `cmp` of `node`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RelationTerm {
+    pub node: String,
+    pub cmp: Cmp,
+    pub coef: f64,
+}
+
+/// A linear relation between DOFs (LIAISON_DDL): Σ coef·u = rhs.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct NodalRelation {
+    pub terms: Vec<RelationTerm>,
+    pub rhs: f64,
 }
 
 /// One component imposed by a condition, and the keyword path that gave it.
@@ -163,6 +181,7 @@ impl KinematicLoad {
             model: model_name.to_string(),
             blocked,
             forces: Vec::new(),
+            relations: Vec::new(),
         })
     }
 

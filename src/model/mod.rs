@@ -15,6 +15,7 @@ pub mod loads;
 pub mod material;
 pub mod modes;
 pub mod numbering;
+pub mod relations;
 pub mod select;
 
 pub use assembly::{assemble, AssembledMatrix};

@@ -6,6 +6,7 @@ use super::dof::Cmp;
 use super::elem::ElemMatrices;
 use super::fe_model::Model;
 use super::loads::KinematicLoad;
+use super::relations::DofRelation;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use serde::{Deserialize, Serialize};
@@ -60,6 +61,9 @@ pub struct DofNumbering {
     pub dofs: Vec<NumberedDof>,
     /// Eliminated by AFFE_CHAR_MECA (DDL_IMPO); same length as `dofs`.
     pub eliminated: Vec<bool>,
+    /// AFFE_CHAR_MECA's linear relations (LIAISON_DDL), in load order.
+    #[serde(default)]
+    pub relations: Vec<DofRelation>,
 }
 
 impl DofNumbering {
@@ -110,9 +114,11 @@ impl DofNumbering {
             model: model_name.to_string(),
             eliminated: vec![false; dofs.len()],
             dofs,
+            relations: Vec::new(),
         };
         let elim = num.mark(loads)?;
         num.eliminated = elim;
+        num.relations = num.relations_of(loads)?;
         Ok(num)
     }
 
@@ -173,5 +179,36 @@ impl DofNumbering {
             }
         }
         Ok(elim)
+    }
+
+    /// The linear relations of `loads` on this numbering's DOFs. Every DOF of a relation
+    /// must be in the numbering.
+    fn relations_of(&self, loads: &[&KinematicLoad]) -> Result<Vec<DofRelation>> {
+        let map = self.index_map();
+        let mut out = Vec::new();
+        for load in loads {
+            for rel in &load.relations {
+                let terms = rel
+                    .terms
+                    .iter()
+                    .map(|t| {
+                        map.get(&(t.node.as_str(), t.cmp))
+                            .map(|&i| (i, t.coef))
+                            .ok_or_else(|| {
+                                Error::input(format!(
+                                    "DOF {} of node {} in a LIAISON_DDL relation is not in the numbering of model {}",
+                                    t.cmp, t.node, self.model
+                                ))
+                                .hint("the load must be defined on the model the matrices come from")
+                            })
+                    })
+                    .collect::<Result<Vec<_>>>()?;
+                out.push(DofRelation {
+                    terms,
+                    rhs: rel.rhs,
+                });
+            }
+        }
+        Ok(out)
     }
 }

@@ -25,6 +25,13 @@ pub(crate) fn build(
     let model_name = args.req_concept("MODELE")?.name.clone();
     let (model, mesh) = load_model_and_mesh(ctx.store, &model_name)?;
     let load = kinematic_load(kind, &model_name, &model, &mesh, args.facts_or_empty(key))?;
+    warn_nonzero(ctx, &load)?;
+    ctx.create(&name, ty)?;
+    save_load(ctx.store, &name, &load)
+}
+
+/// Alarm MODEL_NONZERO_IMPO when a blocked DOF has a nonzero imposed value.
+pub(crate) fn warn_nonzero(ctx: &mut OpContext<'_>, load: &KinematicLoad) -> Result<()> {
     let nonzero = load.nonzero();
     if let Some(first) = nonzero.first() {
         let msg = format!(
@@ -36,8 +43,7 @@ pub(crate) fn build(
         );
         ctx.alarm("MODEL_NONZERO_IMPO", &msg)?;
     }
-    ctx.create(&name, ty)?;
-    save_load(ctx.store, &name, &load)
+    Ok(())
 }
 
 /// The load of the MECA_IMPO (Cine) or DDL_IMPO (Meca) occurrences.

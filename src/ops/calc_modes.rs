@@ -35,7 +35,7 @@ pub fn run_with_option(ctx: &mut OpContext<'_>, args: &Args, option: &str) -> Re
     let m_name = &args.req_concept("MATR_MASS")?.name;
     let k = matrix::load_matrix(ctx.store, k_name)?;
     let m = matrix::load_matrix(ctx.store, m_name)?;
-    if k.numbering.dofs != m.numbering.dofs || k.eliminated != m.eliminated {
+    if !k.same_dofs(&m) {
         return Err(Error::input(format!(
             "{k_name} and {m_name} are not assembled on the same DOF numbering and boundary conditions"
         ))

@@ -7,6 +7,7 @@
 use super::{Schema, Store};
 use crate::error::{Error, Result};
 use crate::model::numbering::NumberedDof;
+use crate::model::relations::DofRelation;
 use crate::model::{AssembledMatrix, Cmp, DofNumbering, MatrixKind};
 use rusqlite::params;
 use serde::{Deserialize, Serialize};
@@ -37,6 +38,9 @@ pub fn ensure_schema(store: &Store) -> Result<()> {
 struct NumberingMeta {
     mesh: String,
     model: String,
+    /// LIAISON_DDL relations on the DOF indices; absent in studies written before.
+    #[serde(default)]
+    relations: Vec<DofRelation>,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -81,6 +85,7 @@ pub fn save_numbering(store: &Store, name: &str, num: &DofNumbering) -> Result<(
         &NumberingMeta {
             mesh: num.mesh.clone(),
             model: num.model.clone(),
+            relations: num.relations.clone(),
         },
     )
 }
@@ -108,11 +113,22 @@ pub fn load_numbering(store: &Store, name: &str) -> Result<DofNumbering> {
         dofs.push(NumberedDof { node, cmp });
         eliminated.push(e != 0);
     }
+    let n = dofs.len();
+    if let Some(r) = meta
+        .relations
+        .iter()
+        .find(|r| r.terms.iter().any(|&(i, _)| i >= n))
+    {
+        return Err(Error::store(format!(
+            "numbering {name} has a relation on a DOF outside its {n} DOFs: {r:?}"
+        )));
+    }
     Ok(DofNumbering {
         mesh: meta.mesh,
         model: meta.model,
         dofs,
         eliminated,
+        relations: meta.relations,
     })
 }
 
@@ -198,10 +214,7 @@ pub fn load_matrix(store: &Store, name: &str) -> Result<AssembledMatrix> {
             }
         }
     }
-    Ok(AssembledMatrix {
-        numbering,
-        kind: meta.kind,
-        triplets,
-        eliminated,
-    })
+    Ok(AssembledMatrix::new(
+        numbering, meta.kind, triplets, eliminated,
+    ))
 }

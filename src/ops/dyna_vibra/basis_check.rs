@@ -82,17 +82,22 @@ fn normal_axes(kind: ObstacleKind) -> &'static [usize] {
     }
 }
 
-/// The direction `d` (global) at node 1, minus at node 2, over the free DOFs of `k`.
+/// The direction `d` (global) at node 1, minus at node 2, over the free DOFs of `k`
+/// (a DOF a LIAISON_DDL relation expresses counts through its expression).
 fn normal_row(k: &AssembledMatrix, d: [f64; 3], name: &ShockName) -> Vec<f64> {
-    let mut r = vec![0.0; k.free_dofs().len()];
+    let mut r = vec![0.0; k.size()];
     let cmps = [Cmp::Dx, Cmp::Dy, Cmp::Dz];
     for (node, sign) in [(Some(&name.node1), 1.0), (name.node2.as_ref(), -1.0)] {
         let Some(node) = node else { continue };
         for (c, cmp) in cmps.iter().enumerate() {
-            if let Some(i) = k.reduced_index_of(node, *cmp) {
+            let free = k
+                .numbering
+                .index_of(node, *cmp)
+                .filter(|&i| !k.eliminated.get(i).copied().unwrap_or(true));
+            if let Some(i) = free {
                 r[i] += sign * d[c];
             }
         }
     }
-    r
+    k.row_on_free(&r)
 }

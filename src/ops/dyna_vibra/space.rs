@@ -339,7 +339,7 @@ fn read_phys(ctx: &OpContext<'_>, args: &Args) -> Result<(Space, Box<dyn Structu
         .ok_or_else(|| Error::validation("MATR_MASS is required"))?;
     for (key, m) in MATRICES.iter().zip(&mats).skip(1) {
         if let Some(m) = m {
-            if m.numbering.dofs != mass.numbering.dofs || m.eliminated != mass.eliminated {
+            if !m.same_dofs(mass) {
                 return Err(Error::input(format!(
                     "{key} is not assembled on the DOF numbering and boundary conditions of MATR_MASS"
                 ))
@@ -354,6 +354,8 @@ fn read_phys(ctx: &OpContext<'_>, args: &Args) -> Result<(Space, Box<dyn Structu
         )
         .keyword("DYNA_VIBRA/AMOR_MODAL"));
     }
+    mass.refuse_relations("DYNA_VIBRA (BASE_CALCUL='PHYS')")
+        .map_err(|e| e.keyword("DYNA_VIBRA/MATR_MASS"))?;
     let free = mass.free_dofs();
     let n = free.len();
     if n == 0 {
@@ -362,24 +364,21 @@ fn read_phys(ctx: &OpContext<'_>, args: &Args) -> Result<(Space, Box<dyn Structu
                 .keyword("DYNA_VIBRA/MATR_MASS"),
         );
     }
-    let lower = |m: &AssembledMatrix| -> Vec<(usize, usize, f64)> {
-        m.triplets
-            .iter()
-            .filter_map(|&(i, j, v)| {
-                let (ri, rj) = (m.reduced_index(i)?, m.reduced_index(j)?);
-                (ri >= rj).then_some((ri, rj, v))
-            })
-            .collect()
+    // The lower triangles on the free DOFs (with LIAISON_DDL relations, of TᵀAT).
+    let lower = |m: &AssembledMatrix| -> Result<Vec<(usize, usize, f64)>> {
+        let mut t = m.reduced_triplets()?;
+        t.retain(|&(i, j, _)| i >= j);
+        Ok(t)
     };
     let structure = SparseStructure::new(
         n,
-        lower(mass),
+        lower(mass)?,
         lower(
             mats[1]
                 .as_ref()
                 .ok_or_else(|| Error::validation("MATR_RIGI is required"))?,
-        ),
-        mats[2].as_ref().map(lower),
+        )?,
+        mats[2].as_ref().map(lower).transpose()?,
     )?;
     Ok((
         Space::Phys {

@@ -197,12 +197,14 @@ fn read_call(ctx: &mut OpContext<'_>, args: &Args, name: &str) -> Result<(Call, 
     }
     let k = matrix::load_matrix(ctx.store, &k_name)?;
     let m = matrix::load_matrix(ctx.store, &m_name)?;
-    if k.numbering.dofs != m.numbering.dofs || k.eliminated != m.eliminated {
+    if !k.same_dofs(&m) {
         return Err(Error::input(format!(
             "{k_name} and {m_name} are not assembled on the same DOF numbering and boundary conditions"
         ))
         .keyword("MODE_NON_LINE/MATR_MASS"));
     }
+    k.refuse_relations("MODE_NON_LINE")
+        .map_err(|e| e.keyword("MODE_NON_LINE/MATR_RIGI"))?;
     let free = k.free_dofs();
     let settings = settings(args)?;
     let exact_settings = exact_law::settings(args, &settings)?;
