@@ -341,7 +341,7 @@ impl Host for Runner<'_> {
     }
 
     fn function_value(&mut self, function: &ConceptRef, x: f64) -> Result<Value> {
-        let f = crate::store::function::load_function(self.store()?, &function.name)?;
+        let f = crate::store::function::load_any_function(self.store()?, &function.name)?;
         Ok(Value::Real(f.eval(x)?))
     }
 

@@ -237,7 +237,7 @@ fn check_goes_past_unsupported_operators_and_unknown_names() {
          _F(CARA='K_T_D_L', GROUP_MA='M1', VALE=(10., 0., 0.), REPERE='GLOBAL')))\n\
          CL = AFFE_CHAR_CINE(MODELE=MODELE, MECA_IMPO=(_F(GROUP_NO='N1', DX=0., DY=0., DZ=0.), \
          _F(GROUP_NO='NO2', DY=0., DZ=0.)))\n\
-         F = FORMULE(VALE='2.*X', NOM_PARA='X')\n\
+         F = DEFI_NAPPE(NOM_PARA='X')\n\
          {PORT_MATRICES}\
          DYN = DYNA_NON_LINE(MODELE=MODELE, FONC=F)\n\
          MNL = MODE_NON_LINE(MATR_RIGI=RIGIDITE, MATR_MASS=MASSE, \
@@ -261,7 +261,7 @@ fn check_goes_past_unsupported_operators_and_unknown_names() {
         "port.comm:5:",
         "GROUP_NO 'NO2' is not in the mesh",
         "did you mean 'N2'? the mesh has 2 GROUP_NO(s): N1, N2",
-        "FORMULE is a Code_Aster operator that aster-nl does not support",
+        "DEFI_NAPPE is a Code_Aster operator that aster-nl does not support",
         "DYNA_NON_LINE is a Code_Aster operator that aster-nl does not support",
         "MODE_NON_LINE/CHOC/JEU: expected a value > 0.0, got -0.01",
         "unknown keyword NB_BRANCH",

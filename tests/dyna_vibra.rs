@@ -57,13 +57,13 @@ fn a_slider_held_on_an_inclined_line_by_liaison_ddl_loses_two_c_per_half_swing()
 
 #[test]
 fn two_masses_meeting_through_a_bi_plan_match_the_impact_oscillator() {
-    let out = run_case("dyna_vibra_two_masses.comm", 24);
+    let out = run_case("dyna_vibra_two_masses.comm", 36);
     assert!(out.contains("23 contact change(s) located"), "{out}");
 }
 
 #[test]
 fn a_damped_oscillator_under_a_step_force_by_coef_mult_and_fonc_mult() {
-    run_case("dyna_vibra_forced.comm", 10);
+    run_case("dyna_vibra_forced.comm", 21);
 }
 
 #[test]
@@ -305,6 +305,11 @@ fn rest_gene_phys_outside_the_archived_interval_is_refused() {
 /// A chain of ten masses from a wall (testcases/chain_fixed_free.mail: k = 50, m = 0.5),
 /// a shock at its free end N10, on a basis of its `modes` lowest modes: (code, output).
 fn chain_with_modes(modes: usize) -> (Option<i32>, String) {
+    chain_with_modes_and(modes, "")
+}
+
+/// As [`chain_with_modes`], with `extra` keywords of DYNA_VIBRA (", KEY=...").
+fn chain_with_modes_and(modes: usize, extra: &str) -> (Option<i32>, String) {
     run_chain(&format!(
         "MODES = CALC_MODES(MATR_RIGI=K, MATR_MASS=M, OPTION='PLUS_PETITE', CALC_FREQ=_F(NMAX_FREQ={modes}))\n\
          NG = NUME_DDL_GENE(BASE=MODES, STOCKAGE='DIAG')\n\
@@ -314,7 +319,7 @@ fn chain_with_modes(modes: usize) -> (Option<i32>, String) {
          TR = DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='GENE', MATR_MASS=MG, MATR_RIGI=KG, \
          SCHEMA_TEMPS=_F(SCHEMA='RUNGE_KUTTA_54'), INCREMENT=_F(INST_FIN=0.1, PAS=1.e-3), \
          COMPORTEMENT=_F(RELATION='DIS_CHOC', NOEUD_1='N10', OBSTACLE=PLAN, \
-         ORIG_OBST=(9., 0., 0.), NORM_OBST=(0., 1., 0.), JEU=1.01, RIGI_NOR=1.e3))"
+         ORIG_OBST=(9., 0., 0.), NORM_OBST=(0., 1., 0.), JEU=1.01, RIGI_NOR=1.e3){extra})"
     ))
 }
 
@@ -363,6 +368,61 @@ fn a_basis_without_the_static_flexibility_of_the_shock_is_named() {
     let (code, out) = chain_with_modes(10);
     assert_eq!(code, Some(0), "{out}");
     assert!(!out.contains("DYNA_VIBRA_2"), "{out}");
+}
+
+#[test]
+fn veri_choc_holds_the_basis_error_to_seuil() {
+    // One mode holds the share s of the free end's static flexibility computed in the test
+    // above; the criterion is sqrt(1 - s) = 0.390.
+    let (n, k) = (10.0f64, 50.0f64);
+    let theta = std::f64::consts::PI / (2.0 * n + 1.0);
+    let share =
+        (n * theta).sin().powi(2) / ((2.0 * n + 1.0) * k * (theta / 2.0).sin().powi(2)) / (n / k);
+    let criterion = format!("{:.3e}", (1.0 - share).sqrt());
+    let (code, out) = chain_with_modes_and(1, ", VERI_CHOC=_F(SEUIL=0.3)");
+    assert_eq!(code, Some(2), "{out}");
+    assert!(out.contains("DYNA_VIBRA/VERI_CHOC/SEUIL"), "{out}");
+    assert!(out.contains(&criterion), "{criterion}: {out}");
+    let (code, out) = chain_with_modes_and(1, ", VERI_CHOC=_F(SEUIL=0.3, STOP_CRITERE='NON')");
+    assert_eq!(code, Some(0), "{out}");
+    assert!(
+        out.contains("<DYNA_VIBRA_3>") && out.contains(&criterion),
+        "{out}"
+    );
+    // Code_Aster's default SEUIL 0.5 accepts it; the whole basis passes any SEUIL.
+    let (code, out) = chain_with_modes_and(1, ", VERI_CHOC=_F()");
+    assert_eq!(code, Some(0), "{out}");
+    assert!(!out.contains("DYNA_VIBRA_3"), "{out}");
+    let (code, out) = chain_with_modes_and(10, ", VERI_CHOC=_F(SEUIL=1.e-6)");
+    assert_eq!(code, Some(0), "{out}");
+}
+
+#[test]
+fn a_band_from_a_negative_frequency_takes_the_modes_from_zero() {
+    // Code_Aster's files write FREQ=(-0.1, f) to take the rigid-body modes in: on the
+    // fixed-free chain (no rigid mode) the same three modes as FREQ=(0, f); the third mode
+    // is at 2 sqrt(k/m) sin(5 pi/42)/(2 pi) = 1.1845 Hz, the fourth at 1.6383 Hz.
+    let (code, out) = run_chain(
+        "A = CALC_MODES(MATR_RIGI=K, MATR_MASS=M, OPTION='BANDE', CALC_FREQ=_F(FREQ=(-0.1, 1.4)))\n\
+         B = CALC_MODES(MATR_RIGI=K, MATR_MASS=M, OPTION='BANDE', CALC_FREQ=_F(FREQ=(0., 1.4)))",
+    );
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("CALC_MODES A: 3 mode(s)"), "{out}");
+    assert!(out.contains("CALC_MODES B: 3 mode(s)"), "{out}");
+}
+
+/// RECU_FONCTION's instant keywords belong to a transient result: on a table they are
+/// refused naming the keyword (INTERP_NUME, CRITERE and PRECISION keep their defaults).
+#[test]
+fn recu_fonction_instants_on_a_table_are_refused() {
+    let (code, out) = run_chain(
+        "T = CREA_TABLE(LISTE=(_F(PARA='X', LISTE_R=(0., 1.)), _F(PARA='Y', LISTE_R=(1., 2.))))\n\
+         F = RECU_FONCTION(TABLE=T, PARA_X='X', PARA_Y='Y')\n\
+         G = RECU_FONCTION(TABLE=T, PARA_X='X', PARA_Y='Y', INST=(0.5,))",
+    );
+    assert_eq!(code, Some(2), "{out}");
+    assert!(out.contains("RECU_FONCTION/INST"), "{out}");
+    assert!(out.contains("not rows of a table"), "{out}");
 }
 
 #[test]

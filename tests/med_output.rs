@@ -230,3 +230,53 @@ fn nnm_orbit_read_back_by_meshio() {
         }
     }
 }
+
+/// IMPR_RESU with MAILLAGE and RESULTAT in one RESU occurrence, as Code_Aster accepts it:
+/// written when MAILLAGE is the result's mesh, refused naming MAILLAGE otherwise.
+#[test]
+fn resu_with_its_mesh_and_result_together() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = std::fs::read_to_string(case("beam_med.comm")).unwrap();
+    std::fs::copy(case("beam_med.med"), dir.path().join("beam.med")).unwrap();
+    let comm = dir.path().join("beam.comm");
+    std::fs::write(
+        &comm,
+        src.replace(
+            "FIN()",
+            "IMPR_RESU(FORMAT='MED', UNITE=81, RESU=_F(MAILLAGE=maill, RESULTAT=MODES))\nFIN()",
+        ),
+    )
+    .unwrap();
+    let med = dir.path().join("modes.med");
+    let unit = format!("81={}", med.display());
+    let out = run(&comm, &dir.path().join("beam.db"), &[&unit]);
+    assert!(out.contains("MODES___DEPL"), "{out}");
+    assert!(med.exists());
+    // Another mesh than the result's.
+    std::fs::write(
+        &comm,
+        src.replace(
+            "FIN()",
+            "other = LIRE_MAILLAGE(UNITE=20, FORMAT='MED')\n\
+             IMPR_RESU(FORMAT='MED', UNITE=81, RESU=_F(MAILLAGE=other, RESULTAT=MODES))\nFIN()",
+        ),
+    )
+    .unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_aster-nl"))
+        .arg("run")
+        .arg(&comm)
+        .arg("--db")
+        .arg(dir.path().join("beam2.db"))
+        .arg("--unit")
+        .arg(&unit)
+        .output()
+        .unwrap();
+    let out = format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(out.contains("IMPR_RESU/RESU/MAILLAGE"), "{out}");
+    assert!(out.contains("not on MAILLAGE=other"), "{out}");
+}

@@ -22,6 +22,7 @@ pub const CONCEPT_TYPES: &[&str] = &[
     "table_sdaster",
     "table_container",
     "fonction_sdaster",
+    "formule",
     "dyna_trans",
     "nume_ddl_gene",
     "matr_asse_gene_r",

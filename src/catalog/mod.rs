@@ -113,15 +113,6 @@ const UNSUPPORTED: &[(&str, &str)] = &[
         "DEFI_BASE_MODALE",
         "give the CALC_MODES result itself as BASE to NUME_DDL_GENE and PROJ_*_BASE",
     ),
-    (
-        "PROJ_BASE",
-        "use NUME_DDL_GENE, PROJ_MATR_BASE and PROJ_VECT_BASE",
-    ),
-    (
-        "POST_DYNA_MODA_T",
-        "query the shocks' table <result>_CHOC of DYNA_VIBRA (FN, FT1, ...) with CALC_TABLE, \
-         IMPR_TABLE or RECU_FONCTION",
-    ),
     ("DYNA_NON_LINE", "transient responses are not computed"),
     ("STAT_NON_LINE", "static analyses are not computed"),
     ("MECA_STATIQUE", "static analyses are not computed"),
@@ -136,12 +127,7 @@ const UNSUPPORTED: &[(&str, &str)] = &[
         "results come from CALC_MODES, MODE_NON_LINE and REST_MODE_NONL",
     ),
     ("PROJ_CHAMP", "fields are not projected"),
-    (
-        "CALC_FONCTION",
-        "RECU_FONCTION and DEFI_FONCTION build functions",
-    ),
     ("DEFI_CONSTANTE", "use a Python variable"),
-    ("FORMULE", "use a Python expression"),
     (
         "DEFI_NAPPE",
         "functions of two parameters are not available",

@@ -11,6 +11,9 @@
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
+pub mod calc;
+pub mod formula;
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum Interp {
     Lin,

@@ -27,6 +27,40 @@ pub fn execute(program: &Program, src: &Source, env: &mut Env, host: &mut dyn Ho
     ev.block(&program.stmts)
 }
 
+/// What a formula's evaluation may call on: nothing (no operator, no concept).
+struct NoHost;
+
+impl Host for NoHost {
+    fn is_operator(&self, _name: &str) -> bool {
+        false
+    }
+    fn call(&mut self, call: CommandCall) -> Result<Value> {
+        Err(Error::internal(format!(
+            "operator {} called while evaluating a formula",
+            call.op
+        )))
+    }
+    fn print(&mut self, _text: &str) {}
+    fn warn(&mut self, _id: &str, _text: &str) {}
+}
+
+/// Evaluates one expression with the names of `env` alone (a formula's scope: its
+/// parameters, its constants and the math functions), as a command file would: same
+/// arithmetic, same math, same errors; no operator can be called.
+pub(super) fn evaluate(expr: &Expr, env: &mut Env) -> Result<Value> {
+    let mut host = NoHost;
+    let mut ev = Evaluator {
+        file: "",
+        env,
+        host: &mut host,
+        steps: 0,
+        work: 0,
+        stopped: false,
+        operator_calls: 0,
+    };
+    ev.eval(expr)
+}
+
 struct Evaluator<'a> {
     file: &'a str,
     env: &'a mut Env,
@@ -57,6 +91,11 @@ enum Site<'n> {
 /// `?` is a concept `aster-nl check` could not type (its contents are unknown anyway).
 fn is_table_type(ty: &str) -> bool {
     ty.starts_with("table") || ty == crate::catalog::UNKNOWN_CONCEPT_TYPE
+}
+
+/// Concept types a command file may call like a Python function: `F(x)`.
+fn is_function_type(ty: &str) -> bool {
+    ty.starts_with("fonction") || ty == "formule"
 }
 
 fn is_upper_name(n: &str) -> bool {
@@ -542,22 +581,12 @@ impl Evaluator<'_> {
             _ => {}
         }
         if let Some(v) = self.env.vars.get(name) {
-            // F(x) on a function concept (fonction_sdaster), as Code_Aster's Python allows.
+            // F(x) on a function concept (fonction_sdaster) or a formula (formule), as
+            // Code_Aster's Python allows.
             if let Value::Concept(c) = v {
-                if c.ty.starts_with("fonction") {
+                if is_function_type(&c.ty) {
                     let c = c.clone();
-                    let vals = self.positional(name, args)?;
-                    return match vals.as_slice() {
-                        [Value::Unknown] => Ok(Value::Unknown),
-                        [x] if x.as_f64().is_some() => self
-                            .host
-                            .function_value(&c, x.as_f64().unwrap_or_default())
-                            .map_err(|e| e.at(self.file, span)),
-                        _ => {
-                            Err(self
-                                .input(format!("{name}(x) takes one number, the abscissa"), span))
-                        }
-                    };
+                    return self.function_call(&c, args, span);
                 }
             }
             return Err(self.input(
@@ -597,6 +626,12 @@ impl Evaluator<'_> {
                 .hint(instead);
             return self.unknown_call(err, args);
         }
+        // A function of the study that no statement of this file bound (POURSUITE).
+        if let Some(c) = self.host.lookup_concept(name) {
+            if is_function_type(&c.ty) {
+                return self.function_call(&c, args, span);
+            }
+        }
         if is_upper_name(name) {
             let mut err = self.input(format!("unknown operator '{name}'"), func.span);
             if let Some(h) = did_you_mean(&suggestions(name, &self.host.operator_names())) {
@@ -611,6 +646,22 @@ impl Evaluator<'_> {
              and abs float int min max len range list tuple sum str round print",
             );
         self.unknown_call(err, args)
+    }
+
+    /// `F(x)` on the function or formula concept `c`: its value at the number x.
+    fn function_call(&mut self, c: &ConceptRef, args: &[Arg], span: Span) -> Result<Value> {
+        let vals = self.positional(&c.name, args)?;
+        match vals.as_slice() {
+            [Value::Unknown] => Ok(Value::Unknown),
+            [x] if x.as_f64().is_some() => self
+                .host
+                .function_value(c, x.as_f64().unwrap_or_default())
+                .map_err(|e| e.at(self.file, span)),
+            _ => Err(self.input(
+                format!("{}(x) takes one number, the abscissa", c.name),
+                span,
+            )),
+        }
     }
 
     /// Evaluates the arguments of a Python function: positional only.
@@ -780,6 +831,10 @@ impl Evaluator<'_> {
             return Err(self
                 .syntax(format!("arguments of operator '{op}' must be keywords"), *s)
                 .hint("write KEY=value"));
+        }
+        if op == "FORMULE" {
+            // Its other keywords and the file's variables it uses become its CONTEXTE.
+            kws = super::formula::formule_keywords(kws, self.env, self.file)?;
         }
         let mut reuse = None;
         if let Some(i) = kws.iter().position(|k| k.name == "reuse") {

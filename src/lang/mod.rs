@@ -28,6 +28,7 @@ pub mod diag;
 pub mod encoding;
 mod eval;
 pub mod extent;
+pub mod formula;
 mod parser;
 mod scan;
 

@@ -28,20 +28,29 @@ pub fn parse(src: &Source) -> Result<Program> {
         parsed.push(p.line(l)?);
     }
     if let Some(e) = scan_error {
-        let mut err = Error::syntax(e.message).at(&src.name, idx.span(e.start, e.end));
-        if let Some(open) = e.open_at {
-            let at = idx.span(open, open + 1);
-            err = err.hint(format!(
-                "it was opened at line {}, column {}",
-                at.line, at.col
-            ));
-        } else if let Some(h) = e.hint {
-            err = err.hint(h);
-        }
-        return Err(err);
+        return Err(p.scan_error(e));
     }
     let stmts = blocks::build(&parsed, &src.name, &idx)?;
     Ok(Program { stmts })
+}
+
+/// Parses a text that must be one expression (FORMULE's VALE): the same scanner and grammar
+/// as a command file, so the same subset and the same messages; spans are in `src.text`.
+pub fn parse_expression(src: &Source) -> Result<Expr> {
+    let idx = LineIndex::new(&src.text);
+    let p = LineParser { src, idx: &idx };
+    let (lines, scan_error) = scan(&src.text);
+    if let Some(e) = scan_error {
+        return Err(p.scan_error(e));
+    }
+    match lines.as_slice() {
+        [l] => p.expression(l),
+        [] => Err(p.err("the expression is empty", idx.span(0, 0))),
+        [_, second, ..] => Err(p.err(
+            "one expression is expected, not several lines",
+            idx.span(second.start, second.end),
+        )),
+    }
 }
 
 /// The Python string prefix (f, r, b, fr, rb, ...: letters only, any case) that `before`
@@ -69,14 +78,58 @@ impl LineParser<'_> {
         Error::syntax(msg).at(&self.src.name, span)
     }
 
+    fn scan_error(&self, e: super::scan::ScanError) -> Error {
+        let mut err = Error::syntax(e.message).at(&self.src.name, self.idx.span(e.start, e.end));
+        if let Some(open) = e.open_at {
+            let at = self.idx.span(open, open + 1);
+            err = err.hint(format!(
+                "it was opened at line {}, column {}",
+                at.line, at.col
+            ));
+        } else if let Some(h) = e.hint {
+            err = err.hint(h);
+        }
+        err
+    }
+
+    /// The error for a keyword of Python outside the subset, if the line has one.
+    fn unsupported(&self, l: &LogicalLine) -> Option<Error> {
+        let (s, e, kw) = l.unsupported?;
+        let msg = match kw {
+            "{" => "dictionaries ({...}) are not supported".to_string(),
+            "and" | "or" | "not" | "is" => format!("the operator '{kw}' is not supported"),
+            _ => format!("'{kw}' is not supported in .comm files"),
+        };
+        Some(self.err(msg, self.idx.span(s, e)).hint(SUPPORTED))
+    }
+
+    /// A logical line that must be one expression (no statement, no `;`).
+    fn expression(&self, l: &LogicalLine) -> Result<Expr> {
+        if let Some(e) = self.unsupported(l) {
+            return Err(e);
+        }
+        let text = self.src.text.get(l.start..l.end).unwrap_or("");
+        let span = self.idx.span(l.start, l.end);
+        let mut pairs =
+            CommParser::parse(Rule::line, text).map_err(|e| self.pest_error(e, l.start, text))?;
+        let not_one = || self.err("one expression is expected, not a statement", span);
+        let stmts = match pairs.next().and_then(|p| p.into_inner().next()) {
+            Some(p) if p.as_rule() == Rule::simple_stmts => p,
+            _ => return Err(not_one()),
+        };
+        let mut it = stmts.into_inner();
+        match (it.next(), it.next()) {
+            (Some(s), None) if s.as_rule() == Rule::expr_stmt => match s.into_inner().next() {
+                Some(e) => self.expr(e, l.start),
+                None => Err(not_one()),
+            },
+            _ => Err(not_one()),
+        }
+    }
+
     fn line(&self, l: &LogicalLine) -> Result<Parsed> {
-        if let Some((s, e, kw)) = l.unsupported {
-            let msg = match kw {
-                "{" => "dictionaries ({...}) are not supported".to_string(),
-                "and" | "or" | "not" | "is" => format!("the operator '{kw}' is not supported"),
-                _ => format!("'{kw}' is not supported in .comm files"),
-            };
-            return Err(self.err(msg, self.idx.span(s, e)).hint(SUPPORTED));
+        if let Some(e) = self.unsupported(l) {
+            return Err(e);
         }
         let text = self.src.text.get(l.start..l.end).unwrap_or("");
         let mut pairs =

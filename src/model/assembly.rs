@@ -178,7 +178,7 @@ impl AssembledMatrix {
                 out.push((i, j, v));
             }
         }
-        out.sort_by(|x, y| (x.0, x.1).cmp(&(y.0, y.1)));
+        out.sort_by_key(|e| (e.0, e.1));
         Ok(out)
     }
 

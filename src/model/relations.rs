@@ -233,7 +233,7 @@ mod tests {
         };
         let a = [(0, 0, 1.0), (1, 1, 2.0), (2, 2, 3.0)];
         let mut t = dep.transform(&a, &reduced);
-        t.sort_by(|x, y| (x.0, x.1).cmp(&(y.0, y.1)));
+        t.sort_by_key(|e| (e.0, e.1));
         let sum = |r: usize, c: usize| -> f64 {
             t.iter().filter(|e| e.0 == r && e.1 == c).map(|e| e.2).sum()
         };

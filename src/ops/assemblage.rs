@@ -1,11 +1,14 @@
-//! ASSEMBLAGE macro: element matrices, numbering and assembled matrices in one call; the
-//! numbering and each matrix are new concepts named by CO('...').
+//! ASSEMBLAGE macro: element matrices, numbering, assembled matrices and load vectors in
+//! one call; the numbering, each matrix and each vector are new concepts named by CO('...').
 
+use super::asse_vecteur::nodal_forces;
 use super::calc_matr_elem::Inputs;
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::model::{assemble, ElemMatrices, KinematicLoad, LoadKind, MatrixKind};
+use crate::store::function::load_function;
+use crate::store::gene::save_field;
 use crate::store::matrix::{load_numbering, save_matrix, save_numbering};
 use crate::store::model::{load_load, load_mesh, same_model};
 
@@ -24,7 +27,12 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 .hint("use RIGI_MECA or MASS_MECA")
         })?;
         // Two matrices under one name: the second would silently replace the first.
-        if wanted.iter().any(|(w, _)| w == co) || args.co("NUME_DDL") == Some(co) {
+        let vector = |c: &str| {
+            args.facts_or_empty("VECT_ASSE")
+                .iter()
+                .any(|v| v.co("VECTEUR") == Some(c))
+        };
+        if wanted.iter().any(|(w, _)| w == co) || args.co("NUME_DDL") == Some(co) || vector(co) {
             return Err(Error::validation(format!(
                 "CO('{co}') is given twice: each result of ASSEMBLAGE needs its own name"
             ))
@@ -78,6 +86,33 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         let a = assemble(&num, &mesh, &[m], &crefs).map_err(super::asse_matrice::assembly_error)?;
         ctx.create(co, "matr_asse_depl_r")?;
         save_matrix(ctx.store, co, &a, &num_name)?;
+    }
+    for occ in args.facts_or_empty("VECT_ASSE") {
+        let co = occ.co("VECTEUR").ok_or_else(|| {
+            Error::validation("expected CO('NAME')").keyword(occ.key_path("VECTEUR"))
+        })?;
+        let charges: Vec<String> = occ
+            .concepts("CHARGE")
+            .unwrap_or_default()
+            .into_iter()
+            .map(|c| c.name)
+            .collect();
+        let factor = match occ.concept("FONC_MULT") {
+            Some(f) => load_function(ctx.store, &f.name)?
+                .eval(occ.req_real("INST")?)
+                .map_err(|e| e.keyword(occ.key_path("FONC_MULT")))?,
+            None => 1.0,
+        };
+        let field = nodal_forces(
+            ctx.store,
+            &num,
+            &num_name,
+            &charges,
+            factor,
+            (&occ.key_path("CHARGE"), "ASSEMBLAGE/NUME_DDL"),
+        )?;
+        ctx.create(co, "cham_no_sdaster")?;
+        save_field(ctx.store, co, &field)?;
     }
     Ok(())
 }

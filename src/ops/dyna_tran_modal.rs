@@ -110,6 +110,7 @@ fn translate(args: &Args) -> (Args, Vec<(String, String)>) {
         ("SCHEMA_TEMPS", &[][..]),
         ("INCREMENT", &[][..]),
         ("ARCHIVAGE", &[][..]),
+        ("VERI_CHOC", &[][..]),
         ("ETAT_INIT", &ETAT_INIT[..]),
         ("EXCIT", &EXCIT[..]),
         ("CHOC", &[][..]),

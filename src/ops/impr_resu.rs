@@ -35,6 +35,18 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             ),
             None => (occ.req_concept("MAILLAGE")?.name.clone(), None),
         };
+        // Both given (Code_Aster accepts it): the result must be on that mesh.
+        if let Some(m) = occ
+            .concept("MAILLAGE")
+            .filter(|m| result.is_some() && m.name != mesh)
+        {
+            return Err(Error::validation(format!(
+                "the result is on mesh {mesh}, not on MAILLAGE={}",
+                m.name
+            ))
+            .keyword(occ.key_path("MAILLAGE"))
+            .hint("give the result's own mesh, or drop MAILLAGE"));
+        }
         match &mesh_name {
             Some(m) if *m != mesh => {
                 return Err(Error::validation(format!(

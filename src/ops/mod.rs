@@ -19,6 +19,8 @@ pub mod affe_modele;
 pub mod asse_matrice;
 pub mod asse_vecteur;
 pub mod assemblage;
+pub mod calc_fonc_interp;
+pub mod calc_fonction;
 pub mod calc_matr_elem;
 pub mod calc_modes;
 pub mod calc_stabilite;
@@ -36,6 +38,7 @@ pub mod detruire;
 pub mod dyna_tran_modal;
 pub mod dyna_vibra;
 pub mod extr_table;
+pub mod formule;
 pub mod impr_fonction;
 pub mod impr_resu;
 pub mod impr_table;
@@ -45,6 +48,8 @@ pub mod mode_non_line;
 pub mod modi_maillage;
 pub mod nume_ddl;
 pub mod nume_ddl_gene;
+pub mod post_dyna_moda_t;
+pub mod proj_base;
 pub mod proj_matr_base;
 pub mod proj_vect_base;
 pub mod recu_fonction;
@@ -303,6 +308,9 @@ pub const OPERATORS: &[(&str, OpFn)] = &[
     ("CALC_TABLE", calc_table::run),
     ("CREA_TABLE", crea_table::run),
     ("DEFI_FONCTION", defi_fonction::run),
+    ("FORMULE", formule::run),
+    ("CALC_FONC_INTERP", calc_fonc_interp::run),
+    ("CALC_FONCTION", calc_fonction::run),
     ("DETRUIRE", detruire::run),
     ("EXTR_TABLE", extr_table::run),
     ("IMPR_FONCTION", impr_fonction::run),
@@ -334,9 +342,11 @@ pub const OPERATORS: &[(&str, OpFn)] = &[
     ("CREA_CHAMP", crea_champ::run),
     ("DEFI_OBSTACLE", defi_obstacle::run),
     ("NUME_DDL_GENE", nume_ddl_gene::run),
+    ("PROJ_BASE", proj_base::run),
     ("PROJ_MATR_BASE", proj_matr_base::run),
     ("PROJ_VECT_BASE", proj_vect_base::run),
     ("DYNA_VIBRA", dyna_vibra::run),
+    ("POST_DYNA_MODA_T", post_dyna_moda_t::run),
     ("REST_GENE_PHYS", rest_gene_phys::run),
     ("DEFI_LIST_REEL", defi_list_reel::run),
     ("DYNA_TRAN_MODAL", dyna_tran_modal::run),

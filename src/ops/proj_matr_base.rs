@@ -13,14 +13,37 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let name = ctx.result_name()?.to_string();
     let num_name = args.req_concept("NUME_DDL_GENE")?.name.clone();
     let base = args.req_concept("BASE")?.name.clone();
-    let (num, modes) = numbering_and_basis(ctx.store, &num_name, Some(&base), "PROJ_MATR_BASE")?;
     let a_name = args.req_concept("MATR_ASSE")?.name.clone();
-    let a = matrix::load_matrix(ctx.store, &a_name)?;
+    project(
+        ctx,
+        &name,
+        &num_name,
+        &base,
+        &a_name,
+        "PROJ_MATR_BASE",
+        "PROJ_MATR_BASE/MATR_ASSE",
+    )
+}
+
+/// Create `name`, the generalized matrix of `a_name` on the basis `base` numbered by
+/// `num_name` (PROJ_MATR_BASE, and PROJ_BASE for each MATR_ASSE_GENE). `op` prefixes the
+/// keyword paths of errors about the numbering, `matrix_key` is the path of the matrix.
+pub(crate) fn project(
+    ctx: &mut OpContext<'_>,
+    name: &str,
+    num_name: &str,
+    base: &str,
+    a_name: &str,
+    op: &str,
+    matrix_key: &str,
+) -> Result<()> {
+    let (num, modes) = numbering_and_basis(ctx.store, num_name, Some(base), op)?;
+    let a = matrix::load_matrix(ctx.store, a_name)?;
     if a.numbering.dofs != modes.numbering.dofs {
         return Err(Error::input(format!(
             "{a_name} is not assembled on the DOF numbering of the basis {base}"
         ))
-        .keyword("PROJ_MATR_BASE/MATR_ASSE")
+        .keyword(matrix_key)
         .hint(
             "assemble the matrix with the NUME_DDL of the matrices the modes were computed from",
         ));
@@ -39,15 +62,15 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         MatrixKind::RigiMeca => "RIGI",
         MatrixKind::MassMeca => "MASS",
     };
-    ctx.create(&name, "matr_asse_gene_r")?;
-    ctx.store.record_dependency(&name, &num_name)?;
+    ctx.create(name, "matr_asse_gene_r")?;
+    ctx.store.record_dependency(name, num_name)?;
     gene::save_matrix(
         ctx.store,
-        &name,
+        name,
         &GeneMatrix {
             meta: GeneMeta {
-                numbering: num_name,
-                basis: base,
+                numbering: num_name.to_string(),
+                basis: base.to_string(),
                 size: num.size,
                 kind: kind.to_string(),
             },

@@ -15,35 +15,58 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let name = ctx.result_name()?.to_string();
     let num_name = args.req_concept("NUME_DDL_GENE")?.name.clone();
     let base = args.req_concept("BASE")?.name.clone();
-    let (num, modes) = numbering_and_basis(ctx.store, &num_name, Some(&base), "PROJ_VECT_BASE")?;
     let f_name = args.req_concept("VECT_ASSE")?.name.clone();
-    let field = gene::load_field(ctx.store, &f_name)?;
-    let u = on_numbering(&field, &modes, &f_name)?;
     let kind = args.req_text("TYPE_VECT")?.to_string();
+    project(
+        ctx,
+        &name,
+        &num_name,
+        &base,
+        (&f_name, "PROJ_VECT_BASE/VECT_ASSE"),
+        &kind,
+        "PROJ_VECT_BASE",
+    )
+}
+
+/// Create `name`, the generalized vector of the nodal field `field` (its name and keyword
+/// path) on the basis `base` numbered by `num_name`, as TYPE_VECT `kind` asks (PROJ_VECT_BASE,
+/// and PROJ_BASE for each VECT_ASSE_GENE). `op` prefixes the paths of other errors.
+pub(crate) fn project(
+    ctx: &mut OpContext<'_>,
+    name: &str,
+    num_name: &str,
+    base: &str,
+    (f_name, field_key): (&str, &str),
+    kind: &str,
+    op: &str,
+) -> Result<()> {
+    let (num, modes) = numbering_and_basis(ctx.store, num_name, Some(base), op)?;
+    let field = gene::load_field(ctx.store, f_name)?;
+    let u = on_numbering(&field, &modes, f_name).map_err(|e| e.keyword(field_key))?;
     let basis = vectors(&modes);
     let values = if kind == "FORC" {
         project_vector(&basis, &u)?
     } else {
-        let mass = mass_entries(ctx.store, &base)?;
+        let mass = mass_entries(ctx.store, base)?;
         if mass.is_none() {
             ctx.say(&format!(
-                "PROJ_VECT_BASE {name}: {base} does not name the mass matrix it was computed \
+                "{op} {name}: {base} does not name the mass matrix it was computed \
                  with; the coordinates are those of the Euclidean metric"
             ))?;
         }
-        coordinates(&basis, mass.as_deref(), &u).map_err(|e| e.keyword("PROJ_VECT_BASE/BASE"))?
+        coordinates(&basis, mass.as_deref(), &u).map_err(|e| e.keyword(format!("{op}/BASE")))?
     };
-    ctx.create(&name, "vect_asse_gene")?;
-    ctx.store.record_dependency(&name, &num_name)?;
+    ctx.create(name, "vect_asse_gene")?;
+    ctx.store.record_dependency(name, num_name)?;
     gene::save_vector(
         ctx.store,
-        &name,
+        name,
         &GeneVector {
             meta: GeneMeta {
-                numbering: num_name,
-                basis: base,
+                numbering: num_name.to_string(),
+                basis: base.to_string(),
                 size: num.size,
-                kind,
+                kind: kind.to_string(),
             },
             values,
         },
@@ -52,14 +75,13 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
 
 /// The field as a vector of the basis's full numbering. DOFs a boundary condition
 /// eliminated are imposed zero and read as zero; a nonzero value of a component the
-/// numbering does not have is an error.
+/// numbering does not have is an error (without keyword: the caller names its own).
 pub(crate) fn on_numbering(field: &NodalField, modes: &ModeMeca, f_name: &str) -> Result<Vec<f64>> {
     if field.mesh != modes.numbering.mesh {
         return Err(Error::input(format!(
             "{f_name} is a field of mesh {} and the basis's DOFs are on mesh {}",
             field.mesh, modes.numbering.mesh
-        ))
-        .keyword("PROJ_VECT_BASE/VECT_ASSE"));
+        )));
     }
     let mut u = vec![0.0; modes.numbering.len()];
     let index = modes.numbering.index_map();
@@ -73,7 +95,6 @@ pub(crate) fn on_numbering(field: &NodalField, modes: &ModeMeca, f_name: &str) -
                 return Err(Error::input(format!(
                     "{f_name} gives {cmp} = {v:e} at node {node}, a DOF the basis's numbering does not have"
                 ))
-                .keyword("PROJ_VECT_BASE/VECT_ASSE")
                 .hint("give only components of the model's elements at that node"));
             }
         }

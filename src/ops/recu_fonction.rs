@@ -73,15 +73,46 @@ fn points(t: &Table, table: &str, px: &str, py: &str) -> Result<(Vec<f64>, Vec<f
     Ok((x, y))
 }
 
+/// The keywords choosing instants of a transient result (INTERP_NUME, CRITERE and
+/// PRECISION have defaults: always present, they only matter with these).
+const INSTANT_KEYS: [&str; 5] = ["TOUT_INST", "TOUT_ORDRE", "NUME_ORDRE", "INST", "LIST_INST"];
+
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    if args.text("MULT_APPUI") == Some("OUI") {
+        return Err(Error::validation(
+            "MULT_APPUI='OUI' (absolute motion of a multi-support excitation) is not supported",
+        )
+        .keyword(args.key_path("MULT_APPUI"))
+        .hint("DYNA_VIBRA does not take multi-support excitations yet: the results are relative to the supports"));
+    }
     // The catalog's UN_PARMI(TABLE, RESULTAT, RESU_GENE) leaves one of them.
     if args.concept("RESULTAT").is_some() {
         from_result(ctx, args)
     } else if args.concept("RESU_GENE").is_some() {
         from_resu_gene(ctx, args)
     } else {
+        if let Some(k) = INSTANT_KEYS.iter().find(|k| args.has(k)) {
+            return Err(Error::validation(format!(
+                "{k} chooses instants of a transient result (RESULTAT or RESU_GENE), not rows of a table"
+            ))
+            .keyword(args.key_path(k))
+            .hint("select rows of a table with FILTRE"));
+        }
         from_table(ctx, args)
     }
+}
+
+/// The history (x the archived instants, increasing) at the instants the call asks for
+/// (TOUT_INST, NUME_ORDRE, INST or LIST_INST; INTERP_NUME='LIN' interpolates between
+/// archived instants).
+fn at_instants(args: &Args, x: Vec<f64>, y: Vec<f64>) -> Result<(Vec<f64>, Vec<f64>)> {
+    let chosen = super::common::instants::picks(args, &x, "INTERP_NUME")?;
+    let at = |i: usize| y.get(i).copied().unwrap_or(f64::NAN);
+    let ys = chosen
+        .iter()
+        .map(|p| super::common::instants::value(p, at))
+        .collect();
+    Ok((chosen.iter().map(|p| p.t).collect(), ys))
 }
 
 /// From a DYNA_VIBRA result: a physical component (NOM_CHAM, NOEUD | GROUP_NO, NOM_CMP)
@@ -136,6 +167,7 @@ fn from_resu_gene(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         )?;
         (x, y, args.req_text("PARA_X")?.to_string(), para_y)
     };
+    let (x, y) = at_instants(args, x, y)?;
     let f = function_with_options(args, &name, &para, &resu, x, y)?;
     ctx.create(&name, "fonction_sdaster")?;
     save_function(ctx.store, &name, &f)
@@ -153,14 +185,8 @@ fn from_result(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         &|k| args.key_path(k),
         "RECU_FONCTION extracts the history of one node",
     )?;
-    let f = function_with_options(
-        args,
-        &name,
-        "INST",
-        &c.cmp,
-        c.samples.inst,
-        c.samples.values,
-    )?;
+    let (x, y) = at_instants(args, c.samples.inst, c.samples.values)?;
+    let f = function_with_options(args, &name, "INST", &c.cmp, x, y)?;
     ctx.create(&name, "fonction_sdaster")?;
     save_function(ctx.store, &name, &f)?;
     if ctx.info >= 2 {

@@ -55,7 +55,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 .is_none_or(|ns| ns.contains(&modes.numbering.dofs[i].node.as_str()))
         })
         .collect();
-    let chosen = picks(args, &coords.t)?;
+    let chosen = picks(args, &coords.t, "INTERPOL")?;
     let mut t = field_header(format!("REST_GENE_PHYS of {src}"), &fields)?;
     let series = [&coords.q, &coords.v, &coords.a];
     for (k, p) in chosen.iter().enumerate() {

@@ -418,6 +418,12 @@ impl Shock {
                 sample.v_t1 = vt[0];
                 sample.v_t2 = vt[1];
                 new_state = st;
+            } else {
+                // The sliding velocity, recorded without friction too (the wear power
+                // FN·|V_T| of POST_DYNA_MODA_T needs it).
+                let vt = tangential_velocity(dv, gap);
+                sample.v_t1 = vt[0];
+                sample.v_t2 = vt[1];
             }
         } else {
             new_state.old_xl = d;
@@ -441,7 +447,7 @@ impl Shock {
     ) -> ([f64; 2], [f64; 2], ShockState) {
         let (mu_s, mu_d) = self.spec.friction.coefficients();
         let (c, s) = (gap.cos, gap.sin);
-        let vt = [-s * dv[1] + c * dv[2], dv[0]];
+        let vt = tangential_velocity(dv, gap);
         let scal = vt[0] * state.old_vt[0] + vt[1] * state.old_vt[1];
         let nvt = vt[0].hypot(vt[1]);
         let mut st = *state;
@@ -588,4 +594,10 @@ pub fn optimized_tangential_damping(
     let kt = shock.spec.rigi_tan;
     let xi = damping_ratio[j];
     Ok((2.0 * (m * (k + kt)).sqrt() - 2.0 * xi * (k * m).sqrt()).max(0.0))
+}
+
+/// The sliding velocity (V_T1, V_T2) in the tangent plane of the contact: along the
+/// contact's tangent in the local (y, z) plane, and along the local x axis.
+fn tangential_velocity(dv: [f64; 3], gap: Gap) -> [f64; 2] {
+    [-gap.sin * dv[1] + gap.cos * dv[2], dv[0]]
 }

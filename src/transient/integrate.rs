@@ -154,8 +154,18 @@ pub fn integrate(
     }
     let (taken, rejected, events) = match scheme {
         Scheme::Adaptive(opts) => {
+            // The error scale's floor near rest (adaptive.rs): 1/ω²_max of the structure
+            // with its shocks' stiffness (without it, the large accelerations of a contact
+            // would loosen the test there), none for a structure without stiffness.
+            let (_, omega_max) = stability_limit(structure, shocks)?;
+            let floor = if omega_max > 0.0 && omega_max.is_finite() {
+                1.0 / (omega_max * omega_max)
+            } else {
+                0.0
+            };
             let st = run_adaptive(
-                &model, shocks, &opts, &q, &v, &a, times, archive, &mut rec, &mut ws, progress,
+                &model, shocks, &opts, floor, &q, &v, &a, times, archive, &mut rec, &mut ws,
+                progress,
             )?;
             (st.taken, st.rejected, st.events)
         }

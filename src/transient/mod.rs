@@ -38,7 +38,8 @@
 //! trait), contact_time.rs (how long a contact lasts, to judge a fixed step), dense.rs, sparse.rs, obstacle.rs, dis_choc.rs, problem.rs (forcing, grid,
 //! archive, trajectory), system.rs (the right-hand side), scheme/ (one file per scheme),
 //! fixed.rs and adaptive.rs (the loops), archive.rs (recording), integrate.rs (the
-//! driver), tests/.
+//! driver), impact_stats.rs (POST_DYNA_MODA_T's impact and wear statistics of the
+//! archived samples), tests/.
 
 mod adaptive;
 mod archive;
@@ -47,6 +48,7 @@ pub mod dense;
 pub mod dis_choc;
 pub mod error;
 mod fixed;
+pub mod impact_stats;
 pub mod integrate;
 pub mod obstacle;
 pub mod problem;

@@ -43,8 +43,10 @@ pub fn matching(a: &Args, times: &[f64], t: f64) -> Result<Option<usize>> {
     Ok(times.iter().position(|&s| (s - t).abs() <= tol))
 }
 
-/// The instants `a` asks for among the archived `times` (increasing).
-pub fn picks(a: &Args, times: &[f64]) -> Result<Vec<Pick>> {
+/// The instants `a` asks for among the archived `times` (increasing); `interp_key` is the
+/// keyword whose 'LIN' allows interpolation between archived instants (REST_GENE_PHYS's
+/// INTERPOL, RECU_FONCTION's INTERP_NUME).
+pub fn picks(a: &Args, times: &[f64], interp_key: &str) -> Result<Vec<Pick>> {
     let exact = |i: usize| Pick {
         t: times[i],
         lo: i,
@@ -60,7 +62,7 @@ pub fn picks(a: &Args, times: &[f64]) -> Result<Vec<Pick>> {
     let Some(wanted) = a.reals("INST").or_else(|| a.reals("LIST_INST")) else {
         return Ok((0..times.len()).map(exact).collect());
     };
-    let interpolate = a.text("INTERPOL") == Some("LIN");
+    let interpolate = a.text(interp_key) == Some("LIN");
     let precision = a.req_real("PRECISION")?;
     wanted
         .iter()
@@ -88,7 +90,7 @@ pub fn picks(a: &Args, times: &[f64]) -> Result<Vec<Pick>> {
                 ),
             })
             .keyword(a.key_path(if a.has("INST") { "INST" } else { "LIST_INST" }))
-            .hint("give INTERPOL='LIN' to interpolate between archived instants, or archive it (DYNA_VIBRA's ARCHIVAGE/INST)"))
+            .hint(format!("give {interp_key}='LIN' to interpolate between archived instants, or archive it (DYNA_VIBRA's ARCHIVAGE/INST)")))
         })
         .collect()
 }

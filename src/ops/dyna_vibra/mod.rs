@@ -28,7 +28,14 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let mesh = model::load_mesh(ctx.store, space.mesh())?;
     let (mut shocks, names) = shocks::read(ctx, args, &space, &mesh)?;
     default_tangential_damping(args, &space, &mut shocks)?;
-    basis_check::check(ctx, &space, &shocks, &names)?;
+    let veri = match args.fact("VERI_CHOC") {
+        Some(v) => Some(basis_check::VeriChoc {
+            seuil: v.req_real("SEUIL")?,
+            stop: v.req_text("STOP_CRITERE")? == "OUI",
+        }),
+        None => None,
+    };
+    basis_check::check(ctx, &space, &shocks, &names, veri)?;
     let n = space.size();
     let (q0, v0) = initial_state(ctx, args, &space, n)?;
     let forcing = excitations(ctx, args, &space)?;
@@ -238,7 +245,8 @@ fn excitations(ctx: &OpContext<'_>, args: &Args, space: &Space) -> Result<Vec<Fo
         let f = space.vector(ctx, occ, key)?;
         let forcing = match occ.concept("FONC_MULT") {
             Some(c) => {
-                let g = function_store::load_function(ctx.store, &c.name)?;
+                let g = function_store::load_any_function(ctx.store, &c.name)
+                    .map_err(|e| e.keyword(occ.key_path("FONC_MULT")))?;
                 // A value the function cannot give (outside an EXCLU domain) makes the
                 // force NaN, which the integrator stops on, naming the instant.
                 Forcing {

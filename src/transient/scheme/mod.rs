@@ -28,7 +28,8 @@ pub enum RkPair {
 pub struct AdaptiveOptions {
     pub pair: RkPair,
     /// TOLERANCE (Code_Aster's default 1e-5): the local error of a step, relative to the
-    /// largest |q| (resp. |v|) met so far, per component, in the max norm.
+    /// largest |q| (resp. |v|) met so far, per component, in the max norm (floored near
+    /// rest, adaptive.rs).
     pub tolerance: f64,
     /// PAS_MINI: below it the integration stops with an error (default: 1e-12 of the
     /// interval).

@@ -1,12 +1,16 @@
 //! Tests of the transient module, one concern per file: an exact event-driven reference
 //! (reference.rs) and the convergence against it (impact.rs), energy (energy.rs), the
 //! Coulomb oscillator of sdnd100a (coulomb.rs), obstacle geometry and forces
-//! (geometry.rs), stability (stability.rs), the sparse structure (sparse.rs).
+//! (geometry.rs), a start from rest under a force (from_rest.rs), stability
+//! (stability.rs), the sparse structure (sparse.rs), impact and wear statistics
+//! (impact_stats.rs).
 
 mod coulomb;
 mod energy;
+mod from_rest;
 mod geometry;
 mod impact;
+mod impact_stats;
 mod reference;
 mod sparse;
 mod stability;
