@@ -134,11 +134,13 @@ fn histories(store: &Store, result: &str, kw: &str) -> Result<Vec<(StoredShock, 
         for row in t
             .rows
             .iter()
-            .filter(|r| r[ji].as_text() == Some(shock.intitule.as_str()))
+            .filter(|r| r.get(ji).and_then(Cell::as_text) == Some(shock.intitule.as_str()))
         {
-            h.t.push(row[jt].as_f64().unwrap_or(f64::NAN));
+            // A missing or non-numeric cell reads NaN and is reported below.
+            let num = |j: usize| row.get(j).and_then(Cell::as_f64).unwrap_or(f64::NAN);
+            h.t.push(num(jt));
             for (c, &j) in h.cols.iter_mut().zip(&js) {
-                c.push(row[j].as_f64().unwrap_or(f64::NAN));
+                c.push(num(j));
             }
         }
         if h.t

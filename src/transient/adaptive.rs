@@ -126,17 +126,12 @@ pub(crate) fn run_adaptive(
         rejected: 0,
         events: Vec::new(),
     };
-    let listed: &[f64] = match archive {
-        Archive::Instants(l) => l,
-        Archive::Every(_) => &[],
-    };
-    let every = match archive {
-        Archive::Every(k) => (*k).max(1),
-        Archive::Instants(_) => 0,
-    };
+    let listed: &[f64] = archive.listed().unwrap_or(&[]);
+    let every = archive.every().map_or(0, |k| k.max(1));
     let ttol = 1e-12 * span.max(grid.t_end.abs());
     let mut next = 0usize;
-    if listed.first().is_some_and(|&t0| t0 <= grid.t0 + ttol) {
+    // With PAS_ARCH the start is archived already (integrate.rs).
+    if every == 0 && listed.first().is_some_and(|&t0| t0 <= grid.t0 + ttol) {
         rec.push(grid.t0, q0, v0, a0, &ws.evals)?;
     }
     while next < listed.len() && listed[next] <= grid.t0 + ttol {
@@ -278,16 +273,11 @@ pub(crate) fn run_adaptive(
             h_ctrl = (h * fac).min(pas_maxi);
         }
         let done = t >= grid.t_end - ttol;
-        let archive_now = if every > 0 {
-            stats.taken.is_multiple_of(every) || done
-        } else {
-            let mut any = false;
-            while next < listed.len() && listed[next] <= t + ttol {
-                any = true;
-                next += 1;
-            }
-            any
-        };
+        let mut archive_now = every > 0 && (stats.taken.is_multiple_of(every) || done);
+        while next < listed.len() && listed[next] <= t + ttol {
+            archive_now = true;
+            next += 1;
+        }
         if archive_now {
             rec.push(t, &y[..n], &y[n..], &k[0][n..], &ws.evals)?;
         }

@@ -36,10 +36,8 @@ pub(crate) fn run_fixed(
     let Start { q, v, a } = state;
     let n = q.len();
     let (nsteps, h) = grid.fixed_steps();
-    let listed = match archive {
-        Archive::Instants(list) => Some(list.as_slice()),
-        Archive::Every(_) => None,
-    };
+    let listed = archive.listed();
+    let every = archive.every();
     let keep_prev = listed.is_some();
     let len = if keep_prev { n } else { 0 };
     let (mut q0, mut v0, mut a0) = (
@@ -57,7 +55,10 @@ pub(crate) fn run_fixed(
     let mut next = 0usize;
     if let Some(list) = listed {
         while next < list.len() && (list[next] - grid.t0).abs() <= tol {
-            rec.push(grid.t0, q, v, a, &ws.evals)?;
+            // With PAS_ARCH the start is archived already (integrate.rs).
+            if every.is_none() {
+                rec.push(grid.t0, q, v, a, &ws.evals)?;
+            }
             next += 1;
         }
     }
@@ -81,33 +82,34 @@ pub(crate) fn run_fixed(
         if !(finite(q) && finite(v) && finite(a)) {
             return Err(TransientError::NonFinite { t: t1 });
         }
-        match (archive, listed) {
-            (Archive::Every(m), _) if k.is_multiple_of((*m).max(1)) || k == nsteps => {
-                rec.push(t1, q, v, a, &ws.evals)?;
-            }
-            (_, Some(list)) => {
-                while next < list.len() && list[next] <= t1 + tol {
-                    let ti = list[next];
-                    if (ti - t1).abs() <= tol {
+        let at_step = every.is_some_and(|m| k.is_multiple_of(m.max(1)) || k == nsteps);
+        if let Some(list) = listed {
+            // The listed instants inside the step, then its end (once, if it is both).
+            while next < list.len() && list[next] <= t1 + tol {
+                let ti = list[next];
+                if (ti - t1).abs() <= tol {
+                    if !at_step {
                         rec.push(t1, q, v, a, &ws.evals)?;
-                    } else {
-                        let ends = StepEnds {
-                            t0: t,
-                            h,
-                            q0: &q0,
-                            v0: &v0,
-                            a0: &a0,
-                            q1: q,
-                            v1: v,
-                            a1: a,
-                        };
-                        ends.interpolate(ti, shocks, &mut interp);
-                        rec.push(ti, &interp.q, &interp.v, &interp.a, &interp.evals)?;
                     }
-                    next += 1;
+                } else {
+                    let ends = StepEnds {
+                        t0: t,
+                        h,
+                        q0: &q0,
+                        v0: &v0,
+                        a0: &a0,
+                        q1: q,
+                        v1: v,
+                        a1: a,
+                    };
+                    ends.interpolate(ti, shocks, &mut interp);
+                    rec.push(ti, &interp.q, &interp.v, &interp.a, &interp.evals)?;
                 }
+                next += 1;
             }
-            _ => {}
+        }
+        if at_step {
+            rec.push(t1, q, v, a, &ws.evals)?;
         }
         commit(shocks, &ws.evals);
         if k % report == 0 || k == nsteps {

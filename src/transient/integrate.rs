@@ -58,9 +58,11 @@ fn check_inputs(
         ));
     }
     match archive {
-        Archive::Every(0) => Err(invalid("ARCHIVAGE/PAS_ARCH", "must be ≥ 1")),
+        Archive::Every(0) | Archive::EveryAnd(0, _) => {
+            Err(invalid("ARCHIVAGE/PAS_ARCH", "must be ≥ 1"))
+        }
         Archive::Every(_) => Ok(()),
-        Archive::Instants(list) => {
+        Archive::Instants(list) | Archive::EveryAnd(_, list) => {
             let tol = 1e-9 * (t_end - t0);
             let sorted = list.windows(2).all(|w| w[1] > w[0]);
             let inside = list.iter().all(|&x| x >= t0 - tol && x <= t_end + tol);
@@ -140,16 +142,17 @@ pub fn integrate(
     }
     commit(shocks, &ws.evals);
     let (nsteps, h) = times.fixed_steps();
-    let rows = match (archive, &scheme) {
-        (Archive::Instants(list), _) => list.len(),
-        (Archive::Every(k), Scheme::Adaptive(_)) => {
-            ((times.t_end - times.t0) / times.dt / *k as f64 + 2.0).min(INITIAL_ROWS_CAP as f64)
-                as usize
+    let listed = archive.listed().map_or(0, <[f64]>::len);
+    let rows = match (archive.every(), &scheme) {
+        (None, _) => listed,
+        (Some(k), Scheme::Adaptive(_)) => {
+            ((times.t_end - times.t0) / times.dt / k as f64 + 2.0 + listed as f64)
+                .min(INITIAL_ROWS_CAP as f64) as usize
         }
-        (Archive::Every(k), _) => nsteps / k + 2,
+        (Some(k), _) => nsteps / k.max(1) + 2 + listed,
     };
     let mut rec = Recorder::new(n, shocks.len(), rows)?;
-    if let Archive::Every(_) = archive {
+    if archive.every().is_some() {
         rec.push(times.t0, &q, &v, &a, &ws.evals)?;
     }
     let (taken, rejected, events) = match scheme {

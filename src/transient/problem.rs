@@ -46,13 +46,33 @@ impl TimeGrid {
     }
 }
 
-/// ARCHIVAGE: every k-th step (PAS_ARCH; the first and last instants are always kept), or
-/// a list of instants (INST/LIST_INST). Listed instants are hit exactly by the adaptive
-/// schemes and interpolated (cubic Hermite in q, v) by the fixed-step ones.
+/// ARCHIVAGE: every k-th step (PAS_ARCH; the first and last instants are always kept), a
+/// list of instants (INST/LIST_INST), or both (PAS_ARCH with INST, as Code_Aster allows:
+/// the union, each instant once). Listed instants are hit exactly by the adaptive schemes
+/// and interpolated (cubic Hermite in q, v) by the fixed-step ones.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Archive {
     Every(usize),
     Instants(Vec<f64>),
+    EveryAnd(usize, Vec<f64>),
+}
+
+impl Archive {
+    /// PAS_ARCH, if the archive keeps every k-th step.
+    pub fn every(&self) -> Option<usize> {
+        match self {
+            Archive::Every(k) | Archive::EveryAnd(k, _) => Some(*k),
+            Archive::Instants(_) => None,
+        }
+    }
+
+    /// The listed instants, if any.
+    pub fn listed(&self) -> Option<&[f64]> {
+        match self {
+            Archive::Instants(l) | Archive::EveryAnd(_, l) => Some(l),
+            Archive::Every(_) => None,
+        }
+    }
 }
 
 /// A located change of contact status of one shock.

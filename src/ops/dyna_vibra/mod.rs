@@ -387,7 +387,11 @@ fn archive(args: &Args, times: &TimeGrid) -> Result<Archive> {
             .collect();
         list.sort_by(f64::total_cmp);
         list.dedup();
-        return Ok(Archive::Instants(list));
+        // PAS_ARCH with INST: both (Code_Aster's union); the catalog bounds PAS_ARCH ≥ 1.
+        return Ok(match a.int("PAS_ARCH") {
+            Some(every) => Archive::EveryAnd(usize::try_from(every).unwrap_or(1).max(1), list),
+            None => Archive::Instants(list),
+        });
     }
     let every = a.int("PAS_ARCH").unwrap_or(1);
     Ok(Archive::Every(usize::try_from(every).unwrap_or(1).max(1)))

@@ -3,8 +3,9 @@
 //! Coulomb oscillator of sdnd100a (coulomb.rs), obstacle geometry and forces
 //! (geometry.rs), a start from rest under a force (from_rest.rs), stability
 //! (stability.rs), the sparse structure (sparse.rs), impact and wear statistics
-//! (impact_stats.rs).
+//! (impact_stats.rs), PAS_ARCH with INST (archive_union.rs).
 
+mod archive_union;
 mod coulomb;
 mod energy;
 mod from_rest;
