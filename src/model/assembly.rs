@@ -124,10 +124,9 @@ impl AssembledMatrix {
         Ok(full)
     }
 
-    /// A linear function of the displacement given as a row r over the numbering (rᵀu),
-    /// as a row over the free DOFs: Tᵀr, so that rᵀ(T·q) = (Tᵀr)ᵀq. Without relations, r
-    /// on the free DOFs.
-    pub fn row_on_free(&self, full: &[f64]) -> Vec<f64> {
+    /// The free DOFs and, per DOF of the numbering, its reduced index (None: blocked or
+    /// dependent).
+    fn reduction(&self) -> (Vec<usize>, Vec<Option<usize>>) {
         let free = self.free_dofs();
         let mut map = vec![None; self.size()];
         for (r, &i) in free.iter().enumerate() {
@@ -135,6 +134,14 @@ impl AssembledMatrix {
                 *m = Some(r);
             }
         }
+        (free, map)
+    }
+
+    /// A linear function of the displacement given as a row r over the numbering (rᵀu),
+    /// as a row over the free DOFs: Tᵀr, so that rᵀ(T·q) = (Tᵀr)ᵀq. Without relations, r
+    /// on the free DOFs.
+    pub fn row_on_free(&self, full: &[f64]) -> Vec<f64> {
+        let (free, map) = self.reduction();
         let mut out = vec![0.0; free.len()];
         for (i, &ri) in full.iter().enumerate().filter(|(_, v)| **v != 0.0) {
             let terms: Vec<(usize, f64)> = match self.dependence.expression(i) {
@@ -156,13 +163,7 @@ impl AssembledMatrix {
         if self.dependence.is_empty() {
             return sparse::reduced(self.size(), &self.triplets, &self.eliminated);
         }
-        let free = self.free_dofs();
-        let mut map = vec![None; self.size()];
-        for (r, &i) in free.iter().enumerate() {
-            if let Some(m) = map.get_mut(i) {
-                *m = Some(r);
-            }
-        }
+        let (free, map) = self.reduction();
         let t = self.dependence.transform(&self.triplets, &map);
         sparse::from_triplets(free.len(), free.len(), &t)
     }
