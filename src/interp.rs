@@ -714,6 +714,20 @@ impl Checker {
     }
 }
 
+/// The concepts an operator creates beside its result, under names derived from it: the
+/// shocks' table `<result>_CHOC` of a DYNA_VIBRA (or DYNA_TRAN_MODAL) with shocks.
+fn owned_outputs(op: &str, args: &Args, result: &str) -> Vec<(String, String)> {
+    let shocks = args.has("COMPORTEMENT") || args.has("CHOC");
+    if matches!(op, "DYNA_VIBRA" | "DYNA_TRAN_MODAL") && shocks {
+        vec![(
+            crate::store::tran_gene::shock_table_name(result),
+            "table_sdaster".to_string(),
+        )]
+    } else {
+        Vec::new()
+    }
+}
+
 /// Why a mesh file cannot be read in `format`, as far as its first bytes show.
 fn mesh_file_problem(path: &Path, format: crate::mesh::MeshFormat) -> Option<Error> {
     use std::io::Read;
@@ -809,6 +823,9 @@ impl Host for Checker {
                     (Some(name), Some(ty)) if !matches!(ty.as_str(), "R" | "I" | "TXM") => {
                         self.concepts.insert(name.clone(), ty.clone());
                         self.from_db.retain(|n| n != name);
+                        for (owned, ty) in owned_outputs(&call.op, &args, name) {
+                            self.concepts.insert(owned, ty);
+                        }
                         Ok(Value::Concept(ConceptRef {
                             name: name.clone(),
                             ty,

@@ -449,3 +449,36 @@ fn proche_finds_the_mode_nearest_each_frequency_once() {
         "{out}"
     );
 }
+
+/// `check` knows the shocks' table a DYNA_VIBRA with shocks creates beside its result
+/// (`<result>_CHOC`), as the run does; a table of that name without shocks stays unknown.
+#[test]
+fn check_knows_the_shocks_table() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(
+        case("dyna_vibra_impact.mail"),
+        dir.path().join("impact.mail"),
+    )
+    .unwrap();
+    let src = std::fs::read_to_string(case("dyna_vibra_impact.comm")).unwrap();
+    let check = |extra: &str| {
+        let comm = dir.path().join("impact.comm");
+        std::fs::write(&comm, src.replace("FIN()", &format!("{extra}\nFIN()"))).unwrap();
+        let o = Command::new(env!("CARGO_BIN_EXE_aster-nl"))
+            .arg("check")
+            .arg(&comm)
+            .output()
+            .unwrap();
+        let out = format!(
+            "{}{}",
+            String::from_utf8_lossy(&o.stdout),
+            String::from_utf8_lossy(&o.stderr)
+        );
+        (o.status.code(), out)
+    };
+    let (code, out) = check("IMPR_TABLE(TABLE=RK_CHOC)");
+    assert_eq!(code, Some(0), "{out}");
+    let (code, out) = check("IMPR_TABLE(TABLE=MGEN_CHOC)");
+    assert_ne!(code, Some(0), "{out}");
+    assert!(out.contains("'MGEN_CHOC' is not defined"), "{out}");
+}
