@@ -482,3 +482,55 @@ fn check_knows_the_shocks_table() {
     assert_ne!(code, Some(0), "{out}");
     assert!(out.contains("'MGEN_CHOC' is not defined"), "{out}");
 }
+
+/// A one-node obstacle given a NOEUD_2 acts on node 1 alone, as Code_Aster's shock law
+/// does (a shock between two nodes is a BI_ obstacle): alarm DYNA_VIBRA_4, and the run
+/// equals the one without NOEUD_2 (same archived shock force).
+#[test]
+fn a_one_node_obstacle_ignores_noeud_2() {
+    let body = |node2: &str| {
+        format!(
+            "MODES = CALC_MODES(MATR_RIGI=K, MATR_MASS=M, OPTION='PLUS_PETITE', CALC_FREQ=_F(NMAX_FREQ=10))\n\
+             NG = NUME_DDL_GENE(BASE=MODES, STOCKAGE='DIAG')\n\
+             MG = PROJ_MATR_BASE(BASE=MODES, NUME_DDL_GENE=NG, MATR_ASSE=M)\n\
+             KG = PROJ_MATR_BASE(BASE=MODES, NUME_DDL_GENE=NG, MATR_ASSE=K)\n\
+             V = CREA_CHAMP(OPERATION='AFFE', TYPE_CHAM='NOEU_DEPL_R', MAILLAGE=MAIL, AFFE=_F(NOEUD='N10', NOM_CMP='DX', VALE=0.1))\n\
+             VG = PROJ_VECT_BASE(BASE=MODES, NUME_DDL_GENE=NG, VECT_ASSE=V, TYPE_VECT='VITE')\n\
+             PLAN = DEFI_OBSTACLE(TYPE='PLAN_Y')\n\
+             TR = DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='GENE', MATR_MASS=MG, MATR_RIGI=KG, \
+             ETAT_INIT=_F(VITE=VG), SCHEMA_TEMPS=_F(SCHEMA='RUNGE_KUTTA_54'), INCREMENT=_F(INST_FIN=0.5, PAS=1.e-3), \
+             ARCHIVAGE=_F(INST=(0.25, 0.5)), \
+             COMPORTEMENT=_F(RELATION='DIS_CHOC', NOEUD_1='N10', {node2} OBSTACLE=PLAN, INTITULE='STOP', \
+             ORIG_OBST=(9., 0., 0.), NORM_OBST=(0., 1., 0.), JEU=1.005, RIGI_NOR=1.e3))\n\
+             F = RECU_FONCTION(RESU_GENE=TR, INTITULE='STOP', PARA_X='INST', PARA_Y='FN')\n\
+             IMPR_FONCTION(FORMAT='TABLEAU', COURBE=_F(FONCTION=F))"
+        )
+    };
+    let (code, alone) = run_chain(&body(""));
+    assert_eq!(code, Some(0), "{alone}");
+    let (code, with) = run_chain(&body("NOEUD_2='N9',"));
+    assert_eq!(code, Some(0), "{with}");
+    assert!(
+        with.contains("<DYNA_VIBRA_4>") && with.contains("NOEUD_2 = N9 is ignored"),
+        "{with}"
+    );
+    assert!(!alone.contains("DYNA_VIBRA_4"), "{alone}");
+    // The printed force histories are the same.
+    let table = |out: &str| -> Vec<String> {
+        out.lines()
+            .filter(|l| l.trim_start().starts_with(|c: char| c.is_ascii_digit()))
+            .map(str::to_string)
+            .collect()
+    };
+    assert!(!table(&alone).is_empty(), "{alone}");
+    // The stop is met (a nonzero force is printed).
+    assert!(
+        table(&alone).iter().any(|l| l
+            .split_whitespace()
+            .nth(1)
+            .and_then(|v| v.parse::<f64>().ok())
+            .is_some_and(|v| v > 0.0)),
+        "{alone}"
+    );
+    assert_eq!(table(&alone), table(&with));
+}

@@ -26,7 +26,21 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let name = ctx.result_name()?.to_string();
     let (space, structure) = Space::read(ctx, args)?;
     let mesh = model::load_mesh(ctx.store, space.mesh())?;
-    let (mut shocks, names) = shocks::read(ctx, args, &space, &mesh)?;
+    let shocks::CallShocks {
+        mut shocks,
+        names,
+        ignored,
+    } = shocks::read(ctx, args, &space, &mesh)?;
+    for (intitule, n2) in &ignored {
+        ctx.alarm(
+            "DYNA_VIBRA_4",
+            &format!(
+                "shock {intitule}: its obstacle acts on node 1 alone, as in Code_Aster (a shock \
+                 between two nodes is a BI_PLAN_Y/Z, BI_CERCLE or BI_CERC_INT obstacle): \
+                 NOEUD_2 = {n2} is ignored"
+            ),
+        )?;
+    }
     default_tangential_damping(args, &space, &mut shocks)?;
     let veri = match args.fact("VERI_CHOC") {
         Some(v) => Some(basis_check::VeriChoc {

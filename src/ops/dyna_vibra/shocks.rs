@@ -21,13 +21,16 @@ pub struct ShockName {
     pub obstacle: String,
 }
 
-/// The shocks of the call, in order, with their names.
-pub fn read(
-    ctx: &OpContext<'_>,
-    args: &Args,
-    space: &Space,
-    mesh: &Mesh,
-) -> Result<(Vec<Shock>, Vec<ShockName>)> {
+/// The shocks of a call, in order, with their names.
+pub struct CallShocks {
+    pub shocks: Vec<Shock>,
+    pub names: Vec<ShockName>,
+    /// (INTITULE, node) of each NOEUD_2 given with a one-node obstacle, ignored.
+    pub ignored: Vec<(String, String)>,
+}
+
+/// The shocks of the call.
+pub fn read(ctx: &OpContext<'_>, args: &Args, space: &Space, mesh: &Mesh) -> Result<CallShocks> {
     let occurrences = if args.has("COMPORTEMENT") {
         args.facts_or_empty("COMPORTEMENT")
     } else {
@@ -35,8 +38,12 @@ pub fn read(
     };
     let mut shocks = Vec::with_capacity(occurrences.len());
     let mut names = Vec::with_capacity(occurrences.len());
+    let mut ignored = Vec::new();
     for occ in occurrences {
-        let (shock, name) = one(ctx, occ, space, mesh)?;
+        let (shock, name, dropped) = one(ctx, occ, space, mesh)?;
+        if let Some(n2) = dropped {
+            ignored.push((name.intitule.clone(), n2));
+        }
         if names
             .iter()
             .any(|n: &ShockName| n.intitule == name.intitule)
@@ -51,10 +58,22 @@ pub fn read(
         shocks.push(shock);
         names.push(name);
     }
-    Ok((shocks, names))
+    Ok(CallShocks {
+        shocks,
+        names,
+        ignored,
+    })
 }
 
-fn one(ctx: &OpContext<'_>, occ: &Args, space: &Space, mesh: &Mesh) -> Result<(Shock, ShockName)> {
+/// One occurrence: the shock, its name, and the second node it ignores (NOEUD_2 given with
+/// a one-node obstacle: Code_Aster's shock law takes a second node for the BI_ obstacles
+/// only, and applies no force to it otherwise).
+fn one(
+    ctx: &OpContext<'_>,
+    occ: &Args,
+    space: &Space,
+    mesh: &Mesh,
+) -> Result<(Shock, ShockName, Option<String>)> {
     let obstacle_name = occ.req_concept("OBSTACLE")?.name.clone();
     let def = gene::load_obstacle(ctx.store, &obstacle_name)?;
     let obstacle = ObstacleKind::from_name(&def.kind).ok_or_else(|| {
@@ -67,7 +86,12 @@ fn one(ctx: &OpContext<'_>, occ: &Args, space: &Space, mesh: &Mesh) -> Result<(S
     let node1 = node(ctx, occ, space, "1")?.ok_or_else(|| {
         Error::validation("give NOEUD_1 or GROUP_NO_1").keyword(occ.key_path("NOEUD_1"))
     })?;
-    let node2 = node(ctx, occ, space, "2")?;
+    let mut node2 = node(ctx, occ, space, "2")?;
+    let dropped = if obstacle.two_nodes() {
+        None
+    } else {
+        node2.take()
+    };
     if obstacle.two_nodes() && node2.is_none() {
         return Err(Error::validation(format!(
             "OBSTACLE {obstacle_name} is a {}, a shock between two nodes: give NOEUD_2 or GROUP_NO_2",
@@ -147,6 +171,7 @@ fn one(ctx: &OpContext<'_>, occ: &Args, space: &Space, mesh: &Mesh) -> Result<(S
             node2,
             obstacle: def.kind,
         },
+        dropped,
     ))
 }
 
