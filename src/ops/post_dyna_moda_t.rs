@@ -3,6 +3,7 @@
 //! result's shocks' table `<result>_CHOC` (store/tran_gene.rs); the statistics are
 //! `transient::impact_stats`.
 
+use super::common::tran_gene as common_tran_gene;
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
@@ -109,47 +110,31 @@ fn histories(store: &Store, result: &str, kw: &str) -> Result<Vec<(StoredShock, 
         .keyword(kw.to_string())
         .hint("give the result of a DYNA_VIBRA with COMPORTEMENT (RELATION='DIS_CHOC') or CHOC")
     };
-    // The shocks' table belongs to the result when it has one (none: not a DYNA_VIBRA
-    // result, or one without shocks).
-    let Some(table) = tran_gene::owned_concepts(store, result)?.into_iter().next() else {
+    // A result without a shocks' table: not a DYNA_VIBRA result, or one without shocks.
+    if tran_gene::owned_concepts(store, result)?.is_empty() {
         return Err(no_shock());
-    };
+    }
     let payload = tran_gene::load_payload(store, result)?;
     if payload.shocks.is_empty() {
         return Err(no_shock());
     }
-    let t = table_store::load_table(store, &table)?;
-    let ji = t.req_col("INTITULE")?;
-    let jt = t.req_col("INST")?;
-    let js = SAMPLES
-        .iter()
-        .map(|p| t.req_col(p))
-        .collect::<Result<Vec<usize>>>()?;
+    let t = common_tran_gene::shock_table(store, result, &payload)?;
     let mut out = Vec::with_capacity(payload.shocks.len());
     for shock in payload.shocks {
-        let mut h = History {
-            t: Vec::new(),
-            cols: Default::default(),
+        let (times, cols) = common_tran_gene::shock_samples(&t, &shock.intitule, &SAMPLES)?;
+        let h = History {
+            t: times,
+            cols: cols
+                .try_into()
+                .map_err(|_| Error::internal("shock_samples returns one column per parameter"))?,
         };
-        for row in t
-            .rows
-            .iter()
-            .filter(|r| r.get(ji).and_then(Cell::as_text) == Some(shock.intitule.as_str()))
-        {
-            // A missing or non-numeric cell reads NaN and is reported below.
-            let num = |j: usize| row.get(j).and_then(Cell::as_f64).unwrap_or(f64::NAN);
-            h.t.push(num(jt));
-            for (c, &j) in h.cols.iter_mut().zip(&js) {
-                c.push(num(j));
-            }
-        }
         if h.t
             .iter()
             .chain(h.cols.iter().flatten())
             .any(|x| !x.is_finite())
         {
             return Err(Error::store(format!(
-                "the samples of shock '{}' in {table} are not all numbers",
+                "the samples of shock '{}' in {result}'s shocks' table are not all numbers",
                 shock.intitule
             )));
         }

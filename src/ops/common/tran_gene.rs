@@ -7,6 +7,7 @@ use crate::model::Cmp;
 use crate::ops::common::gene::numbering_and_basis;
 use crate::store::tran_gene::{self, load_coordinates, Payload};
 use crate::store::{table as table_store, Store};
+use crate::table::{Cell, Table};
 use crate::transient::ShockSample;
 
 /// (INST, value) of NOM_CHAM `field` (DEPL, VITE, ACCE), component `cmp` of `node`.
@@ -79,21 +80,44 @@ pub fn shock_history(
         ))
         .keyword(kw("PARA_Y")));
     }
+    let t = shock_table(store, result, &payload)?;
+    let (x, mut y) = shock_samples(&t, &which, &[para])?;
+    Ok((x, y.pop().unwrap_or_default()))
+}
+
+/// The shocks' table `<result>_CHOC` of a result whose payload is `payload`.
+pub fn shock_table(store: &Store, result: &str, payload: &Payload) -> Result<Table> {
     let table = payload
         .shock_table
         .as_deref()
         .ok_or_else(|| Error::store(format!("{result} has no shocks' table")))?;
-    let t = table_store::load_table(store, table)?;
-    let (ji, jt, jp) = (t.req_col("INTITULE")?, t.req_col("INST")?, t.req_col(para)?);
+    table_store::load_table(store, table)
+}
+
+/// The archived samples of shock `intitule` in its shocks' table `t`: the instants and
+/// the columns `paras`, in row order. A missing or non-numeric cell reads NaN.
+pub fn shock_samples(
+    t: &Table,
+    intitule: &str,
+    paras: &[&str],
+) -> Result<(Vec<f64>, Vec<Vec<f64>>)> {
+    let (ji, jt) = (t.req_col("INTITULE")?, t.req_col("INST")?);
+    let js = paras
+        .iter()
+        .map(|p| t.req_col(p))
+        .collect::<Result<Vec<usize>>>()?;
+    let num = |row: &[Cell], j: usize| row.get(j).and_then(Cell::as_f64).unwrap_or(f64::NAN);
     let mut x = Vec::new();
-    let mut y = Vec::new();
+    let mut cols = vec![Vec::new(); paras.len()];
     for row in &t.rows {
-        if row[ji].as_text() == Some(which.as_str()) {
-            x.push(row[jt].as_f64().unwrap_or(f64::NAN));
-            y.push(row[jp].as_f64().unwrap_or(f64::NAN));
+        if row.get(ji).and_then(Cell::as_text) == Some(intitule) {
+            x.push(num(row, jt));
+            for (c, &j) in cols.iter_mut().zip(&js) {
+                c.push(num(row, j));
+            }
         }
     }
-    Ok((x, y))
+    Ok((x, cols))
 }
 
 fn find_shock(
