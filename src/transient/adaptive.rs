@@ -6,8 +6,8 @@
 //! ≤ 1, s_i the largest |q| (for a q component) or |v| (for a v component) met so far,
 //! both ends of the step included: an error relative to the motion's amplitude, floored
 //! near rest by |a|/ω²_max (resp. |a|/ω_max), a the new acceleration and ω_max the highest
-//! pulsation of the structure with its shocks' stiffness (DIFF_CENTRE's stability
-//! estimate; in a contact |a|/ω²_max is then at most about the penetration, so the floor
+//! pulsation of the structure with its shocks' stiffness (30 power steps towards
+//! DIFF_CENTRE's stability estimate; in a contact |a|/ω²_max is then at most about the penetration, so the floor
 //! does not loosen the test there): from rest under a force, |q| grows like the step's own
 //! error and a purely relative test rejected every step (measured: the step fell to
 //! PAS_MINI at t = 0 on a sliding pad driven by a sine force). The next

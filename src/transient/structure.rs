@@ -37,14 +37,26 @@ pub trait Structure {
     /// (`extra(x, out)` adds K_extra x to out). The default is a power iteration (an
     /// estimate from below, converged to 1e-8 relative or 2000 iterations).
     fn max_eigenvalue(&self, extra: &dyn Fn(&[f64], &mut [f64])) -> Result<f64, TransientError> {
-        power_iteration(self, extra)
+        power_iteration(self, extra, 2000)
+    }
+    /// A rough ω²_max, from below: `iterations` steps of the power iteration at most (for
+    /// a scale, where [`Structure::max_eigenvalue`]'s convergence would cost thousands of
+    /// mass solves on a large model).
+    fn max_eigenvalue_estimate(
+        &self,
+        extra: &dyn Fn(&[f64], &mut [f64]),
+        iterations: usize,
+    ) -> Result<f64, TransientError> {
+        power_iteration(self, extra, iterations)
     }
 }
 
-/// Power iteration on M⁻¹(K + K_extra) from a deterministic start.
+/// Power iteration on M⁻¹(K + K_extra) from a deterministic start, `max_iter` steps at
+/// most.
 pub(crate) fn power_iteration<S: Structure + ?Sized>(
     s: &S,
     extra: &dyn Fn(&[f64], &mut [f64]),
+    max_iter: usize,
 ) -> Result<f64, TransientError> {
     let n = s.n();
     if n == 0 {
@@ -57,7 +69,7 @@ pub(crate) fn power_iteration<S: Structure + ?Sized>(
     let mut y = vec![0.0; n];
     let mut mx = vec![0.0; n];
     let mut lambda = 0.0;
-    for _ in 0..2000 {
+    for _ in 0..max_iter {
         s.apply_stiffness(&x, &mut y);
         extra(&x, &mut y);
         // Rayleigh quotient xᵀ(K+Ke)x / xᵀMx.

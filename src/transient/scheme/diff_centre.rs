@@ -12,11 +12,13 @@ use crate::transient::error::{try_zeros, TransientError};
 use crate::transient::structure::Structure;
 use crate::transient::system::{Model, Work};
 
-/// (2/ω_max, ω_max) of the structure with the shocks' stiffness bounds added.
-pub(crate) fn stability_limit(
+/// ω_max of the structure with the shocks' stiffness bounds added: converged
+/// (`Structure::max_eigenvalue`), or a rough estimate from below after `iterations` steps.
+pub(crate) fn max_pulsation(
     structure: &dyn Structure,
     shocks: &[Shock],
-) -> Result<(f64, f64), TransientError> {
+    iterations: Option<usize>,
+) -> Result<f64, TransientError> {
     let bounds: Vec<[[f64; 3]; 3]> = shocks.iter().map(Shock::stiffness_bound).collect();
     let extra = |x: &[f64], out: &mut [f64]| {
         for (s, b) in shocks.iter().zip(&bounds) {
@@ -29,8 +31,19 @@ pub(crate) fn stability_limit(
             s.relative_rows().add_transpose(f, out);
         }
     };
-    let lambda = structure.max_eigenvalue(&extra)?;
-    let omega = lambda.max(0.0).sqrt();
+    let lambda = match iterations {
+        None => structure.max_eigenvalue(&extra)?,
+        Some(k) => structure.max_eigenvalue_estimate(&extra, k)?,
+    };
+    Ok(lambda.max(0.0).sqrt())
+}
+
+/// (2/ω_max, ω_max) of the structure with the shocks' stiffness bounds added.
+pub(crate) fn stability_limit(
+    structure: &dyn Structure,
+    shocks: &[Shock],
+) -> Result<(f64, f64), TransientError> {
+    let omega = max_pulsation(structure, shocks, None)?;
     let limit = if omega > 0.0 {
         2.0 / omega
     } else {
