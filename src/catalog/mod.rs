@@ -85,10 +85,6 @@ const UNSUPPORTED: &[(&str, &str)] = &[
         "map logical units with --unit N=FILE or the F lines of a .export",
     ),
     ("INFO_MODE", "CALC_MODES prints the frequencies it finds"),
-    (
-        "NORM_MODE",
-        "CALC_MODES normalises with its NORM_MODE keyword",
-    ),
     ("EXTR_MODE", "filter the modes with CALC_MODES's CALC_FREQ"),
     (
         "MACRO_MATR_ASSE",
@@ -103,15 +99,6 @@ const UNSUPPORTED: &[(&str, &str)] = &[
     (
         "DYNA_LINE_TRAN",
         "use DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='PHYS', ...)",
-    ),
-    (
-        "MODE_STATIQUE",
-        "static modes are not computed: DYNA_VIBRA runs on a CALC_MODES basis and its alarm \
-         DYNA_VIBRA_2 says when that basis misses a shock's static flexibility",
-    ),
-    (
-        "DEFI_BASE_MODALE",
-        "give the CALC_MODES result itself as BASE to NUME_DDL_GENE and PROJ_*_BASE",
     ),
     ("DYNA_NON_LINE", "transient responses are not computed"),
     ("STAT_NON_LINE", "static analyses are not computed"),

@@ -2,7 +2,11 @@
 //! truncated basis of normal modes sees a shock's node stiffer than it is (the modes left
 //! out carry the rest of its static deflection), which Code_Aster users correct with the
 //! static mode of the shock's DOF. For a direction r over the free DOFs, the static
-//! flexibility is rᵀK⁻¹r and the basis's Σ_j (φ_jᵀr)²/(φ_jᵀKφ_j), φ_j K-orthogonal.
+//! flexibility is rᵀK⁻¹r and the basis's rᵀΦ(ΦᵀKΦ)⁻¹Φᵀr: the flexibility of the
+//! structure restricted to the span of Φ (the static response to r found by Ritz in that
+//! span). For K-orthogonal vectors (normal modes) it is Σ_j (φ_jᵀr)²/(φ_jᵀKφ_j); a Ritz
+//! basis (modes plus static modes, DEFI_BASE_MODALE) is not K-orthogonal, and the sum would
+//! count the static mode's share twice.
 
 use super::eigen::shift::ShiftedFactor;
 use super::eigen::sym::SymSparse;
@@ -32,17 +36,17 @@ impl Flexibility {
 const SINGULAR_PIVOT: f64 = 1e-12;
 
 /// The flexibility of each direction of `rows` (free DOFs) in the structure of stiffness
-/// `k` and in the basis `basis` (free DOFs, K-orthogonal vectors). `None` when K is
-/// singular or not definite, or a vector of the basis has no stiffness (a rigid mode).
+/// `k` and in the basis `basis` (free DOFs). `None` when K is singular or not definite, or
+/// the basis has a direction without stiffness (a rigid mode, or vectors that depend on
+/// each other: ΦᵀKΦ not positive definite).
 pub fn flexibilities(
     k: &SymSparse,
     rows: &[Vec<f64>],
     basis: &[Vec<f64>],
 ) -> Result<Option<Vec<Flexibility>>> {
-    let stiffness: Vec<f64> = basis.iter().map(|phi| k.form(phi, phi)).collect();
-    if stiffness.iter().any(|&s| s <= 0.0 || s.is_nan()) {
+    let Some(reduced) = ReducedFlexibility::new(k, basis) else {
         return Ok(None);
-    }
+    };
     let Ok(mut factor) = ShiftedFactor::new(k, k, 0.0, FactorKind::Auto) else {
         return Ok(None);
     };
@@ -54,14 +58,57 @@ pub fn flexibilities(
         let mut x = r.clone();
         factor.solve_in_place(&mut x);
         let statics = dot(r, &x);
-        let modal = basis
-            .iter()
-            .zip(&stiffness)
-            .map(|(phi, s)| dot(phi, r).powi(2) / s)
-            .sum();
-        out.push(Flexibility { statics, modal });
+        let b: Vec<f64> = basis.iter().map(|phi| dot(phi, r)).collect();
+        out.push(Flexibility {
+            statics,
+            modal: reduced.form(&b),
+        });
     }
     Ok(Some(out))
+}
+
+/// The Cholesky factor of the reduced stiffness ΦᵀKΦ (m × m), for bᵀ(ΦᵀKΦ)⁻¹b.
+struct ReducedFlexibility {
+    llt: Option<faer::linalg::solvers::Llt<f64>>,
+}
+
+impl ReducedFlexibility {
+    /// `None` when ΦᵀKΦ is not positive definite.
+    fn new(k: &SymSparse, basis: &[Vec<f64>]) -> Option<ReducedFlexibility> {
+        let m = basis.len();
+        if m == 0 {
+            return Some(ReducedFlexibility { llt: None });
+        }
+        let n = k.n;
+        let mut kphi = vec![0.0; n];
+        let mut g = faer::Mat::<f64>::zeros(m, m);
+        for (j, pj) in basis.iter().enumerate() {
+            k.mul(pj, &mut kphi);
+            for (i, pi) in basis.iter().enumerate() {
+                g[(i, j)] = dot(pi, &kphi);
+            }
+        }
+        // Symmetrise the round-off of the products before factorising.
+        for j in 0..m {
+            for i in 0..j {
+                let v = 0.5 * (g[(i, j)] + g[(j, i)]);
+                g[(i, j)] = v;
+                g[(j, i)] = v;
+            }
+        }
+        let llt = g.llt(faer::Side::Lower).ok()?;
+        Some(ReducedFlexibility { llt: Some(llt) })
+    }
+
+    /// bᵀ(ΦᵀKΦ)⁻¹b (0 for an empty basis).
+    fn form(&self, b: &[f64]) -> f64 {
+        let Some(llt) = &self.llt else {
+            return 0.0;
+        };
+        let rhs = faer::Mat::<f64>::from_fn(b.len(), 1, |i, _| b[i]);
+        let x = faer::linalg::solvers::Solve::solve(llt, &rhs);
+        (0..b.len()).map(|i| b[i] * x[(i, 0)]).sum()
+    }
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
@@ -110,6 +157,37 @@ mod tests {
         );
         let none = flexibilities(&k, &end, &[]).unwrap().unwrap();
         assert_eq!(none[0].modal, 0.0);
+    }
+
+    /// A Ritz basis: the first mode plus the static deflection K⁻¹r of the free end, not
+    /// K-orthogonal. It holds the end's whole static flexibility (the static response lies
+    /// in its span): share 1 to round-off, where the sum over K-orthogonal vectors would
+    /// count the first mode's part twice (share above 1).
+    #[test]
+    fn a_ritz_basis_with_the_static_mode_holds_all_of_it() {
+        let k = chain();
+        let dense = k.to_dense();
+        let eig = dense.self_adjoint_eigen(faer::Side::Lower).unwrap();
+        let v = eig.U();
+        let first: Vec<f64> = (0..3).map(|i| v[(i, 0)]).collect();
+        // K⁻¹ e_3 = (1, 2, 3) for this chain.
+        let statics = vec![1.0, 2.0, 3.0];
+        let f = flexibilities(&k, &[vec![0.0, 0.0, 1.0]], &[first, statics])
+            .unwrap()
+            .unwrap();
+        assert!((f[0].share() - 1.0).abs() < 1e-13, "{f:?}");
+    }
+
+    #[test]
+    fn dependent_vectors_give_no_share() {
+        let k = chain();
+        let f = flexibilities(
+            &k,
+            &[vec![0.0, 0.0, 1.0]],
+            &[vec![1.0, 2.0, 3.0], vec![2.0, 4.0, 6.0]],
+        )
+        .unwrap();
+        assert_eq!(f, None);
     }
 
     #[test]

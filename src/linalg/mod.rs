@@ -6,4 +6,6 @@ pub mod craig_bampton;
 pub mod eigen;
 pub mod flexibility;
 pub mod projection;
+pub mod ritz;
 pub mod sparse;
+pub mod static_modes;

@@ -70,6 +70,21 @@ impl AssembledMatrix {
         .hint("relations are supported by CALC_MODES and the modal route: project on the modes (PROJ_MATR_BASE) and integrate with DYNA_VIBRA BASE_CALCUL='GENE'"))
     }
 
+    /// An error naming `keyword` if this is a damping matrix (AMOR_MECA) given where a
+    /// stiffness or a mass is read (MATR_RIGI, MATR_MASS). A stiffness given as a mass, or
+    /// the reverse, is let through: Code_Aster files do that on purpose (a geometric
+    /// stiffness as the "mass" of a buckling problem).
+    pub fn refuse_damping(&self, name: &str, keyword: &str) -> Result<()> {
+        if self.kind != MatrixKind::AmorMeca {
+            return Ok(());
+        }
+        Err(Error::input(format!(
+            "{name} is a damping matrix (OPTION='AMOR_MECA'), not a stiffness or a mass"
+        ))
+        .keyword(keyword)
+        .hint("give the RIGI_MECA or MASS_MECA matrix here; the damping goes to DYNA_VIBRA's MATR_AMOR (or PROJ_MATR_BASE for a modal basis)"))
+    }
+
     /// Full indices of the free DOFs (neither blocked nor expressed by a relation), in
     /// order: reduced index i is full index `free_dofs()[i]`.
     pub fn free_dofs(&self) -> Vec<usize> {

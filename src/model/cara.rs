@@ -22,7 +22,8 @@ pub enum DiscreteCategory {
     Stiffness,
     /// M_...
     Mass,
-    /// A_... (damping: stored, unused by modal analysis)
+    /// A_... (viscous damping: the discrete part of OPTION='AMOR_MECA'; modal analysis
+    /// does not use it)
     Damping,
 }
 

@@ -14,6 +14,14 @@ pub struct Elas {
     pub nu: f64,
     /// Density; optional as in Code_Aster, required only by mass matrices.
     pub rho: Option<f64>,
+    /// Rayleigh damping, Code_Aster's AMOR_ALPHA: the coefficient of the *stiffness* in
+    /// the element damping matrix of OPTION='AMOR_MECA', C_e = AMOR_ALPHA K_e +
+    /// AMOR_BETA M_e (absent: 0).
+    #[serde(default)]
+    pub amor_alpha: f64,
+    /// Rayleigh damping, Code_Aster's AMOR_BETA: the coefficient of the *mass* (absent: 0).
+    #[serde(default)]
+    pub amor_beta: f64,
 }
 
 /// Why elastic constants are refused.
@@ -50,7 +58,29 @@ impl Elas {
         if let Some(r) = rho.filter(|r| *r < 0.0) {
             return Err(ElasError::Density(r));
         }
-        Ok(Elas { e, nu, rho })
+        Ok(Elas {
+            e,
+            nu,
+            rho,
+            amor_alpha: 0.0,
+            amor_beta: 0.0,
+        })
+    }
+
+    /// The same constants with the Rayleigh damping coefficients AMOR_ALPHA (times the
+    /// stiffness) and AMOR_BETA (times the mass) of OPTION='AMOR_MECA'; an absent one is 0,
+    /// as in Code_Aster.
+    pub fn with_rayleigh(self, amor_alpha: Option<f64>, amor_beta: Option<f64>) -> Elas {
+        Elas {
+            amor_alpha: amor_alpha.unwrap_or(0.0),
+            amor_beta: amor_beta.unwrap_or(0.0),
+            ..self
+        }
+    }
+
+    /// Whether AMOR_MECA gets a Rayleigh part from this material (a coefficient not zero).
+    pub fn has_rayleigh(&self) -> bool {
+        self.amor_alpha != 0.0 || self.amor_beta != 0.0
     }
 
     /// Shear modulus G = E / (2 (1 + ν)).

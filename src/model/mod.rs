@@ -17,6 +17,7 @@ pub mod modes;
 pub mod numbering;
 pub mod relations;
 pub mod select;
+pub mod static_shapes;
 
 pub use assembly::{assemble, AssembledMatrix};
 pub use cara::CaraElem;

@@ -48,3 +48,38 @@ impl ModeMeca {
         }
     }
 }
+
+/// What kind of static deformation a vector of MODE_STATIQUE is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum StaticKind {
+    /// MODE_STAT: a unit imposed displacement of a blocked DOF (constraint mode).
+    Imposed,
+    /// FORCE_NODALE: a unit force on a free DOF (attachment mode).
+    Force,
+    /// PSEUDO_MODE: a unit acceleration of the whole structure along a direction.
+    Acceleration,
+}
+
+/// What one vector of a MODE_STATIQUE result answers: Code_Aster's NOEUD_CMP (the node and
+/// component, or for a pseudo-mode 'ACCE' and the axis or NOM_DIR) and its kind.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StaticTag {
+    pub nume_ordre: usize,
+    pub kind: StaticKind,
+    pub node: String,
+    pub cmp: String,
+}
+
+impl StaticTag {
+    /// Code_Aster's NOEUD_CMP: the node name padded to 8 characters, then the component.
+    pub fn noeud_cmp(&self) -> String {
+        format!("{:<8}{}", self.node, self.cmp)
+    }
+}
+
+/// The vector of `tags` answering a unit imposed displacement of (node, cmp).
+pub fn imposed_mode(tags: &[StaticTag], node: &str, cmp: &str) -> Option<usize> {
+    tags.iter()
+        .find(|t| t.kind == StaticKind::Imposed && t.node == node && t.cmp == cmp)
+        .map(|t| t.nume_ordre)
+}

@@ -6,6 +6,7 @@ use super::calc_matr_elem::Inputs;
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
+use crate::model::elem::GivenMatrices;
 use crate::model::{assemble, ElemMatrices, KinematicLoad, LoadKind, MatrixKind};
 use crate::store::function::load_function;
 use crate::store::gene::save_field;
@@ -24,7 +25,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         let kind = MatrixKind::parse(option).ok_or_else(|| {
             Error::validation(format!("OPTION {option} is not supported"))
                 .keyword(occ.key_path("OPTION"))
-                .hint("use RIGI_MECA or MASS_MECA")
+                .hint("use RIGI_MECA, MASS_MECA or AMOR_MECA")
         })?;
         // Two matrices under one name: the second would silently replace the first.
         let vector = |c: &str| {
@@ -41,11 +42,26 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         wanted.push((co.to_string(), kind));
     }
     // Element matrices of each requested kind (the stiffness defines the numbering, as in
-    // Code_Aster, whatever the order of MATR_ASSE).
+    // Code_Aster, whatever the order of MATR_ASSE). The damping is computed last, from the
+    // stiffness and mass element matrices of the same call when it asks for them.
     let mut elems: Vec<(String, ElemMatrices)> = Vec::new();
-    for (co, kind) in &wanted {
+    for (co, kind) in wanted.iter().filter(|(_, k)| *k != MatrixKind::AmorMeca) {
         elems.push((co.clone(), inputs.elem_matrices(ctx.store, *kind)?));
     }
+    for (co, _) in wanted.iter().filter(|(_, k)| *k == MatrixKind::AmorMeca) {
+        let of_kind = |kind| elems.iter().find(|(_, m)| m.kind == kind).map(|(_, m)| m);
+        let given = GivenMatrices {
+            rigi: of_kind(MatrixKind::RigiMeca),
+            mass: of_kind(MatrixKind::MassMeca),
+        };
+        let damping = inputs.damping_matrices(ctx.store, given)?;
+        if damping.is_zero() {
+            ctx.alarm("ASSEMBLAGE_1", super::calc_matr_elem::NO_DAMPING)?;
+        }
+        elems.push((co.clone(), damping));
+    }
+    // The concepts in the order of MATR_ASSE.
+    elems.sort_by_key(|(co, _)| wanted.iter().position(|(w, _)| w == co));
     let (num_name, num) = match (args.co("NUME_DDL"), args.concept("NUME_DDL")) {
         (Some(co), _) => {
             let base = match elems.iter().find(|(_, m)| m.kind == MatrixKind::RigiMeca) {

@@ -1,15 +1,15 @@
-//! CALC_MATR_ELEM: element matrices RIGI_MECA / MASS_MECA.
+//! CALC_MATR_ELEM: element matrices RIGI_MECA / MASS_MECA / AMOR_MECA.
 
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
-use crate::model::elem::ElemError;
+use crate::model::elem::{compute_damping_matrices, ElemError, GivenMatrices};
 use crate::model::{
     compute_elem_matrices, ElemInputs, ElemMatrices, KinematicLoad, LoadKind, MatrixKind,
 };
 use crate::store::model::{
-    load_cara_elem, load_load, load_material_field, load_model_and_mesh, same_model,
-    save_elem_matrices,
+    load_cara_elem, load_elem_matrices, load_load, load_material_field, load_model_and_mesh,
+    same_model, save_elem_matrices,
 };
 use crate::store::Store;
 
@@ -19,12 +19,51 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let kind = MatrixKind::parse(option).ok_or_else(|| {
         Error::validation(format!("OPTION {option} is not supported"))
             .keyword("CALC_MATR_ELEM/OPTION")
-            .hint("use RIGI_MECA or MASS_MECA")
+            .hint("use RIGI_MECA, MASS_MECA or AMOR_MECA")
     })?;
     let inputs = Inputs::from_args(args)?;
-    let mats = inputs.elem_matrices(ctx.store, kind)?;
+    let mats = if kind == MatrixKind::AmorMeca {
+        let rigi = given(ctx.store, args, "RIGI_MECA")?;
+        let mass = given(ctx.store, args, "MASS_MECA")?;
+        let given = GivenMatrices {
+            rigi: rigi.as_ref(),
+            mass: mass.as_ref(),
+        };
+        let mats = inputs.damping_matrices(ctx.store, given)?;
+        if mats.is_zero() {
+            ctx.alarm("CALC_MATR_ELEM_1", NO_DAMPING)?;
+        }
+        mats
+    } else {
+        for key in ["RIGI_MECA", "MASS_MECA"] {
+            if args.has(key) {
+                return Err(Error::validation(format!(
+                    "{key} is read by OPTION='AMOR_MECA' only, not by OPTION='{option}'"
+                ))
+                .keyword(args.key_path(key))
+                .hint("remove it, or ask for OPTION='AMOR_MECA'"));
+            }
+        }
+        inputs.elem_matrices(ctx.store, kind)?
+    };
     ctx.create(&name, "matr_elem_depl_r")?;
     save_elem_matrices(ctx.store, &name, &mats)
+}
+
+/// The message of the alarm of an AMOR_MECA matrix that is zero (CALC_MATR_ELEM_1,
+/// ASSEMBLAGE_1): allowed, but likely not what was meant.
+pub(crate) const NO_DAMPING: &str = "the AMOR_MECA matrix is zero: no material of the model \
+     gives AMOR_ALPHA or AMOR_BETA (DEFI_MATERIAU ELAS) and no discrete element an A_ \
+     characteristic (AFFE_CARA_ELEM DISCRET); a transient with it is undamped";
+
+/// The element matrices given as `key` (RIGI_MECA or MASS_MECA of OPTION='AMOR_MECA').
+fn given(store: &Store, args: &Args, key: &str) -> Result<Option<ElemMatrices>> {
+    match args.concept(key) {
+        Some(c) => Ok(Some(
+            load_elem_matrices(store, &c.name).map_err(|e| e.keyword(args.key_path(key)))?,
+        )),
+        None => Ok(None),
+    }
 }
 
 /// Concept names shared by CALC_MATR_ELEM and ASSEMBLAGE.
@@ -67,6 +106,33 @@ impl Inputs {
     }
 
     pub(crate) fn elem_matrices(&self, store: &Store, kind: MatrixKind) -> Result<ElemMatrices> {
+        self.compute(store, kind, |inp, loads| {
+            compute_elem_matrices(kind, inp, loads)
+        })
+    }
+
+    /// The AMOR_MECA element matrices, with the K_e and M_e of `given` where given.
+    pub(crate) fn damping_matrices(
+        &self,
+        store: &Store,
+        given: GivenMatrices<'_>,
+    ) -> Result<ElemMatrices> {
+        self.compute(store, MatrixKind::AmorMeca, |inp, loads| {
+            compute_damping_matrices(inp, loads, given)
+        })
+    }
+
+    /// Read the model, materials, characteristics and loads, and run `f` (element
+    /// matrices of `kind`) on them.
+    fn compute(
+        &self,
+        store: &Store,
+        kind: MatrixKind,
+        f: impl FnOnce(
+            &ElemInputs<'_>,
+            Vec<(String, KinematicLoad)>,
+        ) -> std::result::Result<ElemMatrices, ElemError>,
+    ) -> Result<ElemMatrices> {
         let (model, mesh) = load_model_and_mesh(store, &self.model)?;
         let field = match &self.cham_mater {
             Some(n) => {
@@ -98,13 +164,13 @@ impl Inputs {
             field: field.as_ref(),
             cara: cara.as_ref(),
         };
-        compute_elem_matrices(kind, &inp, self.loads(store)?).map_err(elem_error)
+        f(&inp, self.loads(store)?).map_err(|e| elem_error(e, kind))
     }
 }
 
-/// What the element matrices lack, named by the keyword of the concept that should give
-/// it (CARA_ELEM, CHAM_MATER), with what to do.
-fn elem_error(e: ElemError) -> Error {
+/// What the element matrices of `kind` lack, named by the keyword of the concept that
+/// should give it (CARA_ELEM, CHAM_MATER, RIGI_MECA, MASS_MECA), with what to do.
+fn elem_error(e: ElemError, kind: MatrixKind) -> Error {
     let message = e.to_string();
     match e {
         ElemError::Incomplete(i) => super::affe_cara_elem::incomplete(i),
@@ -114,9 +180,18 @@ fn elem_error(e: ElemError) -> Error {
         ElemError::NoElasticity(_) => Error::input(message)
             .keyword("CHAM_MATER")
             .hint("assign a material with ELAS=_F(E=..., NU=...) by AFFE_MATERIAU"),
+        ElemError::NoDensity(_) if kind == MatrixKind::AmorMeca => Error::input(message)
+            .keyword("CHAM_MATER")
+            .hint("AMOR_BETA multiplies the mass matrix: add RHO to ELAS in DEFI_MATERIAU, or give AMOR_BETA=0"),
         ElemError::NoDensity(_) => Error::input(message)
             .keyword("CHAM_MATER")
             .hint("add RHO to ELAS in DEFI_MATERIAU"),
+        ElemError::Given { kind: given, .. } => Error::input(message)
+            .keyword(given.aster_name())
+            .hint(format!(
+                "give the {} element matrices CALC_MATR_ELEM computed on the same MODELE, or leave the keyword out to have them computed",
+                given.aster_name()
+            )),
         ElemError::Frame { .. } => Error::input(message).keyword("AFFE_CARA_ELEM/ORIENTATION"),
         ElemError::Other(e) => e,
     }

@@ -35,6 +35,8 @@ pub fn run_with_option(ctx: &mut OpContext<'_>, args: &Args, option: &str) -> Re
     let m_name = &args.req_concept("MATR_MASS")?.name;
     let k = matrix::load_matrix(ctx.store, k_name)?;
     let m = matrix::load_matrix(ctx.store, m_name)?;
+    k.refuse_damping(k_name, &format!("{op}/MATR_RIGI"))?;
+    m.refuse_damping(m_name, &format!("{op}/MATR_MASS"))?;
     if !k.same_dofs(&m) {
         return Err(Error::input(format!(
             "{k_name} and {m_name} are not assembled on the same DOF numbering and boundary conditions"
@@ -54,6 +56,7 @@ pub fn run_with_option(ctx: &mut OpContext<'_>, args: &Args, option: &str) -> Re
         );
     }
     check_definite(ctx, &kr, &mr, &k, k_name, m_name)?;
+    let request = at_most_free(ctx, request, free.len(), &op)?;
     let set = match &request {
         Request::One(r) => eigen::solve_modes(&kr, &mr, r, &EigenOptions::default())?,
         Request::Nearest(freqs) => nearest_modes(&kr, &mr, freqs)?,
@@ -160,6 +163,31 @@ pub fn run_with_option(ctx: &mut OpContext<'_>, args: &Args, option: &str) -> Re
             mass: m_name.clone(),
         },
     )
+}
+
+/// More modes asked (NMAX_FREQ, 10 by default) than the model has free DOFs: as Code_Aster
+/// ("trop de modes demandés pour le nombre de DDL actifs"), every mode is computed, and
+/// the run says so.
+fn at_most_free(
+    ctx: &mut OpContext<'_>,
+    request: Request,
+    free: usize,
+    op: &str,
+) -> Result<Request> {
+    let capped = match request {
+        Request::One(ModeRequest::Smallest { n }) if n > free => {
+            (n, ModeRequest::Smallest { n: free })
+        }
+        Request::One(ModeRequest::Centre { f, n }) if n > free => {
+            (n, ModeRequest::Centre { f, n: free })
+        }
+        other => return Ok(other),
+    };
+    ctx.say(&format!(
+        "{op}: NMAX_FREQ={} modes asked but the model has {free} free DOFs: all {free} are computed",
+        capped.0
+    ))?;
+    Ok(Request::One(capped.1))
 }
 
 /// What a call asks the solver: one request, or (OPTION='PROCHE') the mode nearest each

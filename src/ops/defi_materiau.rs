@@ -14,8 +14,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     save_material(ctx.store, &name, &mat)
 }
 
-/// The material of DEFI_MATERIAU(ELAS=_F(E=, NU=, RHO=)); refused constants name the
-/// keyword that gave them.
+/// The material of DEFI_MATERIAU(ELAS=_F(E=, NU=, RHO=, AMOR_ALPHA=, AMOR_BETA=)); refused
+/// constants name the keyword that gave them.
 pub(crate) fn material(args: &Args) -> Result<Material> {
     let elas = match args.fact("ELAS") {
         None => None,
@@ -29,7 +29,7 @@ pub(crate) fn material(args: &Args) -> Result<Material> {
                 };
                 Error::input(err.to_string()).keyword(f.key_path(key))
             })?;
-            Some(elas)
+            Some(elas.with_rayleigh(f.real("AMOR_ALPHA"), f.real("AMOR_BETA")))
         }
     };
     Ok(Material { elas })

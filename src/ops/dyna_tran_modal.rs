@@ -10,13 +10,14 @@ use crate::error::{Error, Result};
 use crate::value::{Span, Value};
 
 /// Top-level renames: DYNA_TRAN_MODAL's name, DYNA_VIBRA's.
-const TOP: [(&str, &str); 6] = [
+const TOP: [(&str, &str); 7] = [
     ("MASS_GENE", "MATR_MASS"),
     ("MATR_MASS", "MATR_MASS"),
     ("RIGI_GENE", "MATR_RIGI"),
     ("MATR_RIGI", "MATR_RIGI"),
     ("AMOR_GENE", "MATR_AMOR"),
     ("MATR_AMOR", "MATR_AMOR"),
+    ("MODE_STAT", "MODE_STAT"),
 ];
 
 /// Renames inside a factor keyword (DYNA_VIBRA's factor, then the inner renames).

@@ -19,6 +19,7 @@ pub mod affe_modele;
 pub mod asse_matrice;
 pub mod asse_vecteur;
 pub mod assemblage;
+pub mod calc_char_seisme;
 pub mod calc_fonc_interp;
 pub mod calc_fonction;
 pub mod calc_matr_elem;
@@ -29,6 +30,7 @@ pub mod calc_vect_elem;
 pub mod crea_champ;
 pub mod crea_maillage;
 pub mod crea_table;
+pub mod defi_base_modale;
 pub mod defi_fonction;
 pub mod defi_group;
 pub mod defi_list_reel;
@@ -45,7 +47,9 @@ pub mod impr_table;
 pub mod lire_maillage;
 pub mod mode_iter_simult;
 pub mod mode_non_line;
+pub mod mode_statique;
 pub mod modi_maillage;
+pub mod norm_mode;
 pub mod nume_ddl;
 pub mod nume_ddl_gene;
 pub mod post_dyna_moda_t;
@@ -345,6 +349,8 @@ pub const OPERATORS: &[(&str, OpFn)] = &[
     ("PROJ_BASE", proj_base::run),
     ("PROJ_MATR_BASE", proj_matr_base::run),
     ("PROJ_VECT_BASE", proj_vect_base::run),
+    ("DEFI_BASE_MODALE", defi_base_modale::run),
+    ("NORM_MODE", norm_mode::run),
     ("DYNA_VIBRA", dyna_vibra::run),
     ("POST_DYNA_MODA_T", post_dyna_moda_t::run),
     ("REST_GENE_PHYS", rest_gene_phys::run),
@@ -352,6 +358,8 @@ pub const OPERATORS: &[(&str, OpFn)] = &[
     ("DYNA_TRAN_MODAL", dyna_tran_modal::run),
     ("CALC_VECT_ELEM", calc_vect_elem::run),
     ("ASSE_VECTEUR", asse_vecteur::run),
+    ("MODE_STATIQUE", mode_statique::run),
+    ("CALC_CHAR_SEISME", calc_char_seisme::run),
 ];
 
 /// The operator that implements `name`, if we have one. Operators handled by the

@@ -25,6 +25,10 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     )
 }
 
+/// Above this relative coupling |a_ij|/√|a_ii a_jj| the off-diagonal terms STOCKAGE='DIAG'
+/// drops are not round-off (normal modes give 1e-12 or less).
+const DIAG_COUPLING_ALARM: f64 = 1e-6;
+
 /// Create `name`, the generalized matrix of `a_name` on the basis `base` numbered by
 /// `num_name` (PROJ_MATR_BASE, and PROJ_BASE for each MATR_ASSE_GENE). `op` prefixes the
 /// keyword paths of errors about the numbering, `matrix_key` is the path of the matrix.
@@ -51,7 +55,31 @@ pub(crate) fn project(
     let mut values = project_matrix(a.size(), &a.triplets, &vectors(&modes))?;
     if num.storage == "DIAG" {
         // Code_Aster's diagonal storage keeps the diagonal only (a basis orthogonal for
-        // the matrix: the rest is round-off).
+        // the matrix: the rest is round-off). A basis that is not (a Ritz basis, a
+        // non-proportional damping) loses real couplings: say how large.
+        let n = num.size;
+        let coupling = (0..n * n)
+            .filter(|k| k / n != k % n)
+            .map(|k| {
+                let (i, j) = (k / n, k % n);
+                let scale = (values[i * n + i] * values[j * n + j]).abs().sqrt();
+                if scale > 0.0 {
+                    values[k].abs() / scale
+                } else {
+                    0.0
+                }
+            })
+            .fold(0.0f64, f64::max);
+        if coupling > DIAG_COUPLING_ALARM {
+            ctx.alarm(
+                "PROJ_MATR_BASE_1",
+                &format!(
+                    "{name}: {base} is not orthogonal for {a_name}, and STOCKAGE='DIAG' drops \
+                     couplings up to {coupling:.1e} of the diagonal terms; number the basis \
+                     with STOCKAGE='PLEIN' to keep them"
+                ),
+            )?;
+        }
         for (k, v) in values.iter_mut().enumerate() {
             if k / num.size != k % num.size {
                 *v = 0.0;
@@ -61,6 +89,7 @@ pub(crate) fn project(
     let kind = match a.kind {
         MatrixKind::RigiMeca => "RIGI",
         MatrixKind::MassMeca => "MASS",
+        MatrixKind::AmorMeca => "AMOR",
     };
     ctx.create(name, "matr_asse_gene_r")?;
     ctx.store.record_dependency(name, num_name)?;

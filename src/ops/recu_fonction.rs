@@ -78,12 +78,12 @@ fn points(t: &Table, table: &str, px: &str, py: &str) -> Result<(Vec<f64>, Vec<f
 const INSTANT_KEYS: [&str; 5] = ["TOUT_INST", "TOUT_ORDRE", "NUME_ORDRE", "INST", "LIST_INST"];
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
-    if args.text("MULT_APPUI") == Some("OUI") {
+    if args.text("MULT_APPUI") == Some("OUI") && args.concept("RESU_GENE").is_none() {
         return Err(Error::validation(
-            "MULT_APPUI='OUI' (absolute motion of a multi-support excitation) is not supported",
+            "MULT_APPUI='OUI' restores the absolute motion of a DYNA_VIBRA result on a modal basis",
         )
         .keyword(args.key_path("MULT_APPUI"))
-        .hint("DYNA_VIBRA does not take multi-support excitations yet: the results are relative to the supports"));
+        .hint("give the result as RESU_GENE (REST_GENE_PHYS with MULT_APPUI='OUI' writes absolute fields)"));
     }
     // The catalog's UN_PARMI(TABLE, RESULTAT, RESU_GENE) leaves one of them.
     if args.concept("RESULTAT").is_some() {
@@ -152,7 +152,9 @@ fn from_resu_gene(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         let node = node_of("NOEUD", "GROUP_NO")?
             .ok_or_else(|| Error::validation("give NOEUD or GROUP_NO").keyword(kw("NOEUD")))?;
         let cmp = args.req_text("NOM_CMP")?.to_string();
-        let (x, y) = tran_gene::physical_history(ctx.store, &result, field, &node, &cmp, &kw)?;
+        let absolute = args.text("MULT_APPUI") == Some("OUI");
+        let (x, y) =
+            tran_gene::physical_history(ctx.store, &result, (field, &node, &cmp), absolute, &kw)?;
         (x, y, "INST".to_string(), cmp)
     } else {
         let node = node_of("NOEUD_CHOC", "GROUP_NO_CHOC")?;

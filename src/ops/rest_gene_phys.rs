@@ -1,9 +1,11 @@
 //! REST_GENE_PHYS: physical fields u = Φq of a DYNA_VIBRA (GENE) result at chosen instants
-//! and nodes, as a `dyna_trans` (the table layout of REST_MODE_NONL).
+//! and nodes, as a `dyna_trans` (the table layout of REST_MODE_NONL); with MULT_APPUI='OUI'
+//! the absolute motion of a multi-support run (the supports' share added).
 
 use super::common::gene::numbering_and_basis;
 use super::common::instants::{picks, value};
 use super::common::selection::selection;
+use super::common::supports::SupportShare;
 use super::dyna_vibra::field_header;
 use super::OpContext;
 use crate::args::Args;
@@ -26,6 +28,16 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let (_, modes) = numbering_and_basis(ctx.store, &payload.numbering, None, "REST_GENE_PHYS")?;
     let n = modes.modes.len();
     let coords = load_coordinates(ctx.store, &src, n)?;
+    // MULT_APPUI='OUI': the absolute motion, the supports' share added to Φq.
+    let share = match args.text("MULT_APPUI") {
+        Some("OUI") => Some(SupportShare::load(
+            ctx.store,
+            &src,
+            &payload.supports,
+            "REST_GENE_PHYS/MULT_APPUI",
+        )?),
+        _ => None,
+    };
     let fields: Vec<&str> = match args.texts("NOM_CHAM") {
         Some(v) => dyna_store::FIELDS
             .into_iter()
@@ -77,7 +89,13 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                             .map(|(j, m)| m.shape[i] * s[at * n + j])
                             .sum()
                     };
-                    row.push(Cell::R(value(p, phys)));
+                    let support = match &share {
+                        Some(sh) => sh
+                            .at(f, i, p.t)
+                            .map_err(|e| e.keyword("REST_GENE_PHYS/MULT_APPUI"))?,
+                        None => 0.0,
+                    };
+                    row.push(Cell::R(value(p, phys) + support));
                 }
             }
             t.push_row(row)?;

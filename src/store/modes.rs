@@ -7,7 +7,7 @@
 //! - `concept_data(concept, 'matrices')`: the MATR_RIGI and MATR_MASS it was computed from.
 
 use crate::error::{Error, Result};
-use crate::model::modes::{Mode, ModeMeca};
+use crate::model::modes::{Mode, ModeMeca, StaticTag};
 use crate::model::numbering::DofNumbering;
 use crate::store::{Schema, Store};
 use rusqlite::params;
@@ -89,6 +89,27 @@ pub fn save_modes(store: &Store, name: &str, modes: &ModeMeca) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// What each vector of a MODE_STATIQUE result answers (`concept_data(concept,
+/// 'static_modes')`).
+pub fn save_static_tags(store: &Store, name: &str, tags: &[StaticTag]) -> Result<()> {
+    store.put_json(name, "static_modes", &tags)
+}
+
+/// The static tags of `name`; empty for modes that are not static deformations.
+pub fn load_static_tags(store: &Store, name: &str) -> Result<Vec<StaticTag>> {
+    let n: i64 = store
+        .row(
+            "SELECT COUNT(*) FROM concept_data WHERE concept = ?1 AND key = 'static_modes'",
+            params![name],
+            |r| r.get(0),
+        )?
+        .unwrap_or(0);
+    if n == 0 {
+        return Ok(Vec::new());
+    }
+    store.get_json(name, "static_modes")
 }
 
 /// The matrices a basis was computed from (Code_Aster's reference of a mode_meca to its

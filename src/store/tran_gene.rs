@@ -32,6 +32,22 @@ pub struct Payload {
     pub shocks: Vec<StoredShock>,
     /// The table concept of the shocks' samples, if there are shocks.
     pub shock_table: Option<String>,
+    /// The moving supports (EXCIT with MULT_APPUI='OUI'), in order; empty for fixed ones.
+    #[serde(default)]
+    pub supports: Vec<StoredSupport>,
+}
+
+/// A moving support excitation: its constraint modes (MODE_STATIQUE), the support nodes,
+/// DIRECTION, and the functions of its acceleration, velocity and displacement, which
+/// restore the absolute motion (u_abs = Φq + ψ·DEPL(t), ψ = Σ DIRECTION_c ψ_node,c).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StoredSupport {
+    pub mode_stat: String,
+    pub nodes: Vec<String>,
+    pub direction: Vec<f64>,
+    pub acce: String,
+    pub vite: String,
+    pub depl: String,
 }
 
 pub fn save_payload(store: &Store, concept: &str, p: &Payload) -> Result<()> {

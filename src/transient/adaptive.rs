@@ -41,9 +41,9 @@ pub(crate) struct AdaptiveStats {
 /// Node displacements and velocities of a shock (u1, u2, u̇1, u̇2).
 type Ends = [[f64; 3]; 4];
 
-fn ends(shock: &Shock, q: &[f64], v: &[f64]) -> Ends {
-    let (u1, u2) = shock.node_displacements(q);
-    let (w1, w2) = shock.node_displacements(v);
+fn ends(shock: &Shock, t: f64, q: &[f64], v: &[f64]) -> Ends {
+    let (u1, u2) = shock.node_displacements_at(t, q);
+    let (w1, w2) = shock.node_velocities_at(t, v);
     [u1, u2, w1, w2]
 }
 
@@ -116,7 +116,7 @@ pub(crate) fn run_adaptive(
     k[0][n..].copy_from_slice(a0);
     let mut ytmp = try_zeros("the adaptive state", m)?;
     let mut err = try_zeros("the adaptive state", m)?;
-    let mut e_start: Vec<Ends> = shocks.iter().map(|s| ends(s, q0, v0)).collect();
+    let mut e_start: Vec<Ends> = shocks.iter().map(|s| ends(s, grid.t0, q0, v0)).collect();
     let mut e_end = e_start.clone();
     let mut gap_start: Vec<f64> = ws.evals.iter().map(|e| e.gap.dnorm).collect();
     let inf = |x: &[f64]| x.iter().fold(0.0f64, |a, b| a.max(b.abs()));
@@ -224,7 +224,7 @@ pub(crate) fn run_adaptive(
         for (s, shock) in shocks.iter().enumerate() {
             let g1 = ws.evals[s].gap.dnorm;
             if (gap_start[s] <= 0.0) != (g1 <= 0.0) {
-                e_end[s] = ends(shock, &ytmp[..n], &ytmp[n..]);
+                e_end[s] = ends(shock, t + h, &ytmp[..n], &ytmp[n..]);
                 let th = locate(shock, &e_start[s], &e_end[s], h);
                 theta = Some(theta.map_or(th, |x: f64| x.min(th)));
             }
@@ -259,7 +259,7 @@ pub(crate) fn run_adaptive(
         commit(shocks, &ws.evals);
         for (s, shock) in shocks.iter().enumerate() {
             gap_start[s] = ws.evals[s].gap.dnorm;
-            e_start[s] = ends(shock, &y[..n], &y[n..]);
+            e_start[s] = ends(shock, t, &y[..n], &y[n..]);
         }
         qmax = sq;
         vmax = sv;

@@ -118,7 +118,7 @@ impl StepEnds<'_> {
             out.a[i] = (1.0 - s) * self.a0[i] + s * self.a1[i];
         }
         for (e, sh) in out.evals.iter_mut().zip(shocks) {
-            *e = sh.evaluate(&out.q, &out.v, &sh.state);
+            *e = sh.evaluate_at(t, &out.q, &out.v, &sh.state);
         }
     }
 }

@@ -30,6 +30,7 @@ use super::error::{check_len, invalid, TransientError};
 use super::obstacle::{
     normal_gap, obstacle_frame, rest_signs, Clearance, Gap, LocalFrame, ObstacleKind,
 };
+use super::support::SupportMotion;
 
 /// Code_Aster's absolute threshold on |v_T| below which slip is not kept (ftang).
 pub const SLIP_VELOCITY_THRESHOLD: f64 = 1e-6;
@@ -270,6 +271,8 @@ pub struct Shock {
     rel: NodeRows,
     /// The state of the last accepted step.
     pub state: ShockState,
+    /// The supports' motion its nodes follow (MULT_APPUI; empty: fixed supports).
+    support: SupportMotion,
 }
 
 impl Shock {
@@ -337,8 +340,15 @@ impl Shock {
             rows2,
             rel,
             state: ShockState::default(),
+            support: SupportMotion::default(),
             spec,
         })
+    }
+
+    /// The shock's nodes follow moving supports (MULT_APPUI): q is then the motion relative
+    /// to them, and the gap and velocities are taken on the absolute motion.
+    pub fn set_support(&mut self, support: SupportMotion) {
+        self.support = support;
     }
 
     /// Largest generalized index the rows use (for a size check).
@@ -373,11 +383,48 @@ impl Shock {
         (l1, l2)
     }
 
-    /// Node displacements (global) of nodes 1 and 2 for q.
-    pub fn node_displacements(&self, q: &[f64]) -> ([f64; 3], [f64; 3]) {
+    /// Node displacements (global) of nodes 1 and 2 for q, relative to the supports.
+    fn node_displacements(&self, q: &[f64]) -> ([f64; 3], [f64; 3]) {
         let u1 = self.rows1.apply(q);
         let u2 = self.rows2.as_ref().map(|r| r.apply(q)).unwrap_or([0.0; 3]);
         (u1, u2)
+    }
+
+    /// Absolute node displacements (global) of nodes 1 and 2 at t for q: with moving
+    /// supports, their motion is added.
+    pub fn node_displacements_at(&self, t: f64, q: &[f64]) -> ([f64; 3], [f64; 3]) {
+        let (u1, u2) = self.node_displacements(q);
+        if self.support.is_empty() {
+            return (u1, u2);
+        }
+        let [s1, s2] = self.support.displacement(t);
+        (add(u1, s1), add(u2, s2))
+    }
+
+    /// Absolute node velocities (global) of nodes 1 and 2 at t for q̇.
+    pub fn node_velocities_at(&self, t: f64, v: &[f64]) -> ([f64; 3], [f64; 3]) {
+        let (w1, w2) = self.node_displacements(v);
+        if self.support.is_empty() {
+            return (w1, w2);
+        }
+        let [s1, s2] = self.support.velocity(t);
+        (add(w1, s1), add(w2, s2))
+    }
+
+    /// The relative velocity of the shock (node 1 − node 2, or node 1) at t, absolute
+    /// with moving supports.
+    fn relative_velocity(&self, t: f64, v: &[f64]) -> [f64; 3] {
+        let dv = self.rel.apply(v);
+        if self.support.is_empty() {
+            return dv;
+        }
+        let [s1, s2] = self.support.velocity(t);
+        let s = if self.rows2.is_some() {
+            sub(s1, s2)
+        } else {
+            s1
+        };
+        add(dv, s)
     }
 
     /// Normal distance from the node displacements (the event function of the adaptive
@@ -387,13 +434,21 @@ impl Shock {
         normal_gap(self.spec.obstacle, l1, l2, self.clearance(), self.signs)
     }
 
-    /// The force for the state (q, v), from the stick/slip memory `state` (pure).
+    /// The force for the state (q, v) with fixed supports (any t), from the stick/slip
+    /// memory `state` (pure).
+    #[cfg(test)]
     pub fn evaluate(&self, q: &[f64], v: &[f64], state: &ShockState) -> ShockEval {
-        let (u1, u2) = self.node_displacements(q);
+        self.evaluate_at(0.0, q, v, state)
+    }
+
+    /// The force for the state (q, v) at t (the supports' motion at t), from the
+    /// stick/slip memory `state` (pure).
+    pub fn evaluate_at(&self, t: f64, q: &[f64], v: &[f64], state: &ShockState) -> ShockEval {
+        let (u1, u2) = self.node_displacements_at(t, q);
         let (l1, l2) = self.local_positions(u1, u2);
         let two = self.rows2.is_some();
         let d = if two { sub(l1, l2) } else { l1 };
-        let dv = self.frame.to_local(self.rel.apply(v));
+        let dv = self.frame.to_local(self.relative_velocity(t, v));
         let gap = normal_gap(self.spec.obstacle, l1, l2, self.clearance(), self.signs);
         let mut sample = ShockSample {
             loc1: l1,

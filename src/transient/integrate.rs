@@ -191,7 +191,7 @@ pub fn integrate(
                             omega_max,
                         });
                     }
-                    Stepper::Diff(DiffCentre::new(n)?)
+                    Stepper::Diff(DiffCentre)
                 }
             };
             let start = Start {

@@ -14,7 +14,8 @@
 //! ratios) or [`SparseStructure`].
 //!
 //! Schemes ([`Scheme`], Code_Aster's SCHEMA names through [`Scheme::from_name`]):
-//! - DIFF_CENTRE: explicit central difference (velocity Verlet), order 2, symplectic
+//! - DIFF_CENTRE: Code_Aster's explicit central difference (v += h a, then q += h v),
+//!   order 2 in positions, the velocity carried being the half step's; symplectic
 //!   without damping or friction; stable for PAS < 2/ω_max, ω_max of M⁻¹(K + shocks'
 //!   RIGI_NOR/RIGI_TAN), checked before the run ([`TransientError::Unstable`]).
 //! - NEWMARK (BETA, GAMMA; 0.25/0.5 by default): order 2, unconditionally stable for the
@@ -34,8 +35,12 @@
 //! the located contact events. Archive sizes are checked before allocation; workspaces are
 //! allocated once, nothing in the step loops.
 //!
+//! With moving supports (MULT_APPUI) q is the motion relative to the supports and each
+//! shock's nodes follow the supports' displacements on top of Φ q (support.rs).
+//!
 //! Files: error.rs (typed errors, conversion to `crate::error::Error`), structure.rs (the
-//! trait), contact_time.rs (how long a contact lasts, to judge a fixed step), dense.rs, sparse.rs, obstacle.rs, dis_choc.rs, problem.rs (forcing, grid,
+//! trait), contact_time.rs (how long a contact lasts, to judge a fixed step), support.rs (moving
+//! supports), dense.rs, sparse.rs, obstacle.rs, dis_choc.rs, problem.rs (forcing, grid,
 //! archive, trajectory), system.rs (the right-hand side), scheme/ (one file per scheme),
 //! fixed.rs and adaptive.rs (the loops), archive.rs (recording), integrate.rs (the
 //! driver), impact_stats.rs (POST_DYNA_MODA_T's impact and wear statistics of the
@@ -55,6 +60,7 @@ pub mod problem;
 pub mod scheme;
 pub mod sparse;
 pub mod structure;
+pub mod support;
 mod system;
 
 #[cfg(test)]
@@ -72,3 +78,4 @@ pub use problem::{Archive, ContactEvent, Forcing, TimeGrid, Trajectory};
 pub use scheme::{AdaptiveOptions, RkPair, Scheme};
 pub use sparse::SparseStructure;
 pub use structure::{LinearSolver, Structure};
+pub use support::{SupportMotion, SupportTerm, TimeFn};

@@ -25,7 +25,7 @@ impl Work {
     pub fn new(n: usize, shocks: &[Shock]) -> Result<Work, TransientError> {
         let zero = shocks
             .iter()
-            .map(|s| s.evaluate(&[], &[], &s.state))
+            .map(|s| s.evaluate_at(0.0, &[], &[], &s.state))
             .collect();
         Ok(Work {
             r: try_zeros("the force workspace", n)?,
@@ -54,7 +54,7 @@ impl Model<'_> {
             }
         }
         for (shock, ev) in shocks.iter().zip(ws.evals.iter_mut()) {
-            *ev = shock.evaluate(q, v, &shock.state);
+            *ev = shock.evaluate_at(t, q, v, &shock.state);
             shock.add_generalized(ev, &mut ws.r);
         }
     }

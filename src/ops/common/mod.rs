@@ -29,6 +29,9 @@ pub mod resources;
 pub mod section;
 // The location keywords (TOUT, GROUP_MA, MAILLE, GROUP_NO, NOEUD) as a mesh selection.
 pub mod selection;
+// The moving supports of a seismic excitation and their constraint modes (CALC_CHAR_SEISME,
+// DYNA_VIBRA MULT_APPUI, REST_GENE_PHYS, RECU_FONCTION).
+pub mod supports;
 // Time histories of a DYNA_VIBRA result (RECU_FONCTION's RESU_GENE).
 pub mod tran_gene;
 // The table keywords (FILTRE, TRI, TABLE) shared by the table operators.

@@ -5,18 +5,19 @@
 use crate::error::{Error, Result};
 use crate::model::Cmp;
 use crate::ops::common::gene::numbering_and_basis;
+use crate::ops::common::supports::SupportShare;
 use crate::store::tran_gene::{self, load_coordinates, Payload};
 use crate::store::{table as table_store, Store};
 use crate::table::{Cell, Table};
 use crate::transient::ShockSample;
 
-/// (INST, value) of NOM_CHAM `field` (DEPL, VITE, ACCE), component `cmp` of `node`.
+/// (INST, value) of NOM_CHAM `field` (DEPL, VITE, ACCE), component `cmp` of `node`; with
+/// `absolute`, the supports' share of a multi-support run added (MULT_APPUI='OUI').
 pub fn physical_history(
     store: &Store,
     result: &str,
-    field: &str,
-    node: &str,
-    cmp: &str,
+    (field, node, cmp): (&str, &str, &str),
+    absolute: bool,
     kw: &dyn Fn(&str) -> String,
 ) -> Result<(Vec<f64>, Vec<f64>)> {
     let payload = tran_gene::load_payload(store, result)?;
@@ -50,7 +51,7 @@ pub fn physical_history(
         }
     };
     let row: Vec<f64> = modes.modes.iter().map(|m| m.shape[dof]).collect();
-    let values = (0..coords.t.len())
+    let mut values: Vec<f64> = (0..coords.t.len())
         .map(|i| {
             row.iter()
                 .zip(&series[i * n..(i + 1) * n])
@@ -58,6 +59,15 @@ pub fn physical_history(
                 .sum()
         })
         .collect();
+    if absolute {
+        let key = kw("MULT_APPUI");
+        let share = SupportShare::load(store, result, &payload.supports, &key)?;
+        for (v, &t) in values.iter_mut().zip(&coords.t) {
+            *v += share
+                .at(field, dof, t)
+                .map_err(|e| e.keyword(key.clone()))?;
+        }
+    }
     Ok((coords.t, values))
 }
 

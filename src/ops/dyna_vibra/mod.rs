@@ -7,6 +7,7 @@ mod basis_check;
 mod output;
 mod shocks;
 mod space;
+mod supports;
 
 use super::common::progress::Progress;
 use super::OpContext;
@@ -42,6 +43,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         )?;
     }
     default_tangential_damping(args, &space, &mut shocks)?;
+    let supports = supports::read(ctx, args, &space)?;
+    supports::attach(ctx, &supports, &mut shocks, &names)?;
     let veri = match args.fact("VERI_CHOC") {
         Some(v) => Some(basis_check::VeriChoc {
             seuil: v.req_real("SEUIL")?,
@@ -80,7 +83,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     if ctx.info >= 2 {
         say_events(ctx, &names, &trajectory)?;
     }
-    output::store(ctx, &name, &space, &names, &trajectory)?;
+    let stored: Vec<_> = supports.into_iter().map(|s| s.stored).collect();
+    output::store(ctx, &name, &space, &names, &stored, &trajectory)?;
     ctx.say(&format!(
         "DYNA_VIBRA {name}: {} archived instants from {:e} to {:e} s, {} steps ({} rejected), {} shock(s), {} contact change(s) located",
         trajectory.t.len(),
@@ -257,10 +261,15 @@ fn excitations(ctx: &OpContext<'_>, args: &Args, space: &Space) -> Result<Vec<Fo
             );
         }
         let f = space.vector(ctx, occ, key)?;
-        let forcing = match occ.concept("FONC_MULT") {
-            Some(c) => {
+        // ACCE (a support's acceleration, CALC_CHAR_SEISME's load) multiplies the force as
+        // FONC_MULT does.
+        let multiplier = ["FONC_MULT", "ACCE"]
+            .into_iter()
+            .find_map(|k| occ.concept(k).map(|c| (k, c)));
+        let forcing = match multiplier {
+            Some((k, c)) => {
                 let g = function_store::load_any_function(ctx.store, &c.name)
-                    .map_err(|e| e.keyword(occ.key_path("FONC_MULT")))?;
+                    .map_err(|e| e.keyword(occ.key_path(k)))?;
                 // A value the function cannot give (outside an EXCLU domain) makes the
                 // force NaN, which the integrator stops on, naming the instant.
                 Forcing {

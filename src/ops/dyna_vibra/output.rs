@@ -6,7 +6,7 @@ use super::shocks::ShockName;
 use super::space::Space;
 use crate::error::Result;
 use crate::ops::OpContext;
-use crate::store::tran_gene::{self, Payload, StoredShock};
+use crate::store::tran_gene::{self, Payload, StoredShock, StoredSupport};
 use crate::store::{dyna_trans as dyna_store, table as table_store};
 use crate::table::{Cell, ColKind, Table};
 use crate::transient::{ShockSample, Trajectory};
@@ -16,6 +16,7 @@ pub fn store(
     name: &str,
     space: &Space,
     shocks: &[ShockName],
+    supports: &[StoredSupport],
     tr: &Trajectory,
 ) -> Result<()> {
     let (ty, table) = match space {
@@ -90,8 +91,17 @@ pub fn store(
                 })
                 .collect(),
             shock_table,
+            supports: supports.to_vec(),
         },
-    )
+    )?;
+    // The absolute motion is restored from these (REST_GENE_PHYS, RECU_FONCTION with
+    // MULT_APPUI='OUI'): a later change to one of them is reported there.
+    for s in supports {
+        for dep in [&s.mode_stat, &s.acce, &s.vite, &s.depl] {
+            ctx.store.record_dependency(name, dep)?;
+        }
+    }
+    Ok(())
 }
 
 /// The columns of a time history of `fields` (of DEPL, VITE, ACCE), as REST_MODE_NONL

@@ -337,6 +337,12 @@ fn read_phys(ctx: &OpContext<'_>, args: &Args) -> Result<(Space, Box<dyn Structu
     let mass = mats[0]
         .as_ref()
         .ok_or_else(|| Error::validation("MATR_MASS is required"))?;
+    // MATR_MASS and MATR_RIGI (MATR_AMOR, the third, is the damping's place).
+    for (key, m) in MATRICES.iter().zip(&mats).take(2) {
+        if let (Some(m), Some(c)) = (m, args.concept(key)) {
+            m.refuse_damping(&c.name, &format!("DYNA_VIBRA/{key}"))?;
+        }
+    }
     for (key, m) in MATRICES.iter().zip(&mats).skip(1) {
         if let Some(m) = m {
             if !m.same_dofs(mass) {

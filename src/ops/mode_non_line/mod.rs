@@ -197,6 +197,8 @@ fn read_call(ctx: &mut OpContext<'_>, args: &Args, name: &str) -> Result<(Call, 
     }
     let k = matrix::load_matrix(ctx.store, &k_name)?;
     let m = matrix::load_matrix(ctx.store, &m_name)?;
+    k.refuse_damping(&k_name, "MODE_NON_LINE/MATR_RIGI")?;
+    m.refuse_damping(&m_name, "MODE_NON_LINE/MATR_MASS")?;
     if !k.same_dofs(&m) {
         return Err(Error::input(format!(
             "{k_name} and {m_name} are not assembled on the same DOF numbering and boundary conditions"

@@ -58,7 +58,8 @@ impl AdaptiveOptions {
 /// SCHEMA_TEMPS.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Scheme {
-    /// Explicit central difference (Code_Aster's default in GENE), velocity-Verlet form.
+    /// Explicit central difference (Code_Aster's default in GENE), in Code_Aster's
+    /// kick-drift form (`diff_centre.rs`).
     DiffCentre,
     /// Newmark (BETA, GAMMA; defaults 0.25, 0.5: average acceleration), shock forces
     /// iterated at the end of the step (newmark.rs).

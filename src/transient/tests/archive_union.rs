@@ -48,10 +48,19 @@ fn pas_arch_with_inst_keeps_the_union_once_each() {
                 (both.q_at(i)[0] - alone.q_at(j)[0]).abs() < 1e-12,
                 "{scheme:?} at {ti}"
             );
-            // And close to cos t (the schemes' own error at h = 0.01 or the tolerance).
+            // And close to the solution the scheme approximates to second order at
+            // h = 0.01 (or to its tolerance): cos t for RUNGE_KUTTA_54; for DIFF_CENTRE,
+            // Code_Aster's form, which takes the initial velocity as the velocity of the
+            // half step before t0 (v_{-1/2} = 0: q is symmetric about −h/2), cos(t + h/2)/
+            // cos(h/2), an O(h) phase lead on cos t (1.3e-3 at 0.255).
+            let exact = match scheme {
+                Scheme::DiffCentre => (ti + 0.005).cos() / 0.005f64.cos(),
+                _ => ti.cos(),
+            };
             assert!(
-                (both.q_at(i)[0] - ti.cos()).abs() < 1e-3,
-                "{scheme:?} at {ti}"
+                (both.q_at(i)[0] - exact).abs() < 1e-4,
+                "{scheme:?} at {ti}: {} vs {exact}",
+                both.q_at(i)[0]
             );
         }
         if scheme == Scheme::DiffCentre {

@@ -21,9 +21,17 @@ fn energy_history(scheme: Scheme, dt: f64) -> Vec<f64> {
         &Archive::Every(1),
     )
     .unwrap();
+    // DIFF_CENTRE (Code_Aster's form) carries the half-step velocity (q_n − q_{n−1})/h:
+    // the velocity at t_n is v_n + h/2 a_n.
+    let half = if scheme == Scheme::DiffCentre {
+        0.5 * dt
+    } else {
+        0.0
+    };
     (0..traj.t.len())
         .map(|i| {
-            let (x, v) = (traj.q_at(i)[0], traj.v_at(i)[0]);
+            let x = traj.q_at(i)[0];
+            let v = traj.v_at(i)[0] + half * traj.a_at(i)[0];
             0.5 * v * v + 0.5 * k * x * x + 0.5 * kn * (x - g).max(0.0).powi(2)
         })
         .collect()
