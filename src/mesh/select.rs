@@ -229,17 +229,7 @@ pub fn not_found_hint<'a>(
     if all.is_empty() {
         return format!("the mesh has no {what}");
     }
-    let close = crate::suggest::closest(name, all.iter().copied());
-    let mean = match close.as_slice() {
-        [] => String::new(),
-        c => format!(
-            "did you mean {}? ",
-            c.iter()
-                .map(|n| format!("'{n}'"))
-                .collect::<Vec<_>>()
-                .join(" or ")
-        ),
-    };
+    let mean = crate::suggest::did_you_mean(name, all.iter().copied());
     let shown: Vec<&str> = all.iter().take(LISTED).copied().collect();
     format!(
         "{mean}the mesh has {} {what}(s): {}{}",

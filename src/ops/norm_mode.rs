@@ -324,17 +324,7 @@ fn components(names: &[String], keyword: &str) -> Result<Vec<Cmp>> {
 fn parse_cmp(name: &str, keyword: &str) -> Result<Cmp> {
     Cmp::parse(name).ok_or_else(|| {
         let known = Cmp::ALL.map(Cmp::name);
-        let close = crate::suggest::closest(name, known);
-        let mean = match close.as_slice() {
-            [] => String::new(),
-            c => format!(
-                "did you mean {}? ",
-                c.iter()
-                    .map(|n| format!("'{n}'"))
-                    .collect::<Vec<_>>()
-                    .join(" or ")
-            ),
-        };
+        let mean = crate::suggest::did_you_mean(name, known);
         Error::validation(format!("unknown component '{name}'"))
             .keyword(keyword.to_string())
             .hint(format!("{mean}the components are {}", known.join(", ")))
@@ -386,17 +376,7 @@ fn named_dof(
             .map(|d| d.node.as_str())
             .filter(|n| seen.insert(*n))
             .collect();
-        let close = crate::suggest::closest(&node, nodes.iter().copied());
-        let mean = match close.as_slice() {
-            [] => String::new(),
-            c => format!(
-                "did you mean {}? ",
-                c.iter()
-                    .map(|n| format!("'{n}'"))
-                    .collect::<Vec<_>>()
-                    .join(" or ")
-            ),
-        };
+        let mean = crate::suggest::did_you_mean(&node, nodes.iter().copied());
         let shown: Vec<&str> = nodes.iter().take(20).copied().collect();
         return Err(Error::validation(format!(
             "{src} has no DOF on node '{node}' (its numbering {} does not have that node)",

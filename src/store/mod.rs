@@ -527,6 +527,19 @@ impl Store {
         Ok(())
     }
 
+    /// Read a serde payload stored under (concept, key), `None` when there is none.
+    pub fn find_json<T: DeserializeOwned>(&self, concept: &str, key: &str) -> Result<Option<T>> {
+        let json: Option<String> = self.row(
+            "SELECT json FROM concept_data WHERE concept = ?1 AND key = ?2",
+            params![concept, key],
+            |r| r.get(0),
+        )?;
+        match json {
+            Some(j) => Ok(Some(serde_json::from_str(&j)?)),
+            None => Ok(None),
+        }
+    }
+
     /// Read a serde payload stored under (concept, key).
     pub fn get_json<T: DeserializeOwned>(&self, concept: &str, key: &str) -> Result<T> {
         let json: Option<String> = self.row(

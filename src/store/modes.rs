@@ -99,17 +99,7 @@ pub fn save_static_tags(store: &Store, name: &str, tags: &[StaticTag]) -> Result
 
 /// The static tags of `name`; empty for modes that are not static deformations.
 pub fn load_static_tags(store: &Store, name: &str) -> Result<Vec<StaticTag>> {
-    let n: i64 = store
-        .row(
-            "SELECT COUNT(*) FROM concept_data WHERE concept = ?1 AND key = 'static_modes'",
-            params![name],
-            |r| r.get(0),
-        )?
-        .unwrap_or(0);
-    if n == 0 {
-        return Ok(Vec::new());
-    }
-    store.get_json(name, "static_modes")
+    Ok(store.find_json(name, "static_modes")?.unwrap_or_default())
 }
 
 /// The matrices a basis was computed from (Code_Aster's reference of a mode_meca to its
@@ -127,17 +117,7 @@ pub fn save_matrices(store: &Store, name: &str, m: &ModeMatrices) -> Result<()> 
 /// The matrices of `name`, `None` for a basis stored without them (before aster-nl kept
 /// them, or one REST_MODE_NONL wrote).
 pub fn load_matrices(store: &Store, name: &str) -> Result<Option<ModeMatrices>> {
-    let n: i64 = store
-        .row(
-            "SELECT COUNT(*) FROM concept_data WHERE concept = ?1 AND key = 'matrices'",
-            params![name],
-            |r| r.get(0),
-        )?
-        .unwrap_or(0);
-    if n == 0 {
-        return Ok(None);
-    }
-    store.get_json(name, "matrices").map(Some)
+    store.find_json(name, "matrices")
 }
 
 pub fn load_modes(store: &Store, name: &str) -> Result<ModeMeca> {
