@@ -553,3 +553,44 @@ fn a_damping_matrix_given_as_stiffness_or_mass_is_refused() {
         assert!(out.contains("is a damping matrix"), "{out}");
     }
 }
+
+/// MASS_MECA_DIAG: on discrete masses (diagonal already) the lumped mass is the consistent
+/// one, entry for entry; a beam's consistent mass couples its nodes, and aster-nl refuses to
+/// lump it, naming the option and the cell (rather than give the consistent mass under the
+/// lumped name).
+#[test]
+fn mass_meca_diag_is_the_mass_of_discrete_masses_and_refused_on_beams() {
+    let run = run_text(
+        &format!(
+            "{ONE_DOF_HEAD}
+ASSEMBLAGE(MODELE=MO, CARA_ELEM=CARA, NUME_DDL=CO('NUME'),
+           MATR_ASSE=(_F(MATRICE=CO('RIGI'), OPTION='RIGI_MECA'),
+                      _F(MATRICE=CO('MASS'), OPTION='MASS_MECA'),
+                      _F(MATRICE=CO('MDIAG'), OPTION='MASS_MECA_DIAG')))
+ME = CALC_MATR_ELEM(OPTION='MASS_MECA_DIAG', MODELE=MO, CARA_ELEM=CARA)
+MDIAG2 = ASSE_MATRICE(MATR_ELEM=ME, NUME_DDL=NUME)
+FIN()
+"
+        ),
+        ONE_NODE,
+    );
+    ok(&run);
+    let mass = matrix(&run.db, "MASS");
+    assert!(!mass.is_empty());
+    assert_eq!(matrix(&run.db, "MDIAG"), mass);
+    assert_eq!(matrix(&run.db, "MDIAG2"), mass);
+    let beam = run_text(
+        &format!(
+            "{}ME = CALC_MATR_ELEM(OPTION='MASS_MECA_DIAG', MODELE=MO, CHAM_MATER=CHMAT, CARA_ELEM=CARA)\nFIN()\n",
+            beam_head(0., 0., false)
+        ),
+        &beam_mesh(4),
+    );
+    assert_eq!(beam.code, Some(2), "{}", beam.out);
+    assert!(beam.out.contains("CALC_MATR_ELEM/OPTION"), "{}", beam.out);
+    assert!(
+        beam.out.contains("MASS_MECA_DIAG: the mass of cell E1"),
+        "{}",
+        beam.out
+    );
+}

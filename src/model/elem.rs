@@ -69,7 +69,32 @@ pub struct ElemMatrices {
     pub loads: Vec<KinematicLoad>,
 }
 
+/// An OPTION of CALC_MATR_ELEM or ASSEMBLAGE: the matrix kind, and whether the lumped
+/// (diagonal) mass is asked (MASS_MECA_DIAG).
+pub fn parse_option(option: &str) -> Option<(MatrixKind, bool)> {
+    match option {
+        "MASS_MECA_DIAG" => Some((MatrixKind::MassMeca, true)),
+        other => MatrixKind::parse(other).map(|k| (k, false)),
+    }
+}
+
 impl ElemMatrices {
+    /// The cell of the first element matrix with a nonzero term off its diagonal: where a
+    /// lumped mass (MASS_MECA_DIAG) would differ from the consistent one. aster-nl gives
+    /// MASS_MECA_DIAG only where the two are the same (discrete masses M_T_D_N, M_T_D_L,
+    /// M_TR_D_N without offset, diagonal M_T_N...), and refuses the others.
+    pub fn first_off_diagonal(&self) -> Option<usize> {
+        self.elements.iter().find_map(|e| {
+            let n = e.dofs.len();
+            let off = e
+                .values
+                .iter()
+                .enumerate()
+                .any(|(k, v)| k / n.max(1) != k % n.max(1) && *v != 0.0);
+            off.then_some(e.cell)
+        })
+    }
+
     /// Whether every value of every element matrix is zero (AMOR_MECA on a model without
     /// any damping).
     pub fn is_zero(&self) -> bool {

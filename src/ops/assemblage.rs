@@ -17,16 +17,21 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let inputs = Inputs::from_args(args)?;
     let occs = args.facts_or_empty("MATR_ASSE");
     let mut wanted = Vec::new();
+    // The MASS_MECA_DIAG requests (checked once their element matrices are computed).
+    let mut lumped_keys: Vec<(String, String)> = Vec::new();
     for occ in occs {
         let co = occ.co("MATRICE").ok_or_else(|| {
             Error::validation("expected CO('NAME')").keyword(occ.key_path("MATRICE"))
         })?;
         let option = occ.req_text("OPTION")?;
-        let kind = MatrixKind::parse(option).ok_or_else(|| {
+        let (kind, lumped) = crate::model::elem::parse_option(option).ok_or_else(|| {
             Error::validation(format!("OPTION {option} is not supported"))
                 .keyword(occ.key_path("OPTION"))
-                .hint("use RIGI_MECA, MASS_MECA or AMOR_MECA")
+                .hint("use RIGI_MECA, MASS_MECA, MASS_MECA_DIAG or AMOR_MECA")
         })?;
+        if lumped {
+            lumped_keys.push((co.to_string(), occ.key_path("OPTION")));
+        }
         // Two matrices under one name: the second would silently replace the first.
         let vector = |c: &str| {
             args.facts_or_empty("VECT_ASSE")
@@ -46,7 +51,11 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     // stiffness and mass element matrices of the same call when it asks for them.
     let mut elems: Vec<(String, ElemMatrices)> = Vec::new();
     for (co, kind) in wanted.iter().filter(|(_, k)| *k != MatrixKind::AmorMeca) {
-        elems.push((co.clone(), inputs.elem_matrices(ctx.store, *kind)?));
+        let mats = inputs.elem_matrices(ctx.store, *kind)?;
+        if let Some((_, key)) = lumped_keys.iter().find(|(c, _)| c == co) {
+            super::calc_matr_elem::refuse_unlumped(ctx.store, &mats, key)?;
+        }
+        elems.push((co.clone(), mats));
     }
     for (co, _) in wanted.iter().filter(|(_, k)| *k == MatrixKind::AmorMeca) {
         let of_kind = |kind| elems.iter().find(|(_, m)| m.kind == kind).map(|(_, m)| m);

@@ -3,7 +3,7 @@
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
-use crate::model::elem::{compute_damping_matrices, ElemError, GivenMatrices};
+use crate::model::elem::{compute_damping_matrices, parse_option, ElemError, GivenMatrices};
 use crate::model::{
     compute_elem_matrices, ElemInputs, ElemMatrices, KinematicLoad, LoadKind, MatrixKind,
 };
@@ -16,10 +16,10 @@ use crate::store::Store;
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let name = ctx.result_name()?.to_string();
     let option = args.req_text("OPTION")?;
-    let kind = MatrixKind::parse(option).ok_or_else(|| {
+    let (kind, lumped) = parse_option(option).ok_or_else(|| {
         Error::validation(format!("OPTION {option} is not supported"))
             .keyword("CALC_MATR_ELEM/OPTION")
-            .hint("use RIGI_MECA, MASS_MECA or AMOR_MECA")
+            .hint("use RIGI_MECA, MASS_MECA, MASS_MECA_DIAG or AMOR_MECA")
     })?;
     let inputs = Inputs::from_args(args)?;
     let mats = if kind == MatrixKind::AmorMeca {
@@ -44,7 +44,11 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 .hint("remove it, or ask for OPTION='AMOR_MECA'"));
             }
         }
-        inputs.elem_matrices(ctx.store, kind)?
+        let mats = inputs.elem_matrices(ctx.store, kind)?;
+        if lumped {
+            refuse_unlumped(ctx.store, &mats, "CALC_MATR_ELEM/OPTION")?;
+        }
+        mats
     };
     ctx.create(&name, "matr_elem_depl_r")?;
     save_elem_matrices(ctx.store, &name, &mats)
@@ -55,6 +59,26 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
 pub(crate) const NO_DAMPING: &str = "the AMOR_MECA matrix is zero: no material of the model \
      gives AMOR_ALPHA or AMOR_BETA (DEFI_MATERIAU ELAS) and no discrete element an A_ \
      characteristic (AFFE_CARA_ELEM DISCRET); a transient with it is undamped";
+
+/// MASS_MECA_DIAG where the lumped mass would differ from the consistent one (an element
+/// matrix with couplings): an error naming `keyword` and the cell.
+pub(crate) fn refuse_unlumped(store: &Store, mats: &ElemMatrices, keyword: &str) -> Result<()> {
+    let Some(cell) = mats.first_off_diagonal() else {
+        return Ok(());
+    };
+    let mesh = crate::store::model::load_mesh(store, &mats.mesh)?;
+    let name = mesh
+        .cells
+        .get(cell)
+        .map(|c| c.name.clone())
+        .unwrap_or_else(|| format!("#{}", cell + 1));
+    Err(Error::validation(format!(
+        "MASS_MECA_DIAG: the mass of cell {name} couples its DOFs, and aster-nl does not lump it \
+         (it gives the lumped mass only where it equals the consistent one: discrete masses)"
+    ))
+    .keyword(keyword)
+    .hint("ask for MASS_MECA (the consistent mass)"))
+}
 
 /// The element matrices given as `key` (RIGI_MECA or MASS_MECA of OPTION='AMOR_MECA').
 fn given(store: &Store, args: &Args, key: &str) -> Result<Option<ElemMatrices>> {
