@@ -5,30 +5,9 @@
 //! the errors and alarms a user meets.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-fn case(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("testcases")
-        .join(name)
-}
-
-/// `aster-nl run comm --db db`: (exit code, output).
-fn run_file(comm: &Path, db: &Path) -> (Option<i32>, String) {
-    let o = Command::new(env!("CARGO_BIN_EXE_aster-nl"))
-        .arg("run")
-        .arg(comm)
-        .arg("--db")
-        .arg(db)
-        .output()
-        .unwrap();
-    let out = format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    );
-    (o.status.code(), out)
-}
+mod support;
+use support::{case, run_file};
 
 /// A finished run of a command file written here: its output and its database.
 struct Run {

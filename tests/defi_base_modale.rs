@@ -4,31 +4,8 @@
 //! against DYNA_VIBRA on the physical DOFs (an independent integration of the full model),
 //! against exact properties of the bases, and for the errors a user meets.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn case(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("testcases")
-        .join(name)
-}
-
-/// `aster-nl run comm --db db`: (exit code, output).
-fn run_file(comm: &Path, db: &Path) -> (Option<i32>, String) {
-    let o = Command::new(env!("CARGO_BIN_EXE_aster-nl"))
-        .arg("run")
-        .arg(comm)
-        .arg("--db")
-        .arg(db)
-        .output()
-        .unwrap();
-    let out = format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    );
-    (o.status.code(), out)
-}
+mod support;
+use support::{case, run_file};
 
 /// The chain of testcases/dyna_vibra_ritz.comm: six masses m = 1 on springs k = 1e4 from a
 /// wall, its matrices on NUME, its 5 lowest modes, the first mode's velocity (0.2 m/s at

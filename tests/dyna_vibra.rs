@@ -1,31 +1,11 @@
 //! DYNA_VIBRA's chain through the binary: the transient cases of `testcases/` (each checked
 //! there against an exact reference) and the errors a user meets, each naming its keyword.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
-fn case(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("testcases")
-        .join(name)
-}
-
-/// `aster-nl run comm --db db`: (exit code, output).
-fn run_file(comm: &Path, db: &Path) -> (Option<i32>, String) {
-    let o = Command::new(env!("CARGO_BIN_EXE_aster-nl"))
-        .arg("run")
-        .arg(comm)
-        .arg("--db")
-        .arg(db)
-        .output()
-        .unwrap();
-    let out = format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    );
-    (o.status.code(), out)
-}
+mod support;
+use support::{case, run_file};
 
 fn run_case(name: &str, tests: usize) -> String {
     let dir = tempfile::tempdir().unwrap();

@@ -3,31 +3,8 @@
 //! RECU_FONCTION. The exact references are in testcases/dyna_vibra_seisme.comm; here, that
 //! case and the errors a user meets, each naming its keyword.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn case(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("testcases")
-        .join(name)
-}
-
-/// `aster-nl run comm --db db`: (exit code, output).
-fn run_file(comm: &Path, db: &Path) -> (Option<i32>, String) {
-    let o = Command::new(env!("CARGO_BIN_EXE_aster-nl"))
-        .arg("run")
-        .arg(comm)
-        .arg("--db")
-        .arg(db)
-        .output()
-        .unwrap();
-    let out = format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    );
-    (o.status.code(), out)
-}
+mod support;
+use support::{case, run_file};
 
 /// The seismic case's model and matrices (everything before its references), then `tail`.
 fn run_seisme_with(tail: &str) -> (Option<i32>, String) {

@@ -2,31 +2,10 @@
 //! `testcases/dyna_vibra_impact_stats.comm` (each checked there against its closed form),
 //! the table's Code_Aster columns, and the errors a user meets, each naming its keyword.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 
-fn case(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("testcases")
-        .join(name)
-}
-
-/// `aster-nl run comm --db db`: (exit code, output).
-fn run_file(comm: &Path, db: &Path) -> (Option<i32>, String) {
-    let o = Command::new(env!("CARGO_BIN_EXE_aster-nl"))
-        .arg("run")
-        .arg(comm)
-        .arg("--db")
-        .arg(db)
-        .output()
-        .unwrap();
-    let out = format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    );
-    (o.status.code(), out)
-}
+mod support;
+use support::{case, run_file};
 
 /// The impact case up to its first POST_DYNA_MODA_T (the transient TRAN of the impact
 /// oscillator, archived 0..0.2 s), then `tail`: (code, output, database).

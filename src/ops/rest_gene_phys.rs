@@ -71,6 +71,18 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let mut t = field_header(format!("REST_GENE_PHYS of {src}"), &fields)?;
     let series = [&coords.q, &coords.v, &coords.a];
     for (k, p) in chosen.iter().enumerate() {
+        // The supports' DEPL, VITE, ACCE at this instant, per field asked: evaluated once,
+        // not once per DOF.
+        let mut support_values: Vec<Option<Vec<f64>>> = Vec::with_capacity(3);
+        for f in dyna_store::FIELDS {
+            support_values.push(match &share {
+                Some(sh) if fields.contains(&f) => Some(
+                    sh.values(f, p.t)
+                        .map_err(|e| e.keyword("REST_GENE_PHYS/MULT_APPUI"))?,
+                ),
+                _ => None,
+            });
+        }
         for &i in &dofs {
             let dof = &modes.numbering.dofs[i];
             let mut row = vec![
@@ -79,7 +91,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 Cell::K(dof.node.clone()),
                 Cell::K(dof.cmp.name().to_string()),
             ];
-            for (f, s) in dyna_store::FIELDS.iter().zip(series) {
+            for ((f, s), g) in dyna_store::FIELDS.iter().zip(series).zip(&support_values) {
                 if fields.contains(f) {
                     let phys = |at: usize| -> f64 {
                         modes
@@ -89,11 +101,9 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                             .map(|(j, m)| m.shape[i] * s[at * n + j])
                             .sum()
                     };
-                    let support = match &share {
-                        Some(sh) => sh
-                            .at(f, i, p.t)
-                            .map_err(|e| e.keyword("REST_GENE_PHYS/MULT_APPUI"))?,
-                        None => 0.0,
+                    let support = match (&share, g) {
+                        (Some(sh), Some(g)) => sh.combine(g, i),
+                        _ => 0.0,
                     };
                     row.push(Cell::R(value(p, phys) + support));
                 }

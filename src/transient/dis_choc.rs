@@ -393,22 +393,22 @@ impl Shock {
     /// Absolute node displacements (global) of nodes 1 and 2 at t for q: with moving
     /// supports, their motion is added.
     pub fn node_displacements_at(&self, t: f64, q: &[f64]) -> ([f64; 3], [f64; 3]) {
-        let (u1, u2) = self.node_displacements(q);
-        if self.support.is_empty() {
-            return (u1, u2);
-        }
-        let [s1, s2] = self.support.displacement(t);
-        (add(u1, s1), add(u2, s2))
+        self.with_support(q, || self.support.displacement(t))
     }
 
     /// Absolute node velocities (global) of nodes 1 and 2 at t for q̇.
     pub fn node_velocities_at(&self, t: f64, v: &[f64]) -> ([f64; 3], [f64; 3]) {
-        let (w1, w2) = self.node_displacements(v);
+        self.with_support(v, || self.support.velocity(t))
+    }
+
+    /// Φ x at nodes 1 and 2, plus the supports' share when they move.
+    fn with_support(&self, x: &[f64], share: impl Fn() -> [[f64; 3]; 2]) -> ([f64; 3], [f64; 3]) {
+        let (a1, a2) = self.node_displacements(x);
         if self.support.is_empty() {
-            return (w1, w2);
+            return (a1, a2);
         }
-        let [s1, s2] = self.support.velocity(t);
-        (add(w1, s1), add(w2, s2))
+        let [s1, s2] = share();
+        (add(a1, s1), add(a2, s2))
     }
 
     /// The relative velocity of the shock (node 1 − node 2, or node 1) at t, absolute

@@ -111,20 +111,23 @@ impl SupportShare {
         Ok(SupportShare { terms })
     }
 
-    /// Σ_e ψ_e[dof] · g_e(t), g the DEPL, VITE or ACCE function as `field` says.
-    pub fn at(&self, field: &str, dof: usize, t: f64) -> Result<f64> {
+    /// g_e(t) of every support e, g its DEPL, VITE or ACCE function as `field` says:
+    /// evaluated once per instant, whatever the number of DOFs restored.
+    pub fn values(&self, field: &str, t: f64) -> Result<Vec<f64>> {
         let k = match field {
             "DEPL" => 0,
             "VITE" => 1,
             _ => 2,
         };
-        let mut sum = 0.0;
-        for (psi, fns) in &self.terms {
-            let p = psi.get(dof).copied().unwrap_or(0.0);
-            if p != 0.0 {
-                sum += p * fns[k].eval(t)?;
-            }
-        }
-        Ok(sum)
+        self.terms.iter().map(|(_, fns)| fns[k].eval(t)).collect()
+    }
+
+    /// Σ_e ψ_e[dof] · g_e for the `values` of one instant.
+    pub fn combine(&self, values: &[f64], dof: usize) -> f64 {
+        self.terms
+            .iter()
+            .zip(values)
+            .map(|((psi, _), g)| psi.get(dof).copied().unwrap_or(0.0) * g)
+            .sum()
     }
 }

@@ -63,9 +63,8 @@ pub fn physical_history(
         let key = kw("MULT_APPUI");
         let share = SupportShare::load(store, result, &payload.supports, &key)?;
         for (v, &t) in values.iter_mut().zip(&coords.t) {
-            *v += share
-                .at(field, dof, t)
-                .map_err(|e| e.keyword(key.clone()))?;
+            let g = share.values(field, t).map_err(|e| e.keyword(key.clone()))?;
+            *v += share.combine(&g, dof);
         }
     }
     Ok((coords.t, values))
