@@ -2,6 +2,7 @@
 //! `mode_meca` whose vectors carry their NOEUD_CMP. Glue only: the keywords become
 //! `StaticRequest`s, `model::static_shapes` computes them.
 
+use super::common::resources::check_memory;
 use super::common::selection::selection;
 use super::OpContext;
 use crate::args::Args;
@@ -50,6 +51,13 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         .keyword(OP)
         .hint("MODE_STAT takes blocked DOFs (DDL_IMPO, AFFE_CHAR_CINE); FORCE_NODALE free ones"));
     }
+    // One right-hand side and one shape of the full numbering per request (TOUT='OUI' with
+    // TOUT_CMP on a large model asks for many): checked before allocating.
+    check_memory(
+        OP,
+        "the static deformations",
+        2.0 * 8.0 * requests.len() as f64 * k.size() as f64,
+    )?;
     let shapes = static_shapes(&k, m.as_ref(), &requests).map_err(|e| shape_error(e, &k))?;
     let mut modes = Vec::with_capacity(shapes.len());
     ctx.say(&format!(

@@ -3,7 +3,7 @@
 //! Coulomb oscillator of sdnd100a (coulomb.rs), obstacle geometry and forces
 //! (geometry.rs), a start from rest under a force (from_rest.rs), stability
 //! (stability.rs), the sparse structure (sparse.rs), impact and wear statistics
-//! (impact_stats.rs), PAS_ARCH with INST (archive_union.rs).
+//! (impact_stats.rs), PAS_ARCH with INST (archive_union.rs), moving supports on generated cases (support.rs).
 
 mod archive_union;
 mod coulomb;
@@ -15,6 +15,7 @@ mod impact_stats;
 mod reference;
 mod sparse;
 mod stability;
+mod support;
 
 use super::*;
 
