@@ -166,6 +166,40 @@ FIN()
     assert!(sensitivity > 1e3 * 1e-8 * x0, "{sensitivity:e}");
 }
 
+/// A dashpot on a cell of its own (A_T_D_N only, no stiffness nor mass there): accepted,
+/// as Code_Aster's A_ characteristics allow; it adds c to the damping matrix and nothing to
+/// the stiffness and mass, which hold the other cell's k and m.
+#[test]
+fn a_dashpot_alone_on_its_cell_is_accepted_and_adds_only_damping() {
+    let (m, k, c) = (2.0, 5.0e3, 7.0);
+    let mail = "COOR_3D\n NO1 0.0 0.0 0.0\nFINSF\nPOI1\n P1 NO1\n P2 NO1\nFINSF\n\
+                GROUP_MA\n MASSE\n P1\nFINSF\nGROUP_MA\n AMORT\n P2\nFINSF\n\
+                GROUP_NO\n NO1\n NO1\nFINSF\nFIN\n";
+    let comm = format!(
+        "DEBUT()
+MAIL = LIRE_MAILLAGE(FORMAT='ASTER')
+MO = AFFE_MODELE(MAILLAGE=MAIL, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='DIS_T'))
+CARA = AFFE_CARA_ELEM(MODELE=MO, DISCRET=(_F(GROUP_MA='MASSE', CARA='K_T_D_N', VALE=({k}, {k}, {k})),
+                                         _F(GROUP_MA='MASSE', CARA='M_T_D_N', VALE={m}),
+                                         _F(GROUP_MA='AMORT', CARA='A_T_D_N', VALE=({c}, {c}, {c}))))
+ASSEMBLAGE(MODELE=MO, CARA_ELEM=CARA, NUME_DDL=CO('NUME'),
+           MATR_ASSE=(_F(MATRICE=CO('RIGI'), OPTION='RIGI_MECA'),
+                      _F(MATRICE=CO('MASS'), OPTION='MASS_MECA'),
+                      _F(MATRICE=CO('AMOR'), OPTION='AMOR_MECA')))
+FIN()
+"
+    );
+    let run = run_text(&comm, mail);
+    ok(&run);
+    for (name, value) in [("AMOR", c), ("RIGI", k), ("MASS", m)] {
+        let entries = matrix(&run.db, name);
+        assert!(!entries.is_empty(), "{name}");
+        for (i, j, v) in &entries {
+            assert_eq!(*v, if i == j { value } else { 0.0 }, "{name}: {entries:?}");
+        }
+    }
+}
+
 /// `n` POU_D_E elements along X from N0 (clamped) to N<n>, length 1 m, group POUTRE; the
 /// tip node in group BOUT and its POI1 cell PT in group PTS.
 fn beam_mesh(n: usize) -> String {

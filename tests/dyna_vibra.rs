@@ -27,7 +27,12 @@ fn the_impact_oscillator_matches_its_exact_solution_with_every_scheme() {
 
 #[test]
 fn the_coulomb_oscillator_loses_two_c_per_half_swing_then_sticks() {
-    run_case("dyna_vibra_friction.comm", 8);
+    run_case("dyna_vibra_friction.comm", 13);
+}
+
+#[test]
+fn devoge_on_a_two_node_coulomb_oscillator_and_a_damped_free_vibration() {
+    run_case("dyna_vibra_devoge.comm", 14);
 }
 
 #[test]
@@ -146,8 +151,8 @@ fn rows(db: &Path, name: &str) -> Vec<(f64, i64, f64, f64)> {
 #[test]
 fn dyna_tran_modal_in_either_spelling_is_dyna_vibra() {
     // Version 10's names (MASS_GENE, METHODE, AMOR_REDUIT, VITE_INIT_GENE, CHOC) and the
-    // later ones (MATR_MASS, SCHEMA_TEMPS, AMOR_MODAL, VITE) give DYNA_VIBRA's run to the
-    // bit: DEVOGE is RUNGE_KUTTA_54 with its default TOLERANCE.
+    // later ones (MATR_MASS, SCHEMA_TEMPS, AMOR_MODAL, VITE) give DYNA_VIBRA's DEVOGE run to
+    // the bit, with its default TOLERANCE.
     let choc = SHOCK.replace("COMPORTEMENT=_F(RELATION='DIS_CHOC', ", "CHOC=_F(");
     let dir = tempfile::tempdir().unwrap();
     let text = std::fs::read_to_string(case("dyna_vibra_impact.comm")).unwrap();
@@ -168,7 +173,7 @@ fn dyna_tran_modal_in_either_spelling_is_dyna_vibra() {
              AMOR_MODAL=_F(AMOR_REDUIT=0.01), ETAT_INIT=_F(VITE=VGEN), \
              INCREMENT=_F(INST_FIN=0.05, PAS=1.e-4), {choc})\n\
              C = DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='GENE', MATR_MASS=MGEN, MATR_RIGI=KGEN, \
-             SCHEMA_TEMPS=_F(SCHEMA='RUNGE_KUTTA_54'), AMOR_MODAL=_F(AMOR_REDUIT=0.01), \
+             SCHEMA_TEMPS=_F(SCHEMA='DEVOGE'), AMOR_MODAL=_F(AMOR_REDUIT=0.01), \
              ETAT_INIT=_F(VITE=VGEN), INCREMENT=_F(INST_FIN=0.05, PAS=1.e-4), {SHOCK})\n\
              FIN()\n"
         ),

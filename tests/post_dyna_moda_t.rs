@@ -212,3 +212,28 @@ fn keywords_out_of_the_catalog_are_refused_before_the_run() {
         assert!(out.contains(kw), "{call}\n{out}");
     }
 }
+
+/// Code_Aster 17 names nodes by their number in its tables and its files filter so
+/// (NOEUD='1'): the number reads as the mesh's node of that number (NO1, the first node),
+/// giving the same row as NOEUD='NO1'; a number the mesh does not have selects nothing.
+#[test]
+fn a_node_given_by_its_number_filters_as_its_name() {
+    let head = "TT = POST_DYNA_MODA_T(RESU_GENE=TRAN, CHOC=_F(OPTION='IMPACT', SEUIL_FORCE=1.))
+IMP = _F(NOM_PARA='CALCUL', VALE_K='IMPACT') ; FIRST = _F(NOM_PARA='CHOC', VALE_I=1)
+F1 = EXTR_TABLE(TYPE_RESU='R', TABLE=TT, NOM_PARA='F_MAX',
+                FILTRE=(IMP, FIRST, _F(NOM_PARA='NOEUD', VALE_K='NO1')))
+";
+    let by_number = "TEST_TABLE(TABLE=TT, NOM_PARA='F_MAX', VALE_REFE=F1, REFERENCE='ANALYTIQUE',
+           PRECISION=1.e-15, FILTRE=(IMP, FIRST, _F(NOM_PARA='NOEUD', VALE_K='1')))";
+    let (code, out, _dir) = run_impact_with(&format!("{head}{by_number}"));
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("tests: 1 OK, 0 NOOK"), "{out}");
+    let absent = by_number.replace("VALE_K='1'", "VALE_K='2'");
+    let (code, out, _dir) = run_impact_with(&format!("{head}{absent}"));
+    assert_eq!(
+        code,
+        Some(2),
+        "node 2 does not exist: its filter selects no row\n{out}"
+    );
+    assert!(out.contains("TEST_TABLE/FILTRE"), "{out}");
+}

@@ -7,7 +7,7 @@
 use crate::error::{Error, Result};
 use crate::interp;
 use crate::nnm::{self, Problem, Settings};
-use crate::ops::mode_non_line::problem::engine_shock;
+use crate::ops::mode_non_line::problem::engine_shocks;
 use crate::ops::Units;
 use crate::store::mnl::StoredShock;
 use crate::store::{matrix, modes as mode_store, Store};
@@ -529,12 +529,7 @@ pub fn prepare(case: &Case, dir: &Path) -> Result<Prepared> {
     let store = Store::open(&db)?;
     let k = matrix::load_matrix(&store, "RIGIDITE")?;
     let m = matrix::load_matrix(&store, "MASSE")?;
-    let shocks = case
-        .shocks
-        .iter()
-        .enumerate()
-        .map(|(i, s)| engine_shock(s, i, &k))
-        .collect::<Result<Vec<_>>>()?;
+    let shocks = engine_shocks(&case.shocks, &k)?;
     let modes = mode_store::load_modes(&store, "MODES")?;
     let mode1 = modes
         .mode(1)

@@ -198,6 +198,11 @@ fn block_body<'a>(
             }
             return Ok((body, j + 1));
         }
+        // The file's own end closes an open block: Code_Aster reads up to FIN, and some
+        // of its own meshes (sdnd100c's) end their last block so.
+        if !is_titre && line.len() == 1 && line[0].text.eq_ignore_ascii_case("FIN") {
+            return Ok((body, j));
+        }
         // A block keyword at the start of a line inside a data block means the FINSF of
         // this block was forgotten (TITRE text is free, so it is exempt).
         if !is_titre && is_block_keyword(line[0].text) {
@@ -579,6 +584,17 @@ mod tests {
             msg.contains("COOR_3D opened at line 1 has no FINSF"),
             "{msg}"
         );
+    }
+
+    #[test]
+    fn fin_closes_the_last_block() {
+        let m = parse(
+            "COOR_3D\n N1 0 0 0\n N2 1 0 0\nFINSF\nPOI1\n E1 N1\n E2 N2\nFIN\n",
+            "t.mail",
+        )
+        .unwrap();
+        assert_eq!(m.nodes.len(), 2);
+        assert_eq!(m.cells.len(), 2);
     }
 
     #[test]

@@ -376,8 +376,9 @@ impl CaraElem {
         Ok(())
     }
 
-    /// Every discrete element needs a stiffness or a mass, every beam and every bar a
-    /// section.
+    /// Every discrete element needs a stiffness, a mass or a damping (a damper alone has
+    /// zero stiffness and mass, as Code_Aster's A_ characteristics allow), every beam and
+    /// every bar a section.
     pub fn check_complete(&self, model: &Model, mesh: &Mesh) -> Result<(), Incomplete> {
         let mut no_discrete = Vec::new();
         let mut no_beam = Vec::new();
@@ -385,10 +386,9 @@ impl CaraElem {
         for e in &model.elements {
             match e.modelisation {
                 m if m.is_discrete() => {
-                    let ok = self
-                        .discrete
-                        .get(&e.cell)
-                        .is_some_and(|d| d.stiffness.is_some() || d.mass.is_some());
+                    let ok = self.discrete.get(&e.cell).is_some_and(|d| {
+                        d.stiffness.is_some() || d.mass.is_some() || d.damping.is_some()
+                    });
                     if !ok {
                         no_discrete.push(e.cell);
                     }
@@ -415,7 +415,7 @@ impl CaraElem {
 /// (and their groups); the operator names the keyword.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Incomplete {
-    /// Discrete elements without stiffness nor mass.
+    /// Discrete elements without stiffness, mass nor damping.
     Discrete(String),
     /// Beam elements without a section.
     Beam(String),
@@ -427,7 +427,10 @@ impl std::fmt::Display for Incomplete {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Incomplete::Discrete(cells) => {
-                write!(f, "discrete elements without stiffness nor mass: {cells}")
+                write!(
+                    f,
+                    "discrete elements without stiffness, mass nor damping: {cells}"
+                )
             }
             Incomplete::Beam(cells) => {
                 write!(f, "beam elements (POU_D_E) without a section: {cells}")

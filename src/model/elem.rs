@@ -470,7 +470,7 @@ fn element_matrix(
             let Some(d) = inp.cara.and_then(|c| c.discrete.get(&e.cell)) else {
                 return Ok(Outcome::NoCara);
             };
-            if d.stiffness.is_none() && d.mass.is_none() {
+            if d.stiffness.is_none() && d.mass.is_none() && d.damping.is_none() {
                 return Ok(Outcome::NoCara);
             }
             let dv = match base {
@@ -478,7 +478,8 @@ fn element_matrix(
                 Base::Mass => d.mass.as_ref(),
             };
             match dv {
-                // A discrete element with only a mass has a zero stiffness (and vice versa).
+                // A discrete element with only a mass has a zero stiffness (and vice versa; a
+                // damper alone has both zero).
                 None => vec![0.0; n * n],
                 Some(dv) => discrete_value_matrix(inp, e, dv, &coords)?,
             }

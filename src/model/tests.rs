@@ -708,7 +708,7 @@ fn discrete_without_characteristic_names_the_group() {
         ("VALE", reals(&[1.0, 1.0, 1.0])),
     ]]));
     assert!(
-        e.contains("without stiffness nor mass: cells P1, P2, P3 (GROUP_MA INNER, PTS)"),
+        e.contains("without stiffness, mass nor damping: cells P1, P2, P3 (GROUP_MA INNER, PTS)"),
         "{e}"
     );
 }

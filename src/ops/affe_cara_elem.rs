@@ -62,7 +62,7 @@ pub(crate) fn incomplete(e: Incomplete) -> Error {
     let (factor, hint) = match e {
         Incomplete::Discrete(_) => (
             "DISCRET",
-            Some("give each discrete element a K_... or M_... characteristic (a zero stiffness K_T_D_N=(0,0,0) is allowed)"),
+            Some("give each discrete element a K_..., M_... or A_... characteristic (a zero stiffness K_T_D_N=(0,0,0) is allowed)"),
         ),
         Incomplete::Beam(_) => ("POUTRE", None),
         Incomplete::Bar(_) => ("BARRE", None),

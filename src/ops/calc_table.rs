@@ -1,16 +1,22 @@
 //! CALC_TABLE: apply ACTION occurrences in order (FILTRE, TRI, EXTR, RENOMME) to a table.
 
-use super::common::table_args::{apply_tri, create_table, filter_from, load_table_arg, titre};
+use super::common::table_args::{
+    apply_tri, create_table, filter_from, load_table_arg, node_numbers_as_names, titre,
+};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::store::table::save_table;
 use crate::table::Table;
 
-fn action(t: Table, a: &Args) -> Result<Table> {
+fn action(ctx: &OpContext<'_>, t: Table, a: &Args) -> Result<Table> {
     let op = a.req_text("OPERATION")?;
     match op {
-        "FILTRE" => filter_from(a)?.apply(&t),
+        "FILTRE" => {
+            let mut f = filter_from(a)?;
+            node_numbers_as_names(ctx, &t, &mut f)?;
+            f.apply(&t)
+        }
         "TRI" => {
             let mut t = t;
             apply_tri(&mut t, a)?;
@@ -46,7 +52,7 @@ fn action(t: Table, a: &Args) -> Result<Table> {
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let (c, mut t) = load_table_arg(ctx, args, "TABLE")?;
     for a in args.facts_or_empty("ACTION") {
-        t = action(t, a)?;
+        t = action(ctx, t, a)?;
     }
     if let Some(title) = titre(args) {
         t.title = title;

@@ -3,7 +3,7 @@
 //! (`ctx.value`); 'TABLE_SDASTER' (or 'TABLE_CONTAINER', 'FONCTION_SDASTER') copies the
 //! concept the cell names (a per-row object) into the result.
 
-use super::common::table_args::{create_table, filters, load_table_arg};
+use super::common::table_args::{create_table, filters_for, load_table_arg};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
@@ -28,7 +28,7 @@ pub fn single_cell(t: &Table, para: &str, what: &str) -> Result<Cell> {
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let (c, t) = load_table_arg(ctx, args, "TABLE")?;
-    let t = apply_all(&t, &filters(args, "FILTRE")?)?;
+    let t = apply_all(&t, &filters_for(ctx, &t, args, "FILTRE")?)?;
     let para = args.req_text("NOM_PARA")?;
     let cell = single_cell(&t, para, &format!("EXTR_TABLE on {}", c.name))
         .map_err(|e| e.keyword("EXTR_TABLE/FILTRE"))?;

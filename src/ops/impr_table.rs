@@ -4,7 +4,7 @@
 
 use super::common::output::write_unit;
 use super::common::plot_args::{picture, Picture};
-use super::common::table_args::{apply_tri, filters, load_table_arg, titre};
+use super::common::table_args::{apply_tri, filters_for, load_table_arg, titre};
 use super::OpContext;
 use crate::args::Args;
 use crate::error::{Error, Result};
@@ -23,7 +23,7 @@ use crate::value::ConceptRef;
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let (c, t) = load_table_arg(ctx, args, "TABLE")?;
-    let mut t = apply_all(&t, &filters(args, "FILTRE")?)?;
+    let mut t = apply_all(&t, &filters_for(ctx, &t, args, "FILTRE")?)?;
     if let Some(tri) = args.fact("TRI") {
         apply_tri(&mut t, tri)?;
     }

@@ -259,7 +259,8 @@ impl<'a> OpContext<'a> {
 /// (FONCT0_62, the id Code_Aster's files silence) and LIRE_MAILLAGE's checks of the mesh
 /// (orphan, coincident nodes, degenerate cells: Code_Aster's VERI_MAIL, on by default),
 /// IMPR_TABLE's TABLEAU_CROISE of a table without three parameters (TABLE0_36) and XMGRACE
-/// of one without two (TABLE0_21). Only these become errors under
+/// of one without two (TABLE0_21), DYNA_VIBRA's ADAPT_ORDRE1/2 keeping a step after
+/// NMAX_ITER_PAS tries (DYNAMIQUE_18). Only these become errors under
 /// DEBUT(ERREUR=_F(ALARME='EXCEPTION')).
 pub const CODE_ASTER_ALARMS: &[&str] = &[
     "FONCT0_62",
@@ -268,6 +269,7 @@ pub const CODE_ASTER_ALARMS: &[&str] = &[
     "MAILLAGE_DEGENERATE_CELLS",
     "TABLE0_36",
     "TABLE0_21",
+    "DYNAMIQUE_18",
 ];
 
 /// Signature of every operator.

@@ -10,7 +10,7 @@
 //! the time history of one component, NOM_PARA='INST' and NOM_RESU the component's name,
 //! as in Code_Aster.
 
-use super::common::table_args::{filters, load_table_arg};
+use super::common::table_args::{filters_for, load_table_arg};
 use super::common::{dyna_trans, tran_gene};
 use super::defi_fonction::function_with_options;
 use super::OpContext;
@@ -207,7 +207,7 @@ fn from_result(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
 fn from_table(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let name = ctx.result_name()?.to_string();
     let (c, t) = load_table_arg(ctx, args, "TABLE")?;
-    let t = apply_all(&t, &filters(args, "FILTRE")?)?;
+    let t = apply_all(&t, &filters_for(ctx, &t, args, "FILTRE")?)?;
     let px = args.req_text("PARA_X")?;
     let py = args.req_text("PARA_Y")?;
     let (mut x, mut y) = points(&t, &c.name, px, py)?;

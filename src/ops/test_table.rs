@@ -1,7 +1,7 @@
 //! TEST_TABLE: test one value of a table (exactly one row after FILTRE) or, with
 //! TYPE_TEST, the SOMM_ABS / SOMM / MAX / MIN of a column.
 
-use super::common::table_args::{filters, load_table_arg};
+use super::common::table_args::{filters_for, load_table_arg};
 use super::common::testing::{checks_with_floor, header_line, TestValue};
 use super::extr_table::single_cell;
 use super::OpContext;
@@ -27,7 +27,7 @@ fn type_test(t: &Table, para: &str, kind: &str) -> Result<TestValue> {
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let (c, t) = load_table_arg(ctx, args, "TABLE")?;
-    let fl = filters(args, "FILTRE")?;
+    let fl = filters_for(ctx, &t, args, "FILTRE")?;
     let t = apply_all(&t, &fl)?;
     let para = args.req_text("NOM_PARA")?;
     t.req_col(para)

@@ -83,6 +83,26 @@ pub fn delete_mesh(store: &Store, name: &str) -> Result<()> {
 }
 
 /// Save `mesh` as concept `name` (registered beforehand), replacing any previous rows.
+/// The name the study's meshes give node `number` (1-based, in file order), when they all
+/// agree on it (a mesh and the meshes CREA_MAILLAGE derived from it keep their nodes);
+/// `None` when no mesh has that node or they disagree.
+pub fn node_name_by_number(store: &Store, number: usize) -> Result<Option<String>> {
+    ensure_schema(store)?;
+    let Some(idx) = number.checked_sub(1).and_then(|i| i64::try_from(i).ok()) else {
+        return Ok(None);
+    };
+    let conn = store.conn();
+    let mut stmt =
+        conn.prepare_cached("SELECT DISTINCT name FROM mesh_nodes WHERE idx = ?1 LIMIT 2")?;
+    let names = stmt
+        .query_map(params![idx], |r| r.get::<_, String>(0))?
+        .collect::<std::result::Result<Vec<_>, _>>()?;
+    Ok(match names.as_slice() {
+        [one] => Some(one.clone()),
+        _ => None,
+    })
+}
+
 pub fn save_mesh(store: &Store, name: &str, mesh: &Mesh) -> Result<()> {
     ensure_schema(store)?;
     delete_mesh(store, name)?;

@@ -1,15 +1,17 @@
 //! The driver: checks the inputs, computes the initial acceleration, sizes the archive,
 //! checks DIFF_CENTRE's stability limit, and runs the fixed-step or the adaptive loop.
 
+use super::adapt_loop::run_adapt;
 use super::adaptive::run_adaptive;
 use super::archive::Recorder;
+use super::devoge::run_devoge;
 use super::dis_choc::Shock;
 use super::error::{check_len, invalid, try_zeros, TransientError};
 use super::fixed::{run_fixed, Start, Stepper};
 use super::problem::{Archive, Forcing, TimeGrid, Trajectory};
 use super::scheme::diff_centre::{max_pulsation, stability_limit, DiffCentre};
 use super::scheme::newmark::Newmark;
-use super::scheme::Scheme;
+use super::scheme::{AdaptOptions, Scheme};
 use super::structure::Structure;
 use super::system::{commit, finite, Model, Work};
 
@@ -111,7 +113,46 @@ fn check_scheme(scheme: &Scheme) -> Result<(), TransientError> {
             }
             Ok(())
         }
+        Scheme::Adapt(o) => check_adapt(o),
+        // Checked against PAS when the run starts (devoge.rs).
+        Scheme::Devoge(_) => Ok(()),
     }
+}
+
+fn check_adapt(o: &AdaptOptions) -> Result<(), TransientError> {
+    let positive = |x: f64| x.is_finite() && x > 0.0;
+    if !(positive(o.points_per_period)) {
+        return Err(invalid("SCHEMA_TEMPS/NB_POIN_PERIODE", "must be > 0"));
+    }
+    if !(o.coef_mult.is_finite() && o.coef_mult >= 1.0) {
+        return Err(invalid("SCHEMA_TEMPS/COEF_MULT_PAS", "must be ≥ 1"));
+    }
+    // 1 is allowed for both: Code_Aster's files use it for a constant step.
+    if !(o.coef_divi.is_finite() && o.coef_divi >= 1.0) {
+        return Err(invalid("SCHEMA_TEMPS/COEF_DIVI_PAS", "must be ≥ 1"));
+    }
+    if o.nmax_iter_pas == 0 {
+        return Err(invalid("SCHEMA_TEMPS/NMAX_ITER_PAS", "must be ≥ 1"));
+    }
+    let bounds = [
+        ("SCHEMA_TEMPS/PAS_MINI", o.pas_mini),
+        ("SCHEMA_TEMPS/PAS_MAXI", o.pas_maxi),
+        ("SCHEMA_TEMPS/PAS_LIMI_RELA", Some(o.pas_limi_rela)),
+    ];
+    for (key, value) in bounds {
+        if value.is_some_and(|x| !positive(x)) {
+            return Err(invalid(key, "must be > 0"));
+        }
+    }
+    if let (Some(lo), Some(hi)) = (o.pas_mini, o.pas_maxi) {
+        if hi < lo {
+            return Err(invalid(
+                "SCHEMA_TEMPS/PAS_MINI",
+                "PAS_MINI must be ≤ PAS_MAXI",
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Integrates M q̈ + C q̇ + K q = Σ f_i·g_i(t) + Σ_s Φ_sᵀ F_s from `init` = (q0, v0) over
@@ -148,7 +189,7 @@ pub fn integrate(
     let listed = archive.listed().map_or(0, <[f64]>::len);
     let rows = match (archive.every(), &scheme) {
         (None, _) => listed,
-        (Some(k), Scheme::Adaptive(_)) => {
+        (Some(k), Scheme::Adaptive(_) | Scheme::Adapt(_) | Scheme::Devoge(_)) => {
             ((times.t_end - times.t0) / times.dt / k as f64 + 2.0 + listed as f64)
                 .min(INITIAL_ROWS_CAP as f64) as usize
         }
@@ -158,7 +199,21 @@ pub fn integrate(
     if archive.every().is_some() {
         rec.push(times.t0, &q, &v, &a, &ws.evals)?;
     }
+    let mut forced = Vec::new();
     let (taken, rejected, events) = match scheme {
+        Scheme::Devoge(opts) => {
+            let st = run_devoge(
+                &model, shocks, &opts, &q, &v, &a, times, archive, &mut rec, &mut ws, progress,
+            )?;
+            (st.taken, st.rejected, Vec::new())
+        }
+        Scheme::Adapt(opts) => {
+            let st = run_adapt(
+                &model, shocks, &opts, &q, &v, &a, times, archive, &mut rec, &mut ws, progress,
+            )?;
+            forced = st.forced;
+            (st.taken, st.retried, Vec::new())
+        }
         Scheme::Adaptive(opts) => {
             // The error scale's floor near rest (adaptive.rs): 1/ω²_max of the structure
             // with its shocks' stiffness (without it, the large accelerations of a contact
@@ -218,5 +273,6 @@ pub fn integrate(
     traj.steps_taken = taken;
     traj.steps_rejected = rejected;
     traj.events = events;
+    traj.steps_forced = forced;
     Ok(traj)
 }

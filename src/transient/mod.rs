@@ -24,9 +24,13 @@
 //! - RUNGE_KUTTA_54 (Dormand–Prince 5(4)) and RUNGE_KUTTA_32 (Bogacki–Shampine 3(2)):
 //!   adaptive step with TOLERANCE (Code_Aster's default 1e-5), PAS_MINI, PAS_MAXI,
 //!   NMAX_ITER_PAS and a step limit, and event location at contact onsets/releases (the
-//!   step is shortened so they fall on step boundaries). Code_Aster's other adaptive
-//!   schemes map onto them: DEVOGE → RUNGE_KUTTA_54, ADAPT_ORDRE1/ADAPT_ORDRE2 →
-//!   RUNGE_KUTTA_32 (`scheme/mod.rs`).
+//!   step is shortened so they fall on step boundaries).
+//! - DEVOGE: Code_Aster's adaptive Devogelaere–Fu scheme in its form (order 4, 3 with
+//!   damping; its error estimate, step control and landing on the archive instants:
+//!   `devoge.rs`).
+//! - ADAPT_ORDRE1 / ADAPT_ORDRE2: Code_Aster's own explicit schemes whose step follows the
+//!   apparent frequency of the motion (NB_POIN_PERIODE points per period), in its form
+//!   (`scheme/adapt.rs`, loop `adapt_loop.rs`).
 //!
 //! Shock states (stick anchor, stick/slip flag) advance only at accepted steps. The result
 //! is a [`Trajectory`]: archived instants (every k-th step, or listed instants: hit
@@ -42,14 +46,16 @@
 //! trait), contact_time.rs (how long a contact lasts, to judge a fixed step), support.rs (moving
 //! supports), dense.rs, sparse.rs, obstacle.rs, dis_choc.rs, problem.rs (forcing, grid,
 //! archive, trajectory), system.rs (the right-hand side), scheme/ (one file per scheme),
-//! fixed.rs and adaptive.rs (the loops), archive.rs (recording), integrate.rs (the
+//! fixed.rs, adaptive.rs, adapt_loop.rs and devoge.rs (the loops), archive.rs (recording), integrate.rs (the
 //! driver), impact_stats.rs (POST_DYNA_MODA_T's impact and wear statistics of the
 //! archived samples), tests/.
 
+mod adapt_loop;
 mod adaptive;
 mod archive;
 pub mod contact_time;
 pub mod dense;
+mod devoge;
 pub mod dis_choc;
 pub mod error;
 mod fixed;
@@ -68,6 +74,7 @@ mod tests;
 
 pub use contact_time::contact_pulsations;
 pub use dense::{DenseMatrix, DenseStructure};
+pub use devoge::DevogeOptions;
 pub use dis_choc::{
     optimized_tangential_damping, Friction, NodeRows, Shock, ShockSample, ShockSpec, ShockState,
 };
@@ -75,7 +82,7 @@ pub use error::TransientError;
 pub use integrate::integrate;
 pub use obstacle::{LocalFrame, ObstacleKind};
 pub use problem::{Archive, ContactEvent, Forcing, TimeGrid, Trajectory};
-pub use scheme::{AdaptiveOptions, RkPair, Scheme};
+pub use scheme::{AdaptOptions, AdaptOrder, AdaptiveOptions, RkPair, Scheme, VelocityFloor};
 pub use sparse::SparseStructure;
 pub use structure::{LinearSolver, Structure};
 pub use support::{SupportMotion, SupportTerm, TimeFn};

@@ -99,6 +99,9 @@ pub struct Trajectory {
     pub events: Vec<ContactEvent>,
     pub steps_taken: usize,
     pub steps_rejected: usize,
+    /// ADAPT_ORDRE1/2: the instants whose step was kept after NMAX_ITER_PAS tries while
+    /// still too long for the motion (Code_Aster goes on with an alarm there).
+    pub steps_forced: Vec<f64>,
 }
 
 impl Trajectory {

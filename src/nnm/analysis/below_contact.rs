@@ -13,7 +13,8 @@
 //! order in proportion); a ring's LOI_CERCLE='SECANTE' has no force at its centre. The
 //! engine computes those rows less accurately than the others (the force flips across the
 //! centre, a jump its truncated series resolves poorly), and MODE_NON_LINE_1's advice,
-//! which is about resolving contact, does not apply to them.
+//! which is about resolving contact, does not apply to them. A model with a cubic spring
+//! (RESSORT_CUBIQUE) is not judged: the spring moves the frequency at every amplitude.
 
 use crate::nnm::model::problem::ShockLaw;
 use crate::nnm::Problem;
@@ -45,6 +46,11 @@ pub struct ClearRow {
 /// The alarm's text, if some row reaches no obstacle and is off `f_linear` (Hz, the
 /// frequency of the linear mode the branch started from) by more than [`NEGLIGIBLE`].
 pub fn regularisation_alarm(problem: &Problem, f_linear: f64, rows: &[ClearRow]) -> Option<String> {
+    // A law without an obstacle (a cubic spring) moves the frequency off f_j at every
+    // amplitude: the shift of a row clear of the stops is not the regularisation's alone.
+    if problem.stops().count() < problem.shocks.len() {
+        return None;
+    }
     let off: Vec<&ClearRow> = rows
         .iter()
         .filter(|r| {

@@ -14,7 +14,8 @@
 //!
 //! η = PARA_REGUL·k_ref·JEU² the regularisation in N·m (PLAN: F ≈ η/(JEU − d) > 0 inside
 //! the gap, d·F ≥ −η for d < 0; BI_PLAN: F odd and restoring, d·F ≥ 0; CERCLE: F along
-//! (d − c)/r, (d − c)·F = r·F ≥ 0, the reading relative to the origin).
+//! (d − c)/r, (d − c)·F = r·F ≥ 0, the reading relative to the origin). A cubic spring
+//! (RESSORT_CUBIQUE) has d·F = k₃d⁴ ≥ 0 and no regularisation: η_floor = 0.
 //!
 //! The harmonic balance feels only the first NB_HARM_LINE harmonics of a force series: by
 //! Parseval, W = ⟨(Pu − c)·F⟩ over the period involves exactly those. A point whose

@@ -25,8 +25,9 @@ struct CheckedShock {
     /// The contact unknowns holding the force components: f for PLAN/BI_PLAN, fx and fy
     /// for CERCLE.
     forces: Range<usize>,
-    /// α·JEU, the unit of the defect.
-    scale: f64,
+    /// α·JEU, the unit of the defect; None for a law without a force of its own size (a
+    /// cubic spring, `ContactLaw::force_unit`): the largest force of the orbit is its unit.
+    scale: Option<f64>,
 }
 
 /// The check of one problem's laws, built once (η needs factorisations of K and M, the
@@ -66,7 +67,7 @@ impl LawCheck {
                 },
                 dofs: s.dofs.clone(),
                 forces: s.law.force_unknowns(),
-                scale: s.stiffness * s.gap,
+                scale: s.law.force_unit(s.stiffness, s.gap),
             })
             .collect();
         let sampler = Sampler::new(2 * lay.n_coef_nonl);
@@ -106,13 +107,14 @@ impl LawCheck {
 
     /// The largest penetration of the nonsmooth law over the shocks and the instants, in
     /// units of each shock's JEU (negative when the orbit never reaches an obstacle); None
-    /// without shocks. `u`: displacement coefficients of each DOF.
+    /// without shocks with an obstacle (a cubic spring has none and is skipped).
+    /// `u`: displacement coefficients of each DOF.
     pub fn largest_penetration(&self, u: &[Vec<f64>]) -> Result<Option<f64>> {
         let n = self.sampler.n();
         let mut work = self.work.borrow_mut();
         let CheckWork { ws, ut, .. } = &mut *work;
         let mut largest: Option<f64> = None;
-        for shock in &self.shocks {
+        for shock in self.shocks.iter().filter(|s| s.law.law.has_obstacle()) {
             let n_comp = self.sample_displacement(shock, u, ut, ws);
             let mut uj = [0.0; 2];
             for j in 0..n {
@@ -126,8 +128,8 @@ impl LawCheck {
         Ok(largest)
     }
 
-    /// Largest |f_series(t) − f_law(u(t))| / (α·JEU) over the shocks and the instants (0
-    /// without shocks; `u`: displacement coefficients of each DOF; `contact`: per shock,
+    /// Largest |f_series(t) − f_law(u(t))| / (α·JEU) over the shocks and the instants (a
+    /// cubic spring's over its largest |f_law(u(t))|; 0 without shocks; `u`: displacement coefficients of each DOF; `contact`: per shock,
     /// its contact unknowns, the layout of `Point::x`, physical units), and the same
     /// relative to the force the law carries: per shock its defect over max(α·JEU, the largest |f_law(u(t))|), the worst
     /// over the shocks. Far into a stop (amplitudes of many JEU) the force is many α·JEU and
@@ -143,7 +145,7 @@ impl LawCheck {
             // The largest |f_series − f_law| and |f_law| over the instants, divided by the
             // scale once (x ↦ x/scale is monotonic in floating point: the same maxima).
             let mut own = 0.0f64;
-            let mut peak = shock.scale;
+            let mut peak = shock.scale.unwrap_or(0.0);
             // Samples by FFT: within round-off of summing the series at each instant,
             // O(N log N) instead of O(N·H).
             let n_comp = self.sample_displacement(shock, u, ut, ws);
@@ -164,7 +166,12 @@ impl LawCheck {
                     peak = peak.max(fl.abs());
                 }
             }
-            let (own, peak) = (own / shock.scale, peak / shock.scale);
+            let scale = shock.scale.unwrap_or(peak);
+            if scale.is_nan() || scale <= 0.0 {
+                // A spring that does not move: no force, no defect.
+                continue;
+            }
+            let (own, peak) = (own / scale, peak / scale);
             worst = worst.max(own);
             worst_rel = worst_rel.max(own / peak);
         }

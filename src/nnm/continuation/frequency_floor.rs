@@ -6,7 +6,8 @@
 //!
 //! Why the floor holds: PLAN, BI_PLAN and CERCLE (with the structure at rest inside the
 //! clearance) push the structure back and their force grows with the penetration; the
-//! regularised law is stiffer still. A conservative structure with added restoring
+//! regularised law is stiffer still; a cubic spring (RESSORT_CUBIQUE, k₃ > 0) adds the
+//! stiffness 3k₃u² ≥ 0 at every amplitude. A conservative structure with added restoring
 //! stiffness vibrates faster: for one DOF the period ∮ dx/v shrinks wherever the potential
 //! grows, and along the family of mode j the motion is mode j's until contact. What can
 //! lower the frequency of a multi-DOF family is an internal resonance: where n·f nears the
@@ -30,7 +31,8 @@
 //! the trivial line of the harmonic balance (the equilibrium, which solves it at any
 //! frequency), onto which a branch that folds back to zero amplitude can run.
 //! [`OffTheFamily::Linear`]. This is checked for planes only (PLAN, BI_PLAN), whose
-//! regularised force is smooth at rest. A ring's is not at its centre: the regularised
+//! regularised force is smooth at rest; not with a cubic spring in the model, which has no
+//! linear range (its stiffness grows from 0 with the amplitude). A ring's is not at its centre: the regularised
 //! force keeps the magnitude η/JEU there and stiffens small motions without bound
 //! (measured on generated case 171 of seed 1, a centred ring: shooting on the same law
 //! puts the family 1.5e-4 above f_3 at 2e-7 times the first-contact energy).

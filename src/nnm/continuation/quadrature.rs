@@ -114,7 +114,8 @@ pub fn start_from_mode_pair(
     let scaling = Scaling::new(problem, coef_ampl, p)?;
     let sys = System::new(problem, settings, scaling, r)?;
     let lay = sys.lay;
-    let phys_per_coef = if problem.shocks.is_empty() {
+    // In units of the largest JEU; without one (no shocks, only cubic springs) in metres.
+    let phys_per_coef = if problem.largest_gap().is_none() {
         1.0
     } else {
         scaling.length

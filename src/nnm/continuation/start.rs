@@ -308,8 +308,8 @@ pub(crate) fn check_start(
 
 /// Start from a linear mode (largest component 1) scaled by `coef_ampl` as Code_Aster does:
 /// with shocks the scaled displacement is coef_ampl·mode, so COEF_AMPL = 1 gives an
-/// amplitude equal to the largest JEU; without shocks the physical amplitude is
-/// coef_ampl·mode. The contact unknowns follow from their laws; the point is then
+/// amplitude equal to the largest JEU; without shocks, or with laws that have no JEU (cubic
+/// springs only), the physical amplitude is coef_ampl·mode. The contact unknowns follow from their laws; the point is then
 /// Newton-corrected at fixed amplitude.
 pub fn start_from_mode(
     problem: &Problem,
@@ -354,7 +354,8 @@ pub fn start_from_mode_using(
     let scaling = Scaling::new(problem, coef_ampl * mp, p)?;
     let sys = System::new(problem, settings, scaling, phase_dof(mode))?;
     let lay = sys.lay;
-    let phys_per_coef = if problem.shocks.is_empty() {
+    // In units of the largest JEU; without one (no shocks, only cubic springs) in metres.
+    let phys_per_coef = if problem.largest_gap().is_none() {
         1.0
     } else {
         scaling.length

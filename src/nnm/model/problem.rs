@@ -6,15 +6,17 @@ use faer::sparse::SparseColMat;
 // The law of a shock, and what each law is: model/law/, where the variants are registered.
 pub use crate::nnm::model::law::{CercleForm, ShockLaw};
 
+/// One shock, or one law without an obstacle (a cubic spring: JEU and PARA_REGUL 0,
+/// `ContactLaw::has_obstacle`).
 #[derive(Clone, Debug)]
 pub struct Shock {
     pub law: ShockLaw,
-    /// 1 index into the reduced DOFs for PLAN/BI_PLAN (obstacle on the + side for PLAN),
-    /// 2 for CERCLE.
+    /// 1 index into the reduced DOFs for PLAN/BI_PLAN (obstacle on the + side for PLAN)
+    /// and a cubic spring, 2 for CERCLE.
     pub dofs: Vec<usize>,
     /// JEU.
     pub gap: f64,
-    /// RIGI_NOR.
+    /// RIGI_NOR (a cubic spring's RAIDEUR k₃, N/m³).
     pub stiffness: f64,
     /// PARA_REGUL, dimensionless as in Code_Aster (η_phys = PARA_REGUL·k_ref·JEU²).
     pub regul: f64,
@@ -22,9 +24,13 @@ pub struct Shock {
 
 impl Shock {
     /// The distance the structure at rest can move before it reaches the obstacle, along
-    /// the way out: JEU − |ORIG_OBST| for CERCLE, JEU for the planes. Not positive when the
-    /// structure rests against a ring or outside it.
+    /// the way out: JEU − |ORIG_OBST| for CERCLE, JEU for the planes, infinite for a law
+    /// without an obstacle. Not positive when the structure rests against a ring or outside
+    /// it.
     pub fn room(&self) -> f64 {
+        if !self.law.has_obstacle() {
+            return f64::INFINITY;
+        }
         let [cx, cy] = self.law.origin();
         self.gap - cx.hypot(cy)
     }
@@ -36,6 +42,20 @@ pub struct Problem {
     pub k: SparseColMat<usize, f64>,
     pub m: SparseColMat<usize, f64>,
     pub shocks: Vec<Shock>,
+}
+
+impl Problem {
+    /// The shocks whose law has an obstacle at JEU (`ContactLaw::has_obstacle`).
+    pub fn stops(&self) -> impl Iterator<Item = &Shock> + '_ {
+        self.shocks.iter().filter(|s| s.law.has_obstacle())
+    }
+
+    /// The largest JEU over the shocks with an obstacle, what the lengths of the scaled
+    /// equations are measured in (`Scaling::new`); None when no law has a JEU (no shocks,
+    /// or only cubic springs: the lengths are then the start's amplitude).
+    pub fn largest_gap(&self) -> Option<f64> {
+        self.stops().map(|s| s.gap).reduce(f64::max)
+    }
 }
 
 /// The harmonic counts of a run (NB_HARM_LINE, NB_HARM_NONL): the layout of its points, and

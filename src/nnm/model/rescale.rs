@@ -79,7 +79,7 @@ pub(in crate::nnm) fn floor_far_up(
     end: &Point,
     prec_newton: f64,
 ) -> Option<Error> {
-    let largest_gap = problem.shocks.iter().map(|s| s.gap).fold(0.0f64, f64::max);
+    let largest_gap = problem.largest_gap().unwrap_or(0.0);
     if all_rescalable(problem) || largest_gap <= 0.0 {
         return None;
     }
@@ -145,8 +145,13 @@ pub(in crate::nnm) fn homogeneous_limit(
     scaling: &Scaling,
     b: usize,
 ) -> Option<String> {
-    let gap = problem.shocks.iter().map(|s| s.gap).fold(0.0f64, f64::max);
-    (!problem.shocks.is_empty() && gap < f64::EPSILON * scaling.length).then(|| {
+    // A law without a JEU (a cubic spring) keeps the problem from being homogeneous at
+    // any amplitude: the branches go on changing the orbit.
+    if problem.stops().count() < problem.shocks.len() {
+        return None;
+    }
+    let gap = problem.largest_gap()?;
+    (gap < f64::EPSILON * scaling.length).then(|| {
         format!(
             "after branch {b} the motion's amplitude ({:.3e} m) exceeds the largest JEU \
              ({gap:.3e} m) by more than 1/epsilon = {:.1e}: the gaps are below the round-off of \

@@ -153,17 +153,17 @@ impl Scaling {
     /// shock (in CHOC order) that has the largest JEU (for CERCLE with NOM_CMP=('DX','DY'),
     /// DY). PARA_REGUL is scaled by k_ref, so another choice would make the same PARA_REGUL
     /// a different law. Without shocks: lengths by `amplitude` and the diagonal of K and M
-    /// at DOF `p`. A singular K (free structure) falls back to the diagonal too.
+    /// at DOF `p`. A singular K (free structure) falls back to the diagonal too. With laws
+    /// but none with a JEU (only cubic springs, `ContactLaw::has_obstacle`): lengths by
+    /// `amplitude` (the start's, COEF_AMPL times the mode's largest component, so that the
+    /// scaled displacements start at 1 and β = k₃L²/k_ref is the cubic force's share at
+    /// that amplitude), k_ref and m_ref as with shocks at DOF `p`.
     pub fn new(problem: &Problem, amplitude: f64, p_noshock: usize) -> Result<Scaling> {
-        let largest = problem
-            .shocks
-            .iter()
-            .map(|s| s.gap)
-            .fold(f64::NAN, f64::max);
-        let (g, p) = match problem.shocks.iter().find(|s| s.gap == largest) {
+        let largest = problem.stops().map(|s| s.gap).fold(f64::NAN, f64::max);
+        let (g, p) = match problem.stops().find(|s| s.gap == largest) {
             Some(s) => (s.gap, s.dofs.last().copied().unwrap_or(0)),
             // Shocks whose JEU are all NaN: refused below.
-            None if !problem.shocks.is_empty() => (f64::NAN, 0),
+            None if problem.stops().next().is_some() => (f64::NAN, 0),
             None => (amplitude, p_noshock),
         };
         let k = match problem.shocks.is_empty() {

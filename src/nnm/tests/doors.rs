@@ -311,9 +311,15 @@ fn only_the_registration_and_the_readers_name_a_contact_law() {
         .filter(|rel| {
             let text = std::fs::read_to_string(src.join(rel)).unwrap();
             let prod = production(&text);
-            ["ShockLaw::Plan", "ShockLaw::BiPlan", "ShockLaw::Cercle"]
-                .iter()
-                .any(|v| prod.contains(v))
+            [
+                "ShockLaw::Plan",
+                "ShockLaw::BiPlan",
+                "ShockLaw::Cercle",
+                "ShockLaw::RessortCubique",
+                "ShockLaw::RESSORT_CUBIQUE",
+            ]
+            .iter()
+            .any(|v| prod.contains(v))
         })
         .map(|rel| rel.to_string_lossy().into_owned())
         .collect();

@@ -5,6 +5,7 @@ mod doors;
 mod hard;
 mod reference;
 mod resonance;
+mod ressort_cubique;
 mod solver;
 
 use crate::nnm::continuation::start::system_for_point;

@@ -4,6 +4,7 @@
 use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::ops::OpContext;
+use crate::store::mesh as mesh_store;
 use crate::store::table::{load_table, save_table};
 use crate::table::filter::{CritComp, Critere, Filter};
 use crate::table::sort::{sort, Ordre};
@@ -75,6 +76,53 @@ pub fn filter_from(a: &Args) -> Result<Filter> {
 /// All occurrences of the factor keyword `key` (usually FILTRE).
 pub fn filters(args: &Args, key: &str) -> Result<Vec<Filter>> {
     args.facts_or_empty(key).iter().map(filter_from).collect()
+}
+
+/// The FILTRE occurrences `key` for table `t`, node numbers read as names
+/// ([`node_numbers_as_names`]).
+pub fn filters_for(ctx: &OpContext<'_>, t: &Table, args: &Args, key: &str) -> Result<Vec<Filter>> {
+    let mut fl = filters(args, key)?;
+    for f in &mut fl {
+        node_numbers_as_names(ctx, t, f)?;
+    }
+    Ok(fl)
+}
+
+/// Code_Aster 17 keeps no node names: its tables name a node by its number, and its files
+/// filter so (FILTRE=_F(NOM_PARA='NOEUD', VALE_K='1')). aster-nl's tables keep the names.
+/// A filter on a node column (NOEUD, NOEUD_CHOC, ...) whose texts are all numbers and
+/// match no cell of the table reads them as node numbers (1-based, in the mesh file's
+/// order), when the study's meshes agree on the name of each; otherwise it is left as given.
+pub fn node_numbers_as_names(ctx: &OpContext<'_>, t: &Table, f: &mut Filter) -> Result<()> {
+    let numeric = |c: &Cell| matches!(c, Cell::K(s) if !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()));
+    if !f.nom_para.starts_with("NOEUD") || f.values.is_empty() || !f.values.iter().all(numeric) {
+        return Ok(());
+    }
+    let Ok(j) = t.req_col(&f.nom_para) else {
+        return Ok(());
+    };
+    if t.rows
+        .iter()
+        .any(|r| r.get(j).is_some_and(|c| f.values.contains(c)))
+    {
+        return Ok(());
+    }
+    let mut names = Vec::with_capacity(f.values.len());
+    for v in &f.values {
+        let Cell::K(s) = v else { return Ok(()) };
+        let Some(name) = s
+            .parse::<usize>()
+            .ok()
+            .map(|k| mesh_store::node_name_by_number(ctx.store, k))
+            .transpose()?
+            .flatten()
+        else {
+            return Ok(());
+        };
+        names.push(Cell::K(name));
+    }
+    f.values = names;
+    Ok(())
 }
 
 /// ORDRE (default CROISSANT).

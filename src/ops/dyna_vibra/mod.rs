@@ -16,7 +16,7 @@ use crate::error::{Error, Result};
 use crate::store::{function as function_store, model};
 use crate::transient::{
     contact_pulsations, integrate, optimized_tangential_damping, Archive, Forcing, Scheme, Shock,
-    Structure, TimeGrid,
+    Structure, TimeGrid, VelocityFloor,
 };
 use space::Space;
 
@@ -80,6 +80,15 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     )
     .map_err(|e| in_operator(e.into()))?;
     progress.finish();
+    if let Some(&t) = trajectory.steps_forced.first() {
+        let msg = format!(
+            "{} step(s) of ADAPT_ORDRE were kept after NMAX_ITER_PAS tries although still too \
+             long for the motion (NB_POIN_PERIODE points per apparent period), the first at \
+             t = {t:e} s: raise NMAX_ITER_PAS or lower PAS",
+            trajectory.steps_forced.len()
+        );
+        ctx.alarm("DYNAMIQUE_18", &msg)?;
+    }
     if ctx.info >= 2 {
         say_events(ctx, &names, &trajectory)?;
     }
@@ -112,7 +121,11 @@ fn check_step(
     shocks: &[Shock],
     names: &[ShockName],
 ) -> Result<()> {
-    if matches!(scheme, Scheme::Adaptive(_)) || shocks.is_empty() {
+    if matches!(
+        scheme,
+        Scheme::Adaptive(_) | Scheme::Adapt(_) | Scheme::Devoge(_)
+    ) || shocks.is_empty()
+    {
         return Ok(());
     }
     let (_, h) = times.fixed_steps();
@@ -307,9 +320,33 @@ fn scheme(args: &Args, times: &TimeGrid) -> Result<Scheme> {
             o.pas_maxi = st.real("PAS_MAXI");
             o.nmax_iter_pas = usize::try_from(st.req_int("NMAX_ITER_PAS")?).unwrap_or(1);
         }
+        Scheme::Adapt(o) => {
+            o.max_steps = most;
+            o.points_per_period = st.req_int("NB_POIN_PERIODE")? as f64;
+            o.nmax_iter_pas = usize::try_from(st.req_int("NMAX_ITER_PAS")?).unwrap_or(1);
+            o.coef_mult = st.req_real("COEF_MULT_PAS")?;
+            o.coef_divi = st.req_real("COEF_DIVI_PAS")?;
+            o.pas_mini = st.real("PAS_MINI");
+            o.pas_maxi = st.real("PAS_MAXI");
+            o.pas_limi_rela = st.req_real("PAS_LIMI_RELA")?;
+            o.velocity_floor = match st.req_text("VITE_MIN")? {
+                "MAXI" => VelocityFloor::Maxi,
+                _ => VelocityFloor::Norm,
+            };
+        }
+        Scheme::Devoge(o) => {
+            o.max_steps = most;
+            o.tolerance = st.req_real("TOLERANCE")?;
+            o.alpha = st.req_real("ALPHA")?;
+            o.pas_mini = st.real("PAS_MINI");
+            o.pas_maxi = st.real("PAS_MAXI");
+        }
         Scheme::DiffCentre => {}
     }
-    if !matches!(scheme, Scheme::Adaptive(_)) {
+    if !matches!(
+        scheme,
+        Scheme::Adaptive(_) | Scheme::Adapt(_) | Scheme::Devoge(_)
+    ) {
         let span = times.t_end - times.t0;
         // The count before it is made an integer: a PAS 1e-20 of the interval must not wrap.
         let steps = (span / times.dt).ceil();

@@ -1,5 +1,6 @@
 //! MODE_NON_LINE's keywords read into the engine's typed inputs: the settings and step
-//! control of RESOLUTION, the stop bounds, the shocks of CHOC with their nodes, the
+//! control of RESOLUTION, the stop bounds, the shocks of CHOC and the cubic springs of
+//! RESSORT_CUBIQUE with their nodes, the
 //! restart's harmonic counts, the cost of the call checked before anything is allocated,
 //! and the notes on ORIG_OBST.
 
@@ -10,6 +11,8 @@ use crate::ops::common::nodes::{one_node_of_group, OneNode};
 use crate::ops::OpContext;
 use crate::store::matrix;
 use crate::store::mnl::{MnlSetup, StoredShock};
+
+use super::problem::RESSORT_CUBIQUE;
 
 /// One INFO line per CERCLE shock with a non-zero ORIG_OBST: aster-nl takes it in metres
 /// (what the keyword means, and what Code_Aster's own energy routine assumes), while
@@ -46,31 +49,27 @@ pub(super) fn orig_obst_notes(shocks: &[StoredShock]) -> Vec<String> {
 
 /// Refuse a call that cannot fit in memory, warn about one that will take very long: from
 /// the sizes alone, before the engine allocates anything.
-pub(super) fn check_budget(
-    ctx: &mut OpContext<'_>,
-    problem: &Problem,
-    s: &Settings,
-    shocks: &[StoredShock],
-) -> Result<()> {
+pub(super) fn check_budget(ctx: &mut OpContext<'_>, problem: &Problem, s: &Settings) -> Result<()> {
     use crate::nnm::budget;
     use crate::ops::common::resources;
-    // Own unknowns and displacement components per law (model/law/).
-    let shocks = shocks
+    // Own unknowns and displacement components per law, as the law says (model/law/).
+    let shocks = problem
+        .shocks
         .iter()
         .map(|c| budget::ShockSizes {
-            unknowns: match c.obstacle.as_str() {
-                "CERCLE" => 4,
-                "BI_PLAN" => 2,
-                _ => 1,
-            },
-            components: c.cmps.len().max(1),
+            unknowns: c.law.n_own(),
+            components: c.law.n_comp(),
         })
         .collect::<Vec<_>>();
     let sizes = budget::MnlSizes {
         n_dofs: problem.k.nrows(),
         nnz: problem.k.compute_nnz() + problem.m.compute_nnz(),
         h_lin: s.h_lin,
-        h_nonl: if shocks.is_empty() { s.h_lin } else { s.h_nonl },
+        h_nonl: if problem.shocks.is_empty() {
+            s.h_lin
+        } else {
+            s.h_nonl
+        },
         shocks,
         order: s.order,
         stored_points: s.n_branches as f64 * s.n_points_per_branch as f64,
@@ -225,7 +224,7 @@ pub(super) fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<S
                 .hint("e.g. NOM_CMP=('DX', 'DY') for a ring in the XY plane"));
             }
         }
-        let node = choc_node(ctx, args, c, &kw)?;
+        let node = choc_node(ctx, args, c, &kw, "a shock")?;
         // Finite and > 0: the catalog's bounds (val_min = 0, excluded).
         let positive = |key: &str| c.req_real(key);
         let gap = positive("JEU")?;
@@ -268,15 +267,59 @@ pub(super) fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<S
             loi_cercle,
         });
     }
+    cubic_springs(ctx, args, &mut out)?;
     Ok(out)
 }
 
-/// The node of a CHOC: NOEUD, or a GROUP_NO holding exactly one node.
+/// RESSORT_CUBIQUE (aster-nl extension): the cubic springs k₃u³, stored after the shocks
+/// (the same stored form, TYPE_CHOC 'RESSORT_CUBIQUE', RIGI_NOR = RAIDEUR, JEU and
+/// PARA_REGUL 0). Node, component and RAIDEUR (finite, > 0) as the catalog bounds them;
+/// the same DOF twice is refused.
+fn cubic_springs(ctx: &OpContext<'_>, args: &Args, out: &mut Vec<StoredShock>) -> Result<()> {
+    let first = out.len();
+    for (i, c) in args.facts_or_empty(RESSORT_CUBIQUE).iter().enumerate() {
+        let kw = |k: &str| format!("MODE_NON_LINE/{RESSORT_CUBIQUE}[{}]/{k}", i + 1);
+        let node = choc_node(ctx, args, c, &kw, "a cubic spring")?;
+        let cmps = c.req_texts("NOM_CMP")?;
+        if let Some(j) = out[first..]
+            .iter()
+            .position(|s| s.node == node && s.cmps == cmps)
+        {
+            return Err(Error::validation(format!(
+                "{RESSORT_CUBIQUE}[{}] acts on the same node and component ({node}, {}) as \
+                 {RESSORT_CUBIQUE}[{}]",
+                i + 1,
+                cmps.join(", "),
+                j + 1
+            ))
+            .keyword(format!("MODE_NON_LINE/{RESSORT_CUBIQUE}[{}]", i + 1))
+            .hint(
+                "give each DOF one spring: two cubic springs on one DOF are one of RAIDEUR the sum",
+            ));
+        }
+        out.push(StoredShock {
+            obstacle: RESSORT_CUBIQUE.to_string(),
+            node,
+            cmps,
+            gap: 0.0,
+            // Finite and > 0: the catalog's bounds (val_min = 0, excluded).
+            stiffness: c.req_real("RAIDEUR")?,
+            regul: 0.0,
+            origin: [0.0; 3],
+            loi_cercle: String::new(),
+        });
+    }
+    Ok(())
+}
+
+/// The node of a CHOC or a RESSORT_CUBIQUE (`what`, "a shock" or "a cubic spring"): NOEUD,
+/// or a GROUP_NO holding exactly one node.
 pub(super) fn choc_node(
     ctx: &OpContext<'_>,
     args: &Args,
     c: &Args,
     kw: &dyn Fn(&str) -> String,
+    what: &str,
 ) -> Result<String> {
     if let Some(n) = c.text("NOEUD") {
         return Ok(n.to_string());
@@ -284,12 +327,13 @@ pub(super) fn choc_node(
     let group = c.req_text("GROUP_NO")?;
     let k_name = &args.req_concept("MATR_RIGI")?.name;
     let numbering = matrix::load_matrix(ctx.store, k_name)?.numbering;
+    let reason = format!("{what} acts on exactly one");
     one_node_of_group(
         ctx.store,
         &numbering.mesh,
         group,
         OneNode {
-            reason: "a shock acts on exactly one",
+            reason: &reason,
             hint: Some("give the node with NOEUD=, or a GROUP_NO of one node"),
         },
         kw("GROUP_NO"),

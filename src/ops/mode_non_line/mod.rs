@@ -31,7 +31,7 @@ use inputs::{
     check_budget, check_restart_harmonics, orig_obst_notes, settings, shocks_from_args,
     step_control, stop_bounds,
 };
-use problem::{engine_shock, row_of, shocks_from_cara_choc};
+use problem::{engine_shocks, row_of, shocks_from_cara_choc};
 use table::{cara_choc_table, max_int, new_table, restart_reprise, row};
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
@@ -228,6 +228,12 @@ fn read_call(ctx: &mut OpContext<'_>, args: &Args, name: &str) -> Result<(Call, 
                     "CHOC is ignored on a restart: the shocks come from the CARA_CHOC of the start table",
                 )?;
             }
+            if args.has("RESSORT_CUBIQUE") {
+                ctx.alarm(
+                    "MODE_NON_LINE_2",
+                    "RESSORT_CUBIQUE is ignored on a restart: the cubic springs come from the CARA_CHOC of the start table",
+                )?;
+            }
             check_restart_harmonics(setup, &settings)?;
             // The contact data of the start row, as Code_Aster reads them: from the
             // sub-table named in its CARA_CHOC cell.
@@ -247,11 +253,7 @@ fn read_call(ctx: &mut OpContext<'_>, args: &Args, name: &str) -> Result<(Call, 
             ctx.say(&line)?;
         }
     }
-    let shocks = stored_shocks
-        .iter()
-        .enumerate()
-        .map(|(i, s)| engine_shock(s, i, &k))
-        .collect::<Result<Vec<_>>>()?;
+    let shocks = engine_shocks(&stored_shocks, &k)?;
     let full = Problem {
         k: k.reduced()?,
         m: m.reduced()?,
@@ -269,7 +271,7 @@ fn read_call(ctx: &mut OpContext<'_>, args: &Args, name: &str) -> Result<(Call, 
     if let Some(x) = &exact_settings {
         exact_law::check(&problem, x)?;
     }
-    check_budget(ctx, &problem, &settings, &stored_shocks)?;
+    check_budget(ctx, &problem, &settings)?;
     let call = Call {
         k_name,
         m_name,

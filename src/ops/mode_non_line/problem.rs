@@ -10,10 +10,33 @@ use crate::store::mnl::{self as mnl_store, MnlSetup, StoredShock};
 use crate::store::Store;
 use crate::table::{Cell, ColKind, Table};
 
+/// The stored form of a cubic spring (MODE_NON_LINE/RESSORT_CUBIQUE): its TYPE_CHOC in
+/// CARA_CHOC, where RIGI_NOR holds its RAIDEUR and JEU, PARA_REGUL are 0.
+pub const RESSORT_CUBIQUE: &str = "RESSORT_CUBIQUE";
+
+/// The stored shocks in the engine's reduced-DOF form, each error naming its occurrence:
+/// CHOC[i] or RESSORT_CUBIQUE[j], numbered per factor keyword in the order given.
+pub fn engine_shocks(stored: &[StoredShock], k: &AssembledMatrix) -> Result<Vec<Shock>> {
+    let (mut chocs, mut springs) = (0, 0);
+    stored
+        .iter()
+        .map(|s| {
+            let occurrence = if s.obstacle == RESSORT_CUBIQUE {
+                springs += 1;
+                format!("MODE_NON_LINE/{RESSORT_CUBIQUE}[{springs}]")
+            } else {
+                chocs += 1;
+                format!("MODE_NON_LINE/CHOC[{chocs}]")
+            };
+            engine_shock(s, &occurrence, k)
+        })
+        .collect()
+}
+
 /// Translate a stored shock into the engine's reduced-DOF form (the DOFs left free by the
-/// boundary conditions of `k`).
-pub fn engine_shock(s: &StoredShock, i: usize, k: &AssembledMatrix) -> Result<Shock> {
-    let kw = |key: &str| format!("MODE_NON_LINE/CHOC[{}]/{key}", i + 1);
+/// boundary conditions of `k`); `occurrence` is its keyword path (errors name it).
+pub fn engine_shock(s: &StoredShock, occurrence: &str, k: &AssembledMatrix) -> Result<Shock> {
+    let kw = |key: &str| format!("{occurrence}/{key}");
     let mut dofs = Vec::new();
     for c in &s.cmps {
         let cmp = Cmp::parse(c).ok_or_else(|| {
@@ -32,8 +55,13 @@ pub fn engine_shock(s: &StoredShock, i: usize, k: &AssembledMatrix) -> Result<Sh
         })?;
         let reduced = k.reduced_index(full).ok_or_else(|| {
             Error::validation(format!(
-                "DOF {c} of node {} is blocked by a boundary condition: a shock cannot act on it",
-                s.node
+                "DOF {c} of node {} is blocked by a boundary condition: a {} cannot act on it",
+                s.node,
+                if s.obstacle == RESSORT_CUBIQUE {
+                    "spring"
+                } else {
+                    "shock"
+                }
             ))
             .keyword(kw("NOM_CMP"))
         })?;
@@ -42,6 +70,7 @@ pub fn engine_shock(s: &StoredShock, i: usize, k: &AssembledMatrix) -> Result<Sh
     let law = match s.obstacle.as_str() {
         "PLAN" => ShockLaw::Plan,
         "BI_PLAN" => ShockLaw::BiPlan,
+        RESSORT_CUBIQUE => ShockLaw::RESSORT_CUBIQUE,
         "CERCLE" => {
             // The ring centre in the plane of the two components.
             let pick = |c: &str| match c {
@@ -111,12 +140,7 @@ pub fn engine_problem(
     m: &AssembledMatrix,
 ) -> Result<StoredRun> {
     let free = k.free_dofs();
-    let shocks = setup
-        .shocks
-        .iter()
-        .enumerate()
-        .map(|(i, s)| engine_shock(s, i, k))
-        .collect::<Result<Vec<_>>>()?;
+    let shocks = engine_shocks(&setup.shocks, k)?;
     let full = Problem {
         k: k.reduced()?,
         m: m.reduced()?,
@@ -208,9 +232,12 @@ pub fn shocks_from_cara_choc(t: &Table, name: &str) -> Result<Vec<StoredShock>> 
                     real(r, "ORIG_OBST_Y")?,
                     real(r, "ORIG_OBST_Z")?,
                 ],
-                // A table written before LOI_CERCLE existed: the form it was computed with.
-                loi_cercle: text(r, "LOI_CERCLE")
-                    .unwrap_or_else(crate::store::mnl::form_of_older_studies),
+                // A table written before LOI_CERCLE existed: the form it was computed with;
+                // an empty cell (a cubic spring's): none.
+                loi_cercle: match t.col("LOI_CERCLE") {
+                    Some(_) => text(r, "LOI_CERCLE").unwrap_or_default(),
+                    None => crate::store::mnl::form_of_older_studies(),
+                },
             })
         })
         .collect()

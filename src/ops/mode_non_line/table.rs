@@ -30,8 +30,9 @@ pub(super) const COLUMNS: &[(&str, ColKind)] = &[
     ("RESIDU", ColKind::R),
     ("AMOR_FICTIF", ColKind::R),
     ("ECART_ENERGIE", ColKind::R),
-    // The contact laws checked in time: max |f_series − f_law(u)| / (RIGI_NOR·JEU); O(1)
-    // when the branch has drifted onto a non-physical root of an implicit law.
+    // The contact laws checked in time: max |f_series − f_law(u)| / (RIGI_NOR·JEU) (a cubic
+    // spring's over its largest force); O(1) when the branch has drifted onto a
+    // non-physical root of an implicit law.
     ("ECART_LOI_CHOC", ColKind::R),
     ("BRANCHE", ColKind::I),
     // Retries of the row's branch with a halved series step before its correction
@@ -130,7 +131,12 @@ pub(super) fn cara_choc_table(shocks: &[StoredShock]) -> Result<Table> {
             Cell::R(s.origin[0]),
             Cell::R(s.origin[1]),
             Cell::R(s.origin[2]),
-            Cell::K(s.loi_cercle.clone()),
+            // A cubic spring has no ring law: an empty cell.
+            if s.loi_cercle.is_empty() {
+                Cell::Null
+            } else {
+                Cell::K(s.loi_cercle.clone())
+            },
         ])?;
     }
     Ok(t)

@@ -3,16 +3,18 @@
 //! Runge–Kutta pairs RUNGE_KUTTA_54 / RUNGE_KUTTA_32 (runge_kutta.rs, their tableaux; the
 //! adaptive loop with event location is `transient/adaptive.rs`).
 //!
-//! Names without a scheme of their own map onto the adaptive Runge–Kutta
-//! ([`Scheme::from_name`]), a documented equivalent with adaptive step and event location
-//! at contact changes: DEVOGE (Code_Aster's adaptive 5th-order Devogelaere scheme) →
-//! RUNGE_KUTTA_54; ADAPT_ORDRE2 and ADAPT_ORDRE1 (Code_Aster's adaptive central difference
-//! and Euler, order 2 and 1) → RUNGE_KUTTA_32, of order 3 with a 2nd-order error estimate.
-//! ITMI, TRBDF2 and WILSON have no equivalent here (`None`).
+//! ADAPT_ORDRE1 and ADAPT_ORDRE2 are Code_Aster's own adaptive schemes (adapt.rs, their
+//! loop `transient/adapt_loop.rs`), and so is DEVOGE (Code_Aster's adaptive Devogelaere–Fu
+//! scheme, its step and loop in `transient/devoge.rs`). ITMI, TRBDF2 and WILSON have no
+//! equivalent here (`None`).
 
+pub(crate) mod adapt;
 pub(crate) mod diff_centre;
 pub(crate) mod newmark;
 pub(crate) mod runge_kutta;
+
+pub use crate::transient::devoge::DevogeOptions;
+pub use adapt::{AdaptOptions, AdaptOrder, VelocityFloor};
 
 /// Which embedded pair an adaptive scheme uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -66,6 +68,11 @@ pub enum Scheme {
     Newmark { beta: f64, gamma: f64 },
     /// Adaptive explicit Runge–Kutta with event location at contact changes.
     Adaptive(AdaptiveOptions),
+    /// Code_Aster's ADAPT_ORDRE1 / ADAPT_ORDRE2: explicit, the step set by the apparent
+    /// frequency of the motion (adapt.rs).
+    Adapt(AdaptOptions),
+    /// Code_Aster's DEVOGE (Devogelaere–Fu, adaptive), in its form (`transient/devoge.rs`).
+    Devoge(DevogeOptions),
 }
 
 impl Scheme {
@@ -77,12 +84,11 @@ impl Scheme {
                 beta: 0.25,
                 gamma: 0.5,
             },
-            "RUNGE_KUTTA_54" | "DEVOGE" => {
-                Scheme::Adaptive(AdaptiveOptions::new(RkPair::DormandPrince54))
-            }
-            "RUNGE_KUTTA_32" | "ADAPT_ORDRE1" | "ADAPT_ORDRE2" => {
-                Scheme::Adaptive(AdaptiveOptions::new(RkPair::BogackiShampine32))
-            }
+            "RUNGE_KUTTA_54" => Scheme::Adaptive(AdaptiveOptions::new(RkPair::DormandPrince54)),
+            "DEVOGE" => Scheme::Devoge(DevogeOptions::default()),
+            "RUNGE_KUTTA_32" => Scheme::Adaptive(AdaptiveOptions::new(RkPair::BogackiShampine32)),
+            "ADAPT_ORDRE1" => Scheme::Adapt(AdaptOptions::new(AdaptOrder::One)),
+            "ADAPT_ORDRE2" => Scheme::Adapt(AdaptOptions::new(AdaptOrder::Two)),
             _ => return None,
         })
     }

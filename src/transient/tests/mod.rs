@@ -3,10 +3,13 @@
 //! Coulomb oscillator of sdnd100a (coulomb.rs), obstacle geometry and forces
 //! (geometry.rs), a start from rest under a force (from_rest.rs), stability
 //! (stability.rs), the sparse structure (sparse.rs), impact and wear statistics
-//! (impact_stats.rs), PAS_ARCH with INST (archive_union.rs), moving supports on generated cases (support.rs).
+//! (impact_stats.rs), PAS_ARCH with INST (archive_union.rs), moving supports on generated cases (support.rs),
+//! Code_Aster's ADAPT_ORDRE1/2 (adapt.rs), Code_Aster's DEVOGE (devoge.rs).
 
+mod adapt;
 mod archive_union;
 mod coulomb;
+mod devoge;
 mod energy;
 mod from_rest;
 mod geometry;

@@ -1,4 +1,4 @@
-//! The contact laws, one file each (plan.rs, bi_plan.rs, cercle.rs): a law owns its own
+//! The contact laws, one file each (plan.rs, bi_plan.rs, cercle.rs, ressort_cubique.rs): a law owns its own
 //! unknowns, its equations recast as quadratic ones in scaled units (lengths divided by the
 //! largest JEU g_ref, forces by k_ref·g_ref; see `system::Scaling`), its start from
 //! displacement samples, its pointwise force and tangent in physical units, its
@@ -38,13 +38,16 @@
 //!   system (the BI_PLAN branch is recovered to the truncation error, nnm/tests/mod.rs).
 //!   The two forms agree in contact and differ inside the ring (a force of magnitude ≈ η s
 //!   along d/r for 'RAYON', a weak spring for 'SECANTE'); both differences vanish as η → 0.
+//! - RESSORT_CUBIQUE (f, w), a cubic spring k₃u³ (no obstacle, no JEU, no η), with
+//!   β = k₃L²/k_ref (L the length unit the law carries):  f − β w u = 0,  w − u² = 0.
 //!
 //! Pointwise Jacobian of each law with respect to its own unknowns on its physical root
 //! (what the determinant test of condensed_det.rs and a pointwise preconditioner rely on):
 //! PLAN √((u−s)² + 4ηs²/α) > 0; BI_PLAN ψ_f = 1 − z − 2f(f/α − u)/(α s²) > 0; CERCLE 'RAYON'
 //! 2r³√((r−s)² + 4ηs²/α) ≥ 0, zero at the centre; CERCLE 'SECANTE'
 //! (eliminating F = λ d, whose block is the identity) 1 − z − 2λ(λ/α − 1) r²/(α s²), which
-//! is BI_PLAN's ψ_f at the radial distance (f = φ = λ r): > 0, and 1 at the centre.
+//! is BI_PLAN's ψ_f at the radial distance (f = φ = λ r): > 0, and 1 at the centre;
+//! RESSORT_CUBIQUE 1 (triangular in (f, w)).
 //! ψ_f > 0 on the physical root for every u: f(1 − (f/α − u)²/s²) is a cubic in f that
 //! increases on the interval (max(0, α(u − s)), α u) holding that root (its critical points
 //! lie at α(2u ± √(u² + 3s²))/3, outside it). A three-unknown vector form F(1 − z) = η d
@@ -57,19 +60,31 @@ use crate::error::{Error, Result};
 mod bi_plan;
 mod cercle;
 mod plan;
+mod ressort_cubique;
 
 use bi_plan::BiPlan;
 use cercle::Cercle;
 pub use cercle::CercleForm;
 use plan::Plan;
+use ressort_cubique::RessortCubique;
 
-/// The contact law of a shock, as the user chose it (CHOC/OBSTACLE, LOI_CERCLE, ORIG_OBST).
-/// A new law is one variant here, one arm of [`ShockLaw::with`], and its own file.
+/// The contact law of a shock, as the user chose it (CHOC/OBSTACLE, LOI_CERCLE, ORIG_OBST;
+/// RESSORT_CUBIQUE). A new law is one variant here, one arm of [`ShockLaw::with`] (and of
+/// [`ShockLaw::scaled`] when it carries a length), and its own file.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ShockLaw {
     Plan,
     BiPlan,
-    Cercle { origin: [f64; 2], form: CercleForm },
+    Cercle {
+        origin: [f64; 2],
+        form: CercleForm,
+    },
+    /// A cubic spring k₃u³ (k₃ = `Shock::stiffness`), its equations in lengths of `unit`
+    /// metres: 1 as the user gives it ([`ShockLaw::RESSORT_CUBIQUE`]), the scaled length
+    /// once [`ShockLaw::scaled`].
+    RessortCubique {
+        unit: f64,
+    },
 }
 #[cfg(test)]
 use {bi_plan::biplan_force, plan::plan_force};
@@ -194,6 +209,22 @@ pub trait ContactLaw {
     /// the motion's size far up a branch (rescale.rs).
     fn rescalable(&self) -> bool;
 
+    /// The law is an obstacle at JEU that the structure reaches (a stop, a ring): its JEU
+    /// sets the length unit of the scaled equations (`Problem::largest_gap`), it has a
+    /// penetration, a room before contact (`Shock::room`), and a force series whose tail
+    /// is a contact pulse (MODE_NON_LINE_1). False for a law with no JEU that acts at every
+    /// displacement (a spring): those analyses skip it (docs/mode_non_line.md).
+    fn has_obstacle(&self) -> bool {
+        true
+    }
+
+    /// The unit of its law defect (ECART_LOI_CHOC): α·JEU for a stop or a ring (physical
+    /// α = RIGI_NOR); None for a law without a force of its own size, whose defect is
+    /// judged against the largest force of the orbit.
+    fn force_unit(&self, alpha: f64, gap: f64) -> Option<f64> {
+        Some(alpha * gap)
+    }
+
     /// Its equations, scaled.
     fn equations(&self, s: f64, alpha: f64, eta: f64) -> LawEqs;
 
@@ -247,15 +278,23 @@ impl ShockLaw {
             ShockLaw::Plan => f(&Plan),
             ShockLaw::BiPlan => f(&BiPlan),
             ShockLaw::Cercle { origin, form } => f(&Cercle { origin, form }),
+            ShockLaw::RessortCubique { unit } => f(&RessortCubique { unit }),
         }
     }
 
-    /// The same law with its origin in units of `length` (the scaled equations').
+    /// The cubic spring as the user gives it: its equations in metres.
+    pub const RESSORT_CUBIQUE: ShockLaw = ShockLaw::RessortCubique { unit: 1.0 };
+
+    /// The same law with its lengths in units of `length` (the scaled equations'): a
+    /// ring's origin, a spring's unit.
     pub fn scaled(self, length: f64) -> ShockLaw {
         match self {
             ShockLaw::Cercle { origin, form } => ShockLaw::Cercle {
                 origin: [origin[0] / length, origin[1] / length],
                 form,
+            },
+            ShockLaw::RessortCubique { unit } => ShockLaw::RessortCubique {
+                unit: unit * length,
             },
             law => law,
         }
@@ -281,6 +320,16 @@ impl ShockLaw {
 
     pub fn rescalable(self) -> bool {
         self.with(|l| l.rescalable())
+    }
+
+    /// See [`ContactLaw::has_obstacle`].
+    pub fn has_obstacle(self) -> bool {
+        self.with(|l| l.has_obstacle())
+    }
+
+    /// See [`ContactLaw::force_unit`].
+    pub fn force_unit(self, alpha: f64, gap: f64) -> Option<f64> {
+        self.with(|l| l.force_unit(alpha, gap))
     }
 }
 
