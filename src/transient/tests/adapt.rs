@@ -148,6 +148,23 @@ fn archive_cut_is_followed_by_the_remainder() {
     }
 }
 
+/// x'' = −x from (1, 0) over 0.5 s, first step 0.05, every step archived.
+fn half_second(o: AdaptOptions) -> Result<Trajectory, TransientError> {
+    let grid = TimeGrid {
+        t0: 0.0,
+        t_end: 0.5,
+        dt: 0.05,
+    };
+    run(
+        &one_dof(1.0),
+        &mut [],
+        (&[1.0], &[0.0]),
+        Scheme::Adapt(o),
+        grid,
+        &Archive::Every(1),
+    )
+}
+
 /// COEF_DIVI_PAS = 1 with a step too long for NB_POIN_PERIODE: every step is tried
 /// NMAX_ITER_PAS times and kept (Code_Aster's alarm), and each is reported.
 #[test]
@@ -156,20 +173,7 @@ fn a_step_still_too_long_after_its_tries_is_kept_and_reported() {
     o.coef_divi = 1.0;
     o.points_per_period = 1000.0;
     o.nmax_iter_pas = 3;
-    let grid = TimeGrid {
-        t0: 0.0,
-        t_end: 0.5,
-        dt: 0.05,
-    };
-    let traj = run(
-        &one_dof(1.0),
-        &mut [],
-        (&[1.0], &[0.0]),
-        Scheme::Adapt(o),
-        grid,
-        &Archive::Every(1),
-    )
-    .unwrap();
+    let traj = half_second(o).unwrap();
     assert_eq!(traj.steps_taken, 10);
     assert_eq!(traj.steps_forced.len(), 10);
     assert_eq!(traj.steps_rejected, 20);
@@ -181,20 +185,7 @@ fn a_step_below_pas_mini_is_an_error() {
     let mut o = AdaptOptions::new(AdaptOrder::Two);
     o.points_per_period = 1000.0;
     o.pas_mini = Some(0.04);
-    let grid = TimeGrid {
-        t0: 0.0,
-        t_end: 0.5,
-        dt: 0.05,
-    };
-    let err = run(
-        &one_dof(1.0),
-        &mut [],
-        (&[1.0], &[0.0]),
-        Scheme::Adapt(o),
-        grid,
-        &Archive::Every(1),
-    )
-    .unwrap_err();
+    let err = half_second(o).unwrap_err();
     assert!(
         matches!(err, TransientError::StepTooSmall { pas_mini, .. } if pas_mini == 0.04),
         "{err:?}"
