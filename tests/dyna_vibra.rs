@@ -27,7 +27,7 @@ fn the_impact_oscillator_matches_its_exact_solution_with_every_scheme() {
 
 #[test]
 fn the_coulomb_oscillator_loses_two_c_per_half_swing_then_sticks() {
-    run_case("dyna_vibra_friction.comm", 13);
+    run_case("dyna_vibra_friction.comm", 23);
 }
 
 #[test]
@@ -85,6 +85,40 @@ fn run_impact_with(call: &str) -> (Option<i32>, String, Vec<String>) {
 
 const SHOCK: &str = "COMPORTEMENT=_F(RELATION='DIS_CHOC', GROUP_NO_1='NO1', OBSTACLE=PLAN, \
                      ORIG_OBST=(-1., 0., 0.), NORM_OBST=(0., 1., 0.), JEU=1. + G, RIGI_NOR=KN)";
+
+/// LOCALISATION_CHOC='OUI' (aster-nl extension) keeps the event-located pairs: the steps
+/// of RUNGE_KUTTA_54 and RUNGE_KUTTA_32 end at the 12 onsets and 11 releases of the impact
+/// oscillator's 0.5 s; Code_Aster's algorithm, the default, locates none.
+#[test]
+fn localisation_choc_oui_locates_the_contact_changes() {
+    let call = |name: &str, schema: &str, extra: &str| {
+        format!(
+            "{name} = DYNA_VIBRA(TYPE_CALCUL='TRAN', BASE_CALCUL='GENE', MATR_MASS=MGEN, \
+             MATR_RIGI=KGEN, ETAT_INIT=_F(VITE=VGEN), \
+             SCHEMA_TEMPS=_F(SCHEMA='{schema}', TOLERANCE=1.e-8{extra}), \
+             INCREMENT=_F(INST_FIN=0.5, PAS=1.e-3), {SHOCK})\n"
+        )
+    };
+    let calls = [
+        call("LOC54", "RUNGE_KUTTA_54", ", LOCALISATION_CHOC='OUI'"),
+        call("LOC32", "RUNGE_KUTTA_32", ", LOCALISATION_CHOC='OUI'"),
+        call("CA54", "RUNGE_KUTTA_54", ""),
+        call("CA32", "RUNGE_KUTTA_32", ", LOCALISATION_CHOC='NON'"),
+    ]
+    .concat();
+    let (code, out, _) = run_impact_with(&calls);
+    assert_eq!(code, Some(0), "{out}");
+    for (name, located) in [("LOC54", 23), ("LOC32", 23), ("CA54", 0), ("CA32", 0)] {
+        let line = out
+            .lines()
+            .find(|l| l.starts_with(&format!("DYNA_VIBRA {name}:")))
+            .unwrap_or_else(|| panic!("{name}:\n{out}"));
+        assert!(
+            line.ends_with(&format!(" {located} contact change(s) located")),
+            "{line}"
+        );
+    }
+}
 
 #[test]
 fn diff_centre_with_a_step_longer_than_the_contact_allows_is_refused_with_the_limit() {

@@ -237,3 +237,46 @@ F1 = EXTR_TABLE(TYPE_RESU='R', TABLE=TT, NOM_PARA='F_MAX',
     );
     assert!(out.contains("TEST_TABLE/FILTRE"), "{out}");
 }
+
+/// The wear power of the Coulomb oscillator (testcases/dyna_vibra_friction.comm: four half
+/// swings, then held by friction from 2T = 0.126 s): Code_Aster's `pusure` leaves out the
+/// intervals that start from a sticking sample (the stick flag VINT13 of the shocks'
+/// table), so the held part wears exactly nothing, where the creep of the stick spring
+/// RIGI_TAN would count. Over the whole run it is F_N times the distance slid, 8 U0 − 32 C,
+/// over the time: 0.525 W (measured 2.3e-7 off; asserted 1e-5). TEST_TABLE filtered on the node alone selects the one row that holds
+/// PUIS_USURE, as Code_Aster's does (its other rows hold other statistics).
+#[test]
+fn the_wear_power_leaves_out_the_sticking_samples() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(case("dyna_vibra_friction.comm")).unwrap();
+    let head = text.split("W0 = sqrt(K/M)").next().unwrap();
+    let tail = "\
+HELD = POST_DYNA_MODA_T(RESU_GENE=TRAN, CHOC=_F(OPTION='USURE', INST_INIT=0.13, INST_FIN=0.16))
+ALL = POST_DYNA_MODA_T(RESU_GENE=TRAN, CHOC=_F(OPTION='USURE'))
+TEST_TABLE(TABLE=HELD, NOM_PARA='PUIS_USURE', FILTRE=_F(NOM_PARA='NOEUD', VALE_K='NO1'),
+           VALE_REFE=0., REFERENCE='ANALYTIQUE', CRITERE='ABSOLU', PRECISION=0.)
+TEST_TABLE(TABLE=ALL, NOM_PARA='PUIS_USURE', FILTRE=_F(NOM_PARA='NOEUD', VALE_K='NO1'),
+           VALE_REFE=KN*PEN*(8*U0 - 32*MU*KN*PEN/K)/0.16, REFERENCE='ANALYTIQUE',
+           PRECISION=1.e-5)
+";
+    let comm = dir.path().join("friction.comm");
+    std::fs::write(&comm, format!("{head}\n{tail}\nFIN()\n")).unwrap();
+    std::fs::copy(
+        case("dyna_vibra_friction.mail"),
+        dir.path().join("friction.mail"),
+    )
+    .unwrap();
+    let (code, out) = run_file(&comm, &dir.path().join("friction.db"));
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("tests: 2 OK, 0 NOOK"), "{out}");
+    // Filtered on the node, the column holding several values is still refused.
+    let many = format!(
+        "{head}\nALL = POST_DYNA_MODA_T(RESU_GENE=TRAN, CHOC=_F(OPTION='USURE'))\n\
+         TEST_TABLE(TABLE=ALL, NOM_PARA='MAXI', FILTRE=_F(NOM_PARA='NOEUD', VALE_K='NO1'),\n\
+         VALE_REFE=0., REFERENCE='ANALYTIQUE')\nFIN()\n"
+    );
+    std::fs::write(&comm, many).unwrap();
+    let (code, out) = run_file(&comm, &dir.path().join("many.db"));
+    assert_eq!(code, Some(2), "{out}");
+    assert!(out.contains("TEST_TABLE/FILTRE"), "{out}");
+}

@@ -44,6 +44,7 @@ fn ring() -> ShockSpec {
         rigi_tan: 0.0,
         amor_tan: 0.0,
         friction: Friction::None,
+        friction_along_x_only: false,
     }
 }
 
@@ -235,6 +236,8 @@ impl Bench<'_> {
             let gene_structure = DenseStructure::diagonal(vec![1.0; m], set.omega2.clone(), None)?;
             let mut opts = AdaptiveOptions::new(RkPair::DormandPrince54);
             opts.tolerance = 1e-6;
+            // The event-located pair (LOCALISATION_CHOC='OUI') docs/performance.md measured.
+            opts.locate_contacts = true;
             let rk54 = Scheme::Adaptive(opts);
             let gene = timed(|| run(&gene_structure, &grows, (&g0, &gv0), rk54, grid(pas)));
             let x = n as f64;

@@ -21,6 +21,37 @@ pub fn math_const(name: &str) -> Option<f64> {
     }
 }
 
+/// The scalar functions of `numpy` a command file may call, and the math function that
+/// computes each on a number (Code_Aster's files write `np.sqrt(2.)`).
+pub fn numpy_function(name: &str) -> Option<&'static str> {
+    let f = match name {
+        "arcsin" => "asin",
+        "arccos" => "acos",
+        "arctan" => "atan",
+        "arctan2" => "atan2",
+        "abs" | "absolute" | "fabs" => "fabs",
+        "power" => "pow",
+        "deg2rad" => "radians",
+        "rad2deg" => "degrees",
+        other => {
+            return MATH_FUNCS
+                .iter()
+                .copied()
+                .find(|f| *f == other && *f != "pow")
+        }
+    };
+    Some(f)
+}
+
+/// Constants of `numpy`.
+pub fn numpy_const(name: &str) -> Option<f64> {
+    match name {
+        "pi" => Some(std::f64::consts::PI),
+        "e" => Some(std::f64::consts::E),
+        _ => None,
+    }
+}
+
 /// Builtin functions, always available.
 pub const BUILTINS: &[&str] = &[
     "abs",

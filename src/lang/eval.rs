@@ -6,7 +6,7 @@ use super::ast::*;
 use super::builtins::{self, BUILTINS, MATH_FUNCS};
 use super::diag::{did_you_mean, suggestions};
 use super::extent::{extent, Extent};
-use super::{Env, Host, Source};
+use super::{Env, Host, ScalarModule, Source};
 use crate::error::{Error, Result};
 use crate::value::{CommandCall, ConceptRef, Keyword, Span, Value};
 
@@ -285,9 +285,10 @@ impl Evaluator<'_> {
             }
             StmtKind::ImportFrom { module, names } => self.import_from(module, names.as_deref())?,
             StmtKind::Import { module, alias } => {
-                if module.text == "math" {
-                    self.env.modules.insert(alias.text.clone());
+                if let Some(m) = ScalarModule::named(&module.text) {
                     self.env.vars.remove(&alias.text);
+                    self.env.funcs.remove(&alias.text);
+                    self.env.modules.insert(alias.text.clone(), m);
                 }
             }
         }
@@ -384,30 +385,33 @@ impl Evaluator<'_> {
     }
 
     fn import_from(&mut self, module: &Name, names: Option<&[(Name, Name)]>) -> Result<()> {
-        if module.text != "math" {
+        let Some(m) = ScalarModule::named(&module.text) else {
             return Ok(()); // code_aster imports: every operator is already available
-        }
+        };
         match names {
             None => {
+                // numpy's star import binds its scalar functions under numpy's names too
+                // (arcsin, power, ...); the math names cover what the file can call.
                 for f in MATH_FUNCS {
                     self.env.import_fn(f, f);
                 }
                 for c in ["pi", "e", "tau"] {
-                    if let Some(x) = builtins::math_const(c) {
+                    if let Some(x) = m.constant(c).or_else(|| builtins::math_const(c)) {
                         self.env.bind(c, Value::Real(x));
                     }
                 }
             }
             Some(list) => {
                 for (n, bound) in list {
-                    if let Some(x) = builtins::math_const(&n.text) {
+                    if let Some(x) = m.constant(&n.text) {
                         self.env.bind(&bound.text, Value::Real(x));
-                    } else if MATH_FUNCS.contains(&n.text.as_str()) {
-                        self.env.import_fn(&bound.text, &n.text);
+                    } else if let Some(f) = m.function(&n.text) {
+                        self.env.import_fn(&bound.text, f);
                     } else {
-                        return Err(
-                            self.input(format!("cannot import '{}' from 'math'", n.text), n.span)
-                        );
+                        return Err(self.input(
+                            format!("cannot import '{}' from '{}'", n.text, m.name()),
+                            n.span,
+                        ));
                     }
                 }
             }
@@ -428,7 +432,7 @@ impl Evaluator<'_> {
         if self.env.funcs.contains_key(n) || BUILTINS.contains(&n) {
             return Err(self.syntax(format!("'{n}' is a function: call it, e.g. {n}(...)"), span));
         }
-        if self.env.modules.contains(n) {
+        if self.env.modules.contains_key(n) {
             return Err(self.syntax(format!("module '{n}' cannot be used as a value"), span));
         }
         // A concept of the study that no statement of this file bound: one created by an
@@ -490,23 +494,22 @@ impl Evaluator<'_> {
                 }
                 index(&b, &i).map_err(|m| self.input(m, e.span))
             }
-            ExprKind::Attr(base, attr) => match &base.kind {
-                ExprKind::Name(m)
-                    if self.env.modules.contains(m) && !self.env.vars.contains_key(m) =>
-                {
-                    match builtins::math_const(&attr.text) {
+            ExprKind::Attr(base, attr) => {
+                let module = match &base.kind {
+                    ExprKind::Name(m) => self.module_named(m).map(|module| (m, module)),
+                    _ => None,
+                };
+                if let Some((m, module)) = module {
+                    return match module.constant(&attr.text) {
                         Some(x) => Ok(Value::Real(x)),
-                        None if MATH_FUNCS.contains(&attr.text.as_str()) => Err(self.syntax(
+                        None if module.function(&attr.text).is_some() => Err(self.syntax(
                             format!("'{m}.{}' is a function: call it", attr.text),
                             e.span,
                         )),
-                        None => Err(self.input(
-                            format!("module 'math' has no attribute '{}'", attr.text),
-                            attr.span,
-                        )),
-                    }
+                        None => Err(self.unsupported_attribute(module, attr, "attribute")),
+                    };
                 }
-                _ => match self.eval(base)? {
+                match self.eval(base)? {
                     Value::Table(t) => t.column(&attr.text).map(Value::Seq).ok_or_else(|| {
                         self.input(
                             format!("table {} has no column '{}'", t.name, attr.text),
@@ -516,8 +519,37 @@ impl Evaluator<'_> {
                     }),
                     Value::Unknown => Ok(Value::Unknown),
                     _ => Err(self.syntax("attributes (x.name) are not supported", attr.span)),
-                },
-            },
+                }
+            }
+        }
+    }
+
+    /// The module a name is bound to, unless a variable of that name hides it.
+    fn module_named(&self, name: &str) -> Option<ScalarModule> {
+        if self.env.vars.contains_key(name) {
+            return None;
+        }
+        self.env.modules.get(name).copied()
+    }
+
+    /// `m.attr` where the module has no such function or constant (`what`: "function"
+    /// when it is called, else "attribute").
+    fn unsupported_attribute(&self, module: ScalarModule, attr: &Name, what: &str) -> Error {
+        match module {
+            ScalarModule::Math => self.input(
+                format!("module 'math' has no {what} '{}'", attr.text),
+                attr.span,
+            ),
+            ScalarModule::Numpy => self
+                .input(
+                    format!(
+                        "numpy.{} is not supported: aster-nl offers numpy's scalar functions \
+                         and constants only (sqrt, sin, arctan2, power, pi, ...), not its arrays",
+                        attr.text
+                    ),
+                    attr.span,
+                )
+                .hint("compute with numbers, lists and the operators' tables instead"),
         }
     }
 
@@ -676,15 +708,12 @@ impl Evaluator<'_> {
     /// `math.sqrt(x)`; any other `x.method(...)` is outside the subset.
     fn method_call(&mut self, base: &Expr, attr: &Name, args: &[Arg], span: Span) -> Result<Value> {
         if let ExprKind::Name(m) = &base.kind {
-            if self.env.modules.contains(m) && !self.env.vars.contains_key(m) {
-                if !MATH_FUNCS.contains(&attr.text.as_str()) {
-                    return Err(self.input(
-                        format!("module 'math' has no function '{}'", attr.text),
-                        attr.span,
-                    ));
-                }
+            if let Some(module) = self.module_named(m) {
+                let Some(f) = module.function(&attr.text) else {
+                    return Err(self.unsupported_attribute(module, attr, "function"));
+                };
                 let vals = self.positional(&attr.text, args)?;
-                return builtins::call_math(&attr.text, &vals).map_err(|m| self.input(m, span));
+                return builtins::call_math(f, &vals).map_err(|m| self.input(m, span));
             }
             if let Some(Value::Api(obj)) = self.env.vars.get(m).cloned() {
                 return self.api_method(m, obj, attr, args, span);

@@ -128,7 +128,8 @@ impl Default for Scope {
         for f in MATH_FUNCS {
             env.import_fn(f, f);
         }
-        env.modules.insert("math".to_string());
+        env.modules
+            .insert("math".to_string(), super::ScalarModule::Math);
         Scope { env }
     }
 }
@@ -159,7 +160,7 @@ impl Scope {
 
     /// Whether `name` is a module here (`math`).
     pub fn has_module(&self, name: &str) -> bool {
-        self.env.modules.contains(name)
+        self.env.modules.contains_key(name)
     }
 
     /// The functions a formula may call, sorted (for messages).

@@ -37,7 +37,7 @@ pub use diag::{render, render_plain, render_styled};
 
 use crate::error::Result;
 use crate::value::{CommandCall, ConceptRef, Value};
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 
 /// A command file: `name` is the path shown in messages.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -124,8 +124,54 @@ pub struct Env {
     pub(crate) vars: HashMap<String, Value>,
     /// Imported math functions: bound name -> math function name.
     pub(crate) funcs: HashMap<String, String>,
-    /// Names bound to the `math` module (`import math [as m]`).
-    pub(crate) modules: HashSet<String>,
+    /// Names bound to a module of scalar functions (`import math [as m]`,
+    /// `import numpy as np`): bound name -> which module.
+    pub(crate) modules: HashMap<String, ScalarModule>,
+}
+
+/// The modules a command file may import: Python's `math`, and `numpy` for the scalar
+/// functions and constants Code_Aster's files take from it (`np.sqrt(2.)`, `np.pi`); its
+/// arrays are not supported.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ScalarModule {
+    Math,
+    Numpy,
+}
+
+impl ScalarModule {
+    /// The module of an `import` statement, None for the modules whose import is accepted
+    /// and ignored (`code_aster`).
+    pub fn named(name: &str) -> Option<ScalarModule> {
+        match name {
+            "math" => Some(ScalarModule::Math),
+            "numpy" => Some(ScalarModule::Numpy),
+            _ => None,
+        }
+    }
+
+    /// The module's name as written in an import.
+    pub fn name(self) -> &'static str {
+        match self {
+            ScalarModule::Math => "math",
+            ScalarModule::Numpy => "numpy",
+        }
+    }
+
+    /// The math function that computes the module's function `name` on a number.
+    pub fn function(self, name: &str) -> Option<&'static str> {
+        match self {
+            ScalarModule::Math => builtins::MATH_FUNCS.iter().copied().find(|f| *f == name),
+            ScalarModule::Numpy => builtins::numpy_function(name),
+        }
+    }
+
+    /// The module's constant `name`.
+    pub fn constant(self, name: &str) -> Option<f64> {
+        match self {
+            ScalarModule::Math => builtins::math_const(name),
+            ScalarModule::Numpy => builtins::numpy_const(name),
+        }
+    }
 }
 
 /// The math names a Code_Aster command file sees without importing them: its supervisor
@@ -146,7 +192,7 @@ impl Default for Env {
             limits: Limits::default(),
             vars: HashMap::new(),
             funcs: HashMap::new(),
-            modules: HashSet::new(),
+            modules: HashMap::new(),
         };
         for f in CODE_ASTER_MATH {
             env.import_fn(f, f);

@@ -5,7 +5,7 @@ use super::ast::*;
 use super::blocks::{self, Line, Parsed};
 use super::diag::LineIndex;
 use super::scan::{scan, LogicalLine};
-use super::Source;
+use super::{ScalarModule, Source};
 use crate::error::{Error, Result};
 use crate::value::Span;
 use pest::iterators::Pair;
@@ -361,16 +361,20 @@ impl LineParser<'_> {
         Ok(StmtKind::Import { module, alias })
     }
 
-    /// Only `math` is importable; `code_aster` imports of new-style files are accepted
-    /// (and ignored) because every operator is available anyway.
+    /// `math` and the scalar part of `numpy` are importable; `code_aster` imports of
+    /// new-style files are accepted (and ignored) because every operator is available
+    /// anyway.
     fn check_module(&self, m: &Name) -> Result<()> {
         let t = m.text.as_str();
-        if t == "math" || t == "code_aster" || t.starts_with("code_aster.") {
+        if ScalarModule::named(t).is_some() || t == "code_aster" || t.starts_with("code_aster.") {
             return Ok(());
         }
         Err(self
             .err(format!("importing module '{t}' is not supported"), m.span)
-            .hint("only `math` can be imported (from math import *)"))
+            .hint(
+                "only `math` and numpy's scalar functions can be imported (from math import *, \
+                 import numpy as np)",
+            ))
     }
 
     // ---- expressions -------------------------------------------------------------

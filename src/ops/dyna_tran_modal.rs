@@ -115,6 +115,7 @@ fn translate(args: &Args) -> (Args, Vec<(String, String)>) {
         ("ETAT_INIT", &ETAT_INIT[..]),
         ("EXCIT", &EXCIT[..]),
         ("CHOC", &[][..]),
+        ("FLAMBAGE", &[][..]),
     ] {
         let Some(occurrences) = args.facts(fact) else {
             continue;

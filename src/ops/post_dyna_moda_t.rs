@@ -62,10 +62,28 @@ const SAMPLES: [&str; 9] = [
     "FN", "FT1", "FT2", "VN", "VT1", "VT2", "DXLOC", "DYLOC", "DZLOC",
 ];
 
-/// One shock's archived samples: instants and the columns of [`SAMPLES`].
+/// The stick flag of a shock with friction in `<result>_CHOC` (Code_Aster's VINT13), which
+/// the wear power reads (impact_stats.rs); absent without friction.
+const STICK_FLAG: &str = "VINT13";
+
+/// The crush of a FLAMBAGE shock in `<result>_CHOC` (Code_Aster's DEFPLA), whose last
+/// value and first positive instant are the FLAMBAGE row's ECRAS_RESI and INST_FLAMB.
+const CRUSH: &str = "ECRAS_RESI";
+
+/// Code_Aster's columns of a buckled shock's row (CALCUL='FLAMBAGE'), after IMPACT's.
+const BUCKLING_COLUMNS: &[(&str, ColKind)] = &[
+    ("FLAMBAGE", ColKind::K),
+    ("ECRAS_RESI", ColKind::R),
+    ("INST_FLAMB", ColKind::R),
+];
+
+/// One shock's archived samples: instants, the columns of [`SAMPLES`], the stick flag and
+/// (FLAMBAGE) the crush.
 struct History {
     t: Vec<f64>,
     cols: [Vec<f64>; 9],
+    sticking: Option<Vec<f64>>,
+    crush: Option<Vec<f64>>,
 }
 
 impl History {
@@ -78,6 +96,7 @@ impl History {
             v_n: &c[3],
             v_t: [&c[4], &c[5]],
             loc: [&c[6], &c[7], &c[8]],
+            sticking: self.sticking.as_deref(),
         }
     }
 
@@ -96,11 +115,14 @@ impl History {
         History {
             t: pick(&self.t),
             cols: std::array::from_fn(|i| pick(&self.cols[i])),
+            sticking: self.sticking.as_deref().map(pick),
+            crush: self.crush.as_deref().map(pick),
         }
     }
 }
 
-/// The samples of every shock of `result`, by INTITULE, in the payload's order.
+/// The samples of every shock of `result`, by INTITULE: the DIS_CHOC shocks first, then
+/// the FLAMBAGE ones, each in the payload's order (Code_Aster's order of the table).
 fn histories(store: &Store, result: &str, kw: &str) -> Result<Vec<(StoredShock, History)>> {
     let no_shock = || {
         Error::input(format!(
@@ -108,7 +130,10 @@ fn histories(store: &Store, result: &str, kw: &str) -> Result<Vec<(StoredShock, 
              DYNA_VIBRA result"
         ))
         .keyword(kw.to_string())
-        .hint("give the result of a DYNA_VIBRA with COMPORTEMENT (RELATION='DIS_CHOC') or CHOC")
+        .hint(
+            "give the result of a DYNA_VIBRA with COMPORTEMENT (RELATION='DIS_CHOC' or \
+             'FLAMBAGE'), CHOC or FLAMBAGE",
+        )
     };
     // A result without a shocks' table: not a DYNA_VIBRA result, or one without shocks.
     if tran_gene::owned_concepts(store, result)?.is_empty() {
@@ -120,17 +145,38 @@ fn histories(store: &Store, result: &str, kw: &str) -> Result<Vec<(StoredShock, 
     }
     let t = common_tran_gene::shock_table(store, result, &payload)?;
     let mut out = Vec::with_capacity(payload.shocks.len());
-    for shock in payload.shocks {
+    let (buckling, chocs): (Vec<StoredShock>, Vec<StoredShock>) = payload
+        .shocks
+        .into_iter()
+        .partition(StoredShock::is_buckling);
+    for shock in chocs.into_iter().chain(buckling) {
         let (times, cols) = common_tran_gene::shock_samples(&t, &shock.intitule, &SAMPLES)?;
+        let sticking = match t.col(STICK_FLAG) {
+            Some(_) => common_tran_gene::shock_samples(&t, &shock.intitule, &[STICK_FLAG])?
+                .1
+                .pop(),
+            None => None,
+        };
         let h = History {
             t: times,
             cols: cols
                 .try_into()
                 .map_err(|_| Error::internal("shock_samples returns one column per parameter"))?,
+            sticking,
+            crush: match t.col(CRUSH) {
+                Some(_) if shock.is_buckling() => {
+                    common_tran_gene::shock_samples(&t, &shock.intitule, &[CRUSH])?
+                        .1
+                        .pop()
+                }
+                _ => None,
+            },
         };
         if h.t
             .iter()
             .chain(h.cols.iter().flatten())
+            .chain(h.sticking.iter().flatten())
+            .chain(h.crush.iter().flatten())
             .any(|x| !x.is_finite())
         {
             return Err(Error::store(format!(
@@ -269,6 +315,43 @@ fn impact_rows(
     Ok(d.impacts.len())
 }
 
+/// OPTION='IMPACT', a FLAMBAGE shock buckled at the last instant analysed (crush > 0):
+/// Code_Aster's row CALCUL='FLAMBAGE' (its `statim`): CHOC the shock's rank in the table,
+/// FLAMBAGE='OUI', ECRAS_RESI the crush at that instant, INST_FLAMB the first archived
+/// instant where the crush is positive (the step the element buckled, to the archive's
+/// resolution). Between two nodes the crush is shared: half on each, one row per node.
+fn buckling_rows(out: &mut Output, shock: &StoredShock, index: i64, h: &History) -> Result<()> {
+    let Some(crush) = &h.crush else {
+        return Ok(());
+    };
+    let Some(&last) = crush.last().filter(|&&c| c > 0.0) else {
+        return Ok(());
+    };
+    let onset = crush.iter().position(|&c| c > 0.0).map_or(0.0, |k| h.t[k]);
+    out.with(BUCKLING_COLUMNS)?;
+    let mut rows = vec![(shock.node1.clone(), last)];
+    if let Some(n2) = &shock.node2 {
+        rows = vec![(shock.node1.clone(), last / 2.0), (n2.clone(), last / 2.0)];
+    }
+    for (node, ecras) in rows {
+        let on_node = StoredShock {
+            node1: node,
+            ..shock.clone()
+        };
+        out.push(
+            &on_node,
+            "FLAMBAGE",
+            &[
+                ("CHOC", Cell::I(index)),
+                ("FLAMBAGE", Cell::K("OUI".to_string())),
+                ("ECRAS_RESI", Cell::R(ecras)),
+                ("INST_FLAMB", Cell::R(onset)),
+            ],
+        )?;
+    }
+    Ok(())
+}
+
 fn moment_cells(m: &Moments) -> [(&'static str, Cell); 5] {
     [
         ("MOYEN", Cell::R(m.mean)),
@@ -350,7 +433,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     };
     for occ in args.facts_or_empty("CHOC") {
         let o = occurrence(occ)?;
-        for (shock, all) in &shocks {
+        for (index, (shock, all)) in (1..).zip(&shocks) {
             let h = all.window(o.t0, o.t1);
             if h.t.len() < 2 {
                 return Err(Error::input(format!(
@@ -368,7 +451,9 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
                 wear_rows(&mut out, shock, &h, &o, &occ.key_path("NB_BLOC"))?;
                 None
             } else {
-                Some(impact_rows(&mut out, shock, &h, &o)?)
+                let n = impact_rows(&mut out, shock, &h, &o)?;
+                buckling_rows(&mut out, shock, index, &h)?;
+                Some(n)
             };
             if ctx.info >= 2 {
                 let what = impacts

@@ -1,4 +1,5 @@
-//! TEST_TABLE: test one value of a table (exactly one row after FILTRE) or, with
+//! TEST_TABLE: test one value of a table (exactly one row after FILTRE holding a value of
+//! NOM_PARA, as Code_Aster counts them) or, with
 //! TYPE_TEST, the SOMM_ABS / SOMM / MAX / MIN of a column.
 
 use super::common::table_args::{filters_for, load_table_arg};
@@ -25,6 +26,20 @@ fn type_test(t: &Table, para: &str, kind: &str) -> Result<TestValue> {
     }
 }
 
+/// The rows whose cell of `para` holds a value, when some do: Code_Aster's TEST_TABLE
+/// (tbliva) counts only those, so a filter leaving one row with the value and others
+/// without it (POST_DYNA_MODA_T's USURE table, one row per statistic) selects that row.
+fn valued(t: &Table, para: &str) -> Result<Table> {
+    let j = t.req_col(para)?;
+    let has = |row: &Vec<Cell>| !matches!(row.get(j), None | Some(Cell::Null));
+    if !t.rows.iter().any(has) {
+        return Ok(t.clone());
+    }
+    let mut out = t.clone();
+    out.rows.retain(has);
+    Ok(out)
+}
+
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let (c, t) = load_table_arg(ctx, args, "TABLE")?;
     let fl = filters_for(ctx, &t, args, "FILTRE")?;
@@ -34,7 +49,12 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         .map_err(|e| e.keyword("TEST_TABLE/NOM_PARA"))?;
     let computed = match args.text("TYPE_TEST") {
         Some(k) => type_test(&t, para, k)?,
-        None => match single_cell(&t, para, &format!("TEST_TABLE on {}", c.name)).map_err(|e| {
+        None => match single_cell(
+            &valued(&t, para)?,
+            para,
+            &format!("TEST_TABLE on {}", c.name),
+        )
+        .map_err(|e| {
             e.keyword("TEST_TABLE/FILTRE")
                 .hint("add FILTRE to select one row, or give TYPE_TEST")
         })? {

@@ -2,7 +2,9 @@
 //! - a `tran_gene` (BASE_CALCUL='GENE') is a table concept with one row per archived instant
 //!   and generalized coordinate: NUME_ORDRE, INST, NUME_CMP (1..n), DEPL, VITE, ACCE;
 //! - the shocks' samples are the table concept `<name>_CHOC`: NUME_ORDRE, INST, INTITULE,
-//!   NOEUD, FN, FT1, FT2, VN, VT1, VT2, DXLOC, DYLOC, DZLOC;
+//!   NOEUD, FN, FT1, FT2, VN, VT1, VT2, DXLOC, DYLOC, DZLOC, and the shocks' internal
+//!   variables a restart goes on from ([`FRICTION_MEMORY`] when a shock has friction,
+//!   [`BUCKLING_MEMORY`] when one is a FLAMBAGE);
 //! - `concept_data(concept, 'tran_gene')`: [`Payload`], what a reader needs to restore
 //!   physical fields (the basis) and to find a shock by node or INTITULE.
 
@@ -19,7 +21,29 @@ pub struct StoredShock {
     pub node1: String,
     pub node2: Option<String>,
     pub obstacle: String,
+    /// RELATION: 'DIS_CHOC' or 'FLAMBAGE' (empty in results stored before FLAMBAGE: DIS_CHOC).
+    #[serde(default)]
+    pub relation: String,
 }
+
+impl StoredShock {
+    /// Whether the shock is a FLAMBAGE one.
+    pub fn is_buckling(&self) -> bool {
+        self.relation == "FLAMBAGE"
+    }
+}
+
+/// The columns of a shock's stick/slip memory in `<name>_CHOC`: Code_Aster's internal
+/// variables 13 to 20 of DIS_CHOC (sticking flag, tangential force at the anchor (2), the
+/// anchor's local position (3), the previous tangential velocity (2)).
+pub const FRICTION_MEMORY: [&str; 8] = [
+    "VINT13", "VINT14", "VINT15", "VINT16", "VINT17", "VINT18", "VINT19", "VINT20",
+];
+
+/// The columns of a FLAMBAGE shock's internal variables in `<name>_CHOC`: the crush
+/// (Code_Aster's DEFPLA, POST_DYNA_MODA_T's ECRAS_RESI), the unloading stiffness, the
+/// largest penetration and the damping of the current segment.
+pub const BUCKLING_MEMORY: [&str; 4] = ["ECRAS_RESI", "RIGI_FL", "ENFO_MAX", "AMOR_FL"];
 
 /// What a DYNA_VIBRA result is computed on.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

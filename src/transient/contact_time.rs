@@ -72,6 +72,7 @@ mod tests {
             rigi_tan: 0.0,
             amor_tan: 0.0,
             friction: Friction::None,
+            friction_along_x_only: false,
         };
         // NORM_OBST = Y: local y is -X; coordinate 0 is the node's DX.
         let along_x = NodeRows::from_modes(&[1.0, 0.0], &[0.0, 0.0], &[0.0, 0.0]);

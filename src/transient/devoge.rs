@@ -836,6 +836,7 @@ mod tests {
             rigi_tan: 4e5,
             amor_tan: 1280.0,
             friction: Friction::Coulomb { mu: 0.1 },
+            friction_along_x_only: false,
         };
         Shock::new(spec, NodeRows::from_modes(&[1.0], &[0.0], &[0.0]), None).unwrap()
     }

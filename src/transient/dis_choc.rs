@@ -25,8 +25,13 @@
 //!
 //! The state ([`ShockState`]) is advanced only at accepted steps: [`Shock::evaluate`] is
 //! pure and returns the state the step would leave.
+//!
+//! A FLAMBAGE shock ([`Shock::with_buckling`]) has the same geometry and outputs; its
+//! normal force is the buckling law of `flambage.rs`, whose internal variables ride in the
+//! same state ([`ShockState::buckling`]), and it has no friction.
 
 use super::error::{check_len, invalid, TransientError};
+use super::flambage::{Buckling, BucklingState};
 use super::obstacle::{
     normal_gap, obstacle_frame, rest_signs, Clearance, Gap, LocalFrame, ObstacleKind,
 };
@@ -163,6 +168,10 @@ pub struct ShockSpec {
     pub rigi_tan: f64,
     pub amor_tan: f64,
     pub friction: Friction,
+    /// UNIDIRECTIONNEL='OUI': the friction acts along the local x axis only (the axis
+    /// Code_Aster's INFO lists for it; for a PLAN_ or BI_PLAN_ obstacle, NORM_OBST), the
+    /// tangential sliding across it is free.
+    pub friction_along_x_only: bool,
 }
 
 /// The stick/slip memory of a shock (VINT13..VINT20).
@@ -175,6 +184,8 @@ pub struct ShockState {
     pub old_xl: [f64; 3],
     /// Tangential velocity of the last evaluation.
     pub old_vt: [f64; 2],
+    /// The internal variables of a FLAMBAGE shock (`flambage.rs`); zero for DIS_CHOC.
+    pub buckling: BucklingState,
 }
 
 /// What RECU_FONCTION reads for a shock at an archived instant.
@@ -257,6 +268,9 @@ pub struct ShockEval {
     pub force: [f64; 3],
     pub gap: Gap,
     pub sample: ShockSample,
+    /// A FLAMBAGE shock's normal slopes (dF_N/dp, −dF_N/dv_N) at this evaluation (the
+    /// tangent of NEWMARK's iterations); `None` for DIS_CHOC.
+    pub buckling_slopes: Option<(f64, f64)>,
 }
 
 /// A shock ready to integrate: geometry, law, rows and its committed state.
@@ -273,6 +287,8 @@ pub struct Shock {
     pub state: ShockState,
     /// The supports' motion its nodes follow (MULT_APPUI; empty: fixed supports).
     support: SupportMotion,
+    /// RELATION='FLAMBAGE': the buckling law replaces the normal force (no friction).
+    buckling: Option<Buckling>,
 }
 
 impl Shock {
@@ -341,8 +357,21 @@ impl Shock {
             rel,
             state: ShockState::default(),
             support: SupportMotion::default(),
+            buckling: None,
             spec,
         })
+    }
+
+    /// RELATION='FLAMBAGE': the normal force is the buckling law (`flambage.rs`) instead of
+    /// RIGI_NOR·penetration, without friction.
+    pub fn with_buckling(mut self, law: Buckling) -> Shock {
+        self.buckling = Some(law);
+        self
+    }
+
+    /// The buckling law, for a FLAMBAGE shock.
+    pub fn buckling(&self) -> Option<&Buckling> {
+        self.buckling.as_ref()
     }
 
     /// The shock's nodes follow moving supports (MULT_APPUI): q is then the motion relative
@@ -455,6 +484,9 @@ impl Shock {
             loc2: l2,
             ..ShockSample::default()
         };
+        if let Some(law) = &self.buckling {
+            return self.buckling_eval(law, gap, dv, state, sample);
+        }
         let mut new_state = ShockState::default();
         let mut flocal = [0.0; 3];
         if gap.dnorm <= 0.0 {
@@ -488,6 +520,43 @@ impl Shock {
             force: self.frame.to_global(flocal),
             gap,
             sample,
+            buckling_slopes: None,
+        }
+    }
+
+    /// A FLAMBAGE shock (Code_Aster's `dtmforc_flam`): in contact the buckling law gives the
+    /// normal force and advances its internal variables; out of contact the force is zero
+    /// and they are kept. No friction: FT1, FT2, VT1, VT2 stay zero, and VN is recorded in
+    /// contact only.
+    fn buckling_eval(
+        &self,
+        law: &Buckling,
+        gap: Gap,
+        dv: [f64; 3],
+        state: &ShockState,
+        mut sample: ShockSample,
+    ) -> ShockEval {
+        let mut new_state = ShockState {
+            buckling: state.buckling,
+            ..ShockState::default()
+        };
+        let mut flocal = [0.0; 3];
+        let mut slopes = (0.0, 0.0);
+        if gap.dnorm <= 0.0 {
+            let vn = dv[1] * gap.cos + dv[2] * gap.sin;
+            let r = law.force(-gap.dnorm, vn, &state.buckling);
+            sample.f_n = r.force;
+            sample.v_n = vn;
+            flocal = [0.0, r.force * gap.cos, r.force * gap.sin];
+            new_state.buckling = r.state;
+            slopes = (r.stiffness, r.damping);
+        }
+        sample.state = new_state;
+        ShockEval {
+            force: self.frame.to_global(flocal),
+            gap,
+            sample,
+            buckling_slopes: Some(slopes),
         }
     }
 
@@ -502,7 +571,15 @@ impl Shock {
     ) -> ([f64; 2], [f64; 2], ShockState) {
         let (mu_s, mu_d) = self.spec.friction.coefficients();
         let (c, s) = (gap.cos, gap.sin);
-        let vt = tangential_velocity(dv, gap);
+        let mut vt = tangential_velocity(dv, gap);
+        // One direction: the sliding across the local x axis neither slides nor sticks,
+        // so the first tangential component of the force stays zero.
+        let across = if self.spec.friction_along_x_only {
+            0.0
+        } else {
+            1.0
+        };
+        vt[0] *= across;
         let scal = vt[0] * state.old_vt[0] + vt[1] * state.old_vt[1];
         let nvt = vt[0].hypot(vt[1]);
         let mut st = *state;
@@ -520,7 +597,10 @@ impl Shock {
             st.old_xl = d;
         } else {
             let ox = state.old_xl;
-            let dxt = [-(d[1] - ox[1]) * s + (d[2] - ox[2]) * c, d[0] - ox[0]];
+            let dxt = [
+                across * (-(d[1] - ox[1]) * s + (d[2] - ox[2]) * c),
+                d[0] - ox[0],
+            ];
             st.sticking = true;
             let trial = [
                 state.old_ft[0] - self.spec.rigi_tan * dxt[0] - self.spec.amor_tan * vt[0],
@@ -563,8 +643,12 @@ impl Shock {
                 }
             }
         };
-        add(&mut k, self.spec.rigi_nor, n);
-        add(&mut c, self.spec.amor_nor, n);
+        // A FLAMBAGE shock: the slopes of the branch its law took.
+        let (kn, cn) = eval
+            .buckling_slopes
+            .unwrap_or((self.spec.rigi_nor, self.spec.amor_nor));
+        add(&mut k, kn, n);
+        add(&mut c, cn, n);
         if self.spec.friction.active() && eval.sample.state.sticking {
             let t1 = self.frame.to_global([0.0, -g.sin, g.cos]);
             let t2 = self.frame.to_global([1.0, 0.0, 0.0]);
@@ -580,7 +664,10 @@ impl Shock {
     /// displacement (for the stability estimate): RIGI_NOR on the normal directions the
     /// obstacle can take, RIGI_TAN on the tangential ones when there is friction.
     pub fn stiffness_bound(&self) -> [[f64; 3]; 3] {
-        let kn = self.spec.rigi_nor;
+        let kn = self
+            .buckling
+            .as_ref()
+            .map_or(self.spec.rigi_nor, Buckling::stiffness_bound);
         let kt = if self.spec.friction.active() {
             self.spec.rigi_tan
         } else {

@@ -25,7 +25,10 @@
 //!   angle atan2(DZLOC, DYLOC) in degrees, of FT1 and FT2; FN's mean and RMS over the block
 //!   (T_TOTAL) and over its samples in contact (T_CHOC); impacts per second, contacts per
 //!   impact, durations, share of time in contact; and the wear power (Archard) PUIS_USURE,
-//!   the time average of |FN| √(VT1² + VT2²) by the trapezoidal rule.
+//!   the time average of |FN| √(VT1² + VT2²) by the trapezoidal rule over the intervals
+//!   that start from a sliding sample: Code_Aster (`pusure`) leaves out each interval
+//!   whose first sample sticks (its stick flag, VINT13), so a stick's creep in the
+//!   tangential spring RIGI_TAN wears nothing.
 
 /// One impact (a global shock).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -318,6 +321,9 @@ pub struct Series<'a> {
     pub v_t: [&'a [f64]; 2],
     /// DXLOC, DYLOC, DZLOC.
     pub loc: [&'a [f64]; 3],
+    /// The stick flag of each sample (VINT13: nonzero while sticking); `None` when the
+    /// shock has no friction (nothing sticks).
+    pub sticking: Option<&'a [f64]>,
 }
 
 /// Why the wear statistics cannot be computed.
@@ -341,17 +347,21 @@ impl std::fmt::Display for StatsError {
     }
 }
 
-/// The wear power of one block: ∫|FN| |V_T| dt / (t_end − t_start), trapezoidal rule.
-fn wear_power(t: &[f64], f_n: &[f64], v_t: [&[f64]; 2]) -> f64 {
-    let p = |k: usize| (f_n[k] * v_t[0][k].hypot(v_t[1][k])).abs();
+/// The wear power of one block: ∫|FN| |V_T| dt / (t_end − t_start), trapezoidal rule,
+/// the intervals starting from a sticking sample left out (Code_Aster's `pusure`, its
+/// order of operations).
+fn wear_power(t: &[f64], f_n: &[f64], v_t: [&[f64]; 2], sticking: Option<&[f64]>) -> f64 {
+    let p = |k: usize| (f_n[k] * (v_t[0][k] * v_t[0][k] + v_t[1][k] * v_t[1][k]).sqrt()).abs();
     let span = match (t.first(), t.last()) {
         (Some(a), Some(b)) if b > a => b - a,
         _ => return 0.0,
     };
-    let integral: f64 = (1..t.len())
-        .map(|k| 0.5 * (p(k) + p(k - 1)) * (t[k] - t[k - 1]))
+    let sticks = |k: usize| sticking.is_some_and(|s| s[k] != 0.0);
+    let sum: f64 = (1..t.len())
+        .filter(|&k| !sticks(k - 1))
+        .map(|k| (p(k) + p(k - 1)) * (t[k] - t[k - 1]))
         .sum();
-    integral / span
+    sum / 2.0 / span
 }
 
 /// The statistics of OPTION='USURE' over `blocks` blocks (NB_BLOC ≥ 1): each block's, then
@@ -360,7 +370,12 @@ fn wear_power(t: &[f64], f_n: &[f64], v_t: [&[f64]; 2]) -> f64 {
 pub fn wear(s: &Series<'_>, threshold: f64, rest: f64, blocks: usize) -> Result<Wear, StatsError> {
     let n = s.t.len();
     let all = [s.f_n, s.f_t[0], s.f_t[1], s.v_n, s.v_t[0], s.v_t[1]];
-    if all.iter().chain(s.loc.iter()).any(|x| x.len() != n) {
+    if all
+        .iter()
+        .chain(s.loc.iter())
+        .chain(s.sticking.iter())
+        .any(|x| x.len() != n)
+    {
         return Err(StatsError::Lengths);
     }
     let blocks = blocks.max(1);
@@ -450,7 +465,8 @@ pub fn wear(s: &Series<'_>, threshold: f64, rest: f64, blocks: usize) -> Result<
             wear_power(
                 &s.t[r.clone()],
                 &s.f_n[r.clone()],
-                [&s.v_t[0][r.clone()], &s.v_t[1][r]],
+                [&s.v_t[0][r.clone()], &s.v_t[1][r.clone()]],
+                s.sticking.map(|f| &f[r]),
             )
         })
         .sum::<f64>()

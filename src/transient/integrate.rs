@@ -9,6 +9,7 @@ use super::dis_choc::Shock;
 use super::error::{check_len, invalid, try_zeros, TransientError};
 use super::fixed::{run_fixed, Start, Stepper};
 use super::problem::{Archive, Forcing, TimeGrid, Trajectory};
+use super::rk_loop::run_rk;
 use super::scheme::diff_centre::{max_pulsation, stability_limit, DiffCentre};
 use super::scheme::newmark::Newmark;
 use super::scheme::{AdaptOptions, Scheme};
@@ -170,8 +171,39 @@ pub fn integrate(
     archive: &Archive,
     progress: &mut dyn FnMut(f64),
 ) -> Result<Trajectory, TransientError> {
+    integrate_from(
+        structure, shocks, forcing, init, None, scheme, times, archive, progress,
+    )
+}
+
+/// [`integrate`] from a stored instant (ETAT_INIT=_F(RESULTAT=...), Code_Aster's restart):
+/// with `acceleration`, the start's acceleration is that one and the shocks' states are
+/// those the caller set on them (their internal variables at that instant): nothing is
+/// re-evaluated at t0 before the first step, as Code_Aster goes on from a stored state.
+/// The row archived at t0 holds the shocks evaluated there from those states.
+#[allow(clippy::too_many_arguments)]
+pub fn integrate_from(
+    structure: &dyn Structure,
+    shocks: &mut [Shock],
+    forcing: &[Forcing],
+    init: (&[f64], &[f64]),
+    acceleration: Option<&[f64]>,
+    scheme: Scheme,
+    times: TimeGrid,
+    archive: &Archive,
+    progress: &mut dyn FnMut(f64),
+) -> Result<Trajectory, TransientError> {
     let n = structure.n();
     check_inputs(n, shocks, forcing, init, &times, archive)?;
+    if let Some(a0) = acceleration {
+        check_len("ETAT_INIT/RESULTAT (ACCE)", a0.len(), n)?;
+        if !finite(a0) {
+            return Err(invalid(
+                "ETAT_INIT",
+                "the initial acceleration is not finite",
+            ));
+        }
+    }
     check_scheme(&scheme)?;
     let model = Model { structure, forcing };
     let mut ws = Work::new(n, shocks)?;
@@ -180,11 +212,20 @@ pub fn integrate(
     let mut a = try_zeros("the state", n)?;
     q.copy_from_slice(init.0);
     v.copy_from_slice(init.1);
-    model.acceleration(shocks, times.t0, &q, &v, &mut a, &mut ws)?;
-    if !finite(&a) {
-        return Err(TransientError::NonFinite { t: times.t0 });
+    match acceleration {
+        Some(a0) => {
+            a.copy_from_slice(a0);
+            // The shocks at t0 for the archive, their committed states left as given.
+            model.force(shocks, times.t0, &q, &v, &mut ws);
+        }
+        None => {
+            model.acceleration(shocks, times.t0, &q, &v, &mut a, &mut ws)?;
+            if !finite(&a) {
+                return Err(TransientError::NonFinite { t: times.t0 });
+            }
+            commit(shocks, &ws.evals);
+        }
     }
-    commit(shocks, &ws.evals);
     let (nsteps, h) = times.fixed_steps();
     let listed = archive.listed().map_or(0, <[f64]>::len);
     let rows = match (archive.every(), &scheme) {
@@ -214,6 +255,14 @@ pub fn integrate(
             forced = st.forced;
             (st.taken, st.retried, Vec::new())
         }
+        // Code_Aster's RUNGE_KUTTA_32/54 (rk_loop.rs).
+        Scheme::Adaptive(opts) if !opts.locate_contacts => {
+            let st = run_rk(
+                &model, shocks, &opts, &q, &v, &a, times, archive, &mut rec, &mut ws, progress,
+            )?;
+            (st.taken, st.rejected, Vec::new())
+        }
+        // LOCALISATION_CHOC='OUI': aster-nl's event-located pairs.
         Scheme::Adaptive(opts) => {
             // The error scale's floor near rest (adaptive.rs): 1/ω²_max of the structure
             // with its shocks' stiffness (without it, the large accelerations of a contact

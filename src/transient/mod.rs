@@ -7,7 +7,8 @@
 //! q the generalized coordinates, f_i g_i(t) the EXCIT terms (a vector times FONC_MULT or
 //! COEF_MULT), and for each shock s, Φ_s the rows giving the global translations DX, DY,
 //! DZ of its node 1 (and of node 2 for a two-node shock) and F_s the DIS_CHOC force in the
-//! obstacle's frame (`dis_choc.rs`, geometry in `obstacle.rs`; node 2 receives −F_s). The
+//! obstacle's frame (`dis_choc.rs`, geometry in `obstacle.rs`; node 2 receives −F_s), or
+//! for RELATION='FLAMBAGE' the normal force of the buckling law (`flambage.rs`). The
 //! same equations on the physical basis (M, K, C sparse on the free DOFs, Φ_s a selection
 //! of rows: BASE_CALCUL='PHYS') are an aster-nl extension. The structure is a
 //! [`Structure`]: [`DenseStructure`] (diagonal or full generalized matrices, modal damping
@@ -22,9 +23,11 @@
 //!   linear part; the shock forces are iterated to convergence at each step (Newton with a
 //!   low-rank Woodbury update of the once-factorised matrix).
 //! - RUNGE_KUTTA_54 (Dormand–Prince 5(4)) and RUNGE_KUTTA_32 (Bogacki–Shampine 3(2)):
-//!   adaptive step with TOLERANCE (Code_Aster's default 1e-5), PAS_MINI, PAS_MAXI,
-//!   NMAX_ITER_PAS and a step limit, and event location at contact onsets/releases (the
-//!   step is shortened so they fall on step boundaries).
+//!   Code_Aster's adaptive step, its error estimate with TOLERANCE (default 1e-5) and
+//!   ALPHA, PAS_MINI, PAS_MAXI, its retry rule and driver, in its form (`rk_loop.rs`); with
+//!   LOCALISATION_CHOC='OUI' (aster-nl extension) aster-nl's own error control and event
+//!   location at contact onsets/releases, the step shortened so that they fall on step
+//!   boundaries (`adaptive.rs`).
 //! - DEVOGE: Code_Aster's adaptive Devogelaere–Fu scheme in its form (order 4, 3 with
 //!   damping; its error estimate, step control and landing on the archive instants:
 //!   `devoge.rs`).
@@ -44,9 +47,10 @@
 //!
 //! Files: error.rs (typed errors, conversion to `crate::error::Error`), structure.rs (the
 //! trait), contact_time.rs (how long a contact lasts, to judge a fixed step), support.rs (moving
-//! supports), dense.rs, sparse.rs, obstacle.rs, dis_choc.rs, problem.rs (forcing, grid,
+//! supports), dense.rs, sparse.rs, obstacle.rs, dis_choc.rs, flambage.rs (the buckling
+//! law and its internal variables), problem.rs (forcing, grid,
 //! archive, trajectory), system.rs (the right-hand side), scheme/ (one file per scheme),
-//! fixed.rs, adaptive.rs, adapt_loop.rs and devoge.rs (the loops), archive.rs (recording), integrate.rs (the
+//! fixed.rs, rk_loop.rs, adaptive.rs, adapt_loop.rs and devoge.rs (the loops), archive.rs (recording), integrate.rs (the
 //! driver), impact_stats.rs (POST_DYNA_MODA_T's impact and wear statistics of the
 //! archived samples), tests/.
 
@@ -59,10 +63,12 @@ mod devoge;
 pub mod dis_choc;
 pub mod error;
 mod fixed;
+pub mod flambage;
 pub mod impact_stats;
 pub mod integrate;
 pub mod obstacle;
 pub mod problem;
+mod rk_loop;
 pub mod scheme;
 pub mod sparse;
 pub mod structure;
@@ -79,7 +85,8 @@ pub use dis_choc::{
     optimized_tangential_damping, Friction, NodeRows, Shock, ShockSample, ShockSpec, ShockState,
 };
 pub use error::TransientError;
-pub use integrate::integrate;
+pub use flambage::{Buckling, BucklingSpec, BucklingState};
+pub use integrate::{integrate, integrate_from};
 pub use obstacle::{LocalFrame, ObstacleKind};
 pub use problem::{Archive, ContactEvent, Forcing, TimeGrid, Trajectory};
 pub use scheme::{AdaptOptions, AdaptOrder, AdaptiveOptions, RkPair, Scheme, VelocityFloor};

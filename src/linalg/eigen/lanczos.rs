@@ -4,8 +4,10 @@
 //!
 //! Every new Krylov vector is M-orthogonalised twice against the whole basis and against
 //! `locked` vectors (modes already found in an earlier pass: explicit deflation, which is
-//! how a second copy of a multiple eigenvalue gets found). Memory: (ncv + 1) vectors of
-//! length n plus small ncv × ncv matrices.
+//! how a second copy of a multiple eigenvalue gets found). Each basis vector is kept with
+//! its product by M, so that those inner products need no product by M (one per new
+//! vector, for its norm). Memory: 2(ncv + 1) vectors of length n plus small ncv × ncv
+//! matrices.
 
 use super::sym::{dot, SymSparse};
 use crate::error::{Error, Result};
@@ -43,27 +45,112 @@ fn random_vector(n: usize, seed: &mut u64) -> Vec<f64> {
         .collect()
 }
 
-/// M-orthogonalise `w` against `basis` and `locked` (two passes); returns the coefficients
-/// against `basis` and the M-norm of the remainder.
+/// Rows per block of the Gram–Schmidt kernels: a block of `w` (32 KB) stays in cache while
+/// every basis vector passes over it.
+const BLOCK: usize = 4096;
+
+/// Vectors with their products by M, so that an M inner product against one costs a dot.
+#[derive(Default)]
+struct MVectors {
+    v: Vec<Vec<f64>>,
+    mv: Vec<Vec<f64>>,
+}
+
+impl MVectors {
+    fn push(&mut self, v: Vec<f64>, mv: Vec<f64>) {
+        self.v.push(v);
+        self.mv.push(mv);
+    }
+
+    fn len(&self) -> usize {
+        self.v.len()
+    }
+
+    /// `vectors` with their M-products computed here.
+    fn of(vectors: &[Vec<f64>], m: &SymSparse) -> MVectors {
+        let mut out = MVectors::default();
+        for v in vectors {
+            let mut mv = vec![0.0; v.len()];
+            m.mul(v, &mut mv);
+            out.push(v.clone(), mv);
+        }
+        out
+    }
+}
+
+/// c_i = ⟨v_i, w⟩_M = (M v_i)·w for every vector of `set`, blocked over rows.
+fn m_dots(set: &MVectors, w: &[f64]) -> Vec<f64> {
+    let mut c = vec![0.0; set.len()];
+    for start in (0..w.len()).step_by(BLOCK) {
+        let end = (start + BLOCK).min(w.len());
+        let wb = &w[start..end];
+        for (ci, mv) in c.iter_mut().zip(&set.mv) {
+            *ci += dot8(&mv[start..end], wb);
+        }
+    }
+    c
+}
+
+/// w −= Σ c_i v_i, blocked over rows.
+fn subtract_combination(w: &mut [f64], vectors: &[Vec<f64>], c: &[f64]) {
+    let n = w.len();
+    for start in (0..n).step_by(BLOCK) {
+        let end = (start + BLOCK).min(n);
+        let wb = &mut w[start..end];
+        for (v, &ci) in vectors.iter().zip(c) {
+            if ci != 0.0 {
+                axpy(-ci, &v[start..end], wb);
+            }
+        }
+    }
+}
+
+/// y = Σ_r coef(r) v_r over the first `count` vectors, blocked over rows.
+fn combination(
+    vectors: &[Vec<f64>],
+    count: usize,
+    coef: impl Fn(usize) -> f64,
+    n: usize,
+) -> Vec<f64> {
+    let c: Vec<f64> = (0..count).map(coef).collect();
+    let mut y = vec![0.0; n];
+    subtract_combination(&mut y, &vectors[..count], &c);
+    y.iter_mut().for_each(|x| *x = -*x);
+    y
+}
+
+/// A dot product with eight independent partial sums: the sum is not one chain of
+/// dependent additions, so it runs at the memory's speed.
+fn dot8(a: &[f64], b: &[f64]) -> f64 {
+    let mut acc = [0.0f64; 8];
+    let (ca, cb) = (a.chunks_exact(8), b.chunks_exact(8));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for k in 0..8 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
+    acc.iter().sum::<f64>() + tail
+}
+
+/// M-orthogonalise `w` against `basis` and `locked` (classical Gram–Schmidt twice, the
+/// M inner products read from the stored M-products); returns the coefficients against
+/// `basis` and the M-norm of the remainder, with `mw` = M w.
 fn orthogonalise(
     w: &mut [f64],
-    basis: &[Vec<f64>],
-    locked: &[Vec<f64>],
+    basis: &MVectors,
+    locked: &MVectors,
     m: &SymSparse,
     mw: &mut [f64],
 ) -> (Vec<f64>, f64) {
     let mut h = vec![0.0; basis.len()];
     for _pass in 0..2 {
-        m.mul(w, mw);
-        for (hi, v) in h.iter_mut().zip(basis) {
-            let c = dot(v, mw);
-            *hi += c;
-            axpy(-c, v, w);
-        }
-        for v in locked {
-            let c = dot(v, mw);
-            axpy(-c, v, w);
-        }
+        let c = m_dots(basis, w);
+        let cl = m_dots(locked, w);
+        subtract_combination(w, &basis.v, &c);
+        subtract_combination(w, &locked.v, &cl);
+        h.iter_mut().zip(&c).for_each(|(hi, ci)| *hi += ci);
     }
     m.mul(w, mw);
     let nrm = dot(w, mw).max(0.0).sqrt();
@@ -74,6 +161,10 @@ fn axpy(a: f64, x: &[f64], y: &mut [f64]) {
     for (yi, xi) in y.iter_mut().zip(x) {
         *yi += a * xi;
     }
+}
+
+fn scaled(x: &[f64], by: f64) -> Vec<f64> {
+    x.iter().map(|v| v / by).collect()
 }
 
 /// Runs thick-restart Lanczos. `op(x, y)` sets y = Op x.
@@ -97,23 +188,24 @@ pub fn lanczos(
     let mut seed = p.seed.max(1);
     let mut mw = vec![0.0; n];
     let mut op_count = 0;
+    let locked = MVectors::of(locked, m);
 
     // Start in the range of Op (purges directions of infinite eigenvalues when M is
     // singular, and of locked modes).
     let mut v0 = vec![0.0; n];
-    let mut basis: Vec<Vec<f64>> = Vec::with_capacity(ncv + 1);
+    let mut basis = MVectors::default();
+    let none = MVectors::default();
     for _attempt in 0..5 {
         let r = random_vector(n, &mut seed);
         op(&r, &mut v0);
         op_count += 1;
-        let (_, nrm) = orthogonalise(&mut v0, &[], locked, m, &mut mw);
+        let (_, nrm) = orthogonalise(&mut v0, &none, &locked, m, &mut mw);
         if nrm > 0.0 && nrm.is_finite() {
-            v0.iter_mut().for_each(|x| *x /= nrm);
-            basis.push(v0.clone());
+            basis.push(scaled(&v0, nrm), scaled(&mw, nrm));
             break;
         }
     }
-    if basis.is_empty() {
+    if basis.len() == 0 {
         return Err(Error::numerical(
             "Lanczos could not build a start vector: the mass matrix is zero on the free DOFs",
         ));
@@ -126,39 +218,41 @@ pub fn lanczos(
     for _restart in 0..=p.max_restarts {
         let mut ncur = ncv;
         for j in k0..ncv {
-            op(&basis[j], &mut w);
+            op(&basis.v[j], &mut w);
             op_count += 1;
-            let (c, mut beta) = orthogonalise(&mut w, &basis, locked, m, &mut mw);
+            let (c, mut beta) = orthogonalise(&mut w, &basis, &locked, m, &mut mw);
             for (i, ci) in c.iter().enumerate() {
                 h[i][j] = *ci;
             }
             let scale = c.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-            if beta.is_nan() || beta <= 1e-13 * scale {
+            let next = if beta.is_nan() || beta <= 1e-13 * scale {
                 // Invariant subspace: continue with a fresh direction, coupling 0.
                 beta = 0.0;
-                let mut fresh = false;
+                let mut fresh = None;
                 for _attempt in 0..5 {
                     let r = random_vector(n, &mut seed);
                     op(&r, &mut w);
                     op_count += 1;
-                    let (_, nrm) = orthogonalise(&mut w, &basis, locked, m, &mut mw);
+                    let (_, nrm) = orthogonalise(&mut w, &basis, &locked, m, &mut mw);
                     if nrm > 1e-13 * scale && nrm.is_finite() {
-                        w.iter_mut().for_each(|x| *x /= nrm);
-                        fresh = true;
+                        fresh = Some((scaled(&w, nrm), scaled(&mw, nrm)));
                         break;
                     }
                 }
-                if !fresh {
-                    // The whole reachable space is spanned: stop with what we have.
-                    ncur = j + 1;
-                    h[j + 1][j] = 0.0;
-                    break;
+                match fresh {
+                    Some(pair) => pair,
+                    None => {
+                        // The whole reachable space is spanned: stop with what we have.
+                        ncur = j + 1;
+                        h[j + 1][j] = 0.0;
+                        break;
+                    }
                 }
             } else {
-                w.iter_mut().for_each(|x| *x /= beta);
-            }
+                (scaled(&w, beta), scaled(&mw, beta))
+            };
             h[j + 1][j] = beta;
-            basis.push(w.clone());
+            basis.push(next.0, next.1);
         }
 
         // Ritz pairs of the symmetric part of the projected matrix.
@@ -187,24 +281,23 @@ pub fn lanczos(
         };
         // New basis = V S[:, kept].
         let kept: Vec<usize> = order[..keep].to_vec();
-        let mut new_basis: Vec<Vec<f64>> = Vec::with_capacity(ncv + 1);
-        for &c in &kept {
-            let mut y = vec![0.0; n];
-            for (r, v) in basis.iter().take(ncur).enumerate() {
-                axpy(s[(r, c)], v, &mut y);
-            }
-            new_basis.push(y);
-        }
+        let new_vectors: Vec<Vec<f64>> = kept
+            .iter()
+            .map(|&c| combination(&basis.v, ncur, |r| s[(r, c)], n))
+            .collect();
         if converged || exhausted {
             return Ok(LanczosOut {
                 theta: kept.iter().map(|&c| theta[c]).collect(),
-                vectors: new_basis,
+                vectors: new_vectors,
                 op_count,
             });
         }
         // The residual direction continues the Krylov space.
-        new_basis.push(basis[ncur].clone());
-        basis = new_basis;
+        let mut restarted = MVectors::of(&new_vectors, m);
+        let last = basis.v.swap_remove(ncur);
+        let last_m = basis.mv.swap_remove(ncur);
+        restarted.push(last, last_m);
+        basis = restarted;
         for row in h.iter_mut() {
             row.iter_mut().for_each(|x| *x = 0.0);
         }

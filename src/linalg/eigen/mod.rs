@@ -18,6 +18,7 @@ pub mod dense;
 pub mod lanczos;
 pub mod norm;
 pub mod shift;
+pub mod sliced;
 pub mod sym;
 
 use self::dense::solve_dense;
@@ -49,6 +50,13 @@ const DENSE_RIGID_SHIFT: f64 = 1e-2;
 
 /// Largest number of Lanczos passes (each one deflating the modes already found).
 const MAX_PASSES: usize = 8;
+
+/// PLUS_PETITE of more modes than twice this is computed slice by slice ([`sliced`]):
+/// each slice, an interval of ω² holding about this many modes, gets its own shift and a
+/// Krylov basis of ~2.4× its modes. One basis for every mode would cost O(n·nev²) in
+/// orthogonalisation and hold 2·nev + 20 vectors of n (measured on a 30 000-DOF bar asked
+/// for 300 modes: 42 s, and its residuals reached 1e-4); slices cost O(n·nev·slice).
+pub const SLICE_MODES: usize = 40;
 
 /// Which modes to compute (CALC_MODES / OPTION and CALC_FREQ).
 #[derive(Clone, Debug, PartialEq)]
@@ -393,7 +401,7 @@ fn factor_near(
 }
 
 /// Number of eigenvalues strictly below σ (Sylvester).
-fn count_below(
+pub(crate) fn count_below(
     k: &SymSparse,
     m: &SymSparse,
     sigma: f64,
@@ -449,6 +457,26 @@ fn lanczos_pass(
 }
 
 fn lanczos_modes(
+    k: &SymSparse,
+    m: &SymSparse,
+    req: &ModeRequest,
+    opts: &EigenOptions,
+    scale: f64,
+) -> Result<ModeSet> {
+    if let ModeRequest::Smallest { n } = *req {
+        if n > 2 * SLICE_MODES {
+            // A slice boundary inside a cluster of nearly equal frequencies can defeat the
+            // slices' counts; one shift with deflated passes then finds them, slowly.
+            if let Ok(set) = sliced::smallest(k, m, n, opts, scale) {
+                return Ok(set);
+            }
+        }
+    }
+    one_shift_modes(k, m, req, opts, scale)
+}
+
+/// The requested modes from one shift (and deflated passes at that shift).
+fn one_shift_modes(
     k: &SymSparse,
     m: &SymSparse,
     req: &ModeRequest,

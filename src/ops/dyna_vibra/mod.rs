@@ -1,10 +1,14 @@
 //! DYNA_VIBRA (TYPE_CALCUL='TRAN'): a transient response with localized shocks, on a modal
 //! basis (GENE: result `tran_gene`) or on the physical DOFs (PHYS: result `dyna_trans`).
 //! Glue only: the keywords are read into the integrator's inputs (`space.rs`, `shocks.rs`,
-//! here), the integration is `crate::transient`, the tables are written by `output.rs`.
+//! here), the integration is `crate::transient`, the tables are written by `output.rs`
+//! (the shocks' internal variables as columns: `memory.rs`); a start from a stored
+//! instant and reuse= are `restart.rs`.
 
 mod basis_check;
+mod memory;
 mod output;
+mod restart;
 mod shocks;
 mod space;
 mod supports;
@@ -15,8 +19,8 @@ use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::store::{function as function_store, model};
 use crate::transient::{
-    contact_pulsations, integrate, optimized_tangential_damping, Archive, Forcing, Scheme, Shock,
-    Structure, TimeGrid, VelocityFloor,
+    contact_pulsations, integrate_from, optimized_tangential_damping, Archive, Forcing, Scheme,
+    Shock, Structure, TimeGrid, VelocityFloor,
 };
 use space::Space;
 
@@ -24,7 +28,11 @@ pub(crate) use output::field_header;
 pub use shocks::ShockName;
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
-    let name = ctx.result_name()?.to_string();
+    let reuse = ctx.reuse.map(str::to_string);
+    let name = match &reuse {
+        Some(r) => r.clone(),
+        None => ctx.result_name()?.to_string(),
+    };
     let (space, structure) = Space::read(ctx, args)?;
     let mesh = model::load_mesh(ctx.store, space.mesh())?;
     let shocks::CallShocks {
@@ -54,19 +62,26 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     };
     basis_check::check(ctx, &space, &shocks, &names, veri)?;
     let n = space.size();
-    let (q0, v0) = initial_state(ctx, args, &space, n)?;
+    let start = initial_state(ctx, args, &space, &names, reuse.as_deref(), n)?;
+    if let Some(r) = &start.restart {
+        // The shocks go on from their internal variables at that instant.
+        for (shock, sample) in shocks.iter_mut().zip(&r.samples) {
+            shock.state = sample.state;
+        }
+    }
     let forcing = excitations(ctx, args, &space)?;
-    let times = time_grid(args)?;
+    let times = time_grid(args, start.t0)?;
     let scheme = scheme(args, &times)?;
     let archive = archive(args, &times)?;
     check_step(ctx, &scheme, &times, structure.as_ref(), &shocks, &names)?;
     let progress = Progress::new(ctx.progress, 1000, "DYNA_VIBRA", "‰ of the interval");
     let mut done = 0u64;
-    let trajectory = integrate(
+    let mut trajectory = integrate_from(
         structure.as_ref(),
         &mut shocks,
         &forcing,
-        (&q0, &v0),
+        (&start.q, &start.v),
+        start.restart.as_ref().map(|r| r.a.as_slice()),
         scheme,
         times,
         &archive,
@@ -80,6 +95,21 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     )
     .map_err(|e| in_operator(e.into()))?;
     progress.finish();
+    let mut continued = None;
+    if let Some(r) = start.restart {
+        // The row of the start instant is the stored one (the shocks as stored there).
+        if trajectory.t.first().is_some_and(|&t| t == r.t0) {
+            for (series, sample) in trajectory.shocks.iter_mut().zip(&r.samples) {
+                if let Some(first) = series.first_mut() {
+                    *first = *sample;
+                }
+            }
+        }
+        if let Some(history) = r.history {
+            continued = Some((r.index + 1, r.t0));
+            trajectory = restart::continued(history, trajectory, r.t0);
+        }
+    }
     if let Some(&t) = trajectory.steps_forced.first() {
         let msg = format!(
             "{} step(s) of ADAPT_ORDRE were kept after NMAX_ITER_PAS tries although still too \
@@ -94,10 +124,15 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     }
     let stored: Vec<_> = supports.into_iter().map(|s| s.stored).collect();
     output::store(ctx, &name, &space, &names, &stored, &trajectory)?;
+    if let Some((kept, t0)) = continued {
+        ctx.say(&format!(
+            "DYNA_VIBRA {name} (reuse): its first {kept} instants kept, up to {t0:e} s; the run goes on from there"
+        ))?;
+    }
     ctx.say(&format!(
         "DYNA_VIBRA {name}: {} archived instants from {:e} to {:e} s, {} steps ({} rejected), {} shock(s), {} contact change(s) located",
         trajectory.t.len(),
-        times.t0,
+        trajectory.t.first().copied().unwrap_or(times.t0),
         times.t_end,
         trajectory.steps_taken,
         trajectory.steps_rejected,
@@ -238,26 +273,81 @@ pub(crate) fn damping_ratios(args: &Args, n: usize) -> Result<Vec<f64>> {
         .collect())
 }
 
+/// The start of the run: q0, v0, and from a stored result its instant (where the run
+/// starts) and, on a modal basis, the rest of the stored state (`restart.rs`).
+struct Start {
+    q: Vec<f64>,
+    v: Vec<f64>,
+    t0: Option<f64>,
+    restart: Option<restart::Restart>,
+}
+
 fn initial_state(
     ctx: &OpContext<'_>,
     args: &Args,
     space: &Space,
+    names: &[ShockName],
+    reuse: Option<&str>,
     n: usize,
-) -> Result<(Vec<f64>, Vec<f64>)> {
-    let mut q0 = vec![0.0; n];
-    let mut v0 = vec![0.0; n];
-    if let Some(init) = args.fact("ETAT_INIT") {
-        if init.has("RESULTAT") {
-            return space.state_of_result(ctx, init);
+) -> Result<Start> {
+    let init = args.fact("ETAT_INIT");
+    let from = init.and_then(|i| i.concept("RESULTAT").map(|c| (i, c.name.clone())));
+    if let Some(r) = reuse {
+        // The catalog checks it for DYNA_VIBRA; DYNA_TRAN_MODAL comes here renamed.
+        if from.as_ref().map(|f| f.1.as_str()) != Some(r) {
+            return Err(Error::validation(format!(
+                "reuse={r} needs ETAT_INIT/RESULTAT={r}: the reused result is the one the run \
+                 goes on from"
+            ))
+            .keyword("DYNA_VIBRA/ETAT_INIT/RESULTAT"));
         }
-        if init.has("DEPL") {
-            q0 = space.vector(ctx, init, "DEPL")?;
-        }
-        if init.has("VITE") {
-            v0 = space.vector(ctx, init, "VITE")?;
+        if matches!(space, Space::Phys { .. }) {
+            return Err(Error::validation(format!(
+                "reuse={r}: a run on the physical DOFs cannot extend a result; reuse= goes on \
+                 with a result on a modal basis (BASE_CALCUL='GENE')"
+            ))
+            .keyword("DYNA_VIBRA/ETAT_INIT/RESULTAT")
+            .hint("assign the continued run to a new name"));
         }
     }
-    Ok((q0, v0))
+    if let Some((init, _)) = from {
+        return match space {
+            Space::Gene { .. } => {
+                let r = restart::read(ctx, init, space, names, reuse.is_some())?;
+                Ok(Start {
+                    q: r.q.clone(),
+                    v: r.v.clone(),
+                    t0: Some(r.t0),
+                    restart: Some(r),
+                })
+            }
+            Space::Phys { .. } => {
+                let (q, v, t0) = space.state_of_result(ctx, init)?;
+                Ok(Start {
+                    q,
+                    v,
+                    t0: Some(t0),
+                    restart: None,
+                })
+            }
+        };
+    }
+    let mut q = vec![0.0; n];
+    let mut v = vec![0.0; n];
+    if let Some(init) = init {
+        if init.has("DEPL") {
+            q = space.vector(ctx, init, "DEPL")?;
+        }
+        if init.has("VITE") {
+            v = space.vector(ctx, init, "VITE")?;
+        }
+    }
+    Ok(Start {
+        q,
+        v,
+        t0: None,
+        restart: None,
+    })
 }
 
 fn excitations(ctx: &OpContext<'_>, args: &Args, space: &Space) -> Result<Vec<Forcing>> {
@@ -316,9 +406,11 @@ fn scheme(args: &Args, times: &TimeGrid) -> Result<Scheme> {
         Scheme::Adaptive(o) => {
             o.max_steps = most;
             o.tolerance = st.req_real("TOLERANCE")?;
+            o.alpha = st.req_real("ALPHA")?;
             o.pas_mini = st.real("PAS_MINI");
             o.pas_maxi = st.real("PAS_MAXI");
             o.nmax_iter_pas = usize::try_from(st.req_int("NMAX_ITER_PAS")?).unwrap_or(1);
+            o.locate_contacts = st.req_text("LOCALISATION_CHOC")? == "OUI";
         }
         Scheme::Adapt(o) => {
             o.max_steps = most;
@@ -365,9 +457,11 @@ fn scheme(args: &Args, times: &TimeGrid) -> Result<Scheme> {
     Ok(scheme)
 }
 
-fn time_grid(args: &Args) -> Result<TimeGrid> {
+/// INCREMENT's interval and step; `start`: the instant of ETAT_INIT's RESULTAT, where the
+/// run starts whatever INST_INIT says (as Code_Aster's `mdptem` does).
+fn time_grid(args: &Args, start: Option<f64>) -> Result<TimeGrid> {
     let inc = args.req_fact("INCREMENT")?;
-    let grid = match inc.reals("LIST_INST") {
+    let mut grid = match inc.reals("LIST_INST") {
         Some(list) => uniform_grid(inc, &list)?,
         None => TimeGrid {
             t0: inc.req_real("INST_INIT")?,
@@ -375,6 +469,17 @@ fn time_grid(args: &Args) -> Result<TimeGrid> {
             dt: inc.req_real("PAS")?,
         },
     };
+    if let Some(t0) = start {
+        grid.t0 = t0;
+        if grid.t_end.is_nan() || grid.t_end <= t0 {
+            return Err(Error::validation(format!(
+                "INST_FIN = {:e} is not after {t0:e}, the instant of ETAT_INIT/RESULTAT the run \
+                 starts from",
+                grid.t_end
+            ))
+            .keyword(inc.key_path("INST_FIN")));
+        }
+    }
     if grid.t_end <= grid.t0 || grid.t_end.is_nan() || grid.t0.is_nan() {
         return Err(Error::validation(format!(
             "INST_FIN = {:e} is not after INST_INIT = {:e}",

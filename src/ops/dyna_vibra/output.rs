@@ -2,6 +2,7 @@
 //! free DOFs' fields (PHYS, `dyna_trans`, the layout REST_MODE_NONL writes), and the shocks'
 //! samples in `<name>_CHOC` (store/tran_gene.rs).
 
+use super::memory;
 use super::shocks::ShockName;
 use super::space::Space;
 use crate::error::Result;
@@ -88,6 +89,7 @@ pub fn store(
                     node1: s.node1.clone(),
                     node2: s.node2.clone(),
                     obstacle: s.obstacle.clone(),
+                    relation: s.relation.clone(),
                 })
                 .collect(),
             shock_table,
@@ -163,6 +165,19 @@ fn shock_samples(name: &str, shocks: &[ShockName], tr: &Trajectory) -> Result<Ta
     for p in ShockSample::NAMES {
         t.add_column(p, ColKind::R)?;
     }
+    // The internal variables a restart goes on from, for the laws that have them.
+    let friction = shocks.iter().any(|s| s.friction);
+    let buckling = shocks.iter().any(|s| s.relation == "FLAMBAGE");
+    if friction {
+        for p in tran_gene::FRICTION_MEMORY {
+            t.add_column(p, ColKind::R)?;
+        }
+    }
+    if buckling {
+        for p in tran_gene::BUCKLING_MEMORY {
+            t.add_column(p, ColKind::R)?;
+        }
+    }
     for (i, time) in tr.t.iter().enumerate() {
         for (s, shock) in shocks.iter().enumerate() {
             let sample = &tr.shocks[s][i];
@@ -177,6 +192,12 @@ fn shock_samples(name: &str, shocks: &[ShockName], tr: &Trajectory) -> Result<Ta
                     .iter()
                     .map(|p| Cell::R(sample.get(p).unwrap_or(f64::NAN))),
             );
+            if friction {
+                row.extend(memory::friction(&sample.state).map(Cell::R));
+            }
+            if buckling {
+                row.extend(memory::buckling(&sample.state).map(Cell::R));
+            }
             t.push_row(row)?;
         }
     }

@@ -1,5 +1,6 @@
-//! DYNA_VIBRA's shocks: each occurrence of COMPORTEMENT (RELATION='DIS_CHOC') or CHOC read
-//! into the integrator's [`Shock`], with the names the result gives it.
+//! DYNA_VIBRA's shocks: each occurrence of COMPORTEMENT (RELATION='DIS_CHOC' or
+//! 'FLAMBAGE'), or of CHOC and FLAMBAGE (Code_Aster 13.x), read into the integrator's
+//! [`Shock`], with the names the result gives it.
 
 use super::space::Space;
 use crate::args::Args;
@@ -8,7 +9,28 @@ use crate::mesh::Mesh;
 use crate::ops::common::nodes::{one_node_of_group, OneNode};
 use crate::ops::OpContext;
 use crate::store::gene;
-use crate::transient::{Friction, ObstacleKind, Shock, ShockSpec};
+use crate::transient::{Buckling, BucklingSpec, Friction, ObstacleKind, Shock, ShockSpec};
+
+/// Code_Aster's ENFO_FL when a file cannot give it (the FLAMBAGE factor of 13.x): the
+/// sudden drop from FNOR_CRIT to FNOR_POST_FL.
+const SUDDEN_DROP: f64 = 1e-20;
+
+/// The relation of a shock: RELATION of COMPORTEMENT, or the factor of 13.x.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Relation {
+    DisChoc,
+    Flambage,
+}
+
+impl Relation {
+    /// Code_Aster's RELATION name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Relation::DisChoc => "DIS_CHOC",
+            Relation::Flambage => "FLAMBAGE",
+        }
+    }
+}
 
 /// What the result says of a shock.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -19,6 +41,11 @@ pub struct ShockName {
     pub node2: Option<String>,
     /// The obstacle's TYPE.
     pub obstacle: String,
+    /// RELATION: 'DIS_CHOC' or 'FLAMBAGE'.
+    pub relation: String,
+    /// Whether it has friction (its stick/slip memory is stored).
+    #[serde(default)]
+    pub friction: bool,
 }
 
 /// The shocks of a call, in order, with their names.
@@ -31,16 +58,12 @@ pub struct CallShocks {
 
 /// The shocks of the call.
 pub fn read(ctx: &OpContext<'_>, args: &Args, space: &Space, mesh: &Mesh) -> Result<CallShocks> {
-    let occurrences = if args.has("COMPORTEMENT") {
-        args.facts_or_empty("COMPORTEMENT")
-    } else {
-        args.facts_or_empty("CHOC")
-    };
+    let occurrences = occurrences(args)?;
     let mut shocks = Vec::with_capacity(occurrences.len());
     let mut names = Vec::with_capacity(occurrences.len());
     let mut ignored = Vec::new();
-    for occ in occurrences {
-        let (shock, name, dropped) = one(ctx, occ, space, mesh)?;
+    for (occ, relation) in occurrences {
+        let (shock, name, dropped) = one(ctx, occ, relation, space, mesh)?;
         if let Some(n2) = dropped {
             ignored.push((name.intitule.clone(), n2));
         }
@@ -65,15 +88,65 @@ pub fn read(ctx: &OpContext<'_>, args: &Args, space: &Space, mesh: &Mesh) -> Res
     })
 }
 
+/// The occurrences of the call's shocks with their relation, in the result's order:
+/// COMPORTEMENT's as written, or (13.x) the CHOC ones then the FLAMBAGE ones, as
+/// Code_Aster orders them.
+pub fn occurrences(args: &Args) -> Result<Vec<(&Args, Relation)>> {
+    if args.has("COMPORTEMENT") {
+        return args
+            .facts_or_empty("COMPORTEMENT")
+            .iter()
+            .map(|occ| {
+                Ok(match occ.req_text("RELATION")? {
+                    "FLAMBAGE" => (occ, Relation::Flambage),
+                    _ => (occ, Relation::DisChoc),
+                })
+            })
+            .collect();
+    }
+    let chocs = args.facts_or_empty("CHOC").iter();
+    let flambages = args.facts_or_empty("FLAMBAGE").iter();
+    Ok(chocs
+        .map(|o| (o, Relation::DisChoc))
+        .chain(flambages.map(|o| (o, Relation::Flambage)))
+        .collect())
+}
+
+/// The buckling law of a FLAMBAGE occurrence (COMPORTEMENT with RELATION='FLAMBAGE', or the
+/// FLAMBAGE factor of 13.x, which has no damping, plateau or post-buckling lists).
+fn buckling_law(occ: &Args) -> Result<Buckling> {
+    let list = |key: &str| occ.reals(key).unwrap_or_default();
+    let spec = BucklingSpec {
+        rigi_nor: occ.req_real("RIGI_NOR")?,
+        amor_nor: occ.real("AMOR_NOR").unwrap_or(0.0),
+        fnor_crit: occ.req_real("FNOR_CRIT")?,
+        fnor_post_fl: occ.req_real("FNOR_POST_FL")?,
+        enfo_fl: occ.real("ENFO_FL").unwrap_or(SUDDEN_DROP),
+        larg_plat: occ.real("LARG_PLAT").unwrap_or(0.0),
+        amor_fl: occ.real("AMOR_FL"),
+        depl_post_fl: list("DEPL_POST_FL"),
+        rigi_post_fl: list("RIGI_POST_FL"),
+        amor_post_fl: list("AMOR_POST_FL"),
+        rigi_nor_post_fl: occ.real("RIGI_NOR_POST_FL"),
+        damping_in_criterion: occ.text("CRIT_AMOR") != Some("EXCLUS"),
+    };
+    Buckling::new(&spec).map_err(|e| in_occurrence(e.into(), occ))
+}
+
 /// One occurrence: the shock, its name, and the second node it ignores (NOEUD_2 given with
 /// a one-node obstacle: Code_Aster's shock law takes a second node for the BI_ obstacles
 /// only, and applies no force to it otherwise).
 fn one(
     ctx: &OpContext<'_>,
     occ: &Args,
+    relation: Relation,
     space: &Space,
     mesh: &Mesh,
 ) -> Result<(Shock, ShockName, Option<String>)> {
+    let buckling = match relation {
+        Relation::Flambage => Some(buckling_law(occ)?),
+        Relation::DisChoc => None,
+    };
     let obstacle_name = occ.req_concept("OBSTACLE")?.name.clone();
     let def = gene::load_obstacle(ctx.store, &obstacle_name)?;
     let obstacle = ObstacleKind::from_name(&def.kind).ok_or_else(|| {
@@ -121,7 +194,8 @@ fn one(
         Some(n) => Some(rows(n, "NOEUD_2")?),
         None => None,
     };
-    let friction = match occ.req_text("FROTTEMENT")? {
+    let friction = match occ.text("FROTTEMENT").unwrap_or("NON") {
+        _ if buckling.is_some() => Friction::None,
         "COULOMB" => Friction::Coulomb {
             mu: occ.req_real("COULOMB")?,
         },
@@ -150,12 +224,22 @@ fn one(
         dist1: occ.req_real("DIST_1")?,
         dist2: occ.req_real("DIST_2")?,
         rigi_nor: occ.req_real("RIGI_NOR")?,
-        amor_nor: occ.req_real("AMOR_NOR")?,
-        rigi_tan: occ.req_real("RIGI_TAN")?,
+        amor_nor: match &buckling {
+            Some(law) => law.amor_nor,
+            None => occ.req_real("AMOR_NOR")?,
+        },
+        rigi_tan: match &buckling {
+            Some(_) => 0.0,
+            None => occ.req_real("RIGI_TAN")?,
+        },
         amor_tan: occ.real("AMOR_TAN").unwrap_or(0.0),
         friction,
+        friction_along_x_only: friction.active() && occ.text("UNIDIRECTIONNEL") == Some("OUI"),
     };
-    let shock = Shock::new(spec, rows1, rows2).map_err(|e| in_occurrence(e.into(), occ))?;
+    let mut shock = Shock::new(spec, rows1, rows2).map_err(|e| in_occurrence(e.into(), occ))?;
+    if let Some(law) = buckling {
+        shock = shock.with_buckling(law);
+    }
     let intitule = occ
         .text("INTITULE")
         .map(str::to_string)
@@ -170,6 +254,8 @@ fn one(
             node1,
             node2,
             obstacle: def.kind,
+            relation: relation.name().to_string(),
+            friction: friction.active(),
         },
         dropped,
     ))
@@ -202,7 +288,10 @@ pub fn in_occurrence(mut e: Error, occ: &Args) -> Error {
     let key = e
         .keyword
         .as_deref()
-        .and_then(|k| k.strip_prefix("CHOC/"))
+        .and_then(|k| {
+            k.strip_prefix("CHOC/")
+                .or_else(|| k.strip_prefix("FLAMBAGE/"))
+        })
         .map(|k| occ.key_path(k));
     if let Some(k) = key {
         e.keyword = Some(k);

@@ -11,7 +11,7 @@ use crate::ops::common::gene::numbering_and_basis;
 use crate::ops::common::instants::{by_order, matching};
 use crate::ops::proj_vect_base::on_numbering;
 use crate::ops::OpContext;
-use crate::store::{dyna_trans as dyna_store, gene, matrix, tran_gene};
+use crate::store::{dyna_trans as dyna_store, gene, matrix};
 use crate::transient::{DenseMatrix, DenseStructure, NodeRows, SparseStructure, Structure};
 use std::collections::HashMap;
 
@@ -122,7 +122,11 @@ impl Space {
         let c = occ.req_concept(key)?;
         let kw = occ.key_path(key);
         match self {
-            Space::Gene { numbering, .. } => {
+            Space::Gene {
+                numbering,
+                basis,
+                modes,
+            } => {
                 if c.ty == "cham_no_sdaster" {
                     return Err(Error::validation(format!(
                         "{} is a nodal field; BASE_CALCUL='GENE' takes a generalized vector",
@@ -132,7 +136,10 @@ impl Space {
                     .hint("project it with PROJ_VECT_BASE"));
                 }
                 let v = gene::load_vector(ctx.store, &c.name)?;
-                if v.meta.numbering != *numbering {
+                // Another numbering of the same basis (NUME_DDL_GENE next to PROJ_BASE's
+                // own) gives the same coordinates: Code_Aster checks the basis and the size.
+                let same_basis = v.meta.basis == *basis && v.meta.size == modes.modes.len();
+                if v.meta.numbering != *numbering && !same_basis {
                     return Err(Error::input(format!(
                         "{} is numbered by {}, the matrices by {numbering}",
                         c.name, v.meta.numbering
@@ -171,39 +178,20 @@ impl Space {
 
 impl Space {
     /// The displacement and velocity of ETAT_INIT's RESULTAT at its NUME_ORDRE or
-    /// INST_INIT (by default its last instant), in this space's coordinates.
+    /// INST_INIT (by default its last instant), in this space's coordinates, and that
+    /// instant, on the physical DOFs (a modal basis restarts with its acceleration and its
+    /// shocks' internal variables: `restart.rs`).
     pub fn state_of_result(
         &self,
         ctx: &OpContext<'_>,
         init: &Args,
-    ) -> Result<(Vec<f64>, Vec<f64>)> {
+    ) -> Result<(Vec<f64>, Vec<f64>, f64)> {
         let c = init.req_concept("RESULTAT")?;
         let kw = init.key_path("RESULTAT");
         match self {
-            Space::Gene {
-                numbering, modes, ..
-            } => {
-                let payload = tran_gene::load_payload(ctx.store, &c.name)?;
-                if payload.numbering != *numbering {
-                    return Err(Error::input(format!(
-                        "{} is computed on {}, this run on {numbering}",
-                        c.name,
-                        if payload.numbering.is_empty() {
-                            "the physical DOFs"
-                        } else {
-                            &payload.numbering
-                        }
-                    ))
-                    .keyword(kw));
-                }
-                let n = modes.modes.len();
-                let coords = tran_gene::load_coordinates(ctx.store, &c.name, n)?;
-                let i = instant(init, &coords.t)?;
-                Ok((
-                    coords.q[i * n..(i + 1) * n].to_vec(),
-                    coords.v[i * n..(i + 1) * n].to_vec(),
-                ))
-            }
+            Space::Gene { .. } => Err(Error::internal(
+                "a start on a modal basis is read by dyna_vibra::restart",
+            )),
             Space::Phys {
                 numbering, free, ..
             } => {
@@ -225,6 +213,7 @@ impl Space {
                 }
                 let times = dyna_store::instants(ctx.store, &c.name)?;
                 let i = instant(init, &times)?;
+                let t0 = times[i];
                 let rows =
                     dyna_store::displacements_and_velocities(ctx.store, &c.name, i as i64 + 1)?;
                 let index = numbering.index_map();
@@ -252,7 +241,7 @@ impl Space {
                     q.push(d);
                     v.push(w);
                 }
-                Ok((q, v))
+                Ok((q, v, t0))
             }
         }
     }
@@ -260,7 +249,7 @@ impl Space {
 
 /// The index among the stored instants `times` that NUME_ORDRE or INST_INIT of `init`
 /// names; the last one by default.
-fn instant(init: &Args, times: &[f64]) -> Result<usize> {
+pub(super) fn instant(init: &Args, times: &[f64]) -> Result<usize> {
     if times.is_empty() {
         return Err(
             Error::input("the result has no stored instant").keyword(init.key_path("RESULTAT"))

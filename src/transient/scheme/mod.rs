@@ -1,7 +1,8 @@
 //! The time schemes by Code_Aster's names (SCHEMA_TEMPS/SCHEMA), one file each:
 //! DIFF_CENTRE (diff_centre.rs), NEWMARK (newmark.rs), and the adaptive explicit
-//! Runge–Kutta pairs RUNGE_KUTTA_54 / RUNGE_KUTTA_32 (runge_kutta.rs, their tableaux; the
-//! adaptive loop with event location is `transient/adaptive.rs`).
+//! Runge–Kutta pairs RUNGE_KUTTA_54 / RUNGE_KUTTA_32 (runge_kutta.rs, their tableaux;
+//! Code_Aster's step, step control and driver in `transient/rk_loop.rs`, and aster-nl's
+//! loop with event location, LOCALISATION_CHOC='OUI', in `transient/adaptive.rs`).
 //!
 //! ADAPT_ORDRE1 and ADAPT_ORDRE2 are Code_Aster's own adaptive schemes (adapt.rs, their
 //! loop `transient/adapt_loop.rs`), and so is DEVOGE (Code_Aster's adaptive Devogelaere–Fu
@@ -25,21 +26,33 @@ pub enum RkPair {
     BogackiShampine32,
 }
 
-/// Settings of the adaptive schemes (SCHEMA_TEMPS keywords).
+/// Settings of RUNGE_KUTTA_54 / RUNGE_KUTTA_32 (SCHEMA_TEMPS keywords).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AdaptiveOptions {
     pub pair: RkPair,
-    /// TOLERANCE (Code_Aster's default 1e-5): the local error of a step, relative to the
-    /// largest |q| (resp. |v|) met so far, per component, in the max norm (floored near
-    /// rest, adaptive.rs).
+    /// TOLERANCE (Code_Aster's default 1e-5). Code_Aster's algorithm (rk_loop.rs): the
+    /// relative tolerance of its error estimate, per unknown, against the start's and the
+    /// step's size (+ ALPHA). With `locate_contacts` (adaptive.rs): the local error of a
+    /// step, relative to the largest |q| (resp. |v|) met so far, per component, in the max
+    /// norm (floored near rest).
     pub tolerance: f64,
-    /// PAS_MINI: below it the integration stops with an error (default: 1e-12 of the
-    /// interval).
+    /// ALPHA (default 0): added to the sizes of Code_Aster's error scales (rk_loop.rs);
+    /// no effect with `locate_contacts`.
+    pub alpha: f64,
+    /// PAS_MINI: below it the integration stops with an error (default: 1e-10 of the
+    /// first step, Code_Aster's; with `locate_contacts`, 1e-12 of the interval).
+    /// PAS_MINI = PAS_MAXI makes Code_Aster's step fixed (PAS, unjudged).
     pub pas_mini: Option<f64>,
-    /// PAS_MAXI (default: the interval).
+    /// PAS_MAXI (default: 1e10 times the first step, Code_Aster's; with
+    /// `locate_contacts`, the interval).
     pub pas_maxi: Option<f64>,
-    /// NMAX_ITER_PAS: consecutive rejections of one step allowed (Code_Aster's default 16).
+    /// NMAX_ITER_PAS: consecutive rejections of one step allowed with `locate_contacts`
+    /// (default 16); Code_Aster's algorithm has no such limit.
     pub nmax_iter_pas: usize,
+    /// LOCALISATION_CHOC='OUI' (aster-nl extension): aster-nl's embedded pairs with their
+    /// own error control and a step ending at every contact onset and release
+    /// (adaptive.rs) instead of Code_Aster's algorithm (rk_loop.rs, the default).
+    pub locate_contacts: bool,
     /// The most steps (accepted and rejected) before a runaway integration is stopped.
     pub max_steps: usize,
 }
@@ -49,9 +62,11 @@ impl AdaptiveOptions {
         AdaptiveOptions {
             pair,
             tolerance: 1e-5,
+            alpha: 0.0,
             pas_mini: None,
             pas_maxi: None,
             nmax_iter_pas: 16,
+            locate_contacts: false,
             max_steps: 50_000_000,
         }
     }
@@ -66,7 +81,8 @@ pub enum Scheme {
     /// Newmark (BETA, GAMMA; defaults 0.25, 0.5: average acceleration), shock forces
     /// iterated at the end of the step (newmark.rs).
     Newmark { beta: f64, gamma: f64 },
-    /// Adaptive explicit Runge–Kutta with event location at contact changes.
+    /// RUNGE_KUTTA_54 / RUNGE_KUTTA_32: Code_Aster's adaptive explicit Runge–Kutta
+    /// (rk_loop.rs), or aster-nl's with event location at contact changes (adaptive.rs).
     Adaptive(AdaptiveOptions),
     /// Code_Aster's ADAPT_ORDRE1 / ADAPT_ORDRE2: explicit, the step set by the apparent
     /// frequency of the motion (adapt.rs).

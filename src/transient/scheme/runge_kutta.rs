@@ -1,7 +1,8 @@
 //! The embedded explicit Runge–Kutta pairs of RUNGE_KUTTA_54 (Dormand–Prince 5(4)) and
 //! RUNGE_KUTTA_32 (Bogacki–Shampine 3(2)): their Butcher tableaux, both FSAL (the last
 //! stage is the derivative at the new state), the solution propagated with the higher
-//! order and the difference of the two orders as the error estimate.
+//! order and the difference of the two orders as the error estimate; and Code_Aster's
+//! error weights and step-rule exponent of each ([`aster_control`], for `rk_loop.rs`).
 
 use super::RkPair;
 
@@ -106,6 +107,21 @@ pub(crate) fn tableau(pair: RkPair) -> &'static Tableau {
     }
 }
 
+/// Code_Aster's error weights of Bogacki–Shampine, b̂ − b as its `intruku32` writes them
+/// (the opposite of [`BS_E`], each fraction rounded once).
+const BS_ASTER_E: [f64; 4] = [5.0 / 72.0, -1.0 / 12.0, -1.0 / 9.0, 1.0 / 8.0];
+
+/// Code_Aster's step control of a pair (`rk_loop.rs`): its error weights (one per stage,
+/// the last one weighting the derivative at the new state) and the exponent p of its rule
+/// (thresholds (0.9/5)^p and (0.9/0.2)^p, factor 0.9·err^(−1/p)): 4 for RUNGE_KUTTA_32,
+/// 6 for RUNGE_KUTTA_54, as Code_Aster has them.
+pub(crate) fn aster_control(pair: RkPair) -> (&'static [f64], f64) {
+    match pair {
+        RkPair::DormandPrince54 => (&DP_E, 6.0),
+        RkPair::BogackiShampine32 => (&BS_ASTER_E, 4.0),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -124,6 +140,17 @@ mod tests {
             // FSAL: the last row is b.
             for (x, y) in t.a[t.stages - 1].iter().zip(b) {
                 assert_eq!(x, y);
+            }
+        }
+        // Code_Aster's weights are the pairs' differences (up to sign), to rounding.
+        for (pair, t) in [
+            (RkPair::DormandPrince54, &DORMAND_PRINCE),
+            (RkPair::BogackiShampine32, &BOGACKI_SHAMPINE),
+        ] {
+            let (w, _) = aster_control(pair);
+            assert_eq!(w.len(), t.stages);
+            for (x, y) in w.iter().zip(t.e) {
+                assert!((x.abs() - y.abs()).abs() < 1e-16, "{pair:?}: {x} vs {y}");
             }
         }
     }

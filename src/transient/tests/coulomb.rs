@@ -7,9 +7,11 @@
 
 use super::*;
 
-#[test]
-fn sdnd100a_coulomb_oscillator() {
-    let (m, k, g, u0, mu) = (1.0, 1e4, 10.0, 0.85e-3, 0.1);
+/// The sdnd100a slider reduced to its one mode, run with DIFF_CENTRE over 0.3 s and
+/// archived at the half periods jπ/ω₀, j = 1..4; `one_axis`: UNIDIRECTIONNEL='OUI'
+/// (sdnd100d). Returns the trajectory and the instants.
+fn diagonal_slider(one_axis: bool, dt: f64) -> (Trajectory, Vec<f64>) {
+    let (m, k, u0, mu) = (1.0, 1e4, 0.85e-3, 0.1);
     let c = (std::f64::consts::PI / 4.0).cos();
     // Mass-normalised mode on (DX, DY): φᵀ M φ = 2c² m = 1, φᵀ K φ = k.
     let s = DenseStructure::diagonal(vec![2.0 * c * c * m], vec![2.0 * c * c * k], None).unwrap();
@@ -28,6 +30,7 @@ fn sdnd100a_coulomb_oscillator() {
         rigi_tan: 4e5,
         amor_tan: 0.0,
         friction: Friction::Coulomb { mu },
+        friction_along_x_only: one_axis,
     };
     let rows = NodeRows::from_modes(&[c], &[c], &[0.0]);
     let probe = Shock::new(spec.clone(), rows.clone(), None).unwrap();
@@ -44,7 +47,7 @@ fn sdnd100a_coulomb_oscillator() {
     let grid = TimeGrid {
         t0: 0.0,
         t_end: 0.3,
-        dt: 5e-4,
+        dt,
     };
     let traj = run(
         &s,
@@ -55,6 +58,14 @@ fn sdnd100a_coulomb_oscillator() {
         &Archive::Instants(tj.clone()),
     )
     .unwrap();
+    (traj, tj)
+}
+
+#[test]
+fn sdnd100a_coulomb_oscillator() {
+    let (m, k, g, u0, mu) = (1.0, 1e4, 10.0, 0.85e-3, 0.1);
+    let c = (std::f64::consts::PI / 4.0).cos();
+    let (traj, _) = diagonal_slider(false, 5e-4);
     let cc = mu * m * g / k;
     let reference = [
         (2.0 * cc - u0) * c,
@@ -85,4 +96,36 @@ fn sdnd100a_coulomb_oscillator() {
         );
         assert!(rel < prec, "instant {i}: {dy:e} vs {r:e} ({rel:e})");
     }
+}
+
+/// UNIDIRECTIONNEL='OUI' (Code_Aster's sdnd100d): the friction acts along the local x axis
+/// (NORM_OBST = global Y) only. The slider moves along DX = DY, so the friction force μ F_N
+/// on Y has the share cos π/4 along the motion: the amplitude drops by 2C per half period
+/// with C = μ (√2/2) m g / k instead of μ m g / k. The component across the axis (FT1) is
+/// zero at every archived instant. Tolerances as Code_Aster's file: 1e-3 relative, 5e-3 on
+/// the smallest value; the step 1e-5 keeps DIFF_CENTRE's stick/slip error below them.
+#[test]
+fn one_axis_friction_acts_along_norm_obst_only() {
+    let (m, k, g, u0, mu) = (1.0, 1e4, 10.0, 0.85e-3, 0.1);
+    let c = (std::f64::consts::PI / 4.0).cos();
+    let (traj, _) = diagonal_slider(true, 1e-5);
+    let cc = mu * c * m * g / k;
+    let reference = [
+        (2.0 * cc - u0) * c,
+        (u0 - 4.0 * cc) * c,
+        (6.0 * cc - u0) * c,
+        (u0 - 8.0 * cc) * c,
+    ];
+    for s in &traj.shocks[0] {
+        assert!(s.f_t1.abs() < 1e-12, "FT1 = {:e}", s.f_t1);
+    }
+    for (i, (&r, prec)) in reference.iter().zip([1e-3, 1e-3, 1e-3, 5e-3]).enumerate() {
+        let dy = c * traj.q_at(i)[0];
+        let rel = (dy - r).abs() / r.abs();
+        assert!(rel < prec, "instant {i}: {dy:e} vs {r:e} ({rel:e})");
+    }
+    // Without the flag the same run decays by the full μ m g / k: the flag matters.
+    let (both, _) = diagonal_slider(false, 1e-5);
+    let dy4 = c * both.q_at(3)[0];
+    assert!((dy4 - reference[3]).abs() / reference[3].abs() > 0.5);
 }

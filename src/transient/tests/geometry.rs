@@ -65,6 +65,7 @@ fn ring(cn: f64) -> Shock {
         rigi_tan: 0.0,
         amor_tan: 0.0,
         friction: Friction::None,
+        friction_along_x_only: false,
     };
     // q = (DY, DZ).
     Shock::new(
@@ -121,6 +122,7 @@ fn two_node_shock_forces_are_equal_and_opposite() {
         rigi_tan: 0.0,
         amor_tan: 0.0,
         friction: Friction::None,
+        friction_along_x_only: false,
     };
     let r1 = NodeRows::from_modes(&[0.0, 0.0], &[1.0, 0.0], &[0.0, 0.0]);
     let r2 = NodeRows::from_modes(&[0.0, 0.0], &[0.0, 1.0], &[0.0, 0.0]);

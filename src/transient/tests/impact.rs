@@ -81,15 +81,17 @@ fn newmark_converges_at_order_two_through_impacts() {
     assert!(errs[8] < 2e-4, "{errs:?}");
 }
 
+/// aster-nl's event-located RUNGE_KUTTA_54 (LOCALISATION_CHOC='OUI').
 fn rk54(tol: f64) -> Scheme {
     let Some(Scheme::Adaptive(mut o)) = Scheme::from_name("RUNGE_KUTTA_54") else {
         panic!("RUNGE_KUTTA_54 is adaptive")
     };
     o.tolerance = tol;
+    o.locate_contacts = true;
     Scheme::Adaptive(o)
 }
 
-/// RUNGE_KUTTA_54: TOLERANCE bounds the error of each step (relative to the amplitude),
+/// RUNGE_KUTTA_54 (LOCALISATION_CHOC='OUI'): TOLERANCE bounds the error of each step (relative to the amplitude),
 /// so the global error after ~500 steps is a multiple of it: measured 61, 70 and 74 ×
 /// TOLERANCE for 1e-6, 1e-8, 1e-10 (the error is proportional to TOLERANCE, as expected of
 /// the pair). Asserted: below 100 × TOLERANCE, and every contact change of the reference
@@ -123,7 +125,7 @@ fn runge_kutta_54_meets_its_tolerance_and_hits_the_events() {
     }
 }
 
-/// RUNGE_KUTTA_32: its 2nd-order estimate needs ~4 times more
+/// RUNGE_KUTTA_32 (LOCALISATION_CHOC='OUI'): its 2nd-order estimate needs ~4 times more
 /// steps and accumulates more: measured 508, 546, 551 × TOLERANCE for 1e-6, 1e-8, 1e-10.
 /// Asserted: below 1000 × TOLERANCE at 1e-8.
 #[test]
@@ -133,6 +135,7 @@ fn runge_kutta_32_meets_its_tolerance() {
     };
     assert_eq!(o.pair, RkPair::BogackiShampine32);
     o.tolerance = 1e-8;
+    o.locate_contacts = true;
     let (err, traj) = error(Scheme::Adaptive(o), 0.01);
     eprintln!("RK32: error {err:e}, {} steps", traj.steps_taken);
     assert!(err < 1e-5, "{err:e}");

@@ -189,6 +189,7 @@ fn wear_power_of_a_harmonic_slide() {
         v_n: &zero,
         v_t: [&zero, &v],
         loc: [&x, &yl, &zero],
+        sticking: None,
     };
     let exact = fnorm * u * w / (PI / (2.0 * n as f64)).tan() / n as f64;
     let one = wear(&series, 0.0, 0.0, 1).unwrap();
@@ -236,6 +237,54 @@ fn wear_power_of_a_harmonic_slide() {
     );
     // Too many blocks.
     assert!(wear(&series, 0.0, 0.0, samples).is_err());
+    // Code_Aster's `pusure` leaves out the intervals whose first sample sticks (VINT13):
+    // flagging every other half period as a stick halves the wear power exactly (the
+    // half periods carry the same integral), and flagging all of them gives 0. The
+    // flag of the last sample starts no interval.
+    let every_other: Vec<f64> = (0..samples)
+        .map(|k| if (k / n) % 2 == 1 { 1.0 } else { 0.0 })
+        .collect();
+    let half_stuck = wear(
+        &Series {
+            sticking: Some(&every_other),
+            ..series
+        },
+        0.0,
+        0.0,
+        1,
+    )
+    .unwrap();
+    assert!(
+        close(half_stuck.wear_power, exact / 2.0, TOL),
+        "{} {}",
+        half_stuck.wear_power,
+        exact / 2.0
+    );
+    let all: Vec<f64> = (0..samples)
+        .map(|k| if k + 1 < samples { 1.0 } else { 0.0 })
+        .collect();
+    let stuck = wear(
+        &Series {
+            sticking: Some(&all),
+            ..series
+        },
+        0.0,
+        0.0,
+        1,
+    )
+    .unwrap();
+    assert_eq!(stuck.wear_power, 0.0);
+    // A flag column of another length is refused.
+    assert!(wear(
+        &Series {
+            sticking: Some(&all[1..]),
+            ..series
+        },
+        0.0,
+        0.0,
+        1
+    )
+    .is_err());
 }
 
 #[test]
@@ -255,6 +304,7 @@ fn polar_displacement_and_impact_counts() {
         v_n: &zero,
         v_t: [&zero, &zero],
         loc: [&zero, &y, &z],
+        sticking: None,
     };
     let st = wear(&s, 0.0, 0.0, 1).unwrap();
     assert!(close(st.radial.mean, r, TOL) && st.radial.deviation < 1e-15);
@@ -278,6 +328,7 @@ fn polar_displacement_and_impact_counts() {
         v_n: &vs,
         v_t: [&zero, &zero],
         loc: [&zero, &zero, &zero],
+        sticking: None,
     };
     let c = wear(&s, 0.0, 0.0, 1).unwrap().counts;
     let acquired = m as f64 * 1e-3;
@@ -318,6 +369,7 @@ fn the_impact_oscillator_integrated() {
         panic!("RUNGE_KUTTA_54 is adaptive")
     };
     o.tolerance = 1e-10;
+    o.locate_contacts = true;
     let scheme = Scheme::Adaptive(o);
     let traj = run(
         &s,

@@ -4,18 +4,22 @@
 //! (geometry.rs), a start from rest under a force (from_rest.rs), stability
 //! (stability.rs), the sparse structure (sparse.rs), impact and wear statistics
 //! (impact_stats.rs), PAS_ARCH with INST (archive_union.rs), moving supports on generated cases (support.rs),
-//! Code_Aster's ADAPT_ORDRE1/2 (adapt.rs), Code_Aster's DEVOGE (devoge.rs).
+//! Code_Aster's ADAPT_ORDRE1/2 (adapt.rs), Code_Aster's DEVOGE (devoge.rs), the buckling law FLAMBAGE against the
+//! exact motion and a split run (flambage.rs), Code_Aster's
+//! RUNGE_KUTTA_32/54 (runge_kutta.rs).
 
 mod adapt;
 mod archive_union;
 mod coulomb;
 mod devoge;
 mod energy;
+mod flambage;
 mod from_rest;
 mod geometry;
 mod impact;
 mod impact_stats;
 mod reference;
+mod runge_kutta;
 mod sparse;
 mod stability;
 mod support;
@@ -51,6 +55,7 @@ pub(super) fn stop_spec(g: f64, kn: f64, cn: f64) -> ShockSpec {
         rigi_tan: 0.0,
         amor_tan: 0.0,
         friction: Friction::None,
+        friction_along_x_only: false,
     }
 }
 

@@ -20,6 +20,7 @@ use std::rc::Rc;
 fn rk54() -> Scheme {
     let mut o = AdaptiveOptions::new(RkPair::DormandPrince54);
     o.tolerance = 1e-10;
+    o.locate_contacts = true;
     Scheme::Adaptive(o)
 }
 
