@@ -72,6 +72,7 @@
 
 use super::archive::Recorder;
 use super::dis_choc::{Shock, ShockEval};
+use super::driver::{drive, DrivenScheme, DriverSettings, DriverStats, Taken as DriverTaken};
 use super::error::{invalid, try_zeros, TransientError};
 use super::problem::{Archive, TimeGrid};
 use super::structure::{LinearSolver, Structure};
@@ -148,13 +149,6 @@ impl DevogeOptions {
         }
         Ok(())
     }
-}
-
-/// What the DEVOGE loop reports.
-pub(crate) struct DevogeStats {
-    pub taken: usize,
-    /// Tries redone with a shorter step.
-    pub rejected: usize,
 }
 
 /// M⁻¹ products and the two velocity solves, (4M + hC)⁻¹M and (6M + hC)⁻¹M.
@@ -688,8 +682,45 @@ impl Devoge {
     }
 }
 
+/// Devoge under Code_Aster's driver.
+struct Driven<'o, 's> {
+    dev: Devoge,
+    opts: &'o DevogeOptions,
+    ops: Operators<'s>,
+}
+
+impl DrivenScheme for Driven<'_, '_> {
+    fn step(
+        &mut self,
+        model: &Model,
+        shocks: &mut [Shock],
+        _ws: &mut Work,
+        t: f64,
+        h: f64,
+    ) -> Result<DriverTaken, TransientError> {
+        let taken = self
+            .dev
+            .step(model, shocks, self.opts, &mut self.ops, t, h)?;
+        Ok(DriverTaken {
+            h: taken.h,
+            next: taken.next,
+            tries: taken.tries,
+        })
+    }
+
+    fn accept(&mut self, shocks: &mut [Shock], ws: &mut Work, h: f64) {
+        self.dev.accept(h);
+        ws.evals.copy_from_slice(&self.dev.evals4);
+        commit(shocks, &ws.evals);
+    }
+
+    fn state(&self) -> (&[f64], &[f64], &[f64]) {
+        (&self.dev.q1, &self.dev.v1, &self.dev.a1)
+    }
+}
+
 /// Runs from (q, v, a) at t0 (shock states committed, t0 archived with PAS_ARCH) to
-/// t_end.
+/// t_end under Code_Aster's driver (driver.rs).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn run_devoge(
     model: &Model,
@@ -703,112 +734,28 @@ pub(crate) fn run_devoge(
     rec: &mut Recorder,
     ws: &mut Work,
     progress: &mut dyn FnMut(f64),
-) -> Result<DevogeStats, TransientError> {
+) -> Result<DriverStats, TransientError> {
     opts.check(grid.dt)?;
-    let mut ops = Operators::new(model.structure)?;
-    let mut dev = Devoge::new(opts, &ops, q0, v0, a0, &ws.evals)?;
-    let span = grid.t_end - grid.t0;
-    // Code_Aster's driver re-sets the step to PAS after each landing when the step is
-    // not adaptive (PAS_MINI = PAS_MAXI), judged with its own defaults.
-    let lo = opts.pas_mini.unwrap_or(1e-6 * grid.dt);
-    let hi = opts.pas_maxi.unwrap_or(1e6 * grid.dt);
-    let driver_adapts = (hi / lo - 1.0).abs() > EPS;
-    let every = archive.every().map_or(0, |k| k.max(1));
-    // The instants to land on: the listed ones after t0 (an instant at t0 is the start,
-    // archived below), then t_end.
-    let listed: &[f64] = archive.listed().unwrap_or(&[]);
-    let first = listed.partition_point(|&x| x <= grid.t0 + EPS);
-    let inner = &listed[first..];
-    let kept = inner.partition_point(|&x| x < grid.t_end - EPS);
-    let final_listed = kept < inner.len();
-    let landing = |k: usize| -> (f64, bool) {
-        if k < kept {
-            (inner[k], true)
-        } else {
-            (grid.t_end, final_listed || every > 0)
-        }
+    let ops = Operators::new(model.structure)?;
+    let dev = Devoge::new(opts, &ops, q0, v0, a0, &ws.evals)?;
+    let mut scheme = Driven { dev, opts, ops };
+    let settings = DriverSettings {
+        pas_mini: opts.pas_mini,
+        pas_maxi: opts.pas_maxi,
+        max_steps: opts.max_steps,
     };
-    if every == 0 && first > 0 {
-        rec.push(grid.t0, q0, v0, a0, &ws.evals)?;
-    }
-    let mut stats = DevogeStats {
-        taken: 0,
-        rejected: 0,
-    };
-    let tol_unit = 10.0 * EPS;
-    let mut t = grid.t0;
-    let mut step = grid.dt;
-    let mut i: usize = 1;
-    let mut cut_landings: usize = 0;
-    let mut next_landing = 0usize;
-    // 0: free step; 1: a landing is pending; 2: the step after a landing's leftover.
-    let mut mode = 0u8;
-    let mut cut = step;
-    let mut last_report = 0.0;
-    while grid.t_end - t > i as f64 * tol_unit {
-        if stats.taken + stats.rejected >= opts.max_steps {
-            return Err(TransientError::StepLimit {
-                t,
-                max_steps: opts.max_steps,
-            });
-        }
-        let tol_i = i as f64 * tol_unit;
-        let (target, record_target) = landing(next_landing);
-        let proposed = step;
-        let mut h = proposed;
-        if t + proposed - target > tol_i {
-            cut = target - t;
-            h = cut;
-            mode = 1;
-        } else if (t + proposed - target).abs() < tol_i {
-            cut = proposed;
-            mode = 1;
-        }
-        let taken = dev.step(model, shocks, opts, &mut ops, t, h)?;
-        stats.rejected += taken.tries - 1;
-        stats.taken += 1;
-        dev.accept(taken.h);
-        let mut t_new = t + taken.h;
-        step = taken.next;
-        if mode == 2 {
-            mode = 0;
-            if !driver_adapts {
-                step = grid.dt;
-            }
-        }
-        let mut archive_now = false;
-        if mode == 1 {
-            if (t_new - target).abs() <= tol_i {
-                t_new = target;
-                archive_now = record_target;
-                next_landing += 1;
-                mode = 0;
-                if (proposed - cut).abs() > tol_i {
-                    cut_landings += 1;
-                    step = proposed - cut;
-                    mode = 2;
-                } else if !driver_adapts {
-                    step = grid.dt;
-                }
-            }
-        } else if every > 0 && (i - cut_landings).is_multiple_of(every) {
-            archive_now = true;
-        }
-        t = t_new;
-        ws.evals.copy_from_slice(&dev.evals4);
-        commit(shocks, &ws.evals);
-        if archive_now {
-            rec.push(t, &dev.q1, &dev.v1, &dev.a1, &ws.evals)?;
-        }
-        i += 1;
-        let frac = (t - grid.t0) / span;
-        let done = grid.t_end - t <= i as f64 * tol_unit;
-        if frac - last_report >= 0.01 || done {
-            progress(frac.min(1.0));
-            last_report = frac;
-        }
-    }
-    Ok(stats)
+    drive(
+        &mut scheme,
+        &settings,
+        model,
+        shocks,
+        (q0, v0, a0),
+        grid,
+        archive,
+        rec,
+        ws,
+        progress,
+    )
 }
 
 #[cfg(test)]

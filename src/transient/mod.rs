@@ -61,6 +61,7 @@ pub mod contact_time;
 pub mod dense;
 mod devoge;
 pub mod dis_choc;
+mod driver;
 pub mod error;
 mod fixed;
 pub mod flambage;

@@ -52,6 +52,7 @@
 
 use super::archive::Recorder;
 use super::dis_choc::{Shock, ShockState};
+use super::driver::{drive, DrivenScheme, DriverSettings, DriverStats, Taken as DriverTaken};
 use super::error::{invalid, try_zeros, TransientError};
 use super::problem::{Archive, TimeGrid};
 use super::scheme::runge_kutta::{aster_control, tableau, Tableau};
@@ -73,17 +74,6 @@ const STALLED: f64 = 0.99;
 /// Code_Aster's defaults of PAS_MINI and PAS_MAXI, times the first step.
 const DEFAULT_MINI: f64 = 1e-10;
 const DEFAULT_MAXI: f64 = 1e10;
-/// The driver's own defaults (whether it sets the step back to PAS after a landing).
-const DRIVER_MINI: f64 = 1e-6;
-const DRIVER_MAXI: f64 = 1e6;
-
-/// What the loop reports.
-pub(crate) struct RkStats {
-    pub taken: usize,
-    /// Tries redone with a shorter step.
-    pub rejected: usize,
-}
-
 /// One accepted step.
 struct Taken {
     /// Its length.
@@ -316,7 +306,40 @@ fn check(opts: &AdaptiveOptions, pas: f64) -> Result<(), TransientError> {
     Ok(())
 }
 
-/// Runs from (q, v, a) at t0 (shock states committed, t0 archived with PAS_ARCH) to t_end.
+/// Rk under Code_Aster's driver.
+struct Driven<'o> {
+    rk: Rk,
+    opts: &'o AdaptiveOptions,
+}
+
+impl DrivenScheme for Driven<'_> {
+    fn step(
+        &mut self,
+        model: &Model,
+        shocks: &mut [Shock],
+        ws: &mut Work,
+        t: f64,
+        h: f64,
+    ) -> Result<DriverTaken, TransientError> {
+        let taken = self.rk.step(model, shocks, ws, self.opts, t, h)?;
+        Ok(DriverTaken {
+            h: taken.h,
+            next: taken.next,
+            tries: taken.tries,
+        })
+    }
+
+    fn accept(&mut self, shocks: &mut [Shock], _ws: &mut Work, _h: f64) {
+        self.rk.accept(shocks);
+    }
+
+    fn state(&self) -> (&[f64], &[f64], &[f64]) {
+        (&self.rk.q1, &self.rk.v1, &self.rk.a1)
+    }
+}
+
+/// Runs from (q, v, a) at t0 (shock states committed, t0 archived with PAS_ARCH) to t_end
+/// under Code_Aster's driver (driver.rs).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn run_rk(
     model: &Model,
@@ -330,107 +353,29 @@ pub(crate) fn run_rk(
     rec: &mut Recorder,
     ws: &mut Work,
     progress: &mut dyn FnMut(f64),
-) -> Result<RkStats, TransientError> {
+) -> Result<DriverStats, TransientError> {
     check(opts, grid.dt)?;
-    let mut rk = Rk::new(opts, q0, v0, a0, shocks)?;
-    let span = grid.t_end - grid.t0;
-    let lo = opts.pas_mini.unwrap_or(DRIVER_MINI * grid.dt);
-    let hi = opts.pas_maxi.unwrap_or(DRIVER_MAXI * grid.dt);
-    let driver_adapts = (hi / lo - 1.0).abs() > EPS;
-    let every = archive.every().map_or(0, |k| k.max(1));
-    // The instants to land on: the listed ones after t0 (an instant at t0 is the start,
-    // archived below), then t_end.
-    let listed: &[f64] = archive.listed().unwrap_or(&[]);
-    let first = listed.partition_point(|&x| x <= grid.t0 + EPS);
-    let inner = &listed[first..];
-    let kept = inner.partition_point(|&x| x < grid.t_end - EPS);
-    let final_listed = kept < inner.len();
-    let landing = |k: usize| -> (f64, bool) {
-        if k < kept {
-            (inner[k], true)
-        } else {
-            (grid.t_end, final_listed || every > 0)
-        }
+    let mut scheme = Driven {
+        rk: Rk::new(opts, q0, v0, a0, shocks)?,
+        opts,
     };
-    if every == 0 && first > 0 {
-        rec.push(grid.t0, q0, v0, a0, &ws.evals)?;
-    }
-    let mut stats = RkStats {
-        taken: 0,
-        rejected: 0,
+    let settings = DriverSettings {
+        pas_mini: opts.pas_mini,
+        pas_maxi: opts.pas_maxi,
+        max_steps: opts.max_steps,
     };
-    let tol_unit = 10.0 * EPS;
-    let mut t = grid.t0;
-    let mut step = grid.dt;
-    let mut i: usize = 1;
-    let mut cut_landings: usize = 0;
-    let mut next_landing = 0usize;
-    // 0: free step; 1: a landing is pending; 2: the step after a landing's leftover.
-    let mut mode = 0u8;
-    let mut cut = step;
-    let mut last_report = 0.0;
-    while grid.t_end - t > i as f64 * tol_unit {
-        if stats.taken + stats.rejected >= opts.max_steps {
-            return Err(TransientError::StepLimit {
-                t,
-                max_steps: opts.max_steps,
-            });
-        }
-        let tol_i = i as f64 * tol_unit;
-        let (target, record_target) = landing(next_landing);
-        let proposed = step;
-        let mut h = proposed;
-        if t + proposed - target > tol_i {
-            cut = target - t;
-            h = cut;
-            mode = 1;
-        } else if (t + proposed - target).abs() < tol_i {
-            cut = proposed;
-            mode = 1;
-        }
-        let taken = rk.step(model, shocks, ws, opts, t, h)?;
-        stats.rejected += taken.tries - 1;
-        stats.taken += 1;
-        rk.accept(shocks);
-        let mut t_new = t + taken.h;
-        step = taken.next;
-        if mode == 2 {
-            mode = 0;
-            if !driver_adapts {
-                step = grid.dt;
-            }
-        }
-        let mut archive_now = false;
-        if mode == 1 {
-            if (t_new - target).abs() <= tol_i {
-                t_new = target;
-                archive_now = record_target;
-                next_landing += 1;
-                mode = 0;
-                if (proposed - cut).abs() > tol_i {
-                    cut_landings += 1;
-                    step = proposed - cut;
-                    mode = 2;
-                } else if !driver_adapts {
-                    step = grid.dt;
-                }
-            }
-        } else if every > 0 && (i - cut_landings).is_multiple_of(every) {
-            archive_now = true;
-        }
-        t = t_new;
-        if archive_now {
-            rec.push(t, &rk.q1, &rk.v1, &rk.a1, &ws.evals)?;
-        }
-        i += 1;
-        let frac = (t - grid.t0) / span;
-        let done = grid.t_end - t <= i as f64 * tol_unit;
-        if frac - last_report >= 0.01 || done {
-            progress(frac.min(1.0));
-            last_report = frac;
-        }
-    }
-    Ok(stats)
+    drive(
+        &mut scheme,
+        &settings,
+        model,
+        shocks,
+        (q0, v0, a0),
+        grid,
+        archive,
+        rec,
+        ws,
+        progress,
+    )
 }
 
 #[cfg(test)]
