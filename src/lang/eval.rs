@@ -390,8 +390,8 @@ impl Evaluator<'_> {
         };
         match names {
             None => {
-                // numpy's star import binds its scalar functions under numpy's names too
-                // (arcsin, power, ...); the math names cover what the file can call.
+                // `from numpy import *` binds the names numpy shares with math (sqrt,
+                // sin, ...), not numpy's own aliases (arcsin, power): give those by name.
                 for f in MATH_FUNCS {
                     self.env.import_fn(f, f);
                 }

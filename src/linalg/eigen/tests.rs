@@ -39,6 +39,27 @@ fn chain(
     (faer_sym(n, &kt), faer_sym(n, &mt))
 }
 
+/// Two identical, uncoupled fixed-fixed chains of `n1` masses: every frequency is double.
+fn twin_chains(
+    n1: usize,
+    k: f64,
+    mass: f64,
+) -> (SparseColMat<usize, f64>, SparseColMat<usize, f64>) {
+    let mut kt = Vec::new();
+    let mut mt = Vec::new();
+    for c in 0..2 {
+        let o = c * n1;
+        for i in 0..n1 {
+            kt.push((o + i, o + i, 2.0 * k));
+            mt.push((o + i, o + i, mass));
+            if i + 1 < n1 {
+                kt.push((o + i + 1, o + i, -k));
+            }
+        }
+    }
+    (faer_sym(2 * n1, &kt), faer_sym(2 * n1, &mt))
+}
+
 /// Fixed-fixed: ω_j = 2√(k/m) sin(jπ/(2(N+1))), j = 1..N.
 fn fixed_omega(j: usize, n: usize, k: f64, m: f64) -> f64 {
     2.0 * (k / m).sqrt() * (j as f64 * PI / (2.0 * (n as f64 + 1.0))).sin()
@@ -250,19 +271,7 @@ fn lanczos_finds_both_copies_of_double_modes() {
     // Two identical, uncoupled fixed-fixed chains: every frequency is double. A single
     // Krylov sequence sees one copy only; the inertia check must bring in the other.
     let (n1, k, mass) = (1000, 1.0, 1.0);
-    let mut kt = Vec::new();
-    let mut mt = Vec::new();
-    for c in 0..2 {
-        let o = c * n1;
-        for i in 0..n1 {
-            kt.push((o + i, o + i, 2.0 * k));
-            mt.push((o + i, o + i, mass));
-            if i + 1 < n1 {
-                kt.push((o + i + 1, o + i, -k));
-            }
-        }
-    }
-    let (km, mm) = (faer_sym(2 * n1, &kt), faer_sym(2 * n1, &mt));
+    let (km, mm) = twin_chains(n1, k, mass);
     let set = solve_modes(
         &km,
         &mm,
@@ -589,19 +598,7 @@ fn many_smallest_modes_by_slices_match_the_closed_form() {
 #[test]
 fn slices_find_both_copies_of_double_modes() {
     let (n1, k, mass) = (1500, 1.0, 1.0);
-    let mut kt = Vec::new();
-    let mut mt = Vec::new();
-    for c in 0..2 {
-        let o = c * n1;
-        for i in 0..n1 {
-            kt.push((o + i, o + i, 2.0 * k));
-            mt.push((o + i, o + i, mass));
-            if i + 1 < n1 {
-                kt.push((o + i + 1, o + i, -k));
-            }
-        }
-    }
-    let (km, mm) = (faer_sym(2 * n1, &kt), faer_sym(2 * n1, &mt));
+    let (km, mm) = twin_chains(n1, k, mass);
     let count = 2 * SLICE_MODES + 40;
     let set = solve_modes(
         &km,
