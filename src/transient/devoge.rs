@@ -762,31 +762,6 @@ pub(crate) fn run_devoge(
 mod tests {
     use super::*;
     use crate::transient::dense::DenseStructure;
-    use crate::transient::dis_choc::{Friction, NodeRows, ShockSpec};
-    use crate::transient::obstacle::ObstacleKind;
-
-    /// One DOF along X pressed on a PLAN_Z plane (penetration 0.5, F_N = 10 N) with
-    /// Coulomb friction μ = 0.1 and a stick spring: sdnd100a's shock on one coordinate.
-    fn friction_shock() -> Shock {
-        let spec = ShockSpec {
-            obstacle: ObstacleKind::PlanZ,
-            orig_obst: [0.0, 0.0, 1.0],
-            norm_obst: [1.0, 0.0, 0.0],
-            angl_vril: None,
-            node1: [0.0; 3],
-            node2: None,
-            jeu: 0.5,
-            dist1: 0.0,
-            dist2: 0.0,
-            rigi_nor: 20.0,
-            amor_nor: 0.0,
-            rigi_tan: 4e5,
-            amor_tan: 1280.0,
-            friction: Friction::Coulomb { mu: 0.1 },
-            friction_along_x_only: false,
-        };
-        Shock::new(spec, NodeRows::from_modes(&[1.0], &[0.0], &[0.0]), None).unwrap()
-    }
 
     /// A step whose first tries are rejected: the accepted try's mid-point evaluation
     /// starts from the committed state (not from a rejected try's end) and its end from
@@ -799,7 +774,7 @@ mod tests {
             structure: &structure,
             forcing: &[],
         };
-        let mut shocks = vec![friction_shock()];
+        let mut shocks = vec![crate::transient::tests::sdnd100a_friction_shock(1280.0)];
         let mut ws = Work::new(1, &shocks).unwrap();
         let (q0, v0) = ([0.5e-4], [0.0]);
         let mut a0 = [0.0];

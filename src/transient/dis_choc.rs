@@ -188,6 +188,31 @@ pub struct ShockState {
     pub buckling: BucklingState,
 }
 
+impl ShockState {
+    /// The stick/slip memory as Code_Aster's VINT13..VINT20: sticking (1/0), the F_T
+    /// anchor (2), the anchor (3), the previous v_T (2).
+    pub fn friction_memory(&self) -> [f64; 8] {
+        [
+            if self.sticking { 1.0 } else { 0.0 },
+            self.old_ft[0],
+            self.old_ft[1],
+            self.old_xl[0],
+            self.old_xl[1],
+            self.old_xl[2],
+            self.old_vt[0],
+            self.old_vt[1],
+        ]
+    }
+
+    /// Sets the stick/slip memory from its VINT13..VINT20 values.
+    pub fn set_friction_memory(&mut self, v: &[f64; 8]) {
+        self.sticking = v[0] != 0.0;
+        self.old_ft = [v[1], v[2]];
+        self.old_xl = [v[3], v[4], v[5]];
+        self.old_vt = [v[6], v[7]];
+    }
+}
+
 /// What RECU_FONCTION reads for a shock at an archived instant.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ShockSample {
@@ -215,7 +240,7 @@ impl ShockSample {
     /// node 2 local x y z, VN, VT1, VT2, sticking (1/0), F_T anchor (2), anchor (3),
     /// previous v_T (2).
     pub fn vint(&self) -> [f64; 20] {
-        let s = &self.state;
+        let m = self.state.friction_memory();
         [
             self.f_n,
             self.f_t1,
@@ -229,14 +254,14 @@ impl ShockSample {
             self.v_n,
             self.v_t1,
             self.v_t2,
-            if s.sticking { 1.0 } else { 0.0 },
-            s.old_ft[0],
-            s.old_ft[1],
-            s.old_xl[0],
-            s.old_xl[1],
-            s.old_xl[2],
-            s.old_vt[0],
-            s.old_vt[1],
+            m[0],
+            m[1],
+            m[2],
+            m[3],
+            m[4],
+            m[5],
+            m[6],
+            m[7],
         ]
     }
 

@@ -382,32 +382,7 @@ pub(crate) fn run_rk(
 mod tests {
     use super::*;
     use crate::transient::dense::DenseStructure;
-    use crate::transient::dis_choc::{Friction, NodeRows, ShockSpec};
-    use crate::transient::obstacle::ObstacleKind;
     use crate::transient::scheme::RkPair;
-
-    /// One DOF along X pressed on a PLAN_Z plane (penetration 0.5, F_N = 10 N) with Coulomb
-    /// friction μ = 0.1 and a stick spring: sdnd100a's shock on one coordinate.
-    fn friction_shock(amor_tan: f64) -> Shock {
-        let spec = ShockSpec {
-            obstacle: ObstacleKind::PlanZ,
-            orig_obst: [0.0, 0.0, 1.0],
-            norm_obst: [1.0, 0.0, 0.0],
-            angl_vril: None,
-            node1: [0.0; 3],
-            node2: None,
-            jeu: 0.5,
-            dist1: 0.0,
-            dist2: 0.0,
-            rigi_nor: 20.0,
-            amor_nor: 0.0,
-            rigi_tan: 4e5,
-            amor_tan,
-            friction: Friction::Coulomb { mu: 0.1 },
-            friction_along_x_only: false,
-        };
-        Shock::new(spec, NodeRows::from_modes(&[1.0], &[0.0], &[0.0]), None).unwrap()
-    }
 
     /// The accepted try of a step from (q0, v0), recomputed stage by stage from the
     /// tableau, each shock evaluation from the state the stage before left (`chained`)
@@ -460,7 +435,7 @@ mod tests {
             structure: &structure,
             forcing: &[],
         };
-        let mut shocks = vec![friction_shock(amor_tan)];
+        let mut shocks = vec![crate::transient::tests::sdnd100a_friction_shock(amor_tan)];
         let mut ws = Work::new(1, &shocks).unwrap();
         let mut a0 = [0.0];
         model
@@ -486,7 +461,7 @@ mod tests {
         opts.tolerance = 1e-3;
         let (taken, mut rk, after, committed, a0) = one_step(1280.0, q0, v0, &opts, 4e-3);
         assert!(taken.tries >= 2, "{} tries", taken.tries);
-        let shock = friction_shock(1280.0);
+        let shock = crate::transient::tests::sdnd100a_friction_shock(1280.0);
         let (q, v, a, state) = by_hand(&shock, 1e4, q0, v0, a0, taken.h, committed, true);
         assert_eq!((rk.q2[0], rk.v2[0], rk.a2[0]), (q, v, a));
         assert_eq!(after, state);
@@ -511,7 +486,7 @@ mod tests {
         opts.pas_maxi = Some(h);
         let (taken, rk, after, committed, a0) = one_step(0.0, q0, v0, &opts, h);
         assert_eq!((taken.tries, taken.h), (1, h));
-        let shock = friction_shock(0.0);
+        let shock = crate::transient::tests::sdnd100a_friction_shock(0.0);
         let (q, v, a, state) = by_hand(&shock, 1e4, q0, v0, a0, h, committed, true);
         assert_eq!((rk.q2[0], rk.v2[0], rk.a2[0]), (q, v, a));
         assert_eq!(after, state);

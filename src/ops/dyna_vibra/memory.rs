@@ -12,16 +12,7 @@ use crate::transient::{BucklingState, ShockSample, ShockState};
 
 /// The values of [`tran_gene::FRICTION_MEMORY`] for a state.
 pub fn friction(s: &ShockState) -> [f64; 8] {
-    [
-        if s.sticking { 1.0 } else { 0.0 },
-        s.old_ft[0],
-        s.old_ft[1],
-        s.old_xl[0],
-        s.old_xl[1],
-        s.old_xl[2],
-        s.old_vt[0],
-        s.old_vt[1],
-    ]
+    s.friction_memory()
 }
 
 /// The values of [`tran_gene::BUCKLING_MEMORY`] for a state.
@@ -31,10 +22,9 @@ pub fn buckling(s: &ShockState) -> [f64; 4] {
 }
 
 fn set_friction(s: &mut ShockState, v: &[f64]) {
-    s.sticking = v[0] != 0.0;
-    s.old_ft = [v[1], v[2]];
-    s.old_xl = [v[3], v[4], v[5]];
-    s.old_vt = [v[6], v[7]];
+    let mut m = [0.0; 8];
+    m.copy_from_slice(&v[..8]);
+    s.set_friction_memory(&m);
 }
 
 fn set_buckling(s: &mut ShockState, v: &[f64]) {

@@ -26,6 +26,31 @@ mod support;
 
 use super::*;
 
+/// sdnd100a's shock on one generalized coordinate moving the node along X: pressed on a
+/// PLAN_Z plane (penetration 0.5, F_N = 10 N) with Coulomb friction μ = 0.1, a stick
+/// spring RIGI_TAN 4e5 and the stick damper `amor_tan`. Shared by the unit tests of the
+/// DEVOGE and Runge–Kutta loops.
+pub(crate) fn sdnd100a_friction_shock(amor_tan: f64) -> Shock {
+    let spec = ShockSpec {
+        obstacle: ObstacleKind::PlanZ,
+        orig_obst: [0.0, 0.0, 1.0],
+        norm_obst: [1.0, 0.0, 0.0],
+        angl_vril: None,
+        node1: [0.0; 3],
+        node2: None,
+        jeu: 0.5,
+        dist1: 0.0,
+        dist2: 0.0,
+        rigi_nor: 20.0,
+        amor_nor: 0.0,
+        rigi_tan: 4e5,
+        amor_tan,
+        friction: Friction::Coulomb { mu: 0.1 },
+        friction_along_x_only: false,
+    };
+    Shock::new(spec, NodeRows::from_modes(&[1.0], &[0.0], &[0.0]), None).unwrap()
+}
+
 /// One DOF along global Y against a one-sided stop at y = g: a PLAN_Y obstacle whose
 /// walls are at g and g − 2J, J = 10 (never reached), stiffness `kn`, damping `cn`.
 pub(super) fn stop_shock(g: f64, kn: f64, cn: f64) -> Shock {
