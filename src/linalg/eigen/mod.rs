@@ -22,10 +22,10 @@ pub mod sliced;
 pub mod sym;
 
 use self::dense::solve_dense;
-use self::lanczos::{lanczos, LanczosParams};
+use self::lanczos::{lanczos, LanczosParams, LanczosWork};
 pub use self::norm::{largest_component_scale, ModeNorm, Normalized};
 pub use self::shift::FactorKind;
-use self::shift::ShiftedFactor;
+use self::shift::{ShiftPattern, ShiftedFactor};
 use self::sym::{norm2, SymSparse};
 use crate::error::{Error, Result};
 use faer::sparse::SparseColMat;
@@ -51,11 +51,43 @@ const DENSE_RIGID_SHIFT: f64 = 1e-2;
 /// Largest number of Lanczos passes (each one deflating the modes already found).
 const MAX_PASSES: usize = 8;
 
+/// What the factorisations and Lanczos runs of one problem share: the pattern of K − σM
+/// with its symbolic factorisation (built at the first shift), and the Lanczos workspace.
+#[derive(Default)]
+pub(crate) struct Shared {
+    pattern: Option<ShiftPattern>,
+    work: LanczosWork,
+}
+
+impl Shared {
+    /// The LDLᵀ of K − σM on the problem's common pattern.
+    fn factor(
+        &mut self,
+        k: &SymSparse,
+        m: &SymSparse,
+        sigma: f64,
+        kind: FactorKind,
+    ) -> Result<ShiftedFactor> {
+        if self.pattern.is_none() {
+            self.pattern = Some(ShiftPattern::new(k, m, kind)?);
+        }
+        match &self.pattern {
+            Some(p) => ShiftedFactor::from_pattern(p, sigma),
+            None => Err(Error::internal("the pattern of K - σM was not built")),
+        }
+    }
+}
+
 /// PLUS_PETITE of more modes than twice this is computed slice by slice ([`sliced`]):
 /// each slice, an interval of ω² holding about this many modes, gets its own shift and a
 /// Krylov basis of ~2.4× its modes. One basis for every mode would cost O(n·nev²) in
 /// orthogonalisation and hold 2·nev + 20 vectors of n (measured on a 30 000-DOF bar asked
 /// for 300 modes: 42 s, and its residuals reached 1e-4); slices cost O(n·nev·slice).
+/// Smaller slices orthogonalise against smaller bases and measured faster (2×10⁴-DOF bar,
+/// 364 modes, 2026-12-07: the slices' time 2.62 s at 40 modes, 2.05 s at 20, best of three),
+/// but they move modes from the first shift to band shifts, and the low ω² of a fine mesh
+/// depend on the factorisation that found them beyond round-off: on the 10⁵-DOF bar, modes
+/// 21 to 40 moved by up to 2.7e-5 relative with slices of 20 (2.8e-10 with 40), so 40 stays.
 pub const SLICE_MODES: usize = 40;
 
 /// Which modes to compute (CALC_MODES / OPTION and CALC_FREQ).
@@ -193,7 +225,7 @@ pub fn solve_modes_sym(
     let scale = spectral_scale(ks, ms)?;
     let mut set = match method {
         Method::Dense => dense_modes(ks, ms, req, scale)?,
-        Method::Lanczos => lanczos_modes(ks, ms, req, opts, scale)?,
+        Method::Lanczos => lanczos_modes(&mut Shared::default(), ks, ms, req, opts, scale)?,
     };
     set.residuals = set
         .omega2
@@ -381,6 +413,7 @@ fn select(mut pairs: Vec<(f64, Vec<f64>)>, req: &ModeRequest) -> Result<Vec<(f64
 
 /// Factorises K − σM, nudging σ off an eigenvalue if the factorisation breaks down.
 fn factor_near(
+    shared: &mut Shared,
     k: &SymSparse,
     m: &SymSparse,
     sigma: f64,
@@ -390,7 +423,7 @@ fn factor_near(
     let mut s = sigma;
     let mut last = None;
     for attempt in 0..4 {
-        match ShiftedFactor::new(k, m, s, kind) {
+        match shared.factor(k, m, s, kind) {
             Ok(f) => return Ok(f),
             Err(e) => last = Some(e),
         }
@@ -402,16 +435,18 @@ fn factor_near(
 
 /// Number of eigenvalues strictly below σ (Sylvester).
 pub(crate) fn count_below(
+    shared: &mut Shared,
     k: &SymSparse,
     m: &SymSparse,
     sigma: f64,
     scale: f64,
     kind: FactorKind,
 ) -> Result<usize> {
-    Ok(factor_near(k, m, sigma, scale, kind)?.negative_count())
+    Ok(factor_near(shared, k, m, sigma, scale, kind)?.negative_count())
 }
 
 /// One Lanczos pass with the factor of K − σM; returns (ω², φ) pairs.
+#[allow(clippy::too_many_arguments)]
 fn lanczos_pass(
     k: &SymSparse,
     m: &SymSparse,
@@ -420,6 +455,7 @@ fn lanczos_pass(
     locked: &[Vec<f64>],
     opts: &EigenOptions,
     op_count: &mut usize,
+    work: &mut LanczosWork,
 ) -> Result<Vec<(f64, Vec<f64>)>> {
     let n = k.n;
     let ncv = if opts.ncv > 0 {
@@ -436,16 +472,7 @@ fn lanczos_pass(
         seed: 0x9E37_79B9 + locked.len() as u64,
     };
     let sigma = fac.sigma;
-    let out = lanczos(
-        n,
-        m,
-        |x, y| {
-            m.mul(x, y);
-            fac.solve_in_place(y);
-        },
-        locked,
-        &params,
-    )?;
+    let out = lanczos(n, m, |y| fac.solve_in_place(y), locked, &params, work)?;
     *op_count += out.op_count;
     Ok(out
         .theta
@@ -457,6 +484,7 @@ fn lanczos_pass(
 }
 
 fn lanczos_modes(
+    shared: &mut Shared,
     k: &SymSparse,
     m: &SymSparse,
     req: &ModeRequest,
@@ -467,21 +495,25 @@ fn lanczos_modes(
         if n > 2 * SLICE_MODES {
             // A slice boundary inside a cluster of nearly equal frequencies can defeat the
             // slices' counts; one shift with deflated passes then finds them, slowly.
-            if let Ok(set) = sliced::smallest(k, m, n, opts, scale) {
+            if let Ok(set) = sliced::smallest(shared, k, m, n, opts, scale) {
                 return Ok(set);
             }
         }
     }
-    one_shift_modes(k, m, req, opts, scale)
+    one_shift_modes(shared, k, m, req, opts, scale, None)
 }
 
-/// The requested modes from one shift (and deflated passes at that shift).
+/// The requested modes from one shift (and deflated passes at that shift). `band_counts`:
+/// Sylvester's counts below a band's two ends when the caller has them (spectrum slicing),
+/// instead of two factorisations here.
 fn one_shift_modes(
+    shared: &mut Shared,
     k: &SymSparse,
     m: &SymSparse,
     req: &ModeRequest,
     opts: &EigenOptions,
     scale: f64,
+    band_counts: Option<(usize, usize)>,
 ) -> Result<ModeSet> {
     let kind = opts.factor;
     // The shift and the ω² interval [lo, hi] whose mode count must be matched.
@@ -493,7 +525,7 @@ fn one_shift_modes(
         ModeRequest::Smallest { .. } => {
             // σ = 0 is best when K is safely definite; with rigid-body modes K is singular
             // and σ goes slightly below 0 so K − σM stays positive definite.
-            match ShiftedFactor::new(k, m, 0.0, kind) {
+            match shared.factor(k, m, 0.0, kind) {
                 Ok(f) if f.negative_count() == 0 && f.min_relative_pivot() > 1e-10 => {
                     ready = Some(f);
                     (0.0, "definite stiffness")
@@ -515,7 +547,7 @@ fn one_shift_modes(
     let zero_attempt = usize::from(matches!(req, ModeRequest::Smallest { .. }) && ready.is_none());
     let mut fac = match ready {
         Some(f) => f,
-        None => factor_near(k, m, sigma, scale, kind)?,
+        None => factor_near(shared, k, m, sigma, scale, kind)?,
     };
     if matches!(req, ModeRequest::Smallest { .. }) && fac.negative_count() > 0 {
         return Err(Error::numerical(format!(
@@ -525,11 +557,14 @@ fn one_shift_modes(
         .hint("check the boundary conditions and material data"));
     }
     // Band: how many modes to find, from the inertia at both ends.
-    let band_count = match *req {
-        ModeRequest::Band { f_min, f_max } => {
-            let below_hi = count_below(k, m, omega2_of(f_max), scale, kind)?;
+    let band_count = match (req, band_counts) {
+        (ModeRequest::Band { .. }, Some((below_lo, below_hi))) => {
+            Some(below_hi.saturating_sub(below_lo))
+        }
+        (&ModeRequest::Band { f_min, f_max }, None) => {
+            let below_hi = count_below(shared, k, m, omega2_of(f_max), scale, kind)?;
             let below_lo = if f_min > 0.0 {
-                count_below(k, m, omega2_of(f_min), scale, kind)?
+                count_below(shared, k, m, omega2_of(f_min), scale, kind)?
             } else {
                 0
             };
@@ -551,11 +586,21 @@ fn one_shift_modes(
     let mut nev = target;
     let mut passes = 0;
     let mut op_count = 0;
-    let mut factorizations = 1 + zero_attempt + if band_count.is_some() { 2 } else { 0 };
+    let counted_here = band_count.is_some() && band_counts.is_none();
+    let mut factorizations = 1 + zero_attempt + if counted_here { 2 } else { 0 };
     loop {
         passes += 1;
         let locked: Vec<Vec<f64>> = found.iter().map(|p| p.1.clone()).collect();
-        let new = lanczos_pass(k, m, &mut fac, nev, &locked, opts, &mut op_count)?;
+        let new = lanczos_pass(
+            k,
+            m,
+            &mut fac,
+            nev,
+            &locked,
+            opts,
+            &mut op_count,
+            &mut shared.work,
+        )?;
         if new.is_empty() && passes > 1 {
             break;
         }
@@ -572,9 +617,9 @@ fn one_shift_modes(
                 let (lo, hi) = span(&chosen, req);
                 let lo_abs = if lo.is_finite() { lo.abs() } else { 0.0 };
                 let tol = 1e-9 * hi.abs().max(lo_abs) + 1e-12 * scale;
-                let count = count_below(k, m, hi + tol, scale, kind)?
+                let count = count_below(shared, k, m, hi + tol, scale, kind)?
                     - if lo.is_finite() {
-                        count_below(k, m, lo - tol, scale, kind)?
+                        count_below(shared, k, m, lo - tol, scale, kind)?
                     } else {
                         0
                     };

@@ -15,7 +15,9 @@ use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LdltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::{SparseColMat, SparseColMatRef};
 use faer::{Conj, MatMut, Side};
+use std::rc::Rc;
 
 /// Which factorisation variant faer uses (tests force each one; `Auto` elsewhere).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -26,10 +28,55 @@ pub enum FactorKind {
     Supernodal,
 }
 
+/// The pattern of K − σM common to every σ of one problem (the entries of K and of M and
+/// the whole diagonal), the values of K and of M on it, and its symbolic factorisation
+/// (AMD ordering and analysis). Spectrum slicing factorises tens of shifts of one problem;
+/// with this each one only refills the values and factorises numerically, where
+/// [`ShiftedFactor::new`] assembles from triplets, orders and analyses again.
+pub struct ShiftPattern {
+    /// The pattern (its values are K's).
+    structure: SparseColMat<usize, f64>,
+    k_val: Vec<f64>,
+    /// M's values on the same pattern.
+    m_val: Vec<f64>,
+    k_diag: Vec<f64>,
+    m_diag: Vec<f64>,
+    symbolic: Rc<SymbolicCholesky<usize>>,
+}
+
+impl ShiftPattern {
+    pub fn new(k: &SymSparse, m: &SymSparse, kind: FactorKind) -> Result<Self> {
+        let (structure, m_val) = SymSparse::shift_pattern(k, m)?;
+        let symbolic = Rc::new(symbolic_of(&structure, kind)?);
+        Ok(ShiftPattern {
+            k_val: structure.val().to_vec(),
+            m_val,
+            k_diag: k.diag(),
+            m_diag: m.diag(),
+            structure,
+            symbolic,
+        })
+    }
+}
+
+/// AMD ordering and symbolic analysis of the lower triangle `a`.
+fn symbolic_of(a: &SparseColMat<usize, f64>, kind: FactorKind) -> Result<SymbolicCholesky<usize>> {
+    let params = CholeskySymbolicParams {
+        supernodal_flop_ratio_threshold: match kind {
+            FactorKind::Auto => SupernodalThreshold::AUTO,
+            FactorKind::Simplicial => SupernodalThreshold::FORCE_SIMPLICIAL,
+            FactorKind::Supernodal => SupernodalThreshold::FORCE_SUPERNODAL,
+        },
+        ..Default::default()
+    };
+    factorize_symbolic_cholesky(a.symbolic(), Side::Lower, SymmetricOrdering::Amd, params)
+        .map_err(|e| Error::numerical(format!("symbolic factorisation of K - σM failed: {e:?}")))
+}
+
 /// LDLᵀ of K − σM, reusable for many solves.
 pub struct ShiftedFactor {
     pub sigma: f64,
-    symbolic: SymbolicCholesky<usize>,
+    symbolic: Rc<SymbolicCholesky<usize>>,
     values: Vec<f64>,
     /// Pivots D in the factor's (permuted) order.
     pivots: Vec<f64>,
@@ -41,20 +88,43 @@ pub struct ShiftedFactor {
 impl ShiftedFactor {
     pub fn new(k: &SymSparse, m: &SymSparse, sigma: f64, kind: FactorKind) -> Result<Self> {
         let a = SymSparse::shifted_lower(k, m, sigma)?;
+        let symbolic = Rc::new(symbolic_of(&a, kind)?);
+        let mut diag = k.diag();
+        for (di, mi) in diag.iter_mut().zip(m.diag()) {
+            *di -= sigma * mi;
+        }
+        Self::numeric(symbolic, a.as_ref(), sigma, diag)
+    }
+
+    /// The factor at σ on a problem's [`ShiftPattern`]: no assembly, ordering or symbolic
+    /// analysis, and the same factor as [`ShiftedFactor::new`] on that pattern.
+    pub fn from_pattern(p: &ShiftPattern, sigma: f64) -> Result<Self> {
+        // k + (−σ)·m, the sum the triplet assembly of `new` makes of the same two entries.
+        let values: Vec<f64> = p
+            .k_val
+            .iter()
+            .zip(&p.m_val)
+            .map(|(k, m)| k + (-sigma) * m)
+            .collect();
+        let a = SparseColMatRef::new(p.structure.symbolic(), &values);
+        let diag = p
+            .k_diag
+            .iter()
+            .zip(&p.m_diag)
+            .map(|(k, m)| k - sigma * m)
+            .collect();
+        Self::numeric(Rc::clone(&p.symbolic), a, sigma, diag)
+    }
+
+    /// Numeric LDLᵀ of `a` (lower triangle of K − σM, `full_diag` its diagonal) on its
+    /// symbolic factorisation.
+    fn numeric(
+        symbolic: Rc<SymbolicCholesky<usize>>,
+        a: SparseColMatRef<'_, usize, f64>,
+        sigma: f64,
+        full_diag: Vec<f64>,
+    ) -> Result<Self> {
         let n = a.nrows();
-        let params = CholeskySymbolicParams {
-            supernodal_flop_ratio_threshold: match kind {
-                FactorKind::Auto => SupernodalThreshold::AUTO,
-                FactorKind::Simplicial => SupernodalThreshold::FORCE_SIMPLICIAL,
-                FactorKind::Supernodal => SupernodalThreshold::FORCE_SUPERNODAL,
-            },
-            ..Default::default()
-        };
-        let symbolic =
-            factorize_symbolic_cholesky(a.symbolic(), Side::Lower, SymmetricOrdering::Amd, params)
-                .map_err(|e| {
-                    Error::numerical(format!("symbolic factorisation of K - σM failed: {e:?}"))
-                })?;
         let mut values = vec![0.0; symbolic.len_val()];
         let par = faer::get_global_parallelism();
         let mut buf = MemBuffer::try_new(
@@ -64,7 +134,7 @@ impl ShiftedFactor {
         symbolic
             .factorize_numeric_ldlt(
                 &mut values,
-                a.as_ref(),
+                a,
                 Side::Lower,
                 LdltRegularization::default(),
                 par,
@@ -77,13 +147,6 @@ impl ShiftedFactor {
                 ))
             })?;
         let pivots = extract_pivots(&symbolic, &values, n);
-        let full_diag = {
-            let mut d = k.diag();
-            for (di, mi) in d.iter_mut().zip(m.diag()) {
-                *di -= sigma * mi;
-            }
-            d
-        };
         let diag = match symbolic.perm() {
             Some(p) => p.arrays().0.iter().map(|&f| full_diag[f]).collect(),
             None => full_diag,
@@ -206,6 +269,28 @@ mod tests {
                     "{kind:?} σ between modes {j} and {}",
                     j + 1
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn factor_on_the_shared_pattern_is_the_same_factor() {
+        // The same pattern (K and M are both tridiagonal), so the same ordering and the same
+        // sums k − σm: pivots and solves equal to the last bit.
+        let n = 400;
+        let (k, m) = chain(n);
+        for kind in [FactorKind::Simplicial, FactorKind::Supernodal] {
+            let pattern = ShiftPattern::new(&k, &m, kind).unwrap();
+            for sigma in [0.37, 1.9, -0.2] {
+                let mut a = ShiftedFactor::new(&k, &m, sigma, kind).unwrap();
+                let mut b = ShiftedFactor::from_pattern(&pattern, sigma).unwrap();
+                assert_eq!(a.negative_count(), b.negative_count());
+                assert_eq!(a.pivots, b.pivots, "{kind:?} σ = {sigma}");
+                let mut x: Vec<f64> = (0..n).map(|i| ((i * 5 % 17) as f64) - 8.0).collect();
+                let mut y = x.clone();
+                a.solve_in_place(&mut x);
+                b.solve_in_place(&mut y);
+                assert_eq!(x, y, "{kind:?} σ = {sigma}");
             }
         }
     }

@@ -16,14 +16,15 @@
 
 use super::sym::SymSparse;
 use super::SLICE_MODES;
-use super::{count_below, frequency, one_shift_modes, EigenOptions, ModeRequest, ModeSet};
+use super::{count_below, frequency, one_shift_modes, EigenOptions, ModeRequest, ModeSet, Shared};
 use crate::error::{Error, Result};
 
 /// Tries at placing one boundary before taking what it gives.
 const BOUNDARY_TRIES: usize = 8;
 
 /// The `n` lowest modes, slice by slice.
-pub fn smallest(
+pub(crate) fn smallest(
+    shared: &mut Shared,
     k: &SymSparse,
     m: &SymSparse,
     n: usize,
@@ -31,11 +32,13 @@ pub fn smallest(
     scale: f64,
 ) -> Result<ModeSet> {
     let first = one_shift_modes(
+        shared,
         k,
         m,
         &ModeRequest::Smallest { n: SLICE_MODES + 1 },
         opts,
         scale,
+        None,
     )?;
     let mut omega2 = first.omega2;
     let mut vectors = first.vectors;
@@ -46,7 +49,7 @@ pub fn smallest(
     };
     vectors.pop();
     let mut lo = 0.5 * (below + top);
-    let mut count_lo = count_below(k, m, lo, scale, opts.factor)?;
+    let mut count_lo = count_below(shared, k, m, lo, scale, opts.factor)?;
     if count_lo != omega2.len() {
         return Err(Error::numerical(format!(
             "the first {} modes do not match Sylvester's count below their top ({count_lo})",
@@ -62,12 +65,15 @@ pub fn smallest(
     let counter = Counter { k, m, opts, scale };
     while omega2.len() < n {
         let want = SLICE_MODES.min(n - omega2.len());
-        let (hi, count_hi) = counter.next_boundary(lo, count_lo, width / held as f64, want)?;
+        let (hi, count_hi) =
+            counter.next_boundary(shared, lo, count_lo, width / held as f64, want)?;
         let band = ModeRequest::Band {
             f_min: frequency(lo),
             f_max: frequency(hi),
         };
-        let slice = one_shift_modes(k, m, &band, opts, scale)?;
+        // The band's counts are the boundaries' own: no factorisation to count them again.
+        let counts = Some((count_lo, count_hi));
+        let slice = one_shift_modes(shared, k, m, &band, opts, scale, counts)?;
         if slice.omega2.len() != count_hi - count_lo {
             return Err(Error::numerical(format!(
                 "the slice ({:e}, {:e}] Hz holds {} modes (Sylvester count) but {} were found",
@@ -115,6 +121,7 @@ impl Counter<'_> {
     /// per mode and corrected by Sylvester's count.
     fn next_boundary(
         &self,
+        shared: &mut Shared,
         lo: f64,
         count_lo: usize,
         width_per_mode: f64,
@@ -125,7 +132,7 @@ impl Counter<'_> {
         let mut best: Option<(f64, usize)> = None;
         for _ in 0..BOUNDARY_TRIES {
             let hi = lo + step;
-            let count = count_below(self.k, self.m, hi, self.scale, self.opts.factor)?;
+            let count = count_below(shared, self.k, self.m, hi, self.scale, self.opts.factor)?;
             let inside = count.saturating_sub(count_lo);
             if inside > 0 {
                 best = Some((hi, count));

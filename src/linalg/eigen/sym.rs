@@ -206,6 +206,44 @@ impl SymSparse {
         SparseColMat::try_new_from_triplets(n, n, &t)
             .map_err(|e| Error::numerical(format!("could not build K - σM: {e:?}")))
     }
+
+    /// The lower pattern of K − σM for every σ (the entries of K and of M, and the whole
+    /// diagonal, as [`SymSparse::shifted_lower`] assembles them for σ ≠ 0), with K's values,
+    /// and M's values on the same pattern (zero where M has no entry).
+    pub fn shift_pattern(
+        k: &SymSparse,
+        m: &SymSparse,
+    ) -> Result<(SparseColMat<usize, f64>, Vec<f64>)> {
+        let n = k.n;
+        // The same triplets with K's values, then with M's: the same positions, so the same
+        // compressed pattern, entry for entry.
+        let build = |take_k: bool| {
+            let mut t = Vec::with_capacity(k.val.len() + m.val.len() + n);
+            for i in 0..n {
+                t.push(Triplet::new(i, i, 0.0));
+            }
+            for (a, is_k) in [(k, true), (m, false)] {
+                for j in 0..n {
+                    for p in a.col_ptr[j]..a.col_ptr[j + 1] {
+                        let v = if is_k == take_k { a.val[p] } else { 0.0 };
+                        t.push(Triplet::new(a.row_idx[p], j, v));
+                    }
+                }
+            }
+            SparseColMat::try_new_from_triplets(n, n, &t)
+                .map_err(|e| Error::numerical(format!("could not build K - σM: {e:?}")))
+        };
+        let with_k = build(true)?;
+        let with_m = build(false)?;
+        let (a, b) = (with_k.symbolic(), with_m.symbolic());
+        if a.col_ptr() != b.col_ptr() || a.row_idx() != b.row_idx() {
+            return Err(Error::internal(
+                "the patterns of K and M on K - σM differ between two assemblies",
+            ));
+        }
+        let m_val = with_m.val().to_vec();
+        Ok((with_k, m_val))
+    }
 }
 
 pub fn dot(a: &[f64], b: &[f64]) -> f64 {

@@ -423,9 +423,10 @@ fn lanczos_with_locked_vectors_finds_the_rest() {
     let ms = SymSparse::from_faer(&mm, "m").unwrap();
     let o = EigenOptions::default();
     let mut fac = ShiftedFactor::new(&ks, &ms, 0.0, FactorKind::Auto).unwrap();
-    let first = lanczos_pass(&ks, &ms, &mut fac, 3, &[], &o, &mut 0).unwrap();
+    let mut work = LanczosWork::default();
+    let first = lanczos_pass(&ks, &ms, &mut fac, 3, &[], &o, &mut 0, &mut work).unwrap();
     let locked: Vec<Vec<f64>> = first.iter().map(|p| p.1.clone()).collect();
-    let mut next = lanczos_pass(&ks, &ms, &mut fac, 3, &locked, &o, &mut 0).unwrap();
+    let mut next = lanczos_pass(&ks, &ms, &mut fac, 3, &locked, &o, &mut 0, &mut work).unwrap();
     next.sort_by(|a, b| a.0.total_cmp(&b.0));
     for (i, (w2, _)) in next.iter().enumerate() {
         let exact = fixed_omega(i + 4, n, k, mass);

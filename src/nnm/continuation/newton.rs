@@ -13,18 +13,28 @@ pub fn relative(r: &[f64], x: &[f64]) -> f64 {
     norm(r) / norm(x).max(1.0)
 }
 
-/// Margin of [`roundoff_floor`] over ε‖|K||U|‖: the entries per row summed in K U (a few
-/// tens for beams and shells) and the growth of the round-off in the factorised solves.
-const ROUNDOFF_MARGIN: f64 = 1.0e3;
+/// Margin of [`roundoff_floor`] over [`stiffness_roundoff`]. Measured where corrections
+/// stall at round-off (instrumented runs of 2026-12-07: every MODE_NON_LINE file of testcases/, the
+/// bench's POU_D_E bars of 26 to 2 501 elements and its 15-span bar of 1 024): at 0.05 to
+/// 1.06 times ε‖|K||U|‖/max(1, ‖X‖), so ten covers them. It was 10³ before, which let a
+/// correction that had converged to a wrong point and stalled there (a start deep into a
+/// stiff contact on a 200-element beam: RESIDU 3.4e-5, 4.6e3 times ε‖|K||U|‖, 2.4e4 times
+/// the observed noise) pass as round-off.
+const ROUNDOFF_MARGIN: f64 = 10.0;
+
+/// ε‖|K||U|‖ / max(1, ‖X‖) (componentwise absolute values, units of [`relative`]): what
+/// evaluating the stiffness terms K U at `x` may be off by in floating point. It grows
+/// with the mesh (the scaled K of a chain grows like n, of a bending beam like n³): a
+/// 10⁴-DOF beam's Newton stalls near 2e-8 whatever the iterations. For models whose scaled
+/// stiffness is O(1) it is far below any PREC_NEWTON.
+pub fn stiffness_roundoff(sys: &System, x: &[f64]) -> f64 {
+    f64::EPSILON * sys.stiffness_term_norm(x) / norm(x).max(1.0)
+}
 
 /// What the residual of an exact solution may still be from round-off alone, in the units
-/// of [`relative`]: the stiffness terms K U are evaluated with an error up to about
-/// ε‖|K||U|‖ (componentwise absolute values), which grows with the mesh (the scaled K of a
-/// chain grows like n, of a bending beam like n³): a 10⁴-DOF beam's Newton stalls near
-/// 2e-8 whatever the iterations. For models whose scaled stiffness is O(1) it is far below
-/// any PREC_NEWTON.
+/// of [`relative`]: [`stiffness_roundoff`] with the margin of [`ROUNDOFF_MARGIN`].
 pub fn roundoff_floor(sys: &System, x: &[f64]) -> f64 {
-    ROUNDOFF_MARGIN * f64::EPSILON * sys.stiffness_term_norm(x) / norm(x).max(1.0)
+    ROUNDOFF_MARGIN * stiffness_roundoff(sys, x)
 }
 
 /// Ulps by which [`observed_noise`] perturbs every unknown.

@@ -93,7 +93,9 @@ pub(in crate::nnm) fn series_step(
     for _ in 0..40 {
         let xe = series.eval(x0, series.a_max);
         let r = newton::relative(&sys.residual(&xe), &xe);
-        if r.is_finite() && r <= credible.max(newton::roundoff_floor(sys, &xe)) {
+        if r.is_finite()
+            && r <= credible.max(SERIES_ROUNDOFF_MARGIN * newton::stiffness_roundoff(sys, &xe))
+        {
             break;
         }
         series.a_max *= 0.5;
@@ -103,6 +105,11 @@ pub(in crate::nnm) fn series_step(
     }
     Ok(series)
 }
+
+/// The series end's residual is credible up to this many times the round-off of the
+/// stiffness terms ([`newton::stiffness_roundoff`]): a step end is then corrected by Newton,
+/// whose own acceptance is much tighter ([`newton::roundoff_floor`]).
+const SERIES_ROUNDOFF_MARGIN: f64 = 1.0e3;
 
 /// Largest reduced step ā = a/a_series tried for the Padé approximant.
 const PADE_REACH_MAX: f64 = 10.0;

@@ -28,6 +28,10 @@ pub struct StartState {
     pub newton_iterations: usize,
     /// The solver the continuation uses (and the start used).
     pub solver: SolverKind,
+    /// When the start from linear modes could not be corrected at the amplitude asked: the
+    /// fraction of it at which it was ([`approach_in_amplitude`]), and why the full
+    /// amplitude failed. The caller says so (alarm MODE_NON_LINE_11).
+    pub approached: Option<(f64, String)>,
 }
 
 impl StartState {
@@ -121,6 +125,7 @@ pub(in crate::nnm) fn start(
     }
     let mut solver = make_solver(&sys, settings, kind)?;
     let guess_x = x.clone();
+    let mut approached = None;
     let corr = match newton::correct(
         &sys,
         solver.as_mut(),
@@ -131,31 +136,22 @@ pub(in crate::nnm) fn start(
     ) {
         Ok(c) => c,
         Err(e) => {
-            let approached = match guess {
+            let approach = match guess {
                 Guess::LinearModes => {
                     x.copy_from_slice(&guess_x);
                     approach_in_amplitude(&sys, solver.as_mut(), settings, &mut x)
                 }
                 Guess::StoredPoint => None,
             };
-            approached.ok_or_else(|| {
-                let mut err = Error {
-                    message: format!("start point: {}", e.message),
-                    ..e
-                };
-                if guess == Guess::LinearModes {
-                    // From a linear mode the amplitude is the user's choice and the usual cause.
-                    let usual = err.hint.take();
-                    err.keyword = Some("ETAT_INIT/COEF_AMPL".into());
-                    err = err.hint(format!(
-                        "the start guess is the linear mode scaled by COEF_AMPL (approached from \
-                         smaller amplitudes too): start at a smaller COEF_AMPL, the continuation \
-                         then climbs to the higher energies{}",
-                        usual.map(|h| format!("; else {h}")).unwrap_or_default()
-                    ));
+            match approach {
+                Some(a) => {
+                    if a.fraction < 1.0 {
+                        approached = Some((a.fraction, e.message.clone()));
+                    }
+                    a.correction
                 }
-                err
-            })?
+                None => return Err(start_error(e, guess)),
+            }
         }
     };
     let (polished, residual) = match guess {
@@ -180,11 +176,40 @@ pub(in crate::nnm) fn start(
         point,
         newton_iterations: it,
         solver: kind,
+        approached,
     })
+}
+
+/// The error of a start that could not be corrected at all: from a linear mode the
+/// amplitude is the user's choice and the usual cause.
+fn start_error(e: Error, guess: Guess) -> Error {
+    let mut err = Error {
+        message: format!("start point: {}", e.message),
+        ..e
+    };
+    if guess == Guess::LinearModes {
+        let usual = err.hint.take();
+        err.keyword = Some("ETAT_INIT/COEF_AMPL".into());
+        err = err.hint(format!(
+            "the start guess is the linear mode scaled by COEF_AMPL (approached from smaller \
+             amplitudes too): start at a smaller COEF_AMPL, the continuation then climbs to \
+             the higher energies{}",
+            usual.map(|h| format!("; else {h}")).unwrap_or_default()
+        ));
+    }
+    err
 }
 
 /// Sub-steps of [`approach_in_amplitude`], at most.
 const APPROACH_STEPS_MAX: usize = 24;
+
+/// A start corrected by [`approach_in_amplitude`]: at `fraction` (≤ 1) of the amplitude of
+/// the guess.
+#[derive(Clone, Copy, Debug)]
+struct Approach {
+    correction: newton::Correction,
+    fraction: f64,
+}
 
 /// The start at the amplitude of `x` (a linear-mode guess whose Newton correction failed:
 /// at or past first contact with a stiff or strongly regularised stop the linear mode can
@@ -192,14 +217,18 @@ const APPROACH_STEPS_MAX: usize = 24;
 /// s = ½ (halved again while that fails), corrected, then s raised toward 1 with each
 /// corrected point scaled up as the next guess, the raise halved when a correction fails.
 /// The amplitude constraint is the border: each correction keeps the guess's amplitude.
-/// On success `x` is the start at the full amplitude; None when it cannot be reached
-/// within [`APPROACH_STEPS_MAX`] corrections (`x` is then unspecified).
+/// `x` is left at the largest amplitude corrected within [`APPROACH_STEPS_MAX`]
+/// corrections: the full one, or a fraction of it when the corrections stall on the way
+/// (measured on a 200-element cantilever whose mid-span ring is reached at 0.6 of the
+/// asked amplitude: every correction past it stalled at RESIDU 1e-6 to 6e-5, where the
+/// continuation from below crosses first contact in a few branches). None when not even a
+/// smaller amplitude could be corrected (`x` is then unspecified).
 fn approach_in_amplitude(
     sys: &System,
     solver: &mut dyn TangentSolver,
     settings: &Settings,
     x: &mut [f64],
-) -> Option<newton::Correction> {
+) -> Option<Approach> {
     let motion = 2 * sys.lay.n * sys.lay.n_coef_lin;
     let target = x.to_vec();
     let at = |s: f64, from: &[f64], s_from: f64, x: &mut [f64]| -> Option<()> {
@@ -222,33 +251,45 @@ fn approach_in_amplitude(
     let mut s = 0.5;
     let mut steps = 0;
     // A corrected point below the target amplitude.
-    loop {
+    let mut best = loop {
         steps += 1;
         at(s, &target, 1.0, x)?;
-        if correct(x, solver).is_some() {
-            break;
+        if let Some(c) = correct(x, solver) {
+            break c;
         }
         if steps >= APPROACH_STEPS_MAX {
             return None;
         }
         s *= 0.5;
-    }
+    };
     let mut ds = s.min(1.0 - s);
     let mut from = x.to_vec();
     while steps < APPROACH_STEPS_MAX {
         steps += 1;
         let next = (s + ds).min(1.0);
-        at(next, &from, s, x)?;
+        if at(next, &from, s, x).is_none() {
+            break;
+        }
         match correct(x, solver) {
-            Some(c) if next == 1.0 => return Some(c),
-            Some(_) => {
+            Some(c) if next == 1.0 => {
+                return Some(Approach {
+                    correction: c,
+                    fraction: 1.0,
+                })
+            }
+            Some(c) => {
                 s = next;
+                best = c;
                 from.copy_from_slice(x);
             }
             None => ds *= 0.5,
         }
     }
-    None
+    x.copy_from_slice(&from);
+    Some(Approach {
+        correction: best,
+        fraction: s,
+    })
 }
 
 /// The DOF whose velocity is zero at t = 0: the first free DOF as in Code_Aster (so that

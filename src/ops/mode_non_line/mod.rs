@@ -372,14 +372,24 @@ fn start_state(ctx: &mut OpContext<'_>, args: &Args, call: &Call) -> Result<Star
             })?;
             restart_direction(ctx, src, nume_ordre, settings.direction, start_state)?
         }
-        None => start::from_linear_modes(
-            ctx,
-            etat,
-            (problem, call.reduction.as_ref()),
-            settings,
-            k,
-            k_name,
-        )?,
+        None => {
+            let start = start::from_linear_modes(
+                ctx,
+                etat,
+                (problem, call.reduction.as_ref()),
+                settings,
+                k,
+                k_name,
+            )?;
+            if let Some((fraction, why)) = &start.approached {
+                let coef = etat.req_real("COEF_AMPL")?;
+                ctx.alarm(
+                    "MODE_NON_LINE_11",
+                    &start::approached_alarm(coef, *fraction, why),
+                )?;
+            }
+            start
+        }
     };
     Ok(start)
 }

@@ -91,6 +91,21 @@ pub fn from_linear_modes(
     nnm::start_from_mode_pair(problem, settings, &shape, &quad, coef, omega, omega_quad)
 }
 
+/// Alarm MODE_NON_LINE_11: the start from the linear mode could not be corrected at
+/// COEF_AMPL = `coef` (`why`), only at `fraction` of that amplitude, where the branch
+/// starts instead.
+pub fn approached_alarm(coef: f64, fraction: f64, why: &str) -> String {
+    format!(
+        "the start could not be corrected at COEF_AMPL={coef} ({why}); it was corrected at \
+         {fraction:.4} of that amplitude (COEF_AMPL={:.4e}), approached from smaller \
+         amplitudes, and the branch starts there: its first rows lie below the amplitude asked, \
+         and DIR_EVOLUTION=-1 climbs through it; the usual cause is a linear mode scaled deep \
+         into a stiff stop: a smaller COEF_AMPL, at which the mode barely reaches the stops, \
+         starts on the branch directly",
+        coef * fraction
+    )
+}
+
 /// Shape on the free DOFs and pulsation of mode `order` of `modes`.
 fn pick(modes: &ModeMeca, name: &str, order: i64, k: &AssembledMatrix) -> Result<(Vec<f64>, f64)> {
     let mode = usize::try_from(order)
