@@ -530,7 +530,8 @@ fn a_database_with_removed_matrix_or_shape_rows_is_refused() {
     let backup = std::fs::read(&db).unwrap();
     for (sql, what) in [
         (
-            "DELETE FROM matrix_entries WHERE rowid IN (SELECT rowid FROM matrix_entries LIMIT 1)",
+            "DELETE FROM matrix_entries WHERE (matrix, row, col) IN \
+             (SELECT matrix, row, col FROM matrix_entries LIMIT 1)",
             "matrix_entries",
         ),
         (

@@ -88,6 +88,23 @@ fn tables(c: &Connection) -> Vec<String> {
         .unwrap()
 }
 
+/// The order a run's rows were stored in, as the merge copies them: by rowid, or for a
+/// WITHOUT ROWID table (matrix_entries) its primary key's, the order of a plain scan.
+fn stored_order(c: &Connection, table: &str) -> &'static str {
+    let sql: String = c
+        .query_row(
+            "SELECT sql FROM sqlite_master WHERE type = 'table' AND name = ?1",
+            [table],
+            |r| r.get(0),
+        )
+        .unwrap();
+    if sql.to_ascii_uppercase().contains("WITHOUT ROWID") {
+        ""
+    } else {
+        " ORDER BY rowid"
+    }
+}
+
 fn columns(c: &Connection, table: &str) -> Vec<String> {
     let mut st = c
         .prepare(&format!("PRAGMA table_info(\"{table}\")"))
@@ -164,7 +181,11 @@ fn check_merged(out: &Path) -> Vec<Vec<Value>> {
             let quoted: Vec<String> = cols.iter().map(|c| format!("\"{c}\"")).collect();
             let mine = rows(
                 &run,
-                &format!("SELECT {} FROM \"{t}\" ORDER BY rowid", quoted.join(", ")),
+                &format!(
+                    "SELECT {} FROM \"{t}\"{}",
+                    quoted.join(", "),
+                    stored_order(&run, &t)
+                ),
                 None,
             );
             let theirs = rows(

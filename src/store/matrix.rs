@@ -10,6 +10,7 @@ use crate::model::numbering::NumberedDof;
 use crate::model::relations::DofRelation;
 use crate::model::{AssembledMatrix, Cmp, DofNumbering, MatrixKind};
 use rusqlite::params;
+use rusqlite::types::ValueRef;
 use serde::{Deserialize, Serialize};
 
 const SCHEMA: &str = "
@@ -27,7 +28,7 @@ CREATE TABLE IF NOT EXISTS matrix_entries (
     col INTEGER NOT NULL,
     value REAL NOT NULL,
     PRIMARY KEY (matrix, row, col)
-);
+) WITHOUT ROWID;
 ";
 
 pub fn ensure_schema(store: &Store) -> Result<()> {
@@ -136,12 +137,19 @@ pub fn load_numbering(store: &Store, name: &str) -> Result<DofNumbering> {
 pub fn save_matrix(store: &Store, name: &str, m: &AssembledMatrix, numbering: &str) -> Result<()> {
     ensure_schema(store)?;
     drop_data(store, name)?;
-    let mut stmt = store.conn().prepare_cached(
-        "INSERT INTO matrix_entries(matrix, row, col, value) VALUES (?1, ?2, ?3, ?4)",
+    super::batch::insert_rows(
+        store.conn(),
+        "matrix_entries",
+        ["matrix", "row", "col", "value"],
+        m.triplets.iter().map(|&(r, c, v)| {
+            [
+                ValueRef::Text(name.as_bytes()),
+                ValueRef::Integer(r as i64),
+                ValueRef::Integer(c as i64),
+                ValueRef::Real(v),
+            ]
+        }),
     )?;
-    for &(r, c, v) in &m.triplets {
-        stmt.execute(params![name, r as i64, c as i64, v])?;
-    }
     store.put_json(
         name,
         "matrix",

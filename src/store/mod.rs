@@ -16,6 +16,7 @@
 //! synced to disk once, when its run ends; a study that POURSUITE continues, at every
 //! commit.
 
+pub mod batch;
 pub mod deps;
 pub mod dyna_trans;
 pub mod function;

@@ -11,6 +11,7 @@ use crate::model::modes::{Mode, ModeMeca, StaticTag};
 use crate::model::numbering::DofNumbering;
 use crate::store::{Schema, Store};
 use rusqlite::params;
+use rusqlite::types::ValueRef;
 
 const SCHEMA: &str = "
 CREATE TABLE IF NOT EXISTS modes (
@@ -55,10 +56,6 @@ pub fn save_modes(store: &Store, name: &str, modes: &ModeMeca) -> Result<()> {
         "INSERT INTO modes(concept, NUME_ORDRE, FREQ, OMEGA2, MASS_GENE, RIGI_GENE, LABEL)
          VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)",
     )?;
-    let mut val = conn.prepare_cached(
-        "INSERT INTO mode_shapes(concept, NUME_ORDRE, dof, NOEUD, NOM_CMP, value)
-         VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
-    )?;
     for m in &modes.modes {
         if m.shape.len() != modes.numbering.len() {
             return Err(Error::internal(format!(
@@ -77,16 +74,26 @@ pub fn save_modes(store: &Store, name: &str, modes: &ModeMeca) -> Result<()> {
             m.rigi_gene,
             m.label
         ])?;
-        for (i, (v, dof)) in m.shape.iter().zip(&modes.numbering.dofs).enumerate() {
-            val.execute(params![
-                name,
-                m.nume_ordre as i64,
-                i as i64,
-                dof.node,
-                dof.cmp.name(),
-                v
-            ])?;
-        }
+        let order = m.nume_ordre as i64;
+        crate::store::batch::insert_rows(
+            conn,
+            "mode_shapes",
+            ["concept", "NUME_ORDRE", "dof", "NOEUD", "NOM_CMP", "value"],
+            m.shape
+                .iter()
+                .zip(&modes.numbering.dofs)
+                .enumerate()
+                .map(|(i, (&v, dof))| {
+                    [
+                        ValueRef::Text(name.as_bytes()),
+                        ValueRef::Integer(order),
+                        ValueRef::Integer(i as i64),
+                        ValueRef::Text(dof.node.as_bytes()),
+                        ValueRef::Text(dof.cmp.name().as_bytes()),
+                        ValueRef::Real(v),
+                    ]
+                }),
+        )?;
     }
     Ok(())
 }
