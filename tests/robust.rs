@@ -672,6 +672,18 @@ fn a_ring_on_one_component_and_a_clashing_shock_table_are_named() {
     }
 }
 
+/// The line of alarm MODE_NON_LINE_11 in `out`, which must name the COEF_AMPL the start
+/// could not be corrected at.
+fn approached_start_alarm<'a>(out: &'a str, coef: &str) -> &'a str {
+    let alarm = out
+        .lines()
+        .find(|l| l.contains("<MODE_NON_LINE_11>"))
+        .unwrap_or_else(|| panic!("no MODE_NON_LINE_11:\n{out}"));
+    let named = format!("could not be corrected at COEF_AMPL={coef} (");
+    assert!(alarm.contains(&named), "{alarm}");
+    alarm
+}
+
 /// sdnd122a started ten times its gap deep into the stop (COEF_AMPL 10): the linear mode is
 /// too far from the orbit for Newton, and the approach from smaller amplitudes stalls on
 /// the way. Before, that stopped the file with an error at COEF_AMPL; now the branch starts
@@ -691,14 +703,7 @@ fn a_start_far_into_the_stop_is_approached_and_the_run_goes_on() {
     let o = run_with_db(&comm, &db, &["--tole-machine", "1e-4"]);
     let out = text(&o);
     assert_eq!(o.status.code(), Some(0), "{out}");
-    let alarm = out
-        .lines()
-        .find(|l| l.contains("<MODE_NON_LINE_11>"))
-        .unwrap_or_else(|| panic!("no MODE_NON_LINE_11:\n{out}"));
-    assert!(
-        alarm.contains("could not be corrected at COEF_AMPL=10 ("),
-        "{alarm}"
-    );
+    approached_start_alarm(&out, "10");
     assert!(out.contains("tests: 6 OK, 0 NOOK"), "{out}");
     // The first row is the approached start: below the amplitude asked, solved to
     // PREC_NEWTON (1e-9) like every branch end.
@@ -1339,14 +1344,7 @@ FIN()
     let o = run_with_db(&comm, &db, &[]);
     let out = text(&o);
     assert_eq!(o.status.code(), Some(0), "{out}");
-    let alarm = out
-        .lines()
-        .find(|l| l.contains("<MODE_NON_LINE_11>"))
-        .unwrap_or_else(|| panic!("no MODE_NON_LINE_11:\n{out}"));
-    assert!(
-        alarm.contains("could not be corrected at COEF_AMPL=1 ("),
-        "{alarm}"
-    );
+    approached_start_alarm(&out, "1");
     let c = rusqlite::Connection::open(&db).unwrap();
     let rows: Vec<(f64, f64, f64, f64)> = c
         .prepare("SELECT ENERGIE, FREQUENCE, RESIDU, AMOR_FICTIF FROM MNL ORDER BY NUME_ORDRE")

@@ -227,22 +227,45 @@ fn store_column(
 /// measured slower than every 4 (the overshoot).
 const CHECK_EVERY: usize = 4;
 
+/// The Ritz pairs of the symmetric part of the first `len` columns of the projected matrix
+/// `h`: vectors (columns of `s`), values `theta`, and `order`, largest |θ| first.
+struct Ritz {
+    s: Mat<f64>,
+    theta: Vec<f64>,
+    order: Vec<usize>,
+}
+
+impl Ritz {
+    fn of(h: &[Vec<f64>], len: usize) -> Result<Ritz> {
+        let t = Mat::<f64>::from_fn(len, len, |i, j| 0.5 * (h[i][j] + h[j][i]));
+        let eig = t
+            .self_adjoint_eigen(Side::Lower)
+            .map_err(|e| Error::numerical(format!("projected eigenproblem failed: {e:?}")))?;
+        let theta: Vec<f64> = (0..len).map(|i| eig.S()[i]).collect();
+        let mut order: Vec<usize> = (0..len).collect();
+        order.sort_by(|&a, &b| theta[b].abs().total_cmp(&theta[a].abs()));
+        Ok(Ritz {
+            s: eig.U().to_owned(),
+            theta,
+            order,
+        })
+    }
+
+    /// Whether the first `want` pairs of `order` meet the convergence test, `beta` the
+    /// coefficient of the residual direction (|β s_last,i| ≤ tol |θ_i| + 1e-14 max |θ|).
+    fn converged(&self, beta: f64, want: usize, tol: f64) -> bool {
+        let last = self.theta.len() - 1;
+        let theta_max = self.theta.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        self.order[..want].iter().all(|&i| {
+            (beta * self.s[(last, i)]).abs() <= tol * self.theta[i].abs() + 1e-14 * theta_max
+        })
+    }
+}
+
 /// Whether the `nev` Ritz pairs of largest |θ| of the first `len` columns of `h` meet the
 /// convergence test (the same test as at the end of a cycle).
 fn ritz_converged(h: &[Vec<f64>], len: usize, nev: usize, tol: f64) -> Result<bool> {
-    let t = Mat::<f64>::from_fn(len, len, |i, j| 0.5 * (h[i][j] + h[j][i]));
-    let eig = t
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|e| Error::numerical(format!("projected eigenproblem failed: {e:?}")))?;
-    let s = eig.U();
-    let theta: Vec<f64> = (0..len).map(|i| eig.S()[i]).collect();
-    let mut order: Vec<usize> = (0..len).collect();
-    order.sort_by(|&a, &b| theta[b].abs().total_cmp(&theta[a].abs()));
-    let beta = h[len][len - 1];
-    let theta_max = theta.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-    Ok(order[..nev.min(len)]
-        .iter()
-        .all(|&i| (beta * s[(len - 1, i)]).abs() <= tol * theta[i].abs() + 1e-14 * theta_max))
+    Ok(Ritz::of(h, len)?.converged(h[len][len - 1], nev.min(len), tol))
 }
 
 /// Runs thick-restart Lanczos. `solve(y)` sets y ← (K − σM)⁻¹ y, so that Op x is
@@ -388,22 +411,11 @@ pub fn lanczos(
             }
         }
 
-        // Ritz pairs of the symmetric part of the projected matrix.
-        let t = Mat::<f64>::from_fn(ncur, ncur, |i, j| 0.5 * (h[i][j] + h[j][i]));
-        let eig = t
-            .self_adjoint_eigen(Side::Lower)
-            .map_err(|e| Error::numerical(format!("projected eigenproblem failed: {e:?}")))?;
-        let s = eig.U();
-        let theta: Vec<f64> = (0..ncur).map(|i| eig.S()[i]).collect();
-        let mut order: Vec<usize> = (0..ncur).collect();
-        order.sort_by(|&a, &b| theta[b].abs().total_cmp(&theta[a].abs()));
+        let ritz = Ritz::of(&h, ncur)?;
+        let (s, theta, order) = (&ritz.s, &ritz.theta, &ritz.order);
         let beta_last = if exhausted { 0.0 } else { h[ncur][ncur - 1] };
-        let theta_max = theta.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-        let resid = |i: usize| (beta_last * s[(ncur - 1, i)]).abs();
         let want = nev.min(ncur);
-        let converged = order[..want]
-            .iter()
-            .all(|&i| resid(i) <= p.tol * theta[i].abs() + 1e-14 * theta_max);
+        let converged = ritz.converged(beta_last, want, p.tol);
 
         let keep = if converged || exhausted {
             want
