@@ -12,7 +12,6 @@ use crate::nnm::model::fourier::{FftScratch, Sampler};
 use crate::nnm::model::point_law::{eta_phys, PointLaw};
 use crate::nnm::model::system::Layout;
 use crate::nnm::Problem;
-use std::cell::RefCell;
 use std::ops::Range;
 
 /// Above this defect (relative to α·JEU) the operator raises an alarm.
@@ -39,11 +38,11 @@ pub(crate) struct LawCheck {
     sampler: Sampler,
     h_lin: usize,
     h_nonl: usize,
-    /// The samples of one shock's displacements and forces, and the transform's scratch,
-    /// made once (a check runs at every branch end and every row).
-    work: RefCell<CheckWork>,
 }
 
+/// The samples of one shock's displacements and forces, and the transform's scratch: made
+/// per check (one per branch end and per row, each costing a few transforms), so that one
+/// `LawCheck` serves several threads.
 struct CheckWork {
     ws: FftScratch,
     /// Samples, component-major: up to two displacement components, up to two forces.
@@ -70,20 +69,22 @@ impl LawCheck {
                 scale: s.law.force_unit(s.stiffness, s.gap),
             })
             .collect();
-        let sampler = Sampler::new(2 * lay.n_coef_nonl);
-        let n = sampler.n();
-        let work = RefCell::new(CheckWork {
-            ws: sampler.scratch(),
-            ut: vec![0.0; 2 * n],
-            ft: vec![0.0; 2 * n],
-        });
         Ok(LawCheck {
             shocks,
-            sampler,
+            sampler: Sampler::new(2 * lay.n_coef_nonl),
             h_lin: lay.h_lin,
             h_nonl: lay.h_nonl,
-            work,
         })
+    }
+
+    /// The buffers of one check.
+    fn work(&self) -> CheckWork {
+        let n = self.sampler.n();
+        CheckWork {
+            ws: self.sampler.scratch(),
+            ut: vec![0.0; 2 * n],
+            ft: vec![0.0; 2 * n],
+        }
     }
 
     /// Samples the displacement components of `shock` over one period into `ut`
@@ -111,11 +112,10 @@ impl LawCheck {
     /// `u`: displacement coefficients of each DOF.
     pub fn largest_penetration(&self, u: &[Vec<f64>]) -> Result<Option<f64>> {
         let n = self.sampler.n();
-        let mut work = self.work.borrow_mut();
-        let CheckWork { ws, ut, .. } = &mut *work;
+        let CheckWork { mut ws, mut ut, .. } = self.work();
         let mut largest: Option<f64> = None;
         for shock in self.shocks.iter().filter(|s| s.law.law.has_obstacle()) {
-            let n_comp = self.sample_displacement(shock, u, ut, ws);
+            let n_comp = self.sample_displacement(shock, u, &mut ut, &mut ws);
             let mut uj = [0.0; 2];
             for j in 0..n {
                 for (c, v) in uj[..n_comp].iter_mut().enumerate() {
@@ -139,8 +139,11 @@ impl LawCheck {
         let mut worst = 0.0f64;
         let mut worst_rel = 0.0f64;
         let n = self.sampler.n();
-        let mut work = self.work.borrow_mut();
-        let CheckWork { ws, ut, ft } = &mut *work;
+        let CheckWork {
+            mut ws,
+            mut ut,
+            mut ft,
+        } = self.work();
         for (shock, unknowns) in self.shocks.iter().zip(contact) {
             // The largest |f_series − f_law| and |f_law| over the instants, divided by the
             // scale once (x ↦ x/scale is monotonic in floating point: the same maxima).
@@ -148,11 +151,11 @@ impl LawCheck {
             let mut peak = shock.scale.unwrap_or(0.0);
             // Samples by FFT: within round-off of summing the series at each instant,
             // O(N log N) instead of O(N·H).
-            let n_comp = self.sample_displacement(shock, u, ut, ws);
+            let n_comp = self.sample_displacement(shock, u, &mut ut, &mut ws);
             let forces = unknowns.get(shock.forces.clone()).unwrap_or_default();
             let n_forces = forces.len().min(2);
             for (s, out) in forces.iter().zip(ft.chunks_exact_mut(n)) {
-                self.sampler.synth_with(s, self.h_nonl, out, ws);
+                self.sampler.synth_with(s, self.h_nonl, out, &mut ws);
             }
             let mut uj = [0.0; 2];
             for j in 0..n {

@@ -12,6 +12,7 @@
 use crate::error::{Error, Result};
 use crate::nnm::continuation::pade::Pade;
 use crate::nnm::model::system::{Grid, Samples, System};
+use crate::nnm::model::workspace::Workspace;
 use crate::nnm::solve::linear_solver::TangentSolver;
 
 pub struct Series {
@@ -86,6 +87,7 @@ pub struct AnmParams {
 /// wanted direction.
 pub fn compute(
     sys: &System,
+    ws: &mut Workspace,
     solver: &mut dyn TangentSolver,
     x0: &[f64],
     p: &AnmParams,
@@ -119,12 +121,8 @@ pub fn compute(
     } else {
         Grid::Full
     };
-    let sampled = |x: &[f64]| {
-        let mut s = sys.take_samples();
-        sys.samples_into(x, grid, &mut s);
-        s
-    };
-    let mut samples = vec![sampled(&x1)];
+    let sampled = |x: &[f64], ws: &mut Workspace| sys.samples_on(x, grid, ws);
+    let mut samples = vec![sampled(&x1, ws)];
     let mut terms = vec![x1];
     for order in 2..=p.order {
         let mut rhs = vec![0.0; n];
@@ -134,7 +132,7 @@ pub fn compute(
         let cache: Vec<_> = (1..order)
             .map(|r| (&samples[r - 1], &samples[order - r - 1]))
             .collect();
-        sys.quad_sum_cached(&pairs, Some(&cache), &mut rhs[..n - 1]);
+        sys.quad_sum_cached(&pairs, Some(&cache), &mut rhs[..n - 1], ws);
         rhs.iter_mut().for_each(|v| *v = -*v);
         rhs[n - 1] = 0.0;
         solver.solve(sys, &mut rhs)?;
@@ -147,12 +145,12 @@ pub fn compute(
                 "series term of order {order} is not finite"
             )));
         }
-        samples.push(sampled(&rhs));
+        samples.push(sampled(&rhs, ws));
         terms.push(rhs);
     }
     let last = terms.len();
-    let mut a_max = step_length(sys, &terms, Some(&samples), p.prec);
-    sys.recycle_samples(samples);
+    let mut a_max = step_length(sys, ws, &terms, Some(&samples), p.prec);
+    ws.recycle_samples(samples);
     let mut bifurcation = None;
     if let Some(r) = geometric_ratio(&terms, p.bif_terms, p.bif_tol) {
         // Cochelin & Medale (2013): the tail is X_p ≈ X_N r^{p−N}; remove it from every
@@ -167,7 +165,7 @@ pub fn compute(
                 }
             }
             terms.pop();
-            let a_reg = step_length(sys, &terms, None, p.prec);
+            let a_reg = step_length(sys, ws, &terms, None, p.prec);
             if a_reg.is_finite() && a_reg >= a_b {
                 a_max = a_reg;
                 bifurcation = Some(a_b);
@@ -207,7 +205,13 @@ pub fn compute(
 /// a_max = (PREC_MAN/‖R_{N+1}‖)^{1/(N+1)}, R_{N+1} = Σ_{r=1..N} Q(X_r, X_{N+1−r}) the
 /// residual of the first neglected order, so that ‖R(X(a_max))‖ ≈ PREC_MAN.
 /// `samples`: the terms' time samples (`System::samples`), when the caller has them.
-fn step_length(sys: &System, terms: &[Vec<f64>], samples: Option<&[Samples]>, prec: f64) -> f64 {
+fn step_length(
+    sys: &System,
+    ws: &mut Workspace,
+    terms: &[Vec<f64>],
+    samples: Option<&[Samples]>,
+    prec: f64,
+) -> f64 {
     let last = terms.len();
     let mut r = vec![0.0; sys.lay.n_eq()];
     let pairs: Vec<(&[f64], &[f64])> = (1..=last)
@@ -216,9 +220,9 @@ fn step_length(sys: &System, terms: &[Vec<f64>], samples: Option<&[Samples]>, pr
     match samples {
         Some(s) => {
             let cache: Vec<_> = (1..=last).map(|k| (&s[k - 1], &s[last - k])).collect();
-            sys.quad_sum_cached(&pairs, Some(&cache), &mut r);
+            sys.quad_sum_cached(&pairs, Some(&cache), &mut r, ws);
         }
-        None => sys.quad_sum(&pairs, &mut r),
+        None => sys.quad_sum(&pairs, &mut r, ws),
     }
     (prec / norm(&r).max(f64::MIN_POSITIVE)).powf(1.0 / (last + 1) as f64)
 }

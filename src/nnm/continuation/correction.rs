@@ -12,6 +12,7 @@ use crate::nnm::continuation::root_check::frequency_defect;
 use crate::nnm::continuation::step_control::ROOT_JUMP_RATIO;
 use crate::nnm::model::point::{finite, make_point};
 use crate::nnm::model::system::System;
+use crate::nnm::model::workspace::Workspace;
 use crate::nnm::solve::linear_solver::TangentSolver;
 use crate::nnm::{Point, Settings, StepControl};
 
@@ -173,6 +174,7 @@ struct BranchPoints {
 
 fn branch_points_of(
     sys: &System,
+    ws: &mut Workspace,
     solver: &mut dyn TangentSolver,
     settings: &Settings,
     series: &anm::Series,
@@ -207,13 +209,14 @@ fn branch_points_of(
         let mut res = if i == np {
             f64::NAN
         } else {
-            newton::relative(&sys.residual(&x), &x)
+            newton::relative(&sys.residual(&x, ws), &x)
         };
         let mut at_floor = false;
         if i == np {
             let predicted = x.clone();
             let corr = match newton::correct(
                 sys,
+                ws,
                 solver,
                 &mut x,
                 &tangent,
@@ -301,6 +304,7 @@ pub(in crate::nnm) struct CorrectedBranch {
 #[allow(clippy::too_many_arguments)]
 pub(in crate::nnm) fn correct_branch(
     sys: &System,
+    ws: &mut Workspace,
     solver: &mut dyn TangentSolver,
     settings: &Settings,
     control: &StepControl,
@@ -331,7 +335,7 @@ pub(in crate::nnm) fn correct_branch(
         ..
     } = loop {
         let attempt =
-            branch_points_of(sys, solver, settings, series, x0, b)?.and_then(|mut done| {
+            branch_points_of(sys, ws, solver, settings, series, x0, b)?.and_then(|mut done| {
                 match done.points.last_mut() {
                     Some(end) => off_the_law(control, law_check, end)?,
                     None => None,

@@ -68,6 +68,7 @@ fn run(
     outcome: &mut Outcome,
 ) -> Result<()> {
     let mut sys = System::new(problem, settings, start_state.scaling, start_state.ref_dof)?;
+    let mut ws = sys.workspace();
     if start_state.x.len() != sys.lay.n_unk {
         return Err(Error::internal("start state does not match the problem"));
     }
@@ -97,6 +98,7 @@ fn run(
     for b in 1..=settings.n_branches {
         let mut series = series_step(
             &sys,
+            &mut ws,
             solver.as_mut(),
             &x0,
             &params,
@@ -120,6 +122,7 @@ fn run(
             end_defect,
         } = correct_branch(
             &sys,
+            &mut ws,
             solver.as_mut(),
             settings,
             &control,
@@ -212,6 +215,7 @@ fn run(
                 let border = rescale::convert_direction(&sys, &next, &tangent);
                 orientation.units_changed(&sys, &next);
                 sys = next;
+                ws = sys.workspace();
                 solver = make_solver(&sys, settings, kind)?;
                 solver
                     .factor(&sys, &x0, &border)

@@ -4,6 +4,7 @@
 use crate::error::{Error, Result};
 use crate::nnm::continuation::anm::norm;
 use crate::nnm::model::system::System;
+use crate::nnm::model::workspace::Workspace;
 use crate::nnm::solve::linear_solver::TangentSolver;
 
 /// ‖R(X)‖ / max(1, ‖X‖), scaled units: the residual we report (RESIDU) and test against
@@ -52,7 +53,7 @@ const STALL_ITERATIONS: usize = 3;
 /// in floating point is uncertain by that much, so no correction can bring the residual
 /// below it; it grows with the conditioning of the equations at `x` (a stiff regularised
 /// contact law makes the contact rows steep in u), which [`roundoff_floor`] does not see.
-pub fn observed_noise(sys: &System, x: &[f64], r: &[f64]) -> f64 {
+pub fn observed_noise(sys: &System, x: &[f64], r: &[f64], ws: &mut Workspace) -> f64 {
     let xp: Vec<f64> = x
         .iter()
         .enumerate()
@@ -61,7 +62,7 @@ pub fn observed_noise(sys: &System, x: &[f64], r: &[f64]) -> f64 {
             v * (1.0 + s * NOISE_ULPS * f64::EPSILON)
         })
         .collect();
-    let rp = sys.residual(&xp);
+    let rp = sys.residual(&xp, ws);
     let d: Vec<f64> = rp.iter().zip(r).map(|(a, b)| a - b).collect();
     relative(&d, x)
 }
@@ -86,6 +87,7 @@ pub struct Correction {
 /// deterministic floor alone a stalled residual is accepted silently, as before.
 pub fn correct(
     sys: &System,
+    ws: &mut Workspace,
     solver: &mut dyn TangentSolver,
     x: &mut [f64],
     border: &[f64],
@@ -99,8 +101,13 @@ pub fn correct(
         residual,
         at_floor,
     };
+    // The iteration's buffers, made once: the residual, the correction (one more entry,
+    // the border's row) and the point the step is taken from.
+    let mut r = vec![0.0; sys.lay.n_eq()];
+    let mut d = vec![0.0; x.len()];
+    let mut x_old = x.to_vec();
     loop {
-        let r = sys.residual(x);
+        sys.residual_into(x, &mut r, ws);
         let nr = relative(&r, x);
         if !nr.is_finite() {
             return Err(Error::numerical(format!(
@@ -122,7 +129,7 @@ pub fn correct(
             nr > 0.5 * h[0] && nr <= 2.0 * best
         };
         if stalled || it >= max_iter {
-            let level = observed_noise(sys, x, &r).max(roundoff_floor(sys, x));
+            let level = observed_noise(sys, x, &r, ws).max(roundoff_floor(sys, x));
             if history.len() > STALL_ITERATIONS && stalled && nr <= FLOOR_FACTOR * level {
                 return Ok(done(it, nr, true));
             }
@@ -135,8 +142,11 @@ pub fn correct(
             .hint("lower PREC_MAN (shorter branches), raise ITER_NEWTON_MAXI, or raise NB_HARM_NONL / PARA_REGUL"));
         }
         solver.factor(sys, x, border)?;
-        let mut d: Vec<f64> = r.iter().map(|v| -v).collect();
-        d.push(0.0);
+        let last = d.len() - 1;
+        for (di, v) in d[..last].iter_mut().zip(&r) {
+            *di = -v;
+        }
+        d[last] = 0.0;
         solver.solve(sys, &mut d)?;
         // A correction at the 12th digit of X: what residual remains is round-off in the
         // quadratic terms (it grows like ε‖X‖² far up a branch), not a lack of convergence.
@@ -146,18 +156,20 @@ pub fn correct(
             for (xi, di) in x.iter_mut().zip(&d) {
                 *xi += di;
             }
-            let residual = relative(&sys.residual(x), x);
+            sys.residual_into(x, &mut r, ws);
+            let residual = relative(&r, x);
             return Ok(done(it + 1, residual, residual > tol));
         }
         // Full step unless it increases the residual (a start point far from the branch,
         // e.g. a linear mode placed deep into contact): then halve it a few times.
-        let x_old = x.to_vec();
+        x_old.copy_from_slice(x);
         let mut step = 1.0;
         for _ in 0..12 {
             for ((xi, xo), di) in x.iter_mut().zip(&x_old).zip(&d) {
                 *xi = xo + step * di;
             }
-            let rn = relative(&sys.residual(x), x);
+            sys.residual_into(x, &mut r, ws);
+            let rn = relative(&r, x);
             if rn.is_finite() && rn < nr {
                 break;
             }
@@ -177,14 +189,15 @@ pub fn correct(
 /// iterations kept and the final relative residual.
 pub fn polish(
     sys: &System,
+    ws: &mut Workspace,
     solver: &mut dyn TangentSolver,
     x: &mut [f64],
     border: &[f64],
     max_iter: usize,
 ) -> Result<(usize, f64)> {
     let before = x.to_vec();
-    let residual = relative(&sys.residual(x), x);
-    match correct(sys, solver, x, border, 0.0, max_iter) {
+    let residual = relative(&sys.residual(x, ws), x);
+    match correct(sys, ws, solver, x, border, 0.0, max_iter) {
         Ok(c) if c.residual <= residual => Ok((c.iterations, c.residual)),
         _ => {
             x.copy_from_slice(&before);

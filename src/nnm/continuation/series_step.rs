@@ -8,6 +8,7 @@ use crate::nnm::continuation::newton;
 use crate::nnm::continuation::pade::Pade;
 use crate::nnm::model::energy;
 use crate::nnm::model::system::System;
+use crate::nnm::model::workspace::Workspace;
 use crate::nnm::solve::linear_solver::TangentSolver;
 use crate::nnm::{Approximation, Settings};
 
@@ -74,8 +75,10 @@ pub(in crate::nnm) fn motion_grows(sys: &System, x0: &[f64], x1: &[f64]) -> bool
 }
 
 /// The series of the branch starting at `x0`, `solver` holding the factorised tangent there.
+#[allow(clippy::too_many_arguments)]
 pub(in crate::nnm) fn series_step(
     sys: &System,
+    ws: &mut Workspace,
     solver: &mut dyn TangentSolver,
     x0: &[f64],
     params: &AnmParams,
@@ -83,7 +86,7 @@ pub(in crate::nnm) fn series_step(
     approximation: Approximation,
     orientation: &Orientation,
 ) -> Result<Series> {
-    let mut series = anm::compute(sys, solver, x0, params, &|x1: &[f64]| {
+    let mut series = anm::compute(sys, ws, solver, x0, params, &|x1: &[f64]| {
         orientation.sign(sys, x0, x1)
     })?;
     // Safeguard: the step-length estimate assumes the series converges at a_max; where it
@@ -92,7 +95,7 @@ pub(in crate::nnm) fn series_step(
     let credible = 1e3 * settings.prec_man.max(settings.prec_newton);
     for _ in 0..40 {
         let xe = series.eval(x0, series.a_max);
-        let r = newton::relative(&sys.residual(&xe), &xe);
+        let r = newton::relative(&sys.residual(&xe, ws), &xe);
         if r.is_finite()
             && r <= credible.max(SERIES_ROUNDOFF_MARGIN * newton::stiffness_roundoff(sys, &xe))
         {
@@ -101,7 +104,7 @@ pub(in crate::nnm) fn series_step(
         series.a_max *= 0.5;
     }
     if approximation == Approximation::Pade {
-        extend_by_pade(sys, x0, settings, &mut series);
+        extend_by_pade(sys, ws, x0, settings, &mut series);
     }
     Ok(series)
 }
@@ -121,13 +124,19 @@ const PADE_POLE_MARGIN: f64 = 0.1;
 /// The step extended past the series' own a_max by its Padé approximant (pade.rs), as far as
 /// the approximant's residual stays within what the series gives at its a_max (or PREC_MAN,
 /// if larger) and before Q's first pole; the approximant then serves the whole branch.
-fn extend_by_pade(sys: &System, x0: &[f64], settings: &Settings, series: &mut Series) {
+fn extend_by_pade(
+    sys: &System,
+    ws: &mut Workspace,
+    x0: &[f64],
+    settings: &Settings,
+    series: &mut Series,
+) {
     let s = series.a_max;
     let Some(p) = Pade::new(&series.terms, s) else {
         return;
     };
     let xs = series.eval_series(x0, s);
-    let threshold = newton::relative(&sys.residual(&xs), &xs).max(settings.prec_man);
+    let threshold = newton::relative(&sys.residual(&xs, ws), &xs).max(settings.prec_man);
     let pole = p
         .first_pole_within(PADE_REACH_MAX, 1000, PADE_POLE_MARGIN)
         .unwrap_or(f64::INFINITY);
@@ -135,7 +144,7 @@ fn extend_by_pade(sys: &System, x0: &[f64], settings: &Settings, series: &mut Se
     let mut ab = PADE_REACH_FACTOR;
     while ab <= PADE_REACH_MAX && ab * s < pole {
         let x = p.eval(x0, ab * s);
-        let r = newton::relative(&sys.residual(&x), &x);
+        let r = newton::relative(&sys.residual(&x, ws), &x);
         if !(r.is_finite() && r <= threshold) {
             break;
         }

@@ -7,6 +7,7 @@ use crate::nnm::model::point::{finite, make_point, to_scaled};
 use crate::nnm::model::problem::Harmonics;
 use crate::nnm::model::system::{self, Scaling, ShockSys, System};
 use crate::nnm::model::unknowns::Unknowns;
+use crate::nnm::model::workspace::Workspace;
 use crate::nnm::solve::linear_solver::TangentSolver;
 use crate::nnm::solve::solver_kind::{make_solver, SolverKind};
 use crate::nnm::{
@@ -124,10 +125,12 @@ pub(in crate::nnm) fn start(
         );
     }
     let mut solver = make_solver(&sys, settings, kind)?;
+    let mut ws = sys.workspace();
     let guess_x = x.clone();
     let mut approached = None;
     let corr = match newton::correct(
         &sys,
+        &mut ws,
         solver.as_mut(),
         &mut x,
         &border,
@@ -139,7 +142,7 @@ pub(in crate::nnm) fn start(
             let approach = match guess {
                 Guess::LinearModes => {
                     x.copy_from_slice(&guess_x);
-                    approach_in_amplitude(&sys, solver.as_mut(), settings, &mut x)
+                    approach_in_amplitude(&sys, &mut ws, solver.as_mut(), settings, &mut x)
                 }
                 Guess::StoredPoint => None,
             };
@@ -157,6 +160,7 @@ pub(in crate::nnm) fn start(
     let (polished, residual) = match guess {
         Guess::LinearModes if !corr.at_floor => newton::polish(
             &sys,
+            &mut ws,
             solver.as_mut(),
             &mut x,
             &border,
@@ -225,6 +229,7 @@ struct Approach {
 /// smaller amplitude could be corrected (`x` is then unspecified).
 fn approach_in_amplitude(
     sys: &System,
+    ws: &mut Workspace,
     solver: &mut dyn TangentSolver,
     settings: &Settings,
     x: &mut [f64],
@@ -236,10 +241,11 @@ fn approach_in_amplitude(
         x[..motion].iter_mut().for_each(|v| *v *= s / s_from);
         init_contact(sys, x).ok()
     };
-    let correct = |x: &mut [f64], solver: &mut dyn TangentSolver| {
+    let correct = |x: &mut [f64], solver: &mut dyn TangentSolver, ws: &mut Workspace| {
         let border = motion_border(sys, x);
         newton::correct(
             sys,
+            ws,
             solver,
             x,
             &border,
@@ -254,7 +260,7 @@ fn approach_in_amplitude(
     let mut best = loop {
         steps += 1;
         at(s, &target, 1.0, x)?;
-        if let Some(c) = correct(x, solver) {
+        if let Some(c) = correct(x, solver, ws) {
             break c;
         }
         if steps >= APPROACH_STEPS_MAX {
@@ -270,7 +276,7 @@ fn approach_in_amplitude(
         if at(next, &from, s, x).is_none() {
             break;
         }
-        match correct(x, solver) {
+        match correct(x, solver, ws) {
             Some(c) if next == 1.0 => {
                 return Some(Approach {
                     correction: c,

@@ -19,3 +19,4 @@ pub(in crate::nnm) mod rescale;
 pub(in crate::nnm) mod system;
 pub(in crate::nnm) mod unknowns;
 pub(in crate::nnm) mod vector;
+pub(in crate::nnm) mod workspace;

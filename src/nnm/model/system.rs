@@ -7,17 +7,17 @@
 //! zero velocity at t = 0, Σ_k k·us_k = 0. One equation fewer than unknowns: a curve.
 
 use crate::error::{Error, Result};
-use crate::nnm::model::cosine_sampler::{CosineSampler, CosineScratch};
-use crate::nnm::model::fourier::{self, FftScratch, Sampler};
+use crate::nnm::model::cosine_sampler::CosineSampler;
+use crate::nnm::model::fourier::{self, Sampler};
 use crate::nnm::model::law::{self, LawEqs, Var};
 use crate::nnm::model::low_synth::{self, LowSynth};
 use crate::nnm::model::problem::Harmonics;
 use crate::nnm::model::vector;
+use crate::nnm::model::workspace::{QuadWork, Workspace};
 use crate::nnm::{Problem, Settings, ShockLaw};
 use faer::prelude::*;
 use faer::sparse::{SparseColMat, Triplet};
 use multiversion::multiversion;
-use std::cell::RefCell;
 use std::f64::consts::PI;
 
 /// Size, relative to its block's largest coefficient, below which a coefficient that a
@@ -360,35 +360,13 @@ pub struct System {
     /// makes them exact for the retained harmonics as any N > 3·H_nl does (up to 37 %
     /// fewer samples than `sampler`).
     products: Sampler,
-    /// `products`' transform scratch, made once (the sampled products run at every order
-    /// of every series and at every residual).
-    scratch: RefCell<FftScratch>,
     /// The sampled products of the series of a time-symmetric branch (`Grid::Cosine`),
     /// exact as `products` is, at about half its cost.
     cosine: CosineSampler,
-    cosine_scratch: RefCell<CosineScratch>,
-    /// The buffers of `quad_sum_cached`, made once (it runs at every order of every
-    /// series).
-    quad_work: RefCell<QuadWork>,
     /// The displacements' samples by direct sums (low_synth.rs) on the grids of the
     /// products, when NB_HARM_LINE is small enough for them to be cheaper.
     low_full: Option<LowSynth>,
     low_cosine: Option<LowSynth>,
-    /// `Samples` of earlier series, their buffers reused by the next ones (`take_samples`).
-    samples_pool: RefCell<Vec<Samples>>,
-}
-
-/// The buffers of `System::quad_sum_cached`.
-struct QuadWork {
-    /// Structural sums (n·(2H_l+1) each) and one derivative (2H_l+1).
-    su: Vec<f64>,
-    sv: Vec<f64>,
-    w: Vec<f64>,
-    d: Vec<f64>,
-    /// One equation's coefficients (2H_nl+1), and the sampled products of one shock's
-    /// equations (the largest n_own times the full grid).
-    c: Vec<f64>,
-    acc: Vec<f64>,
 }
 
 /// Validate the problem and settings against each other (keyword-named errors).
@@ -542,19 +520,7 @@ impl System {
         }
         let hn = lay.h_nonl;
         let products = Sampler::new(fourier::fft_size_smooth(3 * hn));
-        let scratch = RefCell::new(products.scratch());
         let cosine = CosineSampler::for_products(hn);
-        let cosine_scratch = RefCell::new(cosine.scratch());
-        let nnl = lay.n * lay.n_coef_lin;
-        let max_own = shocks.iter().map(|sh| sh.eqs.n_own).max().unwrap_or(0);
-        let quad_work = RefCell::new(QuadWork {
-            su: vec![0.0; nnl],
-            sv: vec![0.0; nnl],
-            w: vec![0.0; nnl],
-            d: vec![0.0; lay.n_coef_lin],
-            c: vec![0.0; lay.n_coef_nonl],
-            acc: vec![0.0; max_own * products.n().max(cosine.n())],
-        });
         let hl = lay.h_lin;
         let low_full = (2 * hl <= low_synth::MAX_ROWS_FULL).then(|| {
             let n = products.n();
@@ -573,14 +539,30 @@ impl System {
             scaling,
             sampler: Sampler::new(fourier::fft_size(3 * hn)),
             products,
-            scratch,
             cosine,
-            cosine_scratch,
-            quad_work,
             low_full,
             low_cosine,
-            samples_pool: RefCell::new(Vec::new()),
         })
+    }
+
+    /// The scratch of this system's residual, sampled products and series, sized once.
+    pub fn workspace(&self) -> Workspace {
+        let lay = self.lay;
+        let nnl = lay.n * lay.n_coef_lin;
+        let max_own = self.shocks.iter().map(|sh| sh.eqs.n_own).max().unwrap_or(0);
+        Workspace {
+            fft: self.products.scratch(),
+            cosine: self.cosine.scratch(),
+            quad: QuadWork {
+                su: vec![0.0; nnl],
+                sv: vec![0.0; nnl],
+                w: vec![0.0; nnl],
+                d: vec![0.0; lay.n_coef_lin],
+                c: vec![0.0; lay.n_coef_nonl],
+                acc: vec![0.0; max_own * self.products.n().max(self.cosine.n())],
+            },
+            pool: Vec::new(),
+        }
     }
 
     pub fn sampler(&self) -> &Sampler {
@@ -603,8 +585,8 @@ impl System {
     }
 
     /// Time samples of `x` for the sampled products (`Samples`), on the full grid.
-    pub fn samples(&self, x: &[f64]) -> Samples {
-        self.samples_on(x, Grid::Full)
+    pub fn samples(&self, x: &[f64], ws: &mut Workspace) -> Samples {
+        self.samples_on(x, Grid::Full, ws)
     }
 
     /// Number of instants of `grid`.
@@ -616,18 +598,21 @@ impl System {
     }
 
     /// Time samples of `x` on `grid` (`Grid::Cosine`: its cosine parts only).
-    pub fn samples_on(&self, x: &[f64], grid: Grid) -> Samples {
-        let mut out = Samples::default();
-        self.samples_into(x, grid, &mut out);
+    pub fn samples_on(&self, x: &[f64], grid: Grid, ws: &mut Workspace) -> Samples {
+        let mut out = ws.take_samples();
+        self.samples_into(x, grid, &mut out, ws);
         out
     }
 
     /// [`System::samples_on`] into `out`, whose buffers are reused (no allocation once
     /// they have their size).
-    pub fn samples_into(&self, x: &[f64], grid: Grid, out: &mut Samples) {
+    pub fn samples_into(&self, x: &[f64], grid: Grid, out: &mut Samples, work: &mut Workspace) {
         let ns = self.grid_len(grid);
-        let mut ws = self.scratch.borrow_mut();
-        let mut cws = self.cosine_scratch.borrow_mut();
+        let Workspace {
+            fft: ws,
+            cosine: cws,
+            ..
+        } = work;
         let low = match grid {
             Grid::Full => self.low_full.as_ref(),
             Grid::Cosine => self.low_cosine.as_ref(),
@@ -643,8 +628,8 @@ impl System {
                 let (s, h) = self.var(x, sh, v);
                 match (grid, low) {
                     (_, Some(table)) if h <= table.h() => table.synth(s, h, o),
-                    (Grid::Full, _) => self.products.synth_with(s, h, o, &mut ws),
-                    (Grid::Cosine, _) => self.cosine.synth_with(s, h, o, &mut cws),
+                    (Grid::Full, _) => self.products.synth_with(s, h, o, ws),
+                    (Grid::Cosine, _) => self.cosine.synth_with(s, h, o, cws),
                 }
             }
             for (g, o) in sh.groups.iter().zip(gs.chunks_exact_mut(ns)) {
@@ -663,21 +648,9 @@ impl System {
         }
     }
 
-    /// A `Samples` for [`System::samples_into`], with the buffers of an earlier one when
-    /// some were given back (`recycle_samples`): a series samples each of its terms, and
-    /// every branch has a series.
-    pub fn take_samples(&self) -> Samples {
-        self.samples_pool.borrow_mut().pop().unwrap_or_default()
-    }
-
-    /// Give buffers back for the next `take_samples`.
-    pub fn recycle_samples(&self, samples: impl IntoIterator<Item = Samples>) {
-        self.samples_pool.borrow_mut().extend(samples);
-    }
-
     /// out (length n_eq) += Σ Q(a_i, b_i).
-    pub fn quad_sum(&self, pairs: &[(&[f64], &[f64])], out: &mut [f64]) {
-        self.quad_sum_cached(pairs, None, out)
+    pub fn quad_sum(&self, pairs: &[(&[f64], &[f64])], out: &mut [f64], ws: &mut Workspace) {
+        self.quad_sum_cached(pairs, None, out, ws)
     }
 
     /// Same, with the time samples of each pair given (`samples(a_i)`, `samples(b_i)`) so
@@ -687,6 +660,7 @@ impl System {
         pairs: &[(&[f64], &[f64])],
         cache: Option<&[(&Samples, &Samples)]>,
         out: &mut [f64],
+        work: &mut Workspace,
     ) {
         let lay = self.lay;
         let (n, nl, hl) = (lay.n, lay.n_coef_lin, lay.h_lin);
@@ -694,8 +668,7 @@ impl System {
         // linear in b: D Σ Ω_a U_b and M (D Σ Ω_a V_b + Σ γ_a V_b), one derivative each.
         let nnl = n * nl;
         {
-            let mut work = self.quad_work.borrow_mut();
-            let QuadWork { su, sv, w, d, .. } = &mut *work;
+            let QuadWork { su, sv, w, d, .. } = &mut work.quad;
             su.fill(0.0);
             sv.fill(0.0);
             w.fill(0.0);
@@ -730,36 +703,53 @@ impl System {
         // than convolutions at every H_nl measured (5 to 1000; at H_nl = 50, 0.06 s against
         // 0.41 s for 40 branches of sdnd122a, release). Samples on the cosine grid serve
         // only together (one time-symmetric series); any other mix is sampled afresh.
-        let owned: Vec<(Samples, Option<Samples>)>;
-        let owned_pairs: Vec<(&Samples, &Samples)>;
         let uniform = |c: &[(&Samples, &Samples)]| {
             let g = c.first().map_or(Grid::Full, |p| p.0.grid);
             c.iter().all(|(a, b)| a.grid == g && b.grid == g)
         };
-        let cache: &[(&Samples, &Samples)] = match cache {
-            Some(c) if uniform(c) => c,
+        match cache {
+            Some(c) if uniform(c) => self.shock_products(c, out, work),
             _ => {
-                // A pair (x, x) (the residual) is sampled once.
-                owned = pairs
-                    .iter()
-                    .map(|(a, b)| {
-                        let same = std::ptr::eq(*a, *b);
-                        (self.samples(a), (!same).then(|| self.samples(b)))
-                    })
-                    .collect();
-                owned_pairs = owned
+                // A pair (x, x) (the residual) is sampled once; the samples' buffers come
+                // from the workspace's pool and go back to it.
+                let mut owned: Vec<(Samples, Option<Samples>)> = Vec::with_capacity(pairs.len());
+                for (a, b) in pairs {
+                    let sa = self.samples(a, work);
+                    let sb = (!std::ptr::eq(*a, *b)).then(|| self.samples(b, work));
+                    owned.push((sa, sb));
+                }
+                let refs: Vec<(&Samples, &Samples)> = owned
                     .iter()
                     .map(|(a, b)| (a, b.as_ref().unwrap_or(a)))
                     .collect();
-                &owned_pairs
+                self.shock_products(&refs, out, work);
+                drop(refs);
+                work.recycle_samples(
+                    owned
+                        .into_iter()
+                        .flat_map(|(a, b)| std::iter::once(a).chain(b)),
+                );
             }
-        };
+        }
+    }
+
+    /// out (the rows of the contact unknowns) += the sampled products of `cache`, one
+    /// transform back per equation; every pair on one grid.
+    fn shock_products(
+        &self,
+        cache: &[(&Samples, &Samples)],
+        out: &mut [f64],
+        work: &mut Workspace,
+    ) {
+        let lay = self.lay;
         let grid = cache.first().map_or(Grid::Full, |p| p.0.grid);
         let ns = self.grid_len(grid);
-        let mut work = self.quad_work.borrow_mut();
-        let QuadWork { c, acc, .. } = &mut *work;
-        let mut ws = self.scratch.borrow_mut();
-        let mut cws = self.cosine_scratch.borrow_mut();
+        let Workspace {
+            fft: ws,
+            cosine: cws,
+            quad: QuadWork { c, acc, .. },
+            ..
+        } = work;
         for (k, sh) in self.shocks.iter().enumerate() {
             let nv = sh.vars.len();
             let acc = &mut acc[..sh.eqs.n_own * ns];
@@ -770,8 +760,8 @@ impl System {
             }
             for (e, s) in acc.chunks_exact_mut(ns).enumerate() {
                 match grid {
-                    Grid::Full => self.products.analyse_with(s, lay.h_nonl, c, &mut ws),
-                    Grid::Cosine => self.cosine.analyse_with(s, lay.h_nonl, c, &mut cws),
+                    Grid::Full => self.products.analyse_with(s, lay.h_nonl, c, ws),
+                    Grid::Cosine => self.cosine.analyse_with(s, lay.h_nonl, c, cws),
                 }
                 let o = sh.offset + e * lay.n_coef_nonl;
                 for (y, v) in out[o..o + lay.n_coef_nonl].iter_mut().zip(c.iter()) {
@@ -797,7 +787,14 @@ impl System {
     }
 
     /// R(X) = C + L(X) + Q(X, X), length n_eq.
-    pub fn residual(&self, x: &[f64]) -> Vec<f64> {
+    pub fn residual(&self, x: &[f64], ws: &mut Workspace) -> Vec<f64> {
+        let mut r = vec![0.0; self.lay.n_eq()];
+        self.residual_into(x, &mut r, ws);
+        r
+    }
+
+    /// [`System::residual`] into `r` (length n_eq), overwritten.
+    pub fn residual_into(&self, x: &[f64], r: &mut [f64], ws: &mut Workspace) {
         let lay = self.lay;
         let (n, nl, hl, hn, nn) = (
             lay.n,
@@ -806,8 +803,8 @@ impl System {
             lay.h_nonl,
             lay.n_coef_nonl,
         );
-        let mut r = vec![0.0; lay.n_eq()];
-        self.quad_sum(&[(x, x)], &mut r);
+        r.fill(0.0);
+        self.quad_sum(&[(x, x)], r, ws);
         for i in 0..n {
             for j in 0..nl {
                 r[lay.u(i) + j] -= x[lay.v(i) + j];
@@ -840,7 +837,6 @@ impl System {
         r[lay.omega()] = (1..=hl)
             .map(|k| k as f64 * x[lay.u(self.ref_dof) + fourier::is(hl, k)])
             .sum();
-        r
     }
 
     /// Triplets of the square bordered tangent [dR/dX(x0); borderᵀ]. The pattern depends
@@ -1163,15 +1159,16 @@ mod tests {
             };
             let (a, b) = (term(1), term(5));
             let pairs: Vec<(&[f64], &[f64])> = vec![(&a, &b), (&b, &a), (&a, &a)];
+            let mut ws = sys.workspace();
             let mut want = vec![0.0; lay.n_eq()];
-            sys.quad_sum(&pairs, &mut want);
+            sys.quad_sum(&pairs, &mut want, &mut ws);
             let (ca, cb) = (
-                sys.samples_on(&a, Grid::Cosine),
-                sys.samples_on(&b, Grid::Cosine),
+                sys.samples_on(&a, Grid::Cosine, &mut ws),
+                sys.samples_on(&b, Grid::Cosine, &mut ws),
             );
             let cache = [(&ca, &cb), (&cb, &ca), (&ca, &ca)];
             let mut got = vec![0.0; lay.n_eq()];
-            sys.quad_sum_cached(&pairs, Some(&cache), &mut got);
+            sys.quad_sum_cached(&pairs, Some(&cache), &mut got, &mut ws);
             let scale = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             for (i, (g, w)) in got.iter().zip(&want).enumerate() {
                 assert!(
@@ -1179,11 +1176,48 @@ mod tests {
                     "{law:?} row {i}: {g} vs {w}"
                 );
             }
-            let fa = sys.samples(&a);
+            let fa = sys.samples(&a, &mut ws);
             let mixed = [(&fa, &cb), (&cb, &ca), (&ca, &ca)];
             let mut again = vec![0.0; lay.n_eq()];
-            sys.quad_sum_cached(&pairs, Some(&mixed), &mut again);
+            sys.quad_sum_cached(&pairs, Some(&mixed), &mut again, &mut ws);
             assert_eq!(again, want, "{law:?}: a mix of grids");
+        }
+    }
+
+    /// The system is read-only once built: two threads share one, each with its own
+    /// workspace, and get the residual a fresh workspace gives, to the bit; a workspace
+    /// whose buffers (and pool of samples) served other points first gives it too.
+    #[test]
+    fn a_shared_system_with_reused_workspaces_gives_the_same_residual() {
+        use crate::nnm::{CercleForm, ShockLaw};
+        fn shareable<T: Sync + Send>(_: &T) {}
+        let law = ShockLaw::Cercle {
+            origin: [0.1, 0.0],
+            form: CercleForm::Secant,
+        };
+        let (sys, x) = crate::nnm::analysis::route_timing::system_and_point(law, 40).unwrap();
+        shareable(&sys);
+        let fresh = sys.residual(&x, &mut sys.workspace());
+        let other: Vec<f64> = x.iter().map(|v| 0.7 * v + 0.01).collect();
+        let per_thread: Vec<Vec<f64>> = std::thread::scope(|scope| {
+            let runs: Vec<_> = (0..2)
+                .map(|_| {
+                    scope.spawn(|| {
+                        let mut ws = sys.workspace();
+                        let mut r = vec![0.0; sys.lay.n_eq()];
+                        sys.residual_into(&other, &mut r, &mut ws);
+                        sys.residual_into(&x, &mut r, &mut ws);
+                        r
+                    })
+                })
+                .collect();
+            runs.into_iter()
+                .map(|h| h.join().expect("a residual thread panicked"))
+                .collect()
+        });
+        assert!(fresh.iter().any(|v| *v != 0.0));
+        for r in per_thread {
+            assert_eq!(r, fresh);
         }
     }
 }

@@ -142,7 +142,8 @@ fn tangent_is_the_derivative_of_the_residual() {
             xp[c] += h;
             let mut xm = x.clone();
             xm[c] -= h;
-            let (rp, rm) = (sys.residual(&xp), sys.residual(&xm));
+            let mut ws = sys.workspace();
+            let (rp, rm) = (sys.residual(&xp, &mut ws), sys.residual(&xm, &mut ws));
             for r in 0..n - 1 {
                 let fd = (rp[r] - rm[r]) / (2.0 * h);
                 assert!(
