@@ -4,7 +4,8 @@
 //! contact-law check, `PostProcessor`). Run: `cargo bench --bench nnm_sdnd122a`.
 
 use aster_nl::nnm::{
-    continue_branches, start_from_mode, PostProcessor, Problem, Settings, Shock, ShockLaw,
+    continue_branches, start_from_mode, Continuation, Harmonics, PostProcessor, Problem, Settings,
+    Shock, ShockLaw,
 };
 use criterion::{criterion_group, criterion_main, Criterion};
 use faer::sparse::{SparseColMat, Triplet};
@@ -17,18 +18,19 @@ fn sparse(n: usize, e: &[(usize, usize, f64)]) -> SparseColMat<usize, f64> {
 
 fn settings(h_nonl: usize, n_branches: usize) -> Settings {
     Settings {
-        h_lin: 5,
-        h_nonl,
-        n_branches,
-        n_points_per_branch: 1,
-        order: 20,
-        prec_man: 1e-14,
-        prec_newton: 1e-9,
-        iter_newton_max: 15,
-        bif_terms: 3,
-        bif_tol: 1e-4,
-        det_test: true,
-        direction: 1,
+        harmonics: Harmonics { h_lin: 5, h_nonl },
+        continuation: Continuation {
+            n_branches,
+            n_points_per_branch: 1,
+            order: 20,
+            prec_man: 1e-14,
+            prec_newton: 1e-9,
+            iter_newton_max: 15,
+            bif_terms: 3,
+            bif_tol: 1e-4,
+            det_test: true,
+            direction: 1,
+        },
     }
 }
 

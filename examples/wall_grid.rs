@@ -12,8 +12,8 @@
 
 use aster_nl::nnm::exact::Oscillator;
 use aster_nl::nnm::{
-    continue_controlled, start_from_mode, Approximation, PostProcessor, Problem, Settings, Shock,
-    ShockLaw, StepControl,
+    continue_controlled, start_from_mode, Approximation, Continuation, Harmonics, PostProcessor,
+    Problem, Settings, Shock, ShockLaw, StepControl,
 };
 use faer::sparse::{SparseColMat, Triplet};
 use std::time::Instant;
@@ -48,21 +48,25 @@ fn main() {
         }],
     };
     let settings = Settings {
-        h_lin: hl,
-        h_nonl: hn,
-        n_branches: nb,
-        n_points_per_branch: np,
-        order: 20,
-        prec_man,
-        prec_newton,
-        iter_newton_max: 15,
-        bif_terms: 3,
-        bif_tol: 1e-4,
-        det_test: true,
-        direction: std::env::var("DIR")
-            .ok()
-            .and_then(|s| s.parse().ok())
-            .unwrap_or(-1),
+        harmonics: Harmonics {
+            h_lin: hl,
+            h_nonl: hn,
+        },
+        continuation: Continuation {
+            n_branches: nb,
+            n_points_per_branch: np,
+            order: 20,
+            prec_man,
+            prec_newton,
+            iter_newton_max: 15,
+            bif_terms: 3,
+            bif_tol: 1e-4,
+            det_test: true,
+            direction: std::env::var("DIR")
+                .ok()
+                .and_then(|s| s.parse().ok())
+                .unwrap_or(-1),
+        },
     };
     let osc = Oscillator {
         m: 1.0,
@@ -74,7 +78,7 @@ fn main() {
     let t0 = Instant::now();
     let mut start_settings = settings.clone();
     if let Some(v) = std::env::var("START_PN").ok().and_then(|s| s.parse().ok()) {
-        start_settings.prec_newton = v;
+        start_settings.continuation.prec_newton = v;
     }
     let start = match start_from_mode(&problem, &start_settings, &[1.0], coef, k.sqrt()) {
         Ok(s) => s,

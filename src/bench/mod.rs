@@ -152,7 +152,7 @@ pub fn run_case(
     let f_lin = prep.omega / (2.0 * std::f64::consts::PI);
     let (problem, mode, omega, coords) = match reduction {
         Some(spec) => {
-            let cut = parse_reduction(spec, prep.settings.h_lin, f_lin)?;
+            let cut = parse_reduction(spec, prep.settings.harmonics.h_lin, f_lin)?;
             let basis = nnm::shock_basis(&prep.problem, cut, usize::MAX)?;
             let problem = nnm::reduced_problem(&prep.problem, &basis)?;
             let coords = basis.size();

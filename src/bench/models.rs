@@ -6,7 +6,7 @@
 
 use crate::error::{Error, Result};
 use crate::interp;
-use crate::nnm::{self, Problem, Settings};
+use crate::nnm::{self, Continuation, Harmonics, Problem, Settings};
 use crate::ops::mode_non_line::problem::engine_shocks;
 use crate::ops::Units;
 use crate::store::mnl::StoredShock;
@@ -571,18 +571,22 @@ pub fn prepare(case: &Case, dir: &Path) -> Result<Prepared> {
         set.len()
     };
     let settings = Settings {
-        h_lin: mm.h_lin,
-        h_nonl: mm.h_nonl,
-        n_branches: mm.branches,
-        n_points_per_branch: mm.points,
-        order: mm.order,
-        prec_man: mm.prec_man,
-        prec_newton: mm.prec_newton,
-        iter_newton_max: 15,
-        bif_terms: 3,
-        bif_tol: 1e-4,
-        det_test: mm.det_test,
-        direction: if mm.direction >= 0 { 1 } else { -1 },
+        harmonics: Harmonics {
+            h_lin: mm.h_lin,
+            h_nonl: mm.h_nonl,
+        },
+        continuation: Continuation {
+            n_branches: mm.branches,
+            n_points_per_branch: mm.points,
+            order: mm.order,
+            prec_man: mm.prec_man,
+            prec_newton: mm.prec_newton,
+            iter_newton_max: 15,
+            bif_terms: 3,
+            bif_tol: 1e-4,
+            det_test: mm.det_test,
+            direction: if mm.direction >= 0 { 1 } else { -1 },
+        },
     };
     let _ = nnm::unknown_count(&problem, &settings);
     Ok(Prepared {

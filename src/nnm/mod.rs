@@ -11,7 +11,7 @@
 //!   forces in N), then ω (rad/s) and γ (1/s, the unfolding
 //!   parameter, zero on an exact solution). Without any shock H_nl is taken equal to H_l.
 //! - ENERGIE is Code_Aster's (see `energy.rs`); `energy_spread` is our a-posteriori check.
-//! - `Settings::direction` (DIR_EVOLUTION): −1 goes forward, +1 backward. From a linear
+//! - `Continuation::direction` (DIR_EVOLUTION): −1 goes forward, +1 backward. From a linear
 //!   mode, forward is toward increasing amplitude; backward toward decreasing amplitude
 //!   first, through zero and up again along the same orbits half a period later. From a
 //!   stored point given its direction of travel ([`StartState::travelling`]), forward goes
@@ -75,7 +75,7 @@ pub use continuation::step_control::{Approximation, StepControl, STALL_ENERGY, S
 pub use follow::{continue_branches, continue_controlled, continue_while};
 pub use model::linear_modes::{linear_modes, LinearMode};
 pub use model::point::Point;
-pub use model::problem::{CercleForm, Harmonics, Problem, Settings, Shock, ShockLaw};
+pub use model::problem::{CercleForm, Continuation, Harmonics, Problem, Settings, Shock, ShockLaw};
 pub use model::reduced::{reduced_problem, shock_basis, Reduced};
 pub use model::system::unknown_count;
 pub use solve::contact::Method as ContactMethod;

@@ -4,7 +4,9 @@ use super::cases::{Config, StudyCase};
 use crate::error::{Error, Result};
 use crate::nnm::exact::Oscillator;
 use crate::nnm::exact_law::{self, ExactLawSettings, HeldEnergy};
-use crate::nnm::{continue_while, start_from_mode, Point, Problem, Settings};
+use crate::nnm::{
+    continue_while, start_from_mode, Continuation, Harmonics, Point, Problem, Settings,
+};
 use std::time::Instant;
 
 /// NB_ORDRE_MAN (Code_Aster's default).
@@ -20,18 +22,22 @@ pub const MAX_BRANCHES: usize = 3000;
 /// (Code_Aster's default, what the study measures) against 'SERIE' (false).
 pub fn settings(cfg: &Config, points_per_branch: usize, det_test: bool) -> Settings {
     Settings {
-        h_lin: cfg.h_lin,
-        h_nonl: cfg.h_nonl,
-        n_branches: MAX_BRANCHES,
-        n_points_per_branch: points_per_branch,
-        order: ORDER,
-        prec_man: cfg.prec_man,
-        prec_newton: PREC_NEWTON,
-        iter_newton_max: 15,
-        bif_terms: 3,
-        bif_tol: 1e-4,
-        det_test,
-        direction: -1,
+        harmonics: Harmonics {
+            h_lin: cfg.h_lin,
+            h_nonl: cfg.h_nonl,
+        },
+        continuation: Continuation {
+            n_branches: MAX_BRANCHES,
+            n_points_per_branch: points_per_branch,
+            order: ORDER,
+            prec_man: cfg.prec_man,
+            prec_newton: PREC_NEWTON,
+            iter_newton_max: 15,
+            bif_terms: 3,
+            bif_tol: 1e-4,
+            det_test,
+            direction: -1,
+        },
     }
 }
 

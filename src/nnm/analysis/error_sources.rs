@@ -40,6 +40,7 @@ use crate::nnm::analysis::exact_law::{
 };
 use crate::nnm::model::fourier;
 use crate::nnm::model::point::Point;
+use crate::nnm::model::problem::Harmonics;
 use crate::nnm::{Problem, Settings};
 
 /// Below this estimated relative frequency error no setting is named: five digits, what the
@@ -182,8 +183,8 @@ impl Sources {
 
     /// The advice after the alarm's facts: the estimated parts at the row (numbered from
     /// `first_order`) and what to change.
-    pub fn text(&self, settings: &Settings, first_order: i64) -> String {
-        let h = settings.h_lin;
+    pub fn text(&self, harmonics: &Harmonics, first_order: i64) -> String {
+        let h = harmonics.h_lin;
         let (l0, l1) = self.harm_line();
         let head = format!(
             "estimated relative frequency error at NUME_ORDRE {} (ENERGIE={:.4e}) {:+.1e}: \
@@ -196,7 +197,7 @@ impl Sources {
             l0,
             l1,
             self.harm_nonl,
-            settings.h_nonl,
+            harmonics.h_nonl,
             self.regul
         );
         match self.advised() {
@@ -205,14 +206,14 @@ impl Sources {
                     Source::HarmLine => format!(
                         "raise NB_HARM_LINE (doubled: {}{})",
                         2 * h,
-                        if settings.h_nonl < 2 * h {
+                        if harmonics.h_nonl < 2 * h {
                             format!(", with NB_HARM_NONL at least {}", 2 * h)
                         } else {
                             String::new()
                         }
                     ),
                     Source::HarmNonl => {
-                        format!("raise NB_HARM_NONL (doubled: {})", 2 * settings.h_nonl)
+                        format!("raise NB_HARM_NONL (doubled: {})", 2 * harmonics.h_nonl)
                     }
                     Source::Regul => "lower PARA_REGUL (halved)".to_string(),
                 };
@@ -225,7 +226,7 @@ impl Sources {
                 )
             }
             None if self.negligible() => format!(
-                "{head}; below {NEGLIGIBLE:.0e} in all: these settings do not limit the \
+                "{head}; below {NEGLIGIBLE:.0e} in all: these harmonics do not limit the \
                  frequency there, whatever the force series' tail"
             ),
             None => format!(
@@ -243,7 +244,7 @@ fn law_settings(h: usize, settings: &Settings) -> ExactLawSettings {
     ExactLawSettings {
         h_lin: h,
         samples: 0,
-        prec: settings.prec_newton.min(1e-9),
+        prec: settings.continuation.prec_newton.min(1e-9),
         iter_max: 60,
         held: HeldEnergy::Instant,
     }
@@ -273,7 +274,7 @@ pub fn estimate(
     row: usize,
 ) -> Result<Sources> {
     let n = problem.k.nrows();
-    let h = settings.h_lin;
+    let h = settings.harmonics.h_lin;
     let nu = n * fourier::len(h);
     if point.x.len() < nu {
         return Err(Error::internal(
@@ -316,7 +317,7 @@ pub fn worst_row(problem: &Problem, settings: &Settings, points: &[Point]) -> Op
         return None;
     }
     let last = points.len() - 1;
-    let dense = exact_law::dense_size(problem.k.nrows(), 2 * settings.h_lin);
+    let dense = exact_law::dense_size(problem.k.nrows(), 2 * settings.harmonics.h_lin);
     if dense > MAX_DENSE {
         return None;
     }

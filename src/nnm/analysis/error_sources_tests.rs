@@ -242,7 +242,7 @@ fn the_advice_weighs_signed_parts() {
     // Worst case R = 0: before −2.988e-3, after +1.2e-5.
     assert!((s.worst_ratio(Source::HarmLine) - 0.5).abs() < 1e-2);
     assert!(s
-        .text(&settings(20, 1000, 1, 1), 1)
+        .text(&settings(20, 1000, 1, 1).harmonics, 1)
         .contains("raise NB_HARM_LINE (doubled: 40)"));
     // The parts cancel: the regularisation's +4.1e-3 against the displacement's −2e-3 to
     // −4e-3. Doubling NB_HARM_LINE overshoots where R is small, halving PARA_REGUL where it
@@ -255,7 +255,7 @@ fn the_advice_weighs_signed_parts() {
     };
     assert_eq!(c.advised(), None);
     assert!(c
-        .text(&settings(20, 1000, 1, 1), 1)
+        .text(&settings(20, 1000, 1, 1).harmonics, 1)
         .contains("the parts cancel"));
     // Below NEGLIGIBLE for every remainder: nothing is named.
     let t = Sources {
@@ -266,7 +266,7 @@ fn the_advice_weighs_signed_parts() {
     };
     assert_eq!(t.advised(), None);
     assert!(t
-        .text(&settings(20, 1000, 1, 1), 1)
+        .text(&settings(20, 1000, 1, 1).harmonics, 1)
         .contains("do not limit"));
     // The contact unknowns' part dominates and the others are small: NB_HARM_NONL.
     let u = Sources {

@@ -229,7 +229,7 @@ mod tests {
         let u = crate::nnm::displacement_coefficients(problem, s, x).unwrap();
         let c = crate::nnm::contact_coefficients(problem, s, x).unwrap();
         let etas = eta_phys(problem).unwrap();
-        let n = 2 * (2 * s.h_nonl + 1);
+        let n = 2 * (2 * s.harmonics.h_nonl + 1);
         let mut worst = 0.0f64;
         for ((shock, eta), unknowns) in problem.shocks.iter().zip(etas).zip(&c) {
             let law = PointLaw {
@@ -243,9 +243,9 @@ mod tests {
                 let ut: Vec<f64> = shock
                     .dofs
                     .iter()
-                    .map(|&d| fourier::eval(&u[d], s.h_lin, theta))
+                    .map(|&d| fourier::eval(&u[d], s.harmonics.h_lin, theta))
                     .collect();
-                let f = fourier::eval(&unknowns[0], s.h_nonl, theta);
+                let f = fourier::eval(&unknowns[0], s.harmonics.h_nonl, theta);
                 let fl = law.eval(&ut).unwrap().0[0];
                 worst = worst.max((f - fl).abs() / (shock.stiffness * shock.gap));
             }

@@ -141,8 +141,8 @@ pub fn resolution_warnings(
                  converged RESIDU need not be motions of the system (energies that go back and \
                  forth, frequencies below the linear one, spurious bifurcations)";
             let advice = match (&sources, *r > UNRESOLVED_RATIO) {
-                (Some(src), true) => format!("{unresolved}; {}", src.text(settings, first_order)),
-                (Some(src), false) => format!("; {}", src.text(settings, first_order)),
+                (Some(src), true) => format!("{unresolved}; {}", src.text(&settings.harmonics, first_order)),
+                (Some(src), false) => format!("; {}", src.text(&settings.harmonics, first_order)),
                 (None, true) => format!(
                     "{unresolved}: raise NB_HARM_NONL and, for a stiff stop, NB_HARM_LINE (the \
                      displacement must follow the short contact), or lower RIGI_NOR or raise \
@@ -158,7 +158,7 @@ pub fn resolution_warnings(
                 "the contact force of shock {} is poorly resolved by NB_HARM_NONL={}: its last harmonics \
                  still carry {:.1}% of its largest harmonic (at ENERGIE={:.4e}){advice}",
                 s + 1,
-                settings.h_nonl,
+                settings.harmonics.h_nonl,
                 100.0 * r,
                 e
             )

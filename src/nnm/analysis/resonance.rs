@@ -33,7 +33,7 @@
 
 use crate::error::Result;
 use crate::nnm::model::linear_modes::LinearMode;
-use crate::nnm::{contact_coefficients, displacement_coefficients, Point, Problem, Settings};
+use crate::nnm::{contact_coefficients, displacement_coefficients, Harmonics, Point, Problem};
 use std::ops::Div;
 
 /// Relative distance |n·f − f_j|/f_j under which a row counts as on the resonance.
@@ -85,7 +85,7 @@ fn force_components(problem: &Problem) -> Vec<(usize, usize, usize)> {
 /// The n:1 resonances met along `points` (module doc), in row order.
 pub fn internal_resonances(
     problem: &Problem,
-    settings: &Settings,
+    harmonics: &Harmonics,
     points: &[Point],
     modes: &[LinearMode],
 ) -> Result<Vec<Resonance>> {
@@ -117,7 +117,7 @@ pub fn internal_resonances(
     let mass_diag: Vec<f64> = (0..problem.m.nrows())
         .map(|i| problem.m.get(i, i).copied().unwrap_or(0.0))
         .collect();
-    let h_nl = settings.h_nonl;
+    let h_nl = harmonics.h_nonl;
     let mut met: Vec<Resonance> = Vec::new();
     for m in modes {
         // Kinetic weights φ_i²·M_ii: dimensionally consistent across translations and
@@ -163,12 +163,12 @@ pub fn internal_resonances(
                 // branch): a crossing takes the larger drive of the two rows around it.
                 let crossed = i > 0 && (n as f64 * prev - fj) * (n as f64 * fi - fj) <= 0.0;
                 let mut strength = drive(
-                    problem, settings, &points[i], &comps, &at_shocks, coupling, &k_ref, n,
+                    problem, harmonics, &points[i], &comps, &at_shocks, coupling, &k_ref, n,
                 )?;
                 if crossed {
                     strength = strength.max(drive(
                         problem,
-                        settings,
+                        harmonics,
                         &points[i - 1],
                         &comps,
                         &at_shocks,
@@ -190,7 +190,7 @@ pub fn internal_resonances(
                     row: i,
                     energy: points[i].energy,
                     frequency: fi,
-                    represented: settings.h_lin >= n,
+                    represented: harmonics.h_lin >= n,
                     strength,
                     branch_point: window.into_iter().find(|&r| points[r].bifurcation),
                 });
@@ -205,7 +205,7 @@ pub fn internal_resonances(
 #[allow(clippy::too_many_arguments)]
 fn drive(
     problem: &Problem,
-    settings: &Settings,
+    harmonics: &Harmonics,
     p: &Point,
     comps: &[(usize, usize, usize)],
     at_shocks: &[f64],
@@ -213,9 +213,9 @@ fn drive(
     k_ref: &[f64],
     n: usize,
 ) -> Result<f64> {
-    let force = contact_coefficients(problem, settings, &p.x)?;
-    let disp = displacement_coefficients(problem, settings, &p.x)?;
-    let (h_nl, h_l) = (settings.h_nonl, settings.h_lin);
+    let force = contact_coefficients(problem, harmonics, &p.x)?;
+    let disp = displacement_coefficients(problem, harmonics, &p.x)?;
+    let (h_nl, h_l) = (harmonics.h_nonl, harmonics.h_lin);
     let norm = at_shocks.iter().map(|v| v * v).sum::<f64>().sqrt();
     let (mut c, mut s) = (0.0, 0.0);
     let mut scale = 0.0f64;
@@ -242,7 +242,7 @@ fn drive(
 /// for the dense check).
 pub fn resonance_alarm(
     problem: &Problem,
-    settings: &Settings,
+    harmonics: &Harmonics,
     points: &[Point],
     first_order: i64,
     modes: Option<&[LinearMode]>,
@@ -250,7 +250,7 @@ pub fn resonance_alarm(
     let Some(modes) = modes else {
         return Ok(None);
     };
-    let mut met = internal_resonances(problem, settings, points, modes)?;
+    let mut met = internal_resonances(problem, harmonics, points, modes)?;
     if met.is_empty() {
         return Ok(None);
     }
@@ -258,7 +258,7 @@ pub fn resonance_alarm(
     met.sort_by(|a, b| b.strength.total_cmp(&a.strength));
     met.truncate(LISTED);
     met.sort_by(|a, b| a.row.cmp(&b.row).then(a.mode.cmp(&b.mode)));
-    let h = settings.h_lin;
+    let h = harmonics.h_lin;
     let lines: Vec<String> = met
         .iter()
         .map(|r| {

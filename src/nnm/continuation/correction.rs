@@ -14,7 +14,7 @@ use crate::nnm::model::point::{finite, make_point};
 use crate::nnm::model::system::System;
 use crate::nnm::model::workspace::Workspace;
 use crate::nnm::solve::linear_solver::TangentSolver;
-use crate::nnm::{Point, Settings, StepControl};
+use crate::nnm::{Continuation, Point, Settings, StepControl};
 
 /// Why a corrected branch end is not a point of the physical family although its residual
 /// converged, if it is not (StepControl::law_defect_max, work_min, frequency_floor,
@@ -176,12 +176,12 @@ fn branch_points_of(
     sys: &System,
     ws: &mut Workspace,
     solver: &mut dyn TangentSolver,
-    settings: &Settings,
+    cont: &Continuation,
     series: &anm::Series,
     x0: &[f64],
     b: usize,
 ) -> Result<std::result::Result<BranchPoints, Error>> {
-    let np = settings.n_points_per_branch;
+    let np = cont.n_points_per_branch;
     let mut branch_points = Vec::with_capacity(np);
     let mut newton_iterations = 0;
     let tangent = series.unit_tangent(series.a_max);
@@ -220,8 +220,8 @@ fn branch_points_of(
                 solver,
                 &mut x,
                 &tangent,
-                settings.prec_newton,
-                settings.iter_newton_max,
+                cont.prec_newton,
+                cont.iter_newton_max,
             ) {
                 Ok(c) => c,
                 Err(e) => return Ok(Err(e)),
@@ -334,8 +334,8 @@ pub(in crate::nnm) fn correct_branch(
         end_defect,
         ..
     } = loop {
-        let attempt =
-            branch_points_of(sys, ws, solver, settings, series, x0, b)?.and_then(|mut done| {
+        let attempt = branch_points_of(sys, ws, solver, &settings.continuation, series, x0, b)?
+            .and_then(|mut done| {
                 match done.points.last_mut() {
                     Some(end) => off_the_law(control, law_check, end)?,
                     None => None,

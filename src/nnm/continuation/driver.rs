@@ -73,36 +73,36 @@ fn run(
         return Err(Error::internal("start state does not match the problem"));
     }
     let params = AnmParams {
-        order: settings.order,
-        prec: settings.prec_man,
-        bif_terms: settings.bif_terms,
-        bif_tol: settings.bif_tol,
+        order: settings.continuation.order,
+        prec: settings.continuation.prec_man,
+        bif_terms: settings.continuation.bif_terms,
+        bif_tol: settings.continuation.bif_tol,
     };
     let kind = start_state.solver;
-    let mut solver = make_solver(&sys, settings, kind)?;
+    let mut solver = make_solver(&sys, &settings.continuation, kind)?;
     let mut x0 = start_state.x;
     let border = start_state.border;
     solver
         .factor(&sys, &x0, &border)
         .map_err(|e| in_branch(e, 1))?;
-    let mut det = DeterminantWatch::new(settings.det_test, &sys, solver.as_mut());
+    let mut det = DeterminantWatch::new(settings.continuation.det_test, &sys, solver.as_mut());
     // DIR_EVOLUTION (module doc): −1 forward, +1 backward.
     let travel = start_state.travel.map(|t: Vec<f64>| to_scaled(&sys, &t));
-    let mut orientation = Orientation::new(settings.direction < 0, travel);
+    let mut orientation = Orientation::new(settings.continuation.direction < 0, travel);
     // (energy, frequency) of every branch end, for the no-progress guard.
     let mut ends: Vec<(f64, f64)> = Vec::new();
     // The frequency defect of the corrected end of the previous branch, the next start.
     let mut start_defect = None;
     // Turns of ENERGIE, for the broken-turn guard (fold_guard.rs).
     let mut trend = EnergyTrend::default();
-    for b in 1..=settings.n_branches {
+    for b in 1..=settings.continuation.n_branches {
         let mut series = series_step(
             &sys,
             &mut ws,
             solver.as_mut(),
             &x0,
             &params,
-            settings,
+            &settings.continuation,
             control.approximation,
             &orientation,
         )
@@ -136,8 +136,13 @@ fn run(
         // Far into a stop that is not rescaled, a floor is the amplitude's: the branch is
         // not stored and the run ends (rescale::floor_far_up).
         if let Some(end) = points.last().filter(|p| p.at_floor) {
-            if let Some(e) = rescale::floor_far_up(problem, &sys, &x_end, end, settings.prec_newton)
-            {
+            if let Some(e) = rescale::floor_far_up(
+                problem,
+                &sys,
+                &x_end,
+                end,
+                settings.continuation.prec_newton,
+            ) {
                 return Err(in_branch(e, b));
             }
         }
@@ -152,8 +157,8 @@ fn run(
         // as border: factor that tangent now, and compare the sign of its determinant with
         // the one at the start of this branch. A failure belongs to the next branch: this
         // one is reported first.
-        let last = b == settings.n_branches;
-        let end_factor = if last && !settings.det_test {
+        let last = b == settings.continuation.n_branches;
+        let end_factor = if last && !settings.continuation.det_test {
             Ok(())
         } else {
             solver.factor(&sys, &x0, &tangent)
@@ -167,9 +172,9 @@ fn run(
             end_sign,
             &series,
             &x_start,
-            settings.n_points_per_branch,
+            settings.continuation.n_points_per_branch,
             &mut points,
-            || make_solver(&sys, settings, kind),
+            || make_solver(&sys, &settings.continuation, kind),
         )?;
         // A turn of ENERGIE where the law has come apart: the rows up to the top are
         // reported and kept, the run stops (fold_guard.rs).
@@ -216,7 +221,7 @@ fn run(
                 orientation.units_changed(&sys, &next);
                 sys = next;
                 ws = sys.workspace();
-                solver = make_solver(&sys, settings, kind)?;
+                solver = make_solver(&sys, &settings.continuation, kind)?;
                 solver
                     .factor(&sys, &x0, &border)
                     .map_err(|e| in_branch(e, b + 1))?;

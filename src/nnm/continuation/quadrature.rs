@@ -194,7 +194,7 @@ mod tests {
         let (k, g, alpha, regul) = (10.0, 0.01, 50.0, 1e-4);
         let p = isotropic_with(k, g, alpha, regul, form);
         let mut s = settings(3, 20, 12, 1);
-        s.prec_man = 1e-8;
+        s.continuation.prec_man = 1e-8;
         let b = 30f64.to_radians();
         let (c, sn) = (b.cos(), b.sin());
         let mode = [1.0, sn / c];
@@ -202,7 +202,7 @@ mod tests {
         let st = start_from_mode_pair(&p, &s, &mode, &quad, 0.9, k.sqrt(), k.sqrt()).unwrap();
         // Inside the ring: the (nearly) linear whirl, radius 0.9 JEU to 1e-3 (the correction
         // keeps the projection on the motion fixed, not the radius; measured 2.8e-4).
-        let hl = s.h_lin;
+        let hl = s.harmonics.h_lin;
         let nl = 2 * hl + 1;
         let x0 = &st.point.x;
         let r0 = x0[1].hypot(x0[1 + hl]);
@@ -213,7 +213,7 @@ mod tests {
         let eps = regul * k;
         let mut worst = 0.0f64;
         for q in &out.points {
-            assert!(q.residual <= s.prec_newton, "{}", q.residual);
+            assert!(q.residual <= s.continuation.prec_newton, "{}", q.residual);
             let ax = q.x[1].hypot(q.x[1 + hl]);
             let ay = q.x[nl + 1].hypot(q.x[nl + 1 + hl]);
             assert!((ax / ay - 1.0).abs() < 1e-6, "{ax} {ay}");
@@ -251,7 +251,7 @@ mod tests {
         let (k, g) = (10.0, 0.01);
         let p = isotropic(k, g, 50.0, 1e-4);
         let mut s = settings(3, 20, 4, 1);
-        s.prec_man = 1e-8;
+        s.continuation.prec_man = 1e-8;
         let b = 30f64.to_radians();
         let mode = [b.cos(), b.sin()];
         let quad = [-b.sin(), b.cos()];
@@ -260,7 +260,7 @@ mod tests {
         assert!(whole.error.is_none(), "{:?}", whole.error);
         let st = crate::nnm::start_from_point(&p, &s, &whole.points[1].x).unwrap();
         let mut s2 = s.clone();
-        s2.n_branches = 2;
+        s2.continuation.n_branches = 2;
         let rest = continue_branches(&p, &s2, st, &mut |_, _| {});
         assert!(rest.error.is_none(), "{:?}", rest.error);
         assert_eq!(rest.points.len(), 2);

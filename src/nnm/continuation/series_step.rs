@@ -10,7 +10,7 @@ use crate::nnm::model::energy;
 use crate::nnm::model::system::System;
 use crate::nnm::model::workspace::Workspace;
 use crate::nnm::solve::linear_solver::TangentSolver;
-use crate::nnm::{Approximation, Settings};
+use crate::nnm::{Approximation, Continuation};
 
 /// Which way a branch leaves its start point (the sign of the series' first term).
 pub(in crate::nnm) struct Orientation {
@@ -82,7 +82,7 @@ pub(in crate::nnm) fn series_step(
     solver: &mut dyn TangentSolver,
     x0: &[f64],
     params: &AnmParams,
-    settings: &Settings,
+    cont: &Continuation,
     approximation: Approximation,
     orientation: &Orientation,
 ) -> Result<Series> {
@@ -92,7 +92,7 @@ pub(in crate::nnm) fn series_step(
     // Safeguard: the step-length estimate assumes the series converges at a_max; where it
     // does not (nearly homogeneous regimes far up a branch, where the estimate grows
     // without bound), the end residual says so: halve the step until it is credible.
-    let credible = 1e3 * settings.prec_man.max(settings.prec_newton);
+    let credible = 1e3 * cont.prec_man.max(cont.prec_newton);
     for _ in 0..40 {
         let xe = series.eval(x0, series.a_max);
         let r = newton::relative(&sys.residual(&xe, ws), &xe);
@@ -104,7 +104,7 @@ pub(in crate::nnm) fn series_step(
         series.a_max *= 0.5;
     }
     if approximation == Approximation::Pade {
-        extend_by_pade(sys, ws, x0, settings, &mut series);
+        extend_by_pade(sys, ws, x0, cont, &mut series);
     }
     Ok(series)
 }
@@ -128,7 +128,7 @@ fn extend_by_pade(
     sys: &System,
     ws: &mut Workspace,
     x0: &[f64],
-    settings: &Settings,
+    cont: &Continuation,
     series: &mut Series,
 ) {
     let s = series.a_max;
@@ -136,7 +136,7 @@ fn extend_by_pade(
         return;
     };
     let xs = series.eval_series(x0, s);
-    let threshold = newton::relative(&sys.residual(&xs, ws), &xs).max(settings.prec_man);
+    let threshold = newton::relative(&sys.residual(&xs, ws), &xs).max(cont.prec_man);
     let pole = p
         .first_pole_within(PADE_REACH_MAX, 1000, PADE_POLE_MARGIN)
         .unwrap_or(f64::INFINITY);

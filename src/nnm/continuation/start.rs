@@ -11,7 +11,8 @@ use crate::nnm::model::workspace::Workspace;
 use crate::nnm::solve::linear_solver::TangentSolver;
 use crate::nnm::solve::solver_kind::{make_solver, SolverKind};
 use crate::nnm::{
-    continuation::anm, continuation::newton, model::fourier, model::law, Point, Problem, Settings,
+    continuation::anm, continuation::newton, model::fourier, model::law, Continuation, Point,
+    Problem, Settings,
 };
 
 /// A corrected point to continue from.
@@ -124,7 +125,7 @@ pub(in crate::nnm) fn start(
                 .keyword("ETAT_INIT"),
         );
     }
-    let mut solver = make_solver(&sys, settings, kind)?;
+    let mut solver = make_solver(&sys, &settings.continuation, kind)?;
     let mut ws = sys.workspace();
     let guess_x = x.clone();
     let mut approached = None;
@@ -134,15 +135,21 @@ pub(in crate::nnm) fn start(
         solver.as_mut(),
         &mut x,
         &border,
-        settings.prec_newton,
-        settings.iter_newton_max,
+        settings.continuation.prec_newton,
+        settings.continuation.iter_newton_max,
     ) {
         Ok(c) => c,
         Err(e) => {
             let approach = match guess {
                 Guess::LinearModes => {
                     x.copy_from_slice(&guess_x);
-                    approach_in_amplitude(&sys, &mut ws, solver.as_mut(), settings, &mut x)
+                    approach_in_amplitude(
+                        &sys,
+                        &mut ws,
+                        solver.as_mut(),
+                        &settings.continuation,
+                        &mut x,
+                    )
                 }
                 Guess::StoredPoint => None,
             };
@@ -164,7 +171,7 @@ pub(in crate::nnm) fn start(
             solver.as_mut(),
             &mut x,
             &border,
-            settings.iter_newton_max,
+            settings.continuation.iter_newton_max,
         )?,
         _ => (0, corr.residual),
     };
@@ -231,7 +238,7 @@ fn approach_in_amplitude(
     sys: &System,
     ws: &mut Workspace,
     solver: &mut dyn TangentSolver,
-    settings: &Settings,
+    cont: &Continuation,
     x: &mut [f64],
 ) -> Option<Approach> {
     let motion = 2 * sys.lay.n * sys.lay.n_coef_lin;
@@ -249,8 +256,8 @@ fn approach_in_amplitude(
             solver,
             x,
             &border,
-            settings.prec_newton,
-            settings.iter_newton_max,
+            cont.prec_newton,
+            cont.iter_newton_max,
         )
         .ok()
     };

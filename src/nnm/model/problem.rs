@@ -66,19 +66,23 @@ pub struct Harmonics {
     pub h_nonl: usize,
 }
 
-impl From<&Settings> for Harmonics {
-    fn from(s: &Settings) -> Harmonics {
-        Harmonics {
-            h_lin: s.h_lin,
-            h_nonl: s.h_nonl,
-        }
+impl From<&Harmonics> for Harmonics {
+    fn from(h: &Harmonics) -> Harmonics {
+        *h
     }
 }
 
+impl From<&Settings> for Harmonics {
+    fn from(s: &Settings) -> Harmonics {
+        s.harmonics
+    }
+}
+
+/// How a branch is followed (RESOLUTION's continuation keywords and DIR_EVOLUTION): what the
+/// continuation reads, apart from the layout of the points.
 #[derive(Clone, Debug)]
-pub struct Settings {
-    pub h_lin: usize,
-    pub h_nonl: usize,
+pub struct Continuation {
+    /// NB_BRANCHE.
     pub n_branches: usize,
     /// NB_PAS_MAN.
     pub n_points_per_branch: usize,
@@ -96,4 +100,12 @@ pub struct Settings {
     pub det_test: bool,
     /// DIR_EVOLUTION: −1 forward, +1 backward (module doc).
     pub direction: i32,
+}
+
+/// The settings of one MODE_NON_LINE run: the harmonic counts (the layout of its points)
+/// and the continuation's settings, two types so that what reads only one of them says so.
+#[derive(Clone, Debug)]
+pub struct Settings {
+    pub harmonics: Harmonics,
+    pub continuation: Continuation,
 }

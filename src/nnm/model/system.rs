@@ -14,7 +14,7 @@ use crate::nnm::model::low_synth::{self, LowSynth};
 use crate::nnm::model::problem::Harmonics;
 use crate::nnm::model::vector;
 use crate::nnm::model::workspace::{QuadWork, Workspace};
-use crate::nnm::{Problem, Settings, ShockLaw};
+use crate::nnm::{Continuation, Problem, Settings, ShockLaw};
 use faer::prelude::*;
 use faer::sparse::{SparseColMat, Triplet};
 use multiversion::multiversion;
@@ -374,7 +374,7 @@ pub fn validate(problem: &Problem, settings: &Settings) -> Result<()> {
     // In this order: the matrices, the harmonics, the continuation's settings, the shocks.
     validate_matrices(problem)?;
     validate_harmonics(problem, settings.into())?;
-    validate_continuation(settings)?;
+    validate_continuation(&settings.continuation)?;
     validate_shocks(problem)
 }
 
@@ -429,16 +429,16 @@ fn validate_harmonics(problem: &Problem, settings: Harmonics) -> Result<()> {
     Ok(())
 }
 
-fn validate_continuation(settings: &Settings) -> Result<()> {
-    if settings.order < 2 {
+fn validate_continuation(cont: &Continuation) -> Result<()> {
+    if cont.order < 2 {
         return Err(
             Error::input("NB_ORDRE_MAN must be at least 2").keyword("RESOLUTION/NB_ORDRE_MAN")
         );
     }
-    if settings.n_points_per_branch == 0 {
+    if cont.n_points_per_branch == 0 {
         return Err(Error::input("NB_PAS_MAN must be at least 1").keyword("RESOLUTION/NB_PAS_MAN"));
     }
-    if !(settings.prec_man > 0.0 && settings.prec_newton > 0.0) {
+    if !(cont.prec_man > 0.0 && cont.prec_newton > 0.0) {
         return Err(Error::input("PREC_MAN and PREC_NEWTON must be positive")
             .keyword("RESOLUTION/PREC_MAN"));
     }

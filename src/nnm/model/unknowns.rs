@@ -218,7 +218,7 @@ mod tests {
     fn restitution_needs_the_harmonic_counts_alone() {
         let p = problems().remove(0);
         let mut s = settings(3, 7, 1, 1);
-        s.order = 0;
+        s.continuation.order = 0;
         let h = Harmonics::from(&s);
         assert_eq!((h.h_lin, h.h_nonl), (3, 7));
         let n = Unknowns::new(&p, h).unwrap().layout().n_unk;

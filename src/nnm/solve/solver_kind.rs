@@ -4,7 +4,7 @@
 use crate::error::Result;
 use crate::nnm::model::system::System;
 use crate::nnm::solve::linear_solver::{self, ReferenceSolver, StructuredSolver, TangentSolver};
-use crate::nnm::{ContactMethod, Settings};
+use crate::nnm::{ContactMethod, Continuation};
 
 /// How the bordered tangent is solved (linear_solver.rs). Results agree to round-off; the
 /// engine uses `Structured`, the others are for tests and the bench.
@@ -23,10 +23,10 @@ pub enum SolverKind {
 
 pub(in crate::nnm) fn make_solver(
     sys: &System,
-    settings: &Settings,
+    cont: &Continuation,
     kind: SolverKind,
 ) -> Result<Box<dyn TangentSolver>> {
-    let solves = linear_solver::solves_per_factorisation(settings.order);
+    let solves = linear_solver::solves_per_factorisation(cont.order);
     Ok(match kind {
         SolverKind::Structured => Box::new(StructuredSolver::new(sys, solves, None)?),
         SolverKind::StructuredWith(m) => Box::new(StructuredSolver::new(sys, solves, Some(m))?),

@@ -70,7 +70,7 @@ fn resized(from: &[f64], h: usize) -> Vec<f64> {
 /// Largest |value| of the residual of eq. (12) and of the motion at one stored row, each
 /// relative to the largest term of its equations.
 fn eq12_residual(p: &Problem, s: &Settings, q: &Point, eta: f64) -> (f64, f64) {
-    let (hl, hn) = (s.h_lin, s.h_nonl);
+    let (hl, hn) = (s.harmonics.h_lin, s.harmonics.h_nonl);
     let (nl, nn) = (2 * hl + 1, 2 * hn + 1);
     let sh = &p.shocks[0];
     let ShockLaw::Cercle { origin, .. } = sh.law else {
@@ -156,10 +156,8 @@ fn ring(delta: f64, form: CercleForm) -> Problem {
 /// (δ = 0) and across an offset centre (δ = 0.3·JEU).
 fn rows(delta: f64) -> (Problem, Settings, Vec<Point>) {
     let p = ring(delta, CercleForm::Radial);
-    let s = Settings {
-        prec_man: 1e-8,
-        ..settings(5, 40, 8, 1)
-    };
+    let mut s = settings(5, 40, 8, 1);
+    s.continuation.prec_man = 1e-8;
     let st = start_from_mode(&p, &s, &[0.0, 1.0], 1.0, 10f64.sqrt()).unwrap();
     let out = continue_branches(&p, &s, st, &mut |_, _| {});
     assert!(out.error.is_none(), "{:?}", out.error);

@@ -32,11 +32,11 @@ fn check_points(pts: &[Point], s: &Settings) -> Stats {
             q.branch
         );
         assert!(
-            q.residual <= s.prec_newton,
+            q.residual <= s.continuation.prec_newton,
             "branch {}: residual {:.3e} > {:.1e}",
             q.branch,
             q.residual,
-            s.prec_newton
+            s.continuation.prec_newton
         );
         st.residual = st.residual.max(q.residual);
         st.gamma = st.gamma.max(q.gamma.abs());
@@ -123,7 +123,7 @@ fn hard_stiff_wall_one_dof_rigi_nor_1_to_1e8() {
         let mut p = one_dof(ShockLaw::Plan, 1e-5);
         p.shocks[0].stiffness = 10.0 * ratio;
         let mut s = settings(5, 60, 20, 1);
-        s.prec_man = 1e-8;
+        s.continuation.prec_man = 1e-8;
         let t0 = std::time::Instant::now();
         let pts = run_all(&p, &s, &[1.0], 1.0, w0);
         let st = check_points(&pts, &s);
@@ -162,7 +162,7 @@ fn hard_stiff_stop_on_a_20_dof_chain() {
     for ratio in [1.0, 1e4, 1e8] {
         let p = chain_problem(n, 10.0, ShockLaw::Plan, 10.0 * ratio, 1e-4);
         let mut s = settings(3, 40, 30, 1);
-        s.prec_man = 1e-8;
+        s.continuation.prec_man = 1e-8;
         let t0 = std::time::Instant::now();
         let pts = run_all(&p, &s, &mode, 1.0, w);
         let st = check_points(&pts, &s);
@@ -189,7 +189,7 @@ fn hard_tiny_regularisation_down_to_1e_7() {
     for (eta, hn, hl, nb) in [(1e-5, 100, 7, 40), (1e-7, 200, 7, 60)] {
         let p = one_dof(ShockLaw::Plan, eta);
         let mut s = settings(hl, hn, nb, 1);
-        s.prec_man = 1e-8;
+        s.continuation.prec_man = 1e-8;
         let t0 = std::time::Instant::now();
         let pts = run_all(&p, &s, &[1.0], 1.0, 10f64.sqrt());
         let st = check_points(&pts, &s);
@@ -219,7 +219,7 @@ fn hard_many_harmonics() {
     // (measured 1e-6).
     let p = one_dof(ShockLaw::Plan, 1e-5);
     let mut s = settings(50, 500, 1, 1);
-    s.prec_man = 1e-8;
+    s.continuation.prec_man = 1e-8;
     let t0 = std::time::Instant::now();
     let pts = run_all(&p, &s, &[1.0], 1.0, 10f64.sqrt());
     let st = check_points(&pts, &s);
@@ -240,7 +240,7 @@ fn hard_grazing_start_below_contact() {
     // regularisation's effect; above it, it rises.
     let p = one_dof(ShockLaw::Plan, 1e-7);
     let mut s = settings(7, 100, 30, 1);
-    s.prec_man = 1e-8;
+    s.continuation.prec_man = 1e-8;
     let w0 = 10f64.sqrt();
     let f0 = w0 / (2.0 * std::f64::consts::PI);
     let t0 = std::time::Instant::now();
@@ -320,7 +320,7 @@ fn hard_two_mass_branches_near_bifurcations() {
     // stability::tests::symmetric_pair_pitchfork_is_flagged_where_stability_switches.
     let nl = 11;
     let mut s = settings(5, 60, 40, 1);
-    s.prec_man = 1e-8;
+    s.continuation.prec_man = 1e-8;
     let p = two_mass(0.5, vec![plan_on(0, ShockLaw::Plan)]);
     let pts = run_all(&p, &s, &[1.0, -1.0], 0.5, 11f64.sqrt());
     check_points(&pts, &s);
@@ -347,7 +347,7 @@ fn hard_two_laws_on_one_model() {
         vec![plan_on(0, ShockLaw::Plan), plan_on(1, ShockLaw::BiPlan)],
     );
     let mut s = settings(5, 60, 30, 1);
-    s.prec_man = 1e-8;
+    s.continuation.prec_man = 1e-8;
     let t0 = std::time::Instant::now();
     let pts = run_all(&p, &s, &[1.0, 1.0], 1.0, 10f64.sqrt());
     let st = check_points(&pts, &s);
@@ -359,9 +359,9 @@ fn hard_two_laws_on_one_model() {
 fn hard_restart_reproduces_the_single_run() {
     let p = one_dof(ShockLaw::Plan, 5e-5);
     let mut s = settings(5, 200, 10, 1);
-    s.prec_man = 1e-12;
+    s.continuation.prec_man = 1e-12;
     let whole = run_all(&p, &s, &[1.0], 1.0, 10f64.sqrt());
-    s.n_branches = 5;
+    s.continuation.n_branches = 5;
     let first = run_all(&p, &s, &[1.0], 1.0, 10f64.sqrt());
     let st = start_from_point(&p, &s, &first[4].x).unwrap();
     // The stored point is corrected: no Newton iteration on restart.
@@ -388,9 +388,9 @@ fn hard_failed_correction_keeps_the_points_before_it() {
     // cannot. The run stops there and keeps the two points before it.
     let p = one_dof(ShockLaw::Plan, 1e-4);
     let mut s = settings(3, 30, 20, 1);
-    s.prec_man = 1e-6;
-    s.iter_newton_max = 1;
-    s.prec_newton = 1e-8;
+    s.continuation.prec_man = 1e-6;
+    s.continuation.iter_newton_max = 1;
+    s.continuation.prec_newton = 1e-8;
     let st = start_from_mode(&p, &s, &[1.0], 0.5, 10f64.sqrt()).unwrap();
     let mut reported = 0;
     let out = continue_branches(&p, &s, st, &mut |_, _| reported += 1);
@@ -436,13 +436,13 @@ fn hard_cercle_whirl_around_the_ring() {
     };
     let s = {
         let mut s = settings(3, 20, 10, 1);
-        s.prec_man = 1e-8;
+        s.continuation.prec_man = 1e-8;
         s
     };
     let a = 0.012;
     let f = regularised_ring_force(a, g, alpha, eps);
     let w = ((k + f / a) / 1.0f64).sqrt();
-    let (hl, hn) = (s.h_lin, s.h_nonl);
+    let (hl, hn) = (s.harmonics.h_lin, s.harmonics.h_nonl);
     let (nl, nn) = (2 * hl + 1, 2 * hn + 1);
     let mut x = vec![0.0; unknown_count(&p, &s)];
     let ay = a * 0.9999;
@@ -499,13 +499,13 @@ fn hard_ring_through_its_centre_next_to_another_shock() {
         ],
     };
     let mut s = settings(3, 20, 20, 1);
-    s.prec_man = 1e-8;
+    s.continuation.prec_man = 1e-8;
     let st = start_from_mode(&p, &s, &[1.0, 0.0], 1.0, 10f64.sqrt()).unwrap();
     let e0 = st.point.energy;
     let out = continue_branches(&p, &s, st, &mut |_, _| {});
     assert!(out.error.is_none(), "{:?}", out.error);
     let stats = check_points(&out.points, &s);
-    assert!(stats.residual <= s.prec_newton, "{stats:?}");
+    assert!(stats.residual <= s.continuation.prec_newton, "{stats:?}");
     let top = out.points.iter().map(|q| q.energy).fold(0.0, f64::max);
     // Into contact with the ring: the last orbit reaches past JEU along x.
     let last = out.points.last().unwrap();
@@ -530,8 +530,8 @@ fn hard_ring_through_its_centre_next_to_another_shock() {
 fn hard_non_physical_family_stops_on_the_law_check() {
     let problem = one_dof(ShockLaw::Plan, 1e-6);
     let mut s = settings(10, 30, 40, 1);
-    s.prec_man = 1e-6;
-    s.prec_newton = 1e-8;
+    s.continuation.prec_man = 1e-6;
+    s.continuation.prec_newton = 1e-8;
     let f_lin = 10f64.sqrt() / (2.0 * std::f64::consts::PI);
     let go = |law_defect_max: Option<f64>| {
         let start = start_from_mode(&problem, &s, &[1.0], 1.0, 10f64.sqrt()).unwrap();
@@ -566,7 +566,7 @@ fn hard_non_physical_family_stops_on_the_law_check() {
     let post = PostProcessor::new(&problem, &s).unwrap();
     assert!(!guarded.points.is_empty());
     for p in &guarded.points {
-        assert!(p.residual <= s.prec_newton);
+        assert!(p.residual <= s.continuation.prec_newton);
     }
     let ends: Vec<&Point> = guarded.points.iter().collect();
     let worst = ends
@@ -590,10 +590,8 @@ fn hard_non_physical_family_stops_on_the_law_check() {
 fn wall_grid_run(ratio: f64, regul: f64, approximation: Approximation) -> (usize, f64) {
     let mut problem = one_dof(ShockLaw::Plan, regul);
     problem.shocks[0].stiffness = ratio * 10.0;
-    let s = Settings {
-        prec_newton: 1e-8,
-        ..settings(20, 200, 400, 1)
-    };
+    let mut s = settings(20, 200, 400, 1);
+    s.continuation.prec_newton = 1e-8;
     let osc = Oscillator {
         alpha: ratio * 10.0,
         ..SDND

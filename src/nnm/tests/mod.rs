@@ -26,18 +26,22 @@ pub fn sparse(n: usize, e: &[(usize, usize, f64)]) -> SparseColMat<usize, f64> {
 
 pub fn settings(hl: usize, hn: usize, branches: usize, points: usize) -> Settings {
     Settings {
-        h_lin: hl,
-        h_nonl: hn,
-        n_branches: branches,
-        n_points_per_branch: points,
-        order: 20,
-        prec_man: 1e-9,
-        prec_newton: 1e-9,
-        iter_newton_max: 15,
-        bif_terms: 3,
-        bif_tol: 1e-4,
-        det_test: true,
-        direction: -1,
+        harmonics: Harmonics {
+            h_lin: hl,
+            h_nonl: hn,
+        },
+        continuation: Continuation {
+            n_branches: branches,
+            n_points_per_branch: points,
+            order: 20,
+            prec_man: 1e-9,
+            prec_newton: 1e-9,
+            iter_newton_max: 15,
+            bif_terms: 3,
+            bif_tol: 1e-4,
+            det_test: true,
+            direction: -1,
+        },
     }
 }
 
@@ -167,7 +171,7 @@ fn tangent_is_the_derivative_of_the_residual() {
 fn sdnd122a_matches_code_aster() {
     let p = one_dof(ShockLaw::Plan, 5e-5);
     let mut s = settings(5, 200, 105, 1);
-    s.prec_man = 1e-14;
+    s.continuation.prec_man = 1e-14;
     let t0 = std::time::Instant::now();
     let st = start_from_mode(&p, &s, &[1.0], 1.0, 10f64.sqrt()).unwrap();
     let mut newton = 0;
@@ -195,7 +199,7 @@ fn sdnd122a_matches_code_aster() {
     assert!((f / 0.64669392749957 - 1.0).abs() < 1e-5);
     // And both lie above the exact nonsmooth frequency by about 1e-4 (docs/ehman.md §5).
     assert!(f > exact && f / exact - 1.0 < 2e-4);
-    assert!(pts.iter().all(|q| q.residual <= s.prec_newton));
+    assert!(pts.iter().all(|q| q.residual <= s.continuation.prec_newton));
 }
 
 fn chain(n: usize, k: f64, m: f64) -> (SparseColMat<usize, f64>, SparseColMat<usize, f64>) {
@@ -250,7 +254,7 @@ fn no_shock_gives_the_linear_frequency_at_every_amplitude() {
     let w = ((3.0 - 5f64.sqrt()) / 2.0).sqrt();
     let phi = (1.0 + 5f64.sqrt()) / 2.0;
     let mut s = settings(3, 3, 4, 3);
-    s.prec_newton = 1e-13;
+    s.continuation.prec_newton = 1e-13;
     let pts = run(&p, &s, &[phi - 1.0, 1.0], 0.1, w * 1.001);
     assert_eq!(pts.len(), 12);
     // Amplitude grows along the run (direction +1: energy increasing).
@@ -293,7 +297,7 @@ fn convergence(law: ShockLaw, period: fn(&Oscillator, f64) -> f64) -> Vec<f64> {
     let mut errs = Vec::new();
     for (hl, hn, eta) in REFINEMENTS {
         let mut s = settings(hl, hn, 90, 1);
-        s.prec_man = 1e-10;
+        s.continuation.prec_man = 1e-10;
         // Over a decade of energy above first contact (½kJEU² = 5e-4): [1e-3, 1e-2].
         let (err, top) = plan_error(&one_dof(law, eta), &s, 1e-3, 1e-2, period);
         assert!(top > 1e-2, "{law:?}: run stopped at E = {top}");
@@ -350,7 +354,7 @@ fn ring(delta: f64, regul: f64) -> Problem {
 fn cercle_through_its_centre_is_the_biplan_branch() {
     let e_stars = [7.5e-4, 1.5e-3, 3e-3];
     let mut s = settings(5, 120, 40, 10);
-    s.prec_man = 1e-8;
+    s.continuation.prec_man = 1e-8;
     let below = |_: &BranchReport, p: &[Point]| p.last().is_some_and(|q| q.energy < 3.5e-3);
     let go = |p: &Problem, mode: &[f64]| {
         let st = start_from_mode(p, &s, mode, 1.0, 10f64.sqrt()).unwrap();
@@ -386,7 +390,7 @@ fn cercle_through_its_centre_is_the_biplan_branch() {
 #[test]
 fn cercle_offsets_converge_to_the_centred_branch() {
     let mut s = settings(5, 60, 60, 10);
-    s.prec_man = 1e-8;
+    s.continuation.prec_man = 1e-8;
     let e_star = 7.5e-4;
     let below = |_: &BranchReport, p: &[Point]| p.last().is_some_and(|q| q.energy < 1e-3);
     let go = |p: &Problem, mode: &[f64]| {
@@ -399,7 +403,7 @@ fn cercle_offsets_converge_to_the_centred_branch() {
             .iter()
             .skip(9)
             .step_by(10)
-            .all(|q| q.residual <= s.prec_newton));
+            .all(|q| q.residual <= s.continuation.prec_newton));
         out.points
     };
     let reference = freq_at(&go(&ring(0.0, 1e-4), &[0.0, 1.0]), e_star).unwrap();
@@ -437,7 +441,7 @@ fn spring_chains_with_one_stop_run_to_high_energy_with_converged_points() {
             }],
         };
         let mut s = settings(3, 40, branches, 1);
-        s.prec_man = 1e-8;
+        s.continuation.prec_man = 1e-8;
         let st = start_from_mode(&p, &s, &mode, 1.0, w).unwrap();
         let e0 = st.point.energy;
         let out = continue_branches(&p, &s, st, &mut |_, _| {});
@@ -447,7 +451,11 @@ fn spring_chains_with_one_stop_run_to_high_energy_with_converged_points() {
         // "High energy": at least ten times the energy of first contact.
         assert!(top > 10.0 * e0, "{n} DOFs: {e0} -> {top}");
         for q in &out.points {
-            assert!(q.residual <= s.prec_newton, "residual {}", q.residual);
+            assert!(
+                q.residual <= s.continuation.prec_newton,
+                "residual {}",
+                q.residual
+            );
             // The stop stiffens the 2-DOF system: frequency above the linear one. (The
             // 20-DOF chain has ω₂ ≈ 3ω₁: its branch winds through a 3:1 interaction where
             // the frequency may dip below the linear one, so no such check there.)
@@ -472,11 +480,11 @@ fn contact_stiffness_from_1_to_1e8_times_the_structure_stays_well_conditioned() 
         let mut p = one_dof(ShockLaw::Plan, 1e-4);
         p.shocks[0].stiffness = 10.0 * ratio;
         let mut s = settings(5, 60, 20, 1);
-        s.prec_man = 1e-8;
+        s.continuation.prec_man = 1e-8;
         let pts = run(&p, &s, &[1.0], 1.0, w0);
         assert!(pts
             .iter()
-            .all(|q| q.residual <= s.prec_newton && q.frequency.is_finite()));
+            .all(|q| q.residual <= s.continuation.prec_newton && q.frequency.is_finite()));
         let f = freq_at(&pts, 1e-3).unwrap();
         println!("RIGI_NOR/k = {ratio:e}: f(1e-3) = {f}, rigid limit {rigid}");
         assert!(f > w0 / two_pi && f < rigid, "{f}");
@@ -515,12 +523,12 @@ fn tangent_pattern_repeats_so_the_symbolic_factorisation_is_reused() {
 fn dir_evolution_from_a_linear_mode() {
     let p = one_dof(ShockLaw::Plan, 1e-4);
     let mut s = settings(3, 30, 12, 40);
-    s.prec_man = 1e-8;
+    s.continuation.prec_man = 1e-8;
     let up = run(&p, &s, &[1.0], 1.0, 10f64.sqrt());
     assert!(up.windows(2).all(|w| w[1].energy > w[0].energy));
-    s.direction = 1;
-    s.n_branches = 40;
-    s.n_points_per_branch = 2;
+    s.continuation.direction = 1;
+    s.continuation.n_branches = 40;
+    s.continuation.n_points_per_branch = 2;
     let st = start_from_mode(&p, &s, &[1.0], 1.0, 10f64.sqrt()).unwrap();
     let e0 = st.point.energy;
     let back = continue_branches(&p, &s, st, &mut |_, _| {}).points;
@@ -563,13 +571,13 @@ fn dir_evolution_from_a_linear_mode() {
 fn dir_evolution_on_a_restart() {
     let p = one_dof(ShockLaw::Plan, 1e-4);
     let mut s = settings(3, 30, 4, 2);
-    s.prec_man = 1e-8;
+    s.continuation.prec_man = 1e-8;
     let up = run(&p, &s, &[1.0], 1.0, 10f64.sqrt());
     let (prev, here, next) = (&up[3], &up[4], &up[5]);
     let chord: Vec<f64> = next.x.iter().zip(&prev.x).map(|(a, b)| a - b).collect();
     let go = |direction: i32, travel: Option<&[f64]>| {
         let mut s = s.clone();
-        s.direction = direction;
+        s.continuation.direction = direction;
         let mut st = start_from_point(&p, &s, &here.x).unwrap();
         // The stored point is already corrected: the restart keeps it.
         assert!((st.point.energy / here.energy - 1.0).abs() < 1e-8);
@@ -661,7 +669,7 @@ fn sdnd122b_and_c_match_code_aster() {
     let p = one_dof(ShockLaw::Plan, 5e-5);
     // b: NB_PAS_MAN = 10 (intermediate points straight from the series), LIN interpolation.
     let mut s = settings(5, 200, 105, 10);
-    s.prec_man = 1e-14;
+    s.continuation.prec_man = 1e-14;
     let pts = run(&p, &s, &[1.0], 1.0, 10f64.sqrt());
     assert_eq!(pts.len(), 1050);
     let f = freq_at_lin(&pts, 0.00658129654238).unwrap();
@@ -675,9 +683,9 @@ fn sdnd122b_and_c_match_code_aster() {
     assert!(pts.iter().all(|q| q.residual < 1e-6));
     // c: 5 branches, restart from row 5 with 70 branches toward higher energy.
     let mut s = settings(5, 200, 5, 1);
-    s.prec_man = 1e-14;
+    s.continuation.prec_man = 1e-14;
     let first = run(&p, &s, &[1.0], 1.0, 10f64.sqrt());
-    s.n_branches = 70;
+    s.continuation.n_branches = 70;
     let st = start_from_point(&p, &s, &first[4].x).unwrap();
     let out = continue_branches(&p, &s, st, &mut |_, _| {});
     assert!(out.error.is_none());
@@ -800,7 +808,7 @@ fn det_sign_log10(mut a: Vec<f64>, n: usize) -> (f64, f64) {
 #[test]
 fn cercle_law_block_keeps_its_determinant_sign_along_branches() {
     let mut s = settings(3, 20, 20, 1);
-    s.prec_man = 1e-8;
+    s.continuation.prec_man = 1e-8;
     let whirl = Problem {
         k: sparse(2, &[(0, 0, 10.0), (1, 1, 10.0)]),
         ..ring(0.0, 1e-4)

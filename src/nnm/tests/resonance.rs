@@ -10,10 +10,9 @@ use faer::sparse::{SparseColMat, Triplet};
 use std::f64::consts::PI;
 
 fn settings(hl: usize, hn: usize, branches: usize) -> Settings {
-    Settings {
-        prec_man: 1e-10,
-        ..crate::nnm::tests::settings(hl, hn, branches, 3)
-    }
+    let mut s = crate::nnm::tests::settings(hl, hn, branches, 3);
+    s.continuation.prec_man = 1e-10;
+    s
 }
 
 /// M = I, K = Φ diag(ω₁², ω₂²) Φᵀ with Φ = [[1, 1], [1, −1]]/√2 (both modes move DOF 0
@@ -73,7 +72,7 @@ fn a_three_to_one_crossing_driven_by_the_stop_is_reported_once() {
         let fmax = pts.iter().map(|q| q.frequency).fold(0.0, f64::max);
         assert!(fmax > f2 / 3.0 * 1.002, "the branch must pass f2/3: {fmax}");
         let modes = linear_modes(&p).unwrap().unwrap();
-        let met = internal_resonances(&p, &s, &pts, &modes).unwrap();
+        let met = internal_resonances(&p, &s.harmonics, &pts, &modes).unwrap();
         eprintln!("H_l {hl}: {met:?}");
         let three: Vec<_> = met.iter().filter(|r| r.order == 3 && r.mode == 2).collect();
         assert_eq!(three.len(), 1, "{met:?}");
@@ -85,9 +84,15 @@ fn a_three_to_one_crossing_driven_by_the_stop_is_reported_once() {
         };
         assert!(on(r.row) && !on(r.row - 1), "row {}", r.row);
         assert_eq!(r.represented, hl >= 3);
-        let text = resonance_alarm(&p, &s, &pts, 1, linear_modes(&p).unwrap().as_deref())
-            .unwrap()
-            .unwrap();
+        let text = resonance_alarm(
+            &p,
+            &s.harmonics,
+            &pts,
+            1,
+            linear_modes(&p).unwrap().as_deref(),
+        )
+        .unwrap()
+        .unwrap();
         assert!(text.contains("3:1 with linear mode 2"), "{text}");
         let held = if hl >= 3 {
             "holds it"
@@ -108,7 +113,14 @@ fn no_alarm_where_no_resonance_is_reached_or_driven() {
     let fmax = pts.iter().map(|q| q.frequency).fold(0.0, f64::max);
     assert!(fmax > 1.005 * f1 && fmax < 1.2 * f1, "{fmax}");
     assert_eq!(
-        resonance_alarm(&p, &s, &pts, 1, linear_modes(&p).unwrap().as_deref()).unwrap(),
+        resonance_alarm(
+            &p,
+            &s.harmonics,
+            &pts,
+            1,
+            linear_modes(&p).unwrap().as_deref()
+        )
+        .unwrap(),
         None
     );
     // f₂ = 2.02 f₁ with a symmetric stop (BI_PLAN): the branch crosses f₂/2 but its contact
@@ -120,7 +132,14 @@ fn no_alarm_where_no_resonance_is_reached_or_driven() {
     let fmax = pts.iter().map(|q| q.frequency).fold(0.0, f64::max);
     assert!(2.0 * fmax > f2, "the branch must pass f2/2: {fmax}");
     assert_eq!(
-        resonance_alarm(&p, &s, &pts, 1, linear_modes(&p).unwrap().as_deref()).unwrap(),
+        resonance_alarm(
+            &p,
+            &s.harmonics,
+            &pts,
+            1,
+            linear_modes(&p).unwrap().as_deref()
+        )
+        .unwrap(),
         None
     );
 }

@@ -217,7 +217,7 @@ fn determinant_signs_change_together_with_the_dense_references() {
 fn runs_with_the_structured_solver_equal_the_reference_runs() {
     let p = problem();
     let mut s = settings(3, 30, 3, 2);
-    s.prec_man = 1e-8;
+    s.continuation.prec_man = 1e-8;
     // The lowest linear mode by inverse iteration x ← K⁻¹ M x (M is singular: DOF 3 has
     // no mass; the iteration does not mind).
     let kd = p.k.to_dense();

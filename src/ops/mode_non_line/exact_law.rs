@@ -32,10 +32,10 @@ pub fn settings(args: &Args, s: &Settings) -> Result<Option<ExactLawSettings>> {
     }
     let per_coef = r.req_count("NB_ECHAN_LOI_EXACTE")?;
     Ok(Some(ExactLawSettings {
-        h_lin: s.h_lin,
-        samples: exact_law::samples_for(s.h_lin, per_coef),
-        prec: s.prec_newton,
-        iter_max: s.iter_newton_max,
+        h_lin: s.harmonics.h_lin,
+        samples: exact_law::samples_for(s.harmonics.h_lin, per_coef),
+        prec: s.continuation.prec_newton,
+        iter_max: s.continuation.iter_newton_max,
         held: HeldEnergy::Mean,
     }))
 }

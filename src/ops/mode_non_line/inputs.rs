@@ -6,7 +6,7 @@
 
 use crate::args::Args;
 use crate::error::{Error, Result};
-use crate::nnm::{self, Point, Problem, Settings};
+use crate::nnm::{self, Continuation, Harmonics, Point, Problem, Settings};
 use crate::ops::common::nodes::{one_node_of_group, OneNode};
 use crate::ops::OpContext;
 use crate::store::matrix;
@@ -64,15 +64,15 @@ pub(super) fn check_budget(ctx: &mut OpContext<'_>, problem: &Problem, s: &Setti
     let sizes = budget::MnlSizes {
         n_dofs: problem.k.nrows(),
         nnz: problem.k.compute_nnz() + problem.m.compute_nnz(),
-        h_lin: s.h_lin,
+        h_lin: s.harmonics.h_lin,
         h_nonl: if problem.shocks.is_empty() {
-            s.h_lin
+            s.harmonics.h_lin
         } else {
-            s.h_nonl
+            s.harmonics.h_nonl
         },
         shocks,
-        order: s.order,
-        stored_points: s.n_branches as f64 * s.n_points_per_branch as f64,
+        order: s.continuation.order,
+        stored_points: s.continuation.n_branches as f64 * s.continuation.n_points_per_branch as f64,
     };
     resources::check_memory(
         "MODE_NON_LINE/RESOLUTION (NB_HARM_LINE, NB_HARM_NONL, NB_ORDRE_MAN, NB_BRANCHE, NB_PAS_MAN)",
@@ -83,7 +83,7 @@ pub(super) fn check_budget(ctx: &mut OpContext<'_>, problem: &Problem, s: &Setti
         ctx,
         "MODE_NON_LINE/RESOLUTION",
         "the continuation",
-        budget::mnl_branch_flops(&sizes) * s.n_branches as f64,
+        budget::mnl_branch_flops(&sizes) * s.continuation.n_branches as f64,
     )
 }
 
@@ -102,18 +102,19 @@ pub(super) fn settings(args: &Args) -> Result<Settings> {
     }
     let direction = args.req_fact("ETAT_INIT")?.req_int("DIR_EVOLUTION")?;
     Ok(Settings {
-        h_lin,
-        h_nonl,
-        n_branches: usize_of("NB_BRANCHE")?,
-        n_points_per_branch: usize_of("NB_PAS_MAN")?,
-        order: usize_of("NB_ORDRE_MAN")?,
-        prec_man: r.req_real("PREC_MAN")?,
-        prec_newton: r.req_real("PREC_NEWTON")?,
-        iter_newton_max: usize_of("ITER_NEWTON_MAXI")?,
-        bif_terms: usize_of("CRIT_ORDR_BIFURCATION")?,
-        bif_tol: r.req_real("RESI_RELA_BIFURCATION")?,
-        det_test: r.req_text("TEST_BIFURCATION")? != "SERIE",
-        direction: if direction >= 0 { 1 } else { -1 },
+        harmonics: Harmonics { h_lin, h_nonl },
+        continuation: Continuation {
+            n_branches: usize_of("NB_BRANCHE")?,
+            n_points_per_branch: usize_of("NB_PAS_MAN")?,
+            order: usize_of("NB_ORDRE_MAN")?,
+            prec_man: r.req_real("PREC_MAN")?,
+            prec_newton: r.req_real("PREC_NEWTON")?,
+            iter_newton_max: usize_of("ITER_NEWTON_MAXI")?,
+            bif_terms: usize_of("CRIT_ORDR_BIFURCATION")?,
+            bif_tol: r.req_real("RESI_RELA_BIFURCATION")?,
+            det_test: r.req_text("TEST_BIFURCATION")? != "SERIE",
+            direction: if direction >= 0 { 1 } else { -1 },
+        },
     })
 }
 
@@ -193,11 +194,11 @@ pub(super) fn stop_bounds(args: &Args) -> Result<StopBounds> {
     })
 }
 
-pub(super) fn check_restart_harmonics(setup: &MnlSetup, s: &Settings) -> Result<()> {
-    if setup.h_lin != s.h_lin || setup.h_nonl != s.h_nonl {
+pub(super) fn check_restart_harmonics(setup: &MnlSetup, harmonics: &Harmonics) -> Result<()> {
+    if setup.h_lin != harmonics.h_lin || setup.h_nonl != harmonics.h_nonl {
         return Err(Error::validation(format!(
             "the start table was computed with NB_HARM_LINE={} and NB_HARM_NONL={}, this call asks for {} and {}",
-            setup.h_lin, setup.h_nonl, s.h_lin, s.h_nonl
+            setup.h_lin, setup.h_nonl, harmonics.h_lin, harmonics.h_nonl
         ))
         .keyword("MODE_NON_LINE/RESOLUTION")
         .hint("a restart keeps the harmonics of the branch it continues"));

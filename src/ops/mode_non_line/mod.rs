@@ -52,7 +52,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             problem,
             linear_modes.as_deref(),
             start.point.frequency,
-            settings.h_lin,
+            settings.harmonics.h_lin,
             args.req_fact("RESOLUTION")?.req_real("BAISSE_FREQ_MAXI")?,
         );
     }
@@ -100,7 +100,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         outcome.limit.as_deref(),
         points,
         outcome.points.len() - kept,
-        settings.n_branches,
+        settings.continuation.n_branches,
         first_order,
     )?;
     Ok(())
@@ -234,7 +234,7 @@ fn read_call(ctx: &mut OpContext<'_>, args: &Args, name: &str) -> Result<(Call, 
                     "RESSORT_CUBIQUE is ignored on a restart: the cubic springs come from the CARA_CHOC of the start table",
                 )?;
             }
-            check_restart_harmonics(setup, &settings)?;
+            check_restart_harmonics(setup, &settings.harmonics)?;
             // The contact data of the start row, as Code_Aster reads them: from the
             // sub-table named in its CARA_CHOC cell.
             let t = table_store::load_table(ctx.store, src)?;
@@ -317,7 +317,10 @@ fn reduce_if_asked(
             Some(ask) => {
                 let etat = args.req_fact("ETAT_INIT")?;
                 let f_start = start::linear_frequency(ctx, etat, k, k_name)?;
-                Some(reduction::basis(&full, ask.cut(settings.h_lin, f_start))?)
+                Some(reduction::basis(
+                    &full,
+                    ask.cut(settings.harmonics.h_lin, f_start),
+                )?)
             }
             None => None,
         },
@@ -370,7 +373,13 @@ fn start_state(ctx: &mut OpContext<'_>, args: &Args, call: &Call) -> Result<Star
                     e
                 }
             })?;
-            restart_direction(ctx, src, nume_ordre, settings.direction, start_state)?
+            restart_direction(
+                ctx,
+                src,
+                nume_ordre,
+                settings.continuation.direction,
+                start_state,
+            )?
         }
         None => {
             let start = start::from_linear_modes(
@@ -409,7 +418,7 @@ fn follow(
     let mut lines = Vec::new();
     let progress = Progress::new(
         ctx.progress,
-        settings.n_branches as u64,
+        settings.continuation.n_branches as u64,
         "MODE_NON_LINE",
         "branches",
     );
@@ -524,8 +533,8 @@ fn store_rows(
             ctx.store,
             name,
             &MnlSetup {
-                h_lin: settings.h_lin,
-                h_nonl: settings.h_nonl,
+                h_lin: settings.harmonics.h_lin,
+                h_nonl: settings.harmonics.h_nonl,
                 matr_rigi: k_name.clone(),
                 matr_mass: m_name.clone(),
                 shocks: stored_shocks.clone(),
@@ -544,7 +553,7 @@ fn store_rows(
             (d.node.clone(), d.cmp.name().to_string())
         })
         .collect();
-    let ncoef = 2 * settings.h_lin as i64 + 1;
+    let ncoef = 2 * settings.harmonics.h_lin as i64 + 1;
     let mut suspect: Vec<i64> = Vec::new();
     let mut worst_defect = 0.0f64;
     // Rows and how far their orbits reach into the obstacles, for the regularisation's
@@ -679,12 +688,18 @@ fn row_alarms(
             .enumerate()
             .map(|(j, p)| (first_order + j as i64, p.frequency))
             .collect();
-        if let Some(w) = reduction::cut_off_alarm(&r.basis, settings.h_lin, &rows) {
+        if let Some(w) = reduction::cut_off_alarm(&r.basis, settings.harmonics.h_lin, &rows) {
             ctx.alarm("MODE_NON_LINE_10", &w)?;
         }
     }
     // Internal resonances n:1 with a linear mode (nnm/analysis/resonance.rs).
-    if let Some(w) = nnm::resonance_alarm(problem, settings, points, first_order, linear_modes)? {
+    if let Some(w) = nnm::resonance_alarm(
+        problem,
+        &settings.harmonics,
+        points,
+        first_order,
+        linear_modes,
+    )? {
         ctx.alarm("MODE_NON_LINE_7", &w)?;
     }
     Ok(())

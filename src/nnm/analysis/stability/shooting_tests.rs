@@ -196,7 +196,7 @@ fn verdict_matches_shooting_multipliers_outside_the_band() {
             .floquet(&q.x, 1000, Integrator::Newmark, tol)
             .unwrap();
         let coefs = displacement_coefficients(&p, &s, &q.x).unwrap();
-        let y0 = start_state(&coefs, s.h_lin, q.omega);
+        let y0 = start_state(&coefs, s.harmonics.h_lin, q.omega);
         let t = 2.0 * std::f64::consts::PI / q.omega;
         let (mu, gap) = reference.shooting_modulus(y0, t, 20000);
         assert!(gap < 1e-12, "row {i}: shooting did not close ({gap:e})");

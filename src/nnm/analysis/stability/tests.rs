@@ -4,7 +4,7 @@
 use super::*;
 use crate::nnm::{
     contact_coefficients, continue_branches, displacement_coefficients, start_from_mode,
-    CercleForm, Point, Problem, Settings, Shock, ShockLaw,
+    CercleForm, Continuation, Harmonics, Point, Problem, Settings, Shock, ShockLaw,
 };
 use faer::sparse::{SparseColMat, Triplet};
 use std::f64::consts::PI;
@@ -17,18 +17,22 @@ fn sparse(n: usize, e: &[(usize, usize, f64)]) -> SparseColMat<usize, f64> {
 
 pub(super) fn settings(hl: usize, hn: usize, branches: usize) -> Settings {
     Settings {
-        h_lin: hl,
-        h_nonl: hn,
-        n_branches: branches,
-        n_points_per_branch: 1,
-        order: 20,
-        prec_man: 1e-10,
-        prec_newton: 1e-9,
-        iter_newton_max: 15,
-        bif_terms: 3,
-        bif_tol: 1e-4,
-        det_test: true,
-        direction: -1,
+        harmonics: Harmonics {
+            h_lin: hl,
+            h_nonl: hn,
+        },
+        continuation: Continuation {
+            n_branches: branches,
+            n_points_per_branch: 1,
+            order: 20,
+            prec_man: 1e-10,
+            prec_newton: 1e-9,
+            iter_newton_max: 15,
+            bif_terms: 3,
+            bif_tol: 1e-4,
+            det_test: true,
+            direction: -1,
+        },
     }
 }
 
@@ -305,7 +309,11 @@ fn pointwise_laws_reproduce_the_engine_contact_forces_in_time() {
         let last = pts.last().unwrap();
         let x = &last.x;
         let coefs = displacement_coefficients(&p, &s, x).unwrap();
-        let lin = Linearised::new(&p, Orbit::new(coefs, s.h_lin, last.omega).unwrap()).unwrap();
+        let lin = Linearised::new(
+            &p,
+            Orbit::new(coefs, s.harmonics.h_lin, last.omega).unwrap(),
+        )
+        .unwrap();
         let cc = contact_coefficients(&p, &s, x).unwrap();
         // Engine force series per component: PLAN/BI_PLAN f; CERCLE fx, fy (unknowns 0, 1).
         let series_idx: Vec<usize> = if dofs.len() == 2 { vec![0, 1] } else { vec![0] };
@@ -315,7 +323,7 @@ fn pointwise_laws_reproduce_the_engine_contact_forces_in_time() {
             let t = t_end * j as f64 / 64.0;
             let f_law = lin.forces(t).unwrap().remove(0);
             for (c, &v) in series_idx.iter().enumerate() {
-                let f_eng = fourier::eval(&cc[0][v], s.h_nonl, last.omega * t);
+                let f_eng = fourier::eval(&cc[0][v], s.harmonics.h_nonl, last.omega * t);
                 peak = peak.max(f_eng.abs());
                 worst = worst.max((f_law[c] - f_eng).abs());
             }
@@ -417,7 +425,8 @@ fn sdnd122_is_stable_and_newmark_converges_to_rk4_at_second_order() {
     let pts = branch(&p, &s, &[1.0], 1.0, 10f64.sqrt());
     for q in pts.iter().step_by(3) {
         let coefs = displacement_coefficients(&p, &s, &q.x).unwrap();
-        let lin = Linearised::new(&p, Orbit::new(coefs, s.h_lin, q.omega).unwrap()).unwrap();
+        let lin =
+            Linearised::new(&p, Orbit::new(coefs, s.harmonics.h_lin, q.omega).unwrap()).unwrap();
         // RK4 with 2000 steps is the reference: its own error, measured against 16000
         // steps, is below 3e-10 (fourth order), far under Newmark's.
         let reference = monodromy(&lin, 2000, Integrator::Rk4).unwrap();
