@@ -316,7 +316,7 @@ mod tests {
         assert_eq!(fmt("%E", 1e100), "1.000000E+100");
         assert_eq!(fmt("%.2f", 2.345), "2.35");
         assert_eq!(fmt("%8.3f", -1.5), "  -1.500");
-        assert_eq!(fmt("%-8.3f|", 1.5), "1.500   |");
+        assert_eq!(format!("{}|", fmt("%-8.3f", 1.5)), "1.500   |");
         assert_eq!(fmt("%08.3f", -1.5), "-001.500");
         assert_eq!(fmt("%g", 0.0001), "0.0001");
         assert_eq!(fmt("%g", 0.00001), "1e-05");
