@@ -345,6 +345,24 @@ impl Host for Runner<'_> {
         Ok(Value::Real(f.eval(x)?))
     }
 
+    fn result_method(
+        &mut self,
+        result: &ConceptRef,
+        method: crate::value::ResultMethod,
+    ) -> Result<Value> {
+        let (v, lines) = ops::common::result_api::call(self.store()?, &result.name, method)?;
+        for l in lines {
+            let _ = writeln!(self.out, "{l}");
+        }
+        Ok(v)
+    }
+
+    fn save_text(&mut self, path: &str, text: &str) -> Result<()> {
+        let written = ops::common::output::write_named_file(&self.units, path, text)?;
+        let _ = writeln!(self.out, "np.savetxt: {} written", written.display());
+        Ok(())
+    }
+
     fn record_test(&mut self, ok: bool, line: &str) {
         let _ = writeln!(self.out, "{line}");
         self.summary.tests.push(ops::TestOutcome {
@@ -764,6 +782,18 @@ impl Host for Checker {
     }
     /// `check` runs no operator: an assertion that could be evaluated is not a test.
     fn record_test(&mut self, _ok: bool, _line: &str) {}
+    /// A result's values exist only when the file runs.
+    fn result_method(
+        &mut self,
+        _result: &ConceptRef,
+        _method: crate::value::ResultMethod,
+    ) -> Result<Value> {
+        Ok(Value::Unknown)
+    }
+    /// `check` writes nothing.
+    fn save_text(&mut self, _path: &str, _text: &str) -> Result<()> {
+        Ok(())
+    }
     fn operator_names(&self) -> Vec<String> {
         catalog::operator_names()
             .into_iter()

@@ -71,6 +71,20 @@ pub enum ApiObject {
     Mesh,
 }
 
+/// A method of Code_Aster's Python API on a DYNA_VIBRA result (`tran_gene`) that a command
+/// file calls (docs/mode_non_line.md, "Files written with Code_Aster's Python API").
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ResultMethod {
+    /// `R.LIST_ARCH()`: the archived instants.
+    ListArch,
+    /// `R.FORCE_NORMALE(i)`: the normal force of nonlinearity `i` (1-based; `None`: the
+    /// first, with Code_Aster's note) at the archived instants.
+    NormalForce(Option<i64>),
+    /// `R.VARI_INTERNE(i, describe=...)`: every internal variable of nonlinearity `i`, one
+    /// row per archived instant; `describe` prints their names first.
+    InternalVariables { index: Option<i64>, describe: bool },
+}
+
 /// A table's contents in the command language (`T.EXTR_TABLE()`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TableValue {

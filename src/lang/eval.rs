@@ -11,6 +11,8 @@ use crate::error::{Error, Result};
 use crate::value::{CommandCall, ConceptRef, Keyword, Span, Value};
 
 mod python_api;
+mod result_api;
+mod savetxt;
 
 const IMPORT_HINT: &str = "add `from math import *` at the top of the file";
 
@@ -544,7 +546,8 @@ impl Evaluator<'_> {
                 .input(
                     format!(
                         "numpy.{} is not supported: aster-nl offers numpy's scalar functions \
-                         and constants only (sqrt, sin, arctan2, power, pi, ...), not its arrays",
+                         and constants (sqrt, sin, arctan2, power, pi, ...) and savetxt, not \
+                         its arrays",
                         attr.text
                     ),
                     attr.span,
@@ -709,6 +712,9 @@ impl Evaluator<'_> {
     fn method_call(&mut self, base: &Expr, attr: &Name, args: &[Arg], span: Span) -> Result<Value> {
         if let ExprKind::Name(m) = &base.kind {
             if let Some(module) = self.module_named(m) {
+                if module == ScalarModule::Numpy && attr.text == "savetxt" {
+                    return self.numpy_savetxt(args, span);
+                }
                 let Some(f) = module.function(&attr.text) else {
                     return Err(self.unsupported_attribute(module, attr, "function"));
                 };
@@ -772,15 +778,34 @@ impl Evaluator<'_> {
                 ));
             }
         }
+        if let Value::Concept(c) = self.eval(base)? {
+            if result_api::has_result_methods(&c.ty) {
+                if let Some(v) = self.result_method(&c, attr, args, span)? {
+                    return Ok(v);
+                }
+                if c.ty == "tran_gene" {
+                    return Err(self
+                        .input(
+                            format!(
+                                "{}.{}(): this method of a DYNA_VIBRA result is not supported",
+                                c.name, attr.text
+                            ),
+                            attr.span,
+                        )
+                        .hint(format!("supported: {}", result_api::METHODS)));
+                }
+            }
+        }
         Err(self
             .syntax(
                 format!("calling methods (.{}(...)) is not supported", attr.text),
                 attr.span,
             )
-            .hint(
-                "only operators, math functions, a few builtins and T.EXTR_TABLE() on a \
-                 table can be called",
-            ))
+            .hint(format!(
+                "only operators, math functions, a few builtins, T.EXTR_TABLE() on a table \
+                 and {} on a DYNA_VIBRA result can be called",
+                result_api::METHODS
+            )))
     }
 
     /// `T['PARA', i]` on a table concept: the cell of column PARA in row i, counted from 1

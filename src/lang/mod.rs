@@ -309,6 +309,28 @@ pub trait Host {
         )))
     }
 
+    /// A method of Code_Aster's Python API on the DYNA_VIBRA result `result`
+    /// (`R.VARI_INTERNE(1)`): its value (a list, a list of rows), or `Value::Unknown` when
+    /// nothing runs (`aster-nl check`).
+    fn result_method(
+        &mut self,
+        result: &ConceptRef,
+        _method: crate::value::ResultMethod,
+    ) -> Result<Value> {
+        Err(crate::error::Error::input(format!(
+            "the contents of {} are not available here",
+            result.name
+        )))
+    }
+
+    /// Writes `text` to the file `path` a command file names (`np.savetxt("x.csv", ...)`),
+    /// replacing it, as numpy does; nothing when nothing runs (`aster-nl check`).
+    fn save_text(&mut self, path: &str, _text: &str) -> Result<()> {
+        Err(crate::error::Error::input(format!(
+            "writing the file '{path}' is not available here"
+        )))
+    }
+
     /// One assertion of a `code_aster.TestCase()` (`test.assertTrue(...)`): a test, OK or
     /// NOOK, with its printed line.
     fn record_test(&mut self, ok: bool, line: &str) {

@@ -1,5 +1,5 @@
-//! IMPR_FONCTION: print functions as tables of points (FORMAT='TABLEAU'), or draw them
-//! (FORMAT='PNG' | 'SVG', aster-nl). A curve is a function (COURBE=_F(FONCTION=...)) or
+//! IMPR_FONCTION: print functions as tables of points (FORMAT='TABLEAU'), as a Grace
+//! project file (FORMAT='XMGRACE'), or draw them (FORMAT='PNG' | 'SVG', aster-nl). A curve is a function (COURBE=_F(FONCTION=...)) or
 //! lists of points (COURBE=_F(ABSCISSE=..., ORDONNEE=...)).
 
 use super::common::output::write_unit;
@@ -162,7 +162,8 @@ fn series(c: &Args, mut cv: Curve) -> Series {
     s
 }
 
-fn draw(ctx: &mut OpContext<'_>, args: &Args, pic: &Picture) -> Result<()> {
+/// The curves of COURBE, their axes named after the first one.
+fn curves(ctx: &OpContext<'_>, args: &Args) -> Result<XyPlot> {
     let mut spec = XyPlot::default();
     for c in args.facts_or_empty("COURBE") {
         let cv = curve(ctx, c)?;
@@ -179,6 +180,11 @@ fn draw(ctx: &mut OpContext<'_>, args: &Args, pic: &Picture) -> Result<()> {
         }
         spec.series.push(series(c, cv));
     }
+    Ok(spec)
+}
+
+fn draw(ctx: &mut OpContext<'_>, args: &Args, pic: &Picture) -> Result<()> {
+    let mut spec = curves(ctx, args)?;
     pic.apply(&mut spec);
     let summary = xy_plot(&spec, &pic.path, pic.format).map_err(|e| match e.keyword {
         None => e.keyword("IMPR_FONCTION/COURBE"),
@@ -193,6 +199,9 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     }
     // Defaults are the catalog's (commands/IMPR_FONCTION.toml), filled by the validation.
     let format = args.req_text("FORMAT")?;
+    if format == "XMGRACE" {
+        return grace_project(ctx, args);
+    }
     if format != "TABLEAU" {
         return Err(
             Error::validation(format!("FORMAT '{format}' is not supported"))
@@ -215,4 +224,23 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     }
     let unite = args.req_int("UNITE")?;
     write_unit(ctx, unite, &text)
+}
+
+/// FORMAT='XMGRACE': the curves as a Grace project written to UNITE (Code_Aster's file
+/// without PILOTE); a PILOTE (Grace drawing or showing it) is not offered.
+fn grace_project(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
+    if let Some(p) = args.text("PILOTE").filter(|p| !p.is_empty()) {
+        return Err(Error::validation(format!(
+            "PILOTE='{p}': aster-nl does not run Grace; without PILOTE, FORMAT='XMGRACE' \
+             writes the Grace project file"
+        ))
+        .keyword("IMPR_FONCTION/PILOTE")
+        .hint("for a picture, use FORMAT='PNG' or 'SVG'"));
+    }
+    let mut spec = curves(ctx, args)?;
+    if let Some(t) = args.text("TITRE") {
+        spec.title = t.to_string();
+    }
+    let unite = args.req_int("UNITE")?;
+    write_unit(ctx, unite, &crate::plot::grace::project(&spec))
 }

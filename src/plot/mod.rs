@@ -1,6 +1,7 @@
 //! Pictures: curves drawn to PNG or SVG files with plotters. Pure drawing, no SQL.
 //!
-//! - [`xy_plot`]: general curves (IMPR_FONCTION, IMPR_TABLE with NOM_PARA).
+//! - [`xy_plot`]: general curves (IMPR_FONCTION, IMPR_TABLE with NOM_PARA); [`grace`]
+//!   the same curves as a Grace project file (IMPR_FONCTION's FORMAT='XMGRACE').
 //! - [`nnm`]: the pictures of nonlinear modes: frequency–energy (MODE_NON_LINE tables),
 //!   time history and phase portrait (REST_MODE_NONL tables).
 //!
@@ -12,6 +13,7 @@
 pub mod axis;
 pub mod data;
 mod draw;
+pub mod grace;
 pub mod nnm;
 pub mod tables;
 pub mod units;

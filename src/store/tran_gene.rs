@@ -2,8 +2,9 @@
 //! - a `tran_gene` (BASE_CALCUL='GENE') is a table concept with one row per archived instant
 //!   and generalized coordinate: NUME_ORDRE, INST, NUME_CMP (1..n), DEPL, VITE, ACCE;
 //! - the shocks' samples are the table concept `<name>_CHOC`: NUME_ORDRE, INST, INTITULE,
-//!   NOEUD, FN, FT1, FT2, VN, VT1, VT2, DXLOC, DYLOC, DZLOC, and the shocks' internal
-//!   variables a restart goes on from ([`FRICTION_MEMORY`] when a shock has friction,
+//!   NOEUD, FN, FT1, FT2, VN, VT1, VT2, DXLOC, DYLOC, DZLOC, node 2's local position
+//!   ([`NODE2_POSITION`], when a shock has a node 2) and the shocks' internal variables a
+//!   restart goes on from ([`FRICTION_MEMORY`] when a shock has friction,
 //!   [`BUCKLING_MEMORY`] when one is a FLAMBAGE);
 //! - `concept_data(concept, 'tran_gene')`: [`Payload`], what a reader needs to restore
 //!   physical fields (the basis) and to find a shock by node or INTITULE.
@@ -39,6 +40,11 @@ impl StoredShock {
 pub const FRICTION_MEMORY: [&str; 8] = [
     "VINT13", "VINT14", "VINT15", "VINT16", "VINT17", "VINT18", "VINT19", "VINT20",
 ];
+
+/// The columns of node 2's local position in `<name>_CHOC` (Code_Aster's internal variables
+/// 7 to 9 of DIS_CHOC, 5 to 7 of FLAMBAGE), written when a shock has a node 2 (zero for
+/// the one-node shocks of the same result).
+pub const NODE2_POSITION: [&str; 3] = ["DXLOC_N2", "DYLOC_N2", "DZLOC_N2"];
 
 /// The columns of a FLAMBAGE shock's internal variables in `<name>_CHOC`: the crush
 /// (Code_Aster's DEFPLA, POST_DYNA_MODA_T's ECRAS_RESI), the unloading stiffness, the
@@ -150,4 +156,15 @@ pub fn load_coordinates(store: &Store, concept: &str, n: usize) -> Result<Coordi
         )));
     }
     Ok(out)
+}
+
+/// The archived instants of the `tran_gene` `concept`, in order (Code_Aster's DISC:
+/// `R.LIST_ARCH()`).
+pub fn archived_instants(store: &Store, concept: &str) -> Result<Vec<f64>> {
+    let mut stmt = store.conn().prepare(&format!(
+        "SELECT INST FROM {} WHERE NUME_CMP = 1 ORDER BY NUME_ORDRE",
+        super::table::quote_ident(concept)
+    ))?;
+    let rows = stmt.query_map([], |r| r.get::<_, f64>(0))?;
+    Ok(rows.collect::<rusqlite::Result<Vec<f64>>>()?)
 }

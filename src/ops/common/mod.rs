@@ -25,6 +25,10 @@ pub mod plot_args;
 pub mod progress;
 // Whether a call fits the machine (memory, long work).
 pub mod resources;
+// The methods of Code_Aster's Python API on a DYNA_VIBRA result (LIST_ARCH, VARI_INTERNE).
+pub mod result_api;
+// A shock's internal variables VINTi in Code_Aster's order (RECU_FONCTION, VARI_INTERNE).
+pub mod shock_vint;
 // The section keywords (SECTION, CARA, VALE) of AFFE_CARA_ELEM's POUTRE and BARRE.
 pub mod section;
 // The location keywords (TOUT, GROUP_MA, MAILLE, GROUP_NO, NOEUD) as a mesh selection.

@@ -118,6 +118,31 @@ pub fn picture_path(units: &Units, fichier: Option<&str>, unite: i64, ext: &str)
     beside(&format!("fort.{unite}.{ext}"))
 }
 
+/// A text file a command file writes by its name (`np.savetxt("x.csv", ...)`): the path
+/// relative to the command file's directory (as FICHIER), replaced as numpy replaces it,
+/// with the checks of every output (never a file of the run, a link or a device). Returns
+/// the path written.
+pub fn write_named_file(units: &Units, name: &str, text: &str) -> Result<PathBuf> {
+    let path = picture_path(units, Some(name), 0, "");
+    check_output_path(units, &path)?;
+    let mut f = std::fs::OpenOptions::new()
+        .create(true)
+        .write(true)
+        .truncate(true)
+        .custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK | libc::O_CLOEXEC)
+        .mode(0o644)
+        .open(&path)
+        .map_err(|e| Error::from(e).hint(format!("writing {}", path.display())))?;
+    if !f.metadata().is_ok_and(|m| m.file_type().is_file()) {
+        return Err(Error::validation(format!(
+            "{} is not a regular file: a command file writes to a regular file only",
+            path.display()
+        )));
+    }
+    f.write_all(text.as_bytes())?;
+    Ok(path)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -70,8 +70,9 @@ pub fn physical_history(
     Ok((coords.t, values))
 }
 
-/// (INST, value) of parameter `para` (FN, FT1, FT2, VN, VT1, VT2, DXLOC, DYLOC, DZLOC) of
-/// the shock of `result` named by `intitule`, or else acting on node `node`.
+/// (INST, value) of parameter `para` (FN, FT1, FT2, VN, VT1, VT2, DXLOC, DYLOC, DZLOC, or
+/// an internal variable VINTi in Code_Aster's order) of the shock of `result` named by
+/// `intitule`, or else acting on node `node`.
 pub fn shock_history(
     store: &Store,
     result: &str,
@@ -82,14 +83,27 @@ pub fn shock_history(
 ) -> Result<(Vec<f64>, Vec<f64>)> {
     let payload = tran_gene::load_payload(store, result)?;
     let which = find_shock(&payload, result, intitule, node, kw)?;
-    if !ShockSample::NAMES.contains(&para) {
+    let vint = para
+        .strip_prefix("VINT")
+        .and_then(|i| i.parse::<usize>().ok());
+    if !ShockSample::NAMES.contains(&para) && vint.is_none() {
         return Err(Error::validation(format!(
-            "PARA_Y='{para}' is not a parameter of a shock; give one of {}",
+            "PARA_Y='{para}' is not a parameter of a shock; give one of {} or VINTi",
             ShockSample::NAMES.join(", ")
         ))
         .keyword(kw("PARA_Y")));
     }
     let t = shock_table(store, result, &payload)?;
+    if let Some(i) = vint {
+        let shock = payload
+            .shocks
+            .iter()
+            .find(|s| s.intitule == which)
+            .ok_or_else(|| Error::store(format!("{result} has no shock '{which}'")))?;
+        let (x, mut y) = super::shock_vint::history(&t, result, shock, Some(i))
+            .map_err(|e| e.keyword(kw("PARA_Y")))?;
+        return Ok((x, y.pop().unwrap_or_default()));
+    }
     let (x, mut y) = shock_samples(&t, &which, &[para])?;
     Ok((x, y.pop().unwrap_or_default()))
 }

@@ -1,5 +1,5 @@
-//! The shocks' internal variables as columns of `<result>_CHOC` (store/tran_gene.rs): the
-//! stick/slip memory of DIS_CHOC with friction ([`tran_gene::FRICTION_MEMORY`]) and the
+//! The shocks' internal variables as columns of `<result>_CHOC` (store/tran_gene.rs): node
+//! 2's local position, the stick/slip memory of DIS_CHOC with friction ([`tran_gene::FRICTION_MEMORY`]) and the
 //! state of a FLAMBAGE shock ([`tran_gene::BUCKLING_MEMORY`]), written at every archived
 //! instant and read back by a restart (ETAT_INIT=_F(RESULTAT=...)), so that a run split in
 //! two goes on as one run does.
@@ -45,6 +45,10 @@ pub fn samples(
     shock: &StoredShock,
 ) -> Result<(Vec<f64>, Vec<ShockSample>)> {
     let mut names: Vec<&str> = ShockSample::NAMES.to_vec();
+    let node2 = tran_gene::NODE2_POSITION.iter().all(|p| t.col(p).is_some());
+    if node2 {
+        names.extend(tran_gene::NODE2_POSITION);
+    }
     let friction = tran_gene::FRICTION_MEMORY
         .iter()
         .all(|p| t.col(p).is_some());
@@ -83,6 +87,10 @@ pub fn samples(
             ..ShockSample::default()
         };
         let mut k = ShockSample::NAMES.len();
+        if node2 {
+            s.loc2 = [row[k], row[k + 1], row[k + 2]];
+            k += 3;
+        }
         if friction {
             set_friction(&mut s.state, &row[k..k + 8]);
             k += 8;

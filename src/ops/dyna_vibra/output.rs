@@ -165,6 +165,13 @@ fn shock_samples(name: &str, shocks: &[ShockName], tr: &Trajectory) -> Result<Ta
     for p in ShockSample::NAMES {
         t.add_column(p, ColKind::R)?;
     }
+    // Node 2's position: Code_Aster's internal variables 7 to 9 (VARI_INTERNE, VINTi).
+    let two_nodes = shocks.iter().any(|s| s.node2.is_some());
+    if two_nodes {
+        for p in tran_gene::NODE2_POSITION {
+            t.add_column(p, ColKind::R)?;
+        }
+    }
     // The internal variables a restart goes on from, for the laws that have them.
     let friction = shocks.iter().any(|s| s.friction);
     let buckling = shocks.iter().any(|s| s.relation == "FLAMBAGE");
@@ -192,6 +199,9 @@ fn shock_samples(name: &str, shocks: &[ShockName], tr: &Trajectory) -> Result<Ta
                     .iter()
                     .map(|p| Cell::R(sample.get(p).unwrap_or(f64::NAN))),
             );
+            if two_nodes {
+                row.extend(sample.loc2.map(Cell::R));
+            }
             if friction {
                 row.extend(memory::friction(&sample.state).map(Cell::R));
             }
