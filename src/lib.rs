@@ -18,7 +18,7 @@
 //! - [`interp`]: runs a command file, one store transaction per operator, or checks it
 //!   (`aster-nl check`); [`check_groups`]: the mesh groups a check knows.
 //! - [`bench`]: speed and memory of MODE_NON_LINE (`aster-nl bench`).
-//! - [`study`]: the measured accuracy-versus-time study of the engine (`aster-nl study`).
+//! - [`accuracy`]: the measured accuracy-versus-time study of the engine (`aster-nl accuracy`).
 //! - [`sweep`]: parametric sweeps, one `aster-nl run` process per point, local or Slurm,
 //!   merged into one SQLite file (`aster-nl sweep`, `aster-nl merge`).
 
@@ -28,6 +28,7 @@
 // Binaries and integration tests are crates of their own and repeat this allow, citing it.
 #![allow(clippy::result_large_err)]
 
+pub mod accuracy;
 pub mod args;
 pub mod bench;
 pub mod catalog;
@@ -45,7 +46,6 @@ pub mod ops;
 pub mod plot;
 pub mod process;
 pub mod store;
-pub mod study;
 pub mod suggest;
 pub mod sweep;
 pub mod table;

@@ -101,10 +101,10 @@ enum Command {
         dir: PathBuf,
     },
     /// Measure accuracy against time of MODE_NON_LINE settings (tables, CSV, plots).
-    /// A developer's tool (docs/accuracy.md): hidden from `--help`, `aster-nl study --help`
-    /// describes it.
-    #[command(hide = true)]
-    Study {
+    /// A developer's tool (docs/accuracy.md): hidden from `--help`, `aster-nl accuracy
+    /// --help` describes it (`study`, its former name, is an alias).
+    #[command(hide = true, alias = "study")]
+    Accuracy {
         /// Grid of settings: small (a quick look) or full (the documented study).
         #[arg(long, value_enum, default_value = "small")]
         grid: GridArg,
@@ -151,7 +151,7 @@ fn main() -> ExitCode {
         Command::Check { file, db, units } => check(&file, db, &units),
         Command::Catalog { operator } => print_catalog(operator.as_deref()),
         Command::Tables { db } => tables(&db),
-        Command::Study { grid, out, case } => study(grid, &out, case),
+        Command::Accuracy { grid, out, case } => accuracy(grid, &out, case),
         Command::Bench {
             quick,
             old,
@@ -418,8 +418,8 @@ fn tables(db: &Path) -> ExitCode {
     }
 }
 
-fn study(grid: GridArg, out: &Path, case: CaseArg) -> ExitCode {
-    use aster_nl::study::{self, CaseKind, GridSize};
+fn accuracy(grid: GridArg, out: &Path, case: CaseArg) -> ExitCode {
+    use aster_nl::accuracy::{self, CaseKind, GridSize};
     let size = match grid {
         GridArg::Small => GridSize::Small,
         GridArg::Full => GridSize::Full,
@@ -439,7 +439,7 @@ fn study(grid: GridArg, out: &Path, case: CaseArg) -> ExitCode {
         );
     }
     for &kind in kinds {
-        let mut progress = |m: &study::Measurement| {
+        let mut progress = |m: &accuracy::Measurement| {
             let c = &m.config;
             eprintln!(
                 "{} {:>9} H_l {:>2} H_nl {:>4} eta {:.0e} PREC_MAN {:.0e}: error {:.3e}, {:.2} s, {} branches{}",
@@ -455,15 +455,15 @@ fn study(grid: GridArg, out: &Path, case: CaseArg) -> ExitCode {
                 m.failure.as_deref().map(|f| format!(" ({f})")).unwrap_or_default()
             );
         };
-        let r = match study::run_case(kind, size, &mut progress) {
+        let r = match accuracy::run_case(kind, size, &mut progress) {
             Ok(r) => r,
             Err(e) => return fail(&e, None),
         };
         let stem = out.join(format!("accuracy_{}", kind.name()));
-        let md = study::report::markdown(&r);
+        let md = accuracy::report::markdown(&r);
         let files = [
             (stem.with_extension("md"), md.clone()),
-            (stem.with_extension("csv"), study::report::csv(&r)),
+            (stem.with_extension("csv"), accuracy::report::csv(&r)),
         ];
         for (path, text) in files {
             if let Err(e) = std::fs::write(&path, text) {
@@ -476,7 +476,7 @@ fn study(grid: GridArg, out: &Path, case: CaseArg) -> ExitCode {
                 );
             }
         }
-        if let Err(e) = study::plot::plot(&r, &stem) {
+        if let Err(e) = accuracy::plot::plot(&r, &stem) {
             return fail(&e, None);
         }
         println!("{md}");

@@ -2,7 +2,7 @@
 //! each shock, by alternating frequency–time (AFT) evaluation. Code_Aster has no equivalent;
 //! MODE_NON_LINE's RESOLUTION/CORR_LOI_EXACTE = 'OUI' applies it to every stored point
 //! ([`correct_point`], column FREQUENCE_LOI_EXACTE), and the accuracy study
-//! (`aster-nl study`) measures it.
+//! (`aster-nl accuracy`) measures it.
 //!
 //! EHMAN solves the regularised law (PARA_REGUL = η), whose frequency error is ∝ η
 //! (docs/accuracy.md, trend 2). Here the branch point found by EHMAN is the starting guess
@@ -703,8 +703,8 @@ fn context(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::accuracy::{cases, measure, CaseKind, Config, StudyCase};
     use crate::nnm::{continue_while, start_from_mode, CercleForm, Point, Shock};
-    use crate::study::{cases, measure, CaseKind, Config, StudyCase};
     use faer::sparse::{SparseColMat, Triplet};
 
     /// EHMAN's branch of a study case up to energy `top`.

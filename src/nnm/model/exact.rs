@@ -1,5 +1,5 @@
 //! Exact periods of the nonsmooth one-DOF systems of docs/ehman.md §5 (η → 0, H_nl → ∞): the
-//! references of the engine tests and of the accuracy study (`crate::study`).
+//! references of the engine tests and of the accuracy study (`crate::accuracy`).
 //! m, k: the oscillator; g: the gap; alpha: the stop stiffness.
 
 use std::f64::consts::PI;
