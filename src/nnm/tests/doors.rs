@@ -297,7 +297,7 @@ const NAMES_LAWS: [&str; 5] = [
     "ops/mode_non_line/problem.rs",
     "nnm/analysis/route_timing.rs",
     "nnm/analysis/below_contact.rs",
-    "study/cases.rs",
+    "accuracy/cases.rs",
 ];
 
 #[test]
