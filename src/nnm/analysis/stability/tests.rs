@@ -4,7 +4,7 @@
 use super::*;
 use crate::nnm::{
     contact_coefficients, continue_branches, displacement_coefficients, start_from_mode,
-    CercleForm, Continuation, Harmonics, Point, Problem, Settings, Shock, ShockLaw,
+    CercleForm, Point, Problem, Settings, Shock, ShockLaw,
 };
 use faer::sparse::{SparseColMat, Triplet};
 use std::f64::consts::PI;
@@ -16,24 +16,9 @@ fn sparse(n: usize, e: &[(usize, usize, f64)]) -> SparseColMat<usize, f64> {
 }
 
 pub(super) fn settings(hl: usize, hn: usize, branches: usize) -> Settings {
-    Settings {
-        harmonics: Harmonics {
-            h_lin: hl,
-            h_nonl: hn,
-        },
-        continuation: Continuation {
-            n_branches: branches,
-            n_points_per_branch: 1,
-            order: 20,
-            prec_man: 1e-10,
-            prec_newton: 1e-9,
-            iter_newton_max: 15,
-            bif_terms: 3,
-            bif_tol: 1e-4,
-            det_test: true,
-            direction: -1,
-        },
-    }
+    let mut s = crate::nnm::tests::settings(hl, hn, branches, 1);
+    s.continuation.prec_man = 1e-10;
+    s
 }
 
 /// The start point and the branch points that follow it.
