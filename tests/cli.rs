@@ -1152,10 +1152,10 @@ fn help_hides_the_developer_tools() {
     for user in ["run", "check", "catalog", "tables", "sweep", "merge"] {
         assert!(commands.contains(&user), "{user} missing:\n{out}");
     }
-    for dev in ["bench", "study", "bench-case", "sweep-task"] {
+    for dev in ["bench", "accuracy", "study", "bench-case", "sweep-task"] {
         assert!(!commands.contains(&dev), "{dev} listed:\n{out}");
     }
-    for dev in ["bench", "study"] {
+    for dev in ["bench", "accuracy", "study"] {
         let o = bin().args([dev, "--help"]).output().unwrap();
         assert_eq!(o.status.code(), Some(0), "{dev}: {}", text(&o));
         assert!(text(&o).contains("Usage: aster-nl"), "{}", text(&o));
