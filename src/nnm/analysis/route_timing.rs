@@ -3,7 +3,7 @@
 //! crossover.
 
 use crate::error::{Error, Result};
-use crate::nnm::continuation::start::init_contact;
+use crate::nnm::model::contact_samples::init_contact;
 use crate::nnm::model::system::{Scaling, System};
 use crate::nnm::solve::contact::{self, ContactBlock, Method};
 use crate::nnm::solve::linear_solver::solves_per_factorisation;

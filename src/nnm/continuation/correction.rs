@@ -8,9 +8,9 @@ use crate::nnm::continuation::end_check::EndCheck;
 use crate::nnm::continuation::frequency_floor::OffTheFamily;
 use crate::nnm::continuation::newton;
 use crate::nnm::continuation::report::in_branch;
-use crate::nnm::continuation::root_check::frequency_defect;
 use crate::nnm::continuation::step_control::ROOT_JUMP_RATIO;
 use crate::nnm::model::point::{finite, make_point};
+use crate::nnm::model::root_defect::frequency_defect;
 use crate::nnm::model::system::System;
 use crate::nnm::model::workspace::Workspace;
 use crate::nnm::solve::linear_solver::TangentSolver;
@@ -168,7 +168,7 @@ struct BranchPoints {
     /// How far the Newton correction moved the end, relative to the step: ‖x_end − x̂‖ /
     /// ‖x̂ − x0‖, x̂ the series' prediction (0 when the prediction needed no correction).
     correction_ratio: f64,
-    /// The end's frequency defect (root_check.rs), once `jumped_off` has computed it.
+    /// The end's frequency defect (model/root_defect.rs), once `jumped_off` has computed it.
     end_defect: Option<f64>,
 }
 
@@ -407,7 +407,7 @@ enum Jump {
     /// order of the step has reached another one (e.g. where two families cross at grazing).
     Correction,
     /// Its contact forces sit on another root of their law than at the branch start: the
-    /// frequency defect they carry (root_check.rs) grew past both
+    /// frequency defect they carry (model/root_defect.rs) grew past both
     /// `control.root_jump_max` and [`ROOT_JUMP_RATIO`] times its value at the start. On one
     /// family the defect grows smoothly (by a factor of about 100 over the branch that
     /// reaches first contact, measured on sdnd122's wall); a step that crosses grazing onto

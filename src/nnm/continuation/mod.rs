@@ -15,7 +15,6 @@ pub(in crate::nnm) mod newton;
 pub(in crate::nnm) mod pade;
 pub(in crate::nnm) mod quadrature;
 pub(in crate::nnm) mod report;
-pub(in crate::nnm) mod root_check;
 pub(in crate::nnm) mod series_step;
 pub(in crate::nnm) mod start;
 pub(in crate::nnm) mod step_control;

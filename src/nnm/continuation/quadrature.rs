@@ -5,7 +5,8 @@
 //! the orbit that rolls around a CERCLE ring instead of crossing its centre.
 
 use crate::error::{Error, Result};
-use crate::nnm::continuation::start::{init_contact, phase_dof, start, Guess};
+use crate::nnm::continuation::start::{phase_dof, start, Guess};
+use crate::nnm::model::contact_samples::init_contact;
 use crate::nnm::model::system::{Scaling, System};
 use crate::nnm::{model::fourier, Problem, Settings, StartState};
 use faer::sparse::SparseColMat;

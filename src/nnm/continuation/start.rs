@@ -3,16 +3,16 @@
 //! (docs/ehman.md §4). The start from a pair of modes in quadrature is quadrature.rs.
 
 use crate::error::{Error, Result};
+use crate::nnm::model::contact_samples::init_contact;
 use crate::nnm::model::point::{finite, make_point, to_scaled};
 use crate::nnm::model::problem::Harmonics;
-use crate::nnm::model::system::{self, Scaling, ShockSys, System};
+use crate::nnm::model::system::{self, Scaling, System};
 use crate::nnm::model::unknowns::Unknowns;
 use crate::nnm::model::workspace::Workspace;
 use crate::nnm::solve::linear_solver::TangentSolver;
 use crate::nnm::solve::solver_kind::{make_solver, SolverKind};
 use crate::nnm::{
-    continuation::anm, continuation::newton, model::fourier, model::law, Continuation, Point,
-    Problem, Settings,
+    continuation::anm, continuation::newton, model::fourier, Continuation, Point, Problem, Settings,
 };
 
 /// A corrected point to continue from.
@@ -52,37 +52,6 @@ impl StartState {
         self.travel = Some(travel);
         Ok(self)
     }
-}
-
-/// Samples of the contact unknowns consistent with the displacements of `x` (scaled).
-pub(in crate::nnm) fn init_contact(sys: &System, x: &mut [f64]) -> Result<()> {
-    let lay = sys.lay;
-    let smp = sys.sampler();
-    for sh in &sys.shocks {
-        let u = shock_displacements(sys, sh, x);
-        let own = law::own_from_u(sh.law, sh.gap, sh.alpha, sh.eta, &u)?;
-        for (v, mut s) in own.into_iter().enumerate() {
-            let o = sh.offset + v * lay.n_coef_nonl;
-            smp.analyse(&mut s, lay.h_nonl, &mut x[o..o + lay.n_coef_nonl]);
-        }
-    }
-    Ok(())
-}
-
-/// Time samples (the system's sampler) of the displacement of each of `sh`'s DOFs in `x`.
-pub(in crate::nnm) fn shock_displacements(sys: &System, sh: &ShockSys, x: &[f64]) -> Vec<Vec<f64>> {
-    let lay = sys.lay;
-    let smp = sys.sampler();
-    let mut ws = smp.scratch();
-    sh.dofs
-        .iter()
-        .map(|&d| {
-            let mut s = vec![0.0; smp.n()];
-            let u = &x[lay.u(d)..lay.u(d) + lay.n_coef_lin];
-            smp.synth_with(u, lay.h_lin, &mut s, &mut ws);
-            s
-        })
-        .collect()
 }
 
 /// The border guess at a start point: its displacement and velocity part (the branch

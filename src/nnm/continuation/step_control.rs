@@ -32,7 +32,7 @@ pub struct StepControl {
     /// the first-contact regime, relative to the force far into a stop.
     pub law_defect_max: Option<f64>,
     /// A branch whose corrected end's contact forces carry a relative frequency defect
-    /// (root_check.rs) above both this and [`ROOT_JUMP_RATIO`] times the defect at the
+    /// (model/root_defect.rs) above both this and [`ROOT_JUMP_RATIO`] times the defect at the
     /// branch start has jumped to the other root of its law: it is retried with a shorter
     /// step (None: not checked).
     pub root_jump_max: Option<f64>,

@@ -4,6 +4,7 @@
 //! what a point is (its energy, its physical units). Nothing here knows how a branch is
 //! followed or how the tangent is solved.
 
+pub(in crate::nnm) mod contact_samples;
 pub(in crate::nnm) mod cosine_sampler;
 pub(in crate::nnm) mod energy;
 pub mod exact;
@@ -16,6 +17,7 @@ pub(in crate::nnm) mod point_law;
 pub(in crate::nnm) mod problem;
 pub(in crate::nnm) mod reduced;
 pub(in crate::nnm) mod rescale;
+pub(in crate::nnm) mod root_defect;
 pub(in crate::nnm) mod system;
 pub(in crate::nnm) mod unknowns;
 pub(in crate::nnm) mod vector;

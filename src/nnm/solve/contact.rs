@@ -1149,7 +1149,7 @@ mod tests {
         assert!(!lay.is_time_symmetric(&x), "U(1) has a sine");
         x[lay.u(1) + fourier::is(lay.h_lin, 1)] = 0.0;
         x[lay.u(1) + fourier::ic(1)] = 0.4;
-        crate::nnm::continuation::start::init_contact(&sys, &mut x).unwrap();
+        crate::nnm::model::contact_samples::init_contact(&sys, &mut x).unwrap();
         assert!(lay.is_time_symmetric(&x));
         let mut toeplitz = ContactBlock::new(sh, 0, &lay, 8, Some(Method::Toeplitz)).unwrap();
         let mut dense = ContactBlock::new(sh, 0, &lay, 8, Some(Method::Dense)).unwrap();

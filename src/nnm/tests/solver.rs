@@ -1,7 +1,7 @@
 //! The structured solver against the whole tangent factorised as one matrix (dense
 //! references): solutions of the true bordered system, determinant signs.
 
-use crate::nnm::continuation::start::init_contact;
+use crate::nnm::model::contact_samples::init_contact;
 use crate::nnm::model::fourier;
 use crate::nnm::model::system::{Scaling, System};
 use crate::nnm::solve::condensed_det;

@@ -22,7 +22,7 @@
 //! families, and this measure, are close).
 
 use crate::error::Result;
-use crate::nnm::continuation::start::shock_displacements;
+use crate::nnm::model::contact_samples::shock_displacements;
 use crate::nnm::model::law;
 use crate::nnm::model::system::System;
 
@@ -111,7 +111,7 @@ mod tests {
         // With the force of the law itself in place (its samples analysed back to H_nl
         // harmonics), what remains is the truncation's share in the harmonics of u, none
         // here (u has one harmonic): round-off (measured 2.9e-17).
-        crate::nnm::continuation::start::init_contact(&sys, &mut x).unwrap();
+        crate::nnm::model::contact_samples::init_contact(&sys, &mut x).unwrap();
         let physical = frequency_defect(&sys, &x).unwrap();
         assert!(physical < 1e-3 * exact, "{physical} against {exact}");
     }
