@@ -17,6 +17,7 @@
 //! commit.
 
 pub mod batch;
+mod conversions;
 pub mod deps;
 pub mod dyna_trans;
 pub mod function;
