@@ -413,6 +413,23 @@ fn generator_is_deterministic_and_covers_the_space() {
     }
 }
 
+/// The campaign's reading of the engine's estimated error (WRONG-ANNOUNCED): the largest
+/// |value| over the MODE_NON_LINE_1 alarms of a run, none without one.
+#[test]
+fn the_announced_error_is_read_from_every_accuracy_alarm() {
+    let text = "<A> <MODE_NON_LINE_1> the contact force of shock 1 is poorly resolved by \
+        NB_HARM_NONL=20: its last harmonics still carry 18.7% of its largest harmonic (at \
+        ENERGIE=9.4167e0); estimated relative frequency error at NUME_ORDRE 53 \
+        (ENERGIE=3.0889e-1) -1.7e-2: -1.1e-2 to -2.2e-2 from the truncation\n\
+        <A> <MODE_NON_LINE_1> ... estimated relative frequency error at NUME_ORDRE 7 \
+        (ENERGIE=1.0e-3) +3.1e-2: ...";
+    assert_eq!(run::announced_error(text), Some(3.1e-2));
+    assert_eq!(
+        run::announced_error("<A> <MODE_NON_LINE_9> 7 row(s) reach no obstacle"),
+        None
+    );
+}
+
 const SAMPLE: [u64; 6] = [1, 2, 5, 6, 9, 10];
 
 /// The CI sample: generated cases of seed 1 (their indices in `SAMPLE`) run through the
@@ -438,6 +455,7 @@ fn generated_sample_has_no_wrong_row_and_no_crash() {
             !matches!(
                 out.verdict,
                 Verdict::Wrong
+                    | Verdict::WrongAnnounced
                     | Verdict::Crash
                     | Verdict::Timeout
                     | Verdict::RefFail

@@ -169,6 +169,52 @@ fn freq_at_with_error(v: &[Row], e: f64) -> Option<(f64, f64)> {
     Some((quadratic, (quadratic - linear).abs()))
 }
 
+/// The accuracy alarm where every force series is resolved (MODE_NON_LINE_1 without a
+/// tail): Code_Aster's sdnd122a as shipped (NB_HARM_LINE 5, NB_HARM_NONL 200) announces an
+/// estimated error and names NB_HARM_LINE. Checked against the closed form of the same
+/// wall (`nnm::exact`, the penalty law without regularisation): at the row the alarm names,
+/// the row's actual error is within a factor 2 of the estimate and of the same sign (the
+/// estimate's displacement part is an interval [d1, 2·d1] whose middle it prints, so the
+/// truth may be a third off it; the regularisation's share, included in the estimate, is
+/// 2 % of it here).
+#[test]
+fn a_resolved_force_still_announces_the_truncation_of_the_displacements() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("case.db");
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("testcases/sdnd122a.comm");
+    let o = run_file(&file, &db);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}");
+    let at = out
+        .find("the contact forces are resolved by NB_HARM_NONL=200")
+        .unwrap_or_else(|| panic!("no accuracy alarm:\n{out}"));
+    let alarm = &out[at..];
+    assert!(
+        alarm.contains("raise NB_HARM_LINE (doubled: 10)"),
+        "{alarm}"
+    );
+    const KEY: &str = "estimated relative frequency error at NUME_ORDRE ";
+    let rest = &alarm[alarm.find(KEY).unwrap() + KEY.len()..];
+    let order: i64 = rest[..rest.find(' ').unwrap()].parse().unwrap();
+    let after = &rest[rest.find(") ").unwrap() + 2..];
+    let estimate: f64 = after[..after.find(':').unwrap()].trim().parse().unwrap();
+    let c = Connection::open(&db).unwrap();
+    let (e, f): (f64, f64) = c
+        .query_row(
+            "SELECT ENERGIE, FREQUENCE FROM MNL WHERE NUME_ORDRE = ?1",
+            [order],
+            |r| Ok((r.get(0)?, r.get(1)?)),
+        )
+        .unwrap();
+    let actual = f / sdnd122_wall().frequency_plan(e) - 1.0;
+    assert!(
+        actual * estimate > 0.0
+            && actual.abs() <= 2.0 * estimate.abs()
+            && estimate.abs() <= 2.0 * actual.abs(),
+        "row {order}: actual {actual:.3e}, estimated {estimate:.3e}"
+    );
+}
+
 /// Issue 34, point 4: on the stiff wall (RIGI_NOR/k 1e7, PARA_REGUL 1e-8, NB_HARM_LINE 20,
 /// NB_HARM_NONL 1000) the force series' tail raises MODE_NON_LINE_1, and its advice names
 /// NB_HARM_LINE, whose truncation makes the frequency low (the file's own TEST_FONCTION

@@ -59,7 +59,7 @@ pub use analysis::orbit::{
     velocity_coefficients, TimeHistory,
 };
 pub use analysis::post::{contact_law_defect, PostProcessor, RowOutputs};
-pub use analysis::resolution::{resolution_warnings, tail_ratio};
+pub use analysis::resolution::{accuracy_warning, resolution_warnings, tail_ratio};
 pub use analysis::resonance::resonance_alarm;
 pub use analysis::route_timing::{contact_route_timings, RouteRow};
 pub use continuation::correction::relative_gamma;

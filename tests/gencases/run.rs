@@ -9,7 +9,12 @@
 //!   (the budget the user gave; not an error);
 //! - STOPPED-CLEAR: exit 2 before the target, with an error naming MODE_NON_LINE;
 //! - EXIT2-AFTER-COMPUTING: exit 2 although the table reaches the target (issue 34, point 1);
-//! - WRONG: exit 0 with a compared row outside its bound (the worst outcome);
+//! - WRONG: exit 0 with a compared row outside its bound, and the run said nothing of an
+//!   error that large (the worst outcome);
+//! - WRONG-ANNOUNCED: exit 0 with a compared row outside its bound, but within
+//!   [`ANNOUNCED_FACTOR`] times the largest relative frequency error the run's alarm
+//!   MODE_NON_LINE_1 estimated (the user was told how far off the rows may be, and which
+//!   setting to refine): still outside the bound, counted apart from WRONG;
 //! - CRASH (a panic, a signal, another exit code), TIMEOUT;
 //! - REF-FAIL: a reference could not be computed (reported, never counted as right);
 //! - MODEL?: the program's linear frequency differs from the reference model's by more than
@@ -224,6 +229,7 @@ pub enum Verdict {
     StoppedClear,
     Exit2AfterComputing,
     Wrong,
+    WrongAnnounced,
     Crash,
     Timeout,
     RefFail,
@@ -238,18 +244,20 @@ impl Verdict {
             Verdict::StoppedClear => "STOPPED-CLEAR",
             Verdict::Exit2AfterComputing => "EXIT2-AFTER-COMPUTING",
             Verdict::Wrong => "WRONG",
+            Verdict::WrongAnnounced => "WRONG-ANNOUNCED",
             Verdict::Crash => "CRASH",
             Verdict::Timeout => "TIMEOUT",
             Verdict::RefFail => "REF-FAIL",
             Verdict::Model => "MODEL?",
         }
     }
-    pub const ALL: [Verdict; 9] = [
+    pub const ALL: [Verdict; 10] = [
         Verdict::Reached,
         Verdict::Short,
         Verdict::StoppedClear,
         Verdict::Exit2AfterComputing,
         Verdict::Wrong,
+        Verdict::WrongAnnounced,
         Verdict::Crash,
         Verdict::Timeout,
         Verdict::RefFail,
@@ -268,6 +276,9 @@ pub struct Outcome {
     pub reach: f64,
     pub compared: Vec<Compared>,
     pub message: String,
+    /// The largest |relative frequency error| the run's MODE_NON_LINE_1 alarms estimated
+    /// ([`announced_error`]); None when no alarm gave one.
+    pub announced: Option<f64>,
 }
 
 impl Outcome {
@@ -425,6 +436,7 @@ pub fn judge(case: &Case, bin: &Path, dir: &Path, timeout: Duration) -> Outcome 
         reach: 0.0,
         compared: Vec::new(),
         message: String::new(),
+        announced: None,
     };
     if let Err(e) = std::fs::write(dir.join(format!("{name}.comm")), write::comm(case))
         .and_then(|_| std::fs::write(dir.join(format!("{name}.mail")), write::mesh(case)))
@@ -436,6 +448,7 @@ pub fn judge(case: &Case, bin: &Path, dir: &Path, timeout: Duration) -> Outcome 
     outcome.exit = code;
     outcome.seconds = secs;
     outcome.message = message_of(&text);
+    outcome.announced = announced_error(&text);
     if timed_out {
         outcome.verdict = Verdict::Timeout;
         return outcome;
@@ -497,7 +510,17 @@ pub fn judge(case: &Case, bin: &Path, dir: &Path, timeout: Duration) -> Outcome 
     let all_right = outcome.compared.iter().all(|c| c.within() == Some(true));
     let any_wrong = outcome.compared.iter().any(|c| c.within() == Some(false));
     let ref_fail = outcome.compared.iter().any(|c| c.within().is_none());
+    // Every row outside its bound is within what the run announced.
+    let announced = outcome.announced.is_some_and(|a| {
+        outcome
+            .compared
+            .iter()
+            .filter_map(Compared::judged)
+            .filter(|(e, b)| e > b)
+            .all(|(e, _)| e <= ANNOUNCED_FACTOR * a)
+    });
     outcome.verdict = match code {
+        Some(0) if any_wrong && announced => Verdict::WrongAnnounced,
         Some(0) if any_wrong => Verdict::Wrong,
         Some(0) if ref_fail => Verdict::RefFail,
         Some(0) if rows.is_empty() => Verdict::Crash,
@@ -522,6 +545,27 @@ pub fn judge(case: &Case, bin: &Path, dir: &Path, timeout: Duration) -> Outcome 
         }
     }
     outcome
+}
+
+/// How many times the run's estimated error a row may be off and still count as announced
+/// (WRONG-ANNOUNCED): the estimate's displacement part is an interval [d1, 2·d1] around
+/// which it prints the middle, so the error may be a third above it; twice covers that
+/// and an estimate made at another row than the one compared.
+pub const ANNOUNCED_FACTOR: f64 = 2.0;
+
+/// The largest |relative frequency error| estimated in the run's output, from the alarm
+/// MODE_NON_LINE_1's words "estimated relative frequency error at NUME_ORDRE n
+/// (ENERGIE=e) ±x:".
+pub fn announced_error(text: &str) -> Option<f64> {
+    const KEY: &str = "estimated relative frequency error at NUME_ORDRE ";
+    text.match_indices(KEY)
+        .filter_map(|(i, _)| {
+            let rest = &text[i + KEY.len()..];
+            let after = &rest[rest.find(") ")? + 2..];
+            after[..after.find(':')?].trim().parse::<f64>().ok()
+        })
+        .map(f64::abs)
+        .reduce(f64::max)
 }
 
 /// Stiffness decade of a case, as printed in the summary ("1e0".."1e7").

@@ -113,6 +113,14 @@ impl Sources {
         1.5 * self.line_doubling + self.harm_nonl + self.regul
     }
 
+    /// The truncation's part of [`Sources::total`]: the displacements' and the contact
+    /// unknowns', without the regularisation's. What the harmonic balance loses against the
+    /// regularised law, which is the law MODE_NON_LINE solves (PARA_REGUL is part of the
+    /// model, as in Code_Aster).
+    pub fn truncation(&self) -> f64 {
+        1.5 * self.line_doubling + self.harm_nonl
+    }
+
     /// (error before, error after refining `s`) over the unknown remainders: R of the
     /// displacement in [0, d1], and for NB_HARM_NONL the part left after doubling in
     /// [0, e_nl/2].
@@ -313,6 +321,16 @@ pub fn estimate(
 /// [`MAX_DENSE`], a correction that failed at every row, or at some rows while the others
 /// are negligible).
 pub fn worst_row(problem: &Problem, settings: &Settings, points: &[Point]) -> Option<Sources> {
+    worst_row_by(problem, settings, points, Sources::total)
+}
+
+/// As [`worst_row`], the row of largest |`part`| (e.g. [`Sources::truncation`]).
+pub fn worst_row_by(
+    problem: &Problem,
+    settings: &Settings,
+    points: &[Point],
+    part: fn(&Sources) -> f64,
+) -> Option<Sources> {
     if problem.shocks.is_empty() || points.is_empty() {
         return None;
     }
@@ -333,7 +351,7 @@ pub fn worst_row(problem: &Problem, settings: &Settings, points: &[Point]) -> Op
     let worst = all
         .into_iter()
         .filter_map(|r| r.ok())
-        .max_by(|a, b| a.total().abs().total_cmp(&b.total().abs()))?;
+        .max_by(|a, b| part(a).abs().total_cmp(&part(b).abs()))?;
     // "Negligible" is not said from the rows that could be estimated when others could not.
     (!(failed && worst.negligible())).then_some(worst)
 }

@@ -9,6 +9,7 @@ use crate::nnm::continuation::frequency_floor::OffTheFamily;
 use crate::nnm::continuation::newton;
 use crate::nnm::continuation::report::in_branch;
 use crate::nnm::continuation::step_control::ROOT_JUMP_RATIO;
+use crate::nnm::model::energy::energy_ca_joules;
 use crate::nnm::model::point::{finite, make_point};
 use crate::nnm::model::root_defect::frequency_defect;
 use crate::nnm::model::system::System;
@@ -21,10 +22,13 @@ use crate::nnm::{Continuation, Point, Settings, StepControl};
 /// spread_max): the error a retry with a shorter step may cure, else the one that stops the
 /// run. The law check's absolute defect is kept on the point (`Point::law_defect`) for its
 /// row.
+///
+/// `start_energy`: the ENERGIE of the branch's start (J), which tells a descending branch.
 pub(in crate::nnm) fn off_the_law(
     control: &StepControl,
     law_check: Option<&dyn EndCheck>,
     end: &mut Point,
+    start_energy: f64,
 ) -> Result<Option<Error>> {
     if let (Some(max), Some(check)) = (control.law_defect_max, law_check) {
         let (absolute, defect) = check.law_defects(&end.x)?;
@@ -91,7 +95,8 @@ pub(in crate::nnm) fn off_the_law(
         }
     }
     if let Some(floor) = &control.frequency_floor {
-        let why = match floor.off_the_family(end.frequency, end.energy) {
+        let descending = end.energy < start_energy;
+        let why = match floor.off_the_family(end.frequency, end.energy, descending) {
             Some(OffTheFamily::Below(dip)) => Some((
                 format!(
                     "the branch end is {dip:.3e} x the linear frequency {:.6e} Hz of its mode \
@@ -123,6 +128,25 @@ pub(in crate::nnm) fn off_the_law(
                 "the rows before are the family down to that energy; to go further up, \
                  restart from a row in contact with ETAT_INIT=_F(MODE_NON_LINE=..., \
                  NUME_ORDRE=...) and the other DIR_EVOLUTION, or lower PREC_MAN",
+            )),
+            Some(OffTheFamily::Cone(above)) => Some((
+                format!(
+                    "the branch goes down far below first contact (ENERGIE = {:.6e}) and its \
+                     end is {above:.3e} x the linear frequency {:.6e} Hz of its mode above it \
+                     (FREQUENCE = {:.6e} Hz): no obstacle is reached, so with the nonsmooth \
+                     law the motion is the linear mode at that frequency; what lifts it is the \
+                     regularised ring's force at its centre (about η/JEU whatever the \
+                     amplitude), which stiffens a small motion through the centre without \
+                     bound as the amplitude falls. Further down the regularisation alone sets \
+                     the frequency, and the truncated force series, which flips across the \
+                     centre, resolves it poorly",
+                    end.energy,
+                    floor.linear(),
+                    end.frequency
+                ),
+                "the rows before are the family down to that energy; to follow the linear \
+                 mode further down, lower PARA_REGUL or give LOI_CERCLE='SECANTE' (no force \
+                 at the centre); to go up into contact, use the other DIR_EVOLUTION",
             )),
             None => None,
         };
@@ -321,6 +345,12 @@ pub(in crate::nnm) fn correct_branch(
         },
         _ => None,
     };
+    // Only the frequency floor's cone check reads it (a descending branch).
+    let start_energy = if control.frequency_floor.is_some() {
+        energy_ca_joules(sys, x0)
+    } else {
+        f64::NAN
+    };
     let mut step_retries = 0;
     // The first attempt whose end jumped off the family, its step and the retries before
     // it: what is kept when no shorter step stays on the family (the discarded attempts
@@ -337,7 +367,7 @@ pub(in crate::nnm) fn correct_branch(
         let attempt = branch_points_of(sys, ws, solver, &settings.continuation, series, x0, b)?
             .and_then(|mut done| {
                 match done.points.last_mut() {
-                    Some(end) => off_the_law(control, law_check, end)?,
+                    Some(end) => off_the_law(control, law_check, end, start_energy)?,
                     None => None,
                 }
                 .map_or(Ok(done), Err)

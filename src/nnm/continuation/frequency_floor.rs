@@ -60,6 +60,20 @@ pub const LINEAR_ENERGY: f64 = 1e-4;
 /// regularised force at the rest position; at least the tolerance).
 pub const LINEAR_SAFETY: f64 = 4.0;
 
+/// With a ring, a descending branch end far below contact (ENERGIE under [`LINEAR_ENERGY`]
+/// times the first-contact energy) more than this far above f_j (relative) has gone into
+/// the regularised ring's cone ([`OffTheFamily::Cone`]). At the ring's centre the
+/// regularised force keeps the magnitude of about η/JEU whatever the amplitude, so a motion
+/// through the centre is stiffened the more, the smaller it is: along the descent the
+/// frequency climbs without bound, the nonsmooth law's motion there is the linear mode at
+/// f_j, and the truncated force series resolves the flipping force poorly (alarm
+/// MODE_NON_LINE_9). Measured on the generated cases of seed 2 (docs/hard_cases.md): three
+/// descents through a centred ring went on into the cone, to 4.7e-2 (s2_c0084), 3.2e-1
+/// (s2_c0055) and 2.2e-1 (s2_c0104) above f_j at 1e-13 to 2e-15 J, their last rows 2e-3 to
+/// 2e-2 from shooting on the same law, and s2_c0104 wandered there for 500 branches. Three
+/// digits: a shift above 1e-3 is the regularisation's, not contact's.
+pub const CONE_SHIFT: f64 = 1e-3;
+
 /// Modes below this fraction of the highest frequency count as rigid-body modes (the
 /// frequency of a zero eigenvalue computed in floating point is ~1e-8 of the highest).
 pub const RIGID: f64 = 1e-6;
@@ -81,6 +95,9 @@ pub struct FrequencyFloor {
     contact_energy: f64,
     /// The relative distance from f_j allowed far below contact ([`LINEAR_SAFETY`]).
     linear_band: f64,
+    /// The first-contact energy, J, when some stop is a ring (the cone check,
+    /// [`CONE_SHIFT`]); 0 otherwise.
+    cone_energy: f64,
 }
 
 /// Why a branch end is not a motion of the family.
@@ -94,6 +111,10 @@ pub enum OffTheFamily {
     /// linear one at f_j; a row there at another frequency is on the trivial line of the
     /// harmonic balance (the equilibrium, which any frequency solves), not a motion.
     Linear(f64),
+    /// Far below first contact with a ring, going down, and this relative distance above
+    /// f_j, more than [`CONE_SHIFT`]: the branch has gone into the regularised ring's
+    /// cone, where the regularisation alone sets the frequency.
+    Cone(f64),
 }
 
 impl FrequencyFloor {
@@ -149,12 +170,21 @@ impl FrequencyFloor {
             ),
             _ => (0.0, f64::INFINITY),
         };
+        // The cone: a ring's regularised force is not smooth at its centre. Every law must
+        // have an obstacle (a cubic spring moves the frequency at every amplitude).
+        let rings = !planes && problem.stops().count() == problem.shocks.len();
+        let cone_energy = if rings {
+            self::contact_energy(problem, &start.shape, linear)
+        } else {
+            0.0
+        };
         Some(FrequencyFloor {
             linear,
             resonances,
             tolerance,
             contact_energy,
             linear_band,
+            cone_energy,
         })
     }
 
@@ -169,11 +199,23 @@ impl FrequencyFloor {
     }
 
     /// Why a row at `frequency` (Hz) and `energy` (ENERGIE, J) is not a motion of the
-    /// family, if it is not.
-    pub fn off_the_family(&self, frequency: f64, energy: f64) -> Option<OffTheFamily> {
+    /// family, if it is not; `descending`: the branch's energy fell over its last step (the
+    /// cone is judged only going down: a branch started in it climbs out of it).
+    pub fn off_the_family(
+        &self,
+        frequency: f64,
+        energy: f64,
+        descending: bool,
+    ) -> Option<OffTheFamily> {
         let distance = (frequency / self.linear - 1.0).abs();
         if energy < LINEAR_ENERGY * self.contact_energy && distance > self.linear_band {
             return Some(OffTheFamily::Linear(distance));
+        }
+        let above = frequency / self.linear - 1.0;
+        // BAISSE_FREQ_MAXI above CONE_SHIFT raises it (1.0 turns every check off).
+        let cone = CONE_SHIFT.max(self.tolerance);
+        if descending && energy < LINEAR_ENERGY * self.cone_energy && above > cone {
+            return Some(OffTheFamily::Cone(above));
         }
         self.broken_by(frequency).map(OffTheFamily::Below)
     }
@@ -358,7 +400,7 @@ mod tests {
         let floor = FrequencyFloor::new(&p, Some(&m), f1, 3, 1e-6).unwrap();
         assert!((floor.contact_energy - 5e-5).abs() < 1e-18);
         // At 1e-12 J a row 5 % above f_1 is on the trivial line; at f_1 it is the mode.
-        match floor.off_the_family(1.05 * f1, 1e-12) {
+        match floor.off_the_family(1.05 * f1, 1e-12, true) {
             Some(OffTheFamily::Linear(d)) => assert!((d - 0.05).abs() < 1e-12, "{d}"),
             other => panic!("{other:?}"),
         }
@@ -369,14 +411,62 @@ mod tests {
             "{}",
             floor.linear_band
         );
-        assert_eq!(floor.off_the_family(f1 * (1.0 + 1.7e-4), 1e-12), None);
-        assert!(floor.off_the_family(f1 * (1.0 + 1.9e-4), 1e-12).is_some());
+        assert_eq!(floor.off_the_family(f1 * (1.0 + 1.7e-4), 1e-12, true), None);
+        assert!(floor
+            .off_the_family(f1 * (1.0 + 1.9e-4), 1e-12, true)
+            .is_some());
         // In contact the same frequency is the stiffened family.
-        assert_eq!(floor.off_the_family(1.05 * f1, 1e-4), None);
+        assert_eq!(floor.off_the_family(1.05 * f1, 1e-4, true), None);
         // Below f_1 in contact: the floor.
         assert!(matches!(
-            floor.off_the_family(f1 * (1.0 - 1e-3), 1e-4),
+            floor.off_the_family(f1 * (1.0 - 1e-3), 1e-4, true),
             Some(OffTheFamily::Below(_))
+        ));
+    }
+
+    #[test]
+    fn a_descent_through_a_centred_ring_stops_in_the_cone() {
+        // Mode 1 of (K, M) = (1, 1) moves DOF 0 (shape (1, 0)); the ring on DOFs (0, 1),
+        // centred, JEU 0.01, is reached at ENERGIE ½·ω²·JEU² = 5e-5, so "far below contact"
+        // is under LINEAR_ENERGY × 5e-5 = 5e-9 J.
+        let f1 = 1.0 / (2.0 * std::f64::consts::PI);
+        let m = vec![
+            LinearMode {
+                number: 1,
+                frequency: f1,
+                shape: vec![1.0, 0.0],
+            },
+            LinearMode {
+                number: 2,
+                frequency: 3.0 * f1,
+                shape: vec![0.0, 1.0],
+            },
+        ];
+        let ring = ShockLaw::Cercle {
+            origin: [0.0, 0.0],
+            form: CercleForm::Radial,
+        };
+        let floor = FrequencyFloor::new(&problem(ring), Some(&m), f1, 3, 1e-6).unwrap();
+        assert!((floor.cone_energy - 5e-5).abs() < 1e-18);
+        let above = f1 * (1.0 + 2.0 * CONE_SHIFT);
+        match floor.off_the_family(above, 1e-10, true) {
+            Some(OffTheFamily::Cone(d)) => assert!((d - 2.0 * CONE_SHIFT).abs() < 1e-12, "{d}"),
+            other => panic!("{other:?}"),
+        }
+        // Climbing (a start in the cone, going up into contact): not judged.
+        assert_eq!(floor.off_the_family(above, 1e-10, false), None);
+        // A shift of three digits or less, or an energy nearer contact: kept.
+        assert_eq!(
+            floor.off_the_family(f1 * (1.0 + 0.5 * CONE_SHIFT), 1e-10, true),
+            None
+        );
+        assert_eq!(floor.off_the_family(above, 1e-8, true), None);
+        // A plane has no cone: far below contact it is judged by its band (Linear).
+        let plane = FrequencyFloor::new(&problem(ShockLaw::Plan), Some(&m), f1, 3, 1e-6).unwrap();
+        assert_eq!(plane.cone_energy, 0.0);
+        assert!(matches!(
+            plane.off_the_family(above, 1e-10, true),
+            Some(OffTheFamily::Linear(_))
         ));
     }
 

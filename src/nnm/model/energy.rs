@@ -60,6 +60,12 @@ pub fn energy_ca(sys: &System, x: &[f64]) -> f64 {
     e
 }
 
+/// Code_Aster's ENERGIE in joules (the scaled [`energy_ca`] times the scaling's energy unit).
+pub fn energy_ca_joules(sys: &System, x: &[f64]) -> f64 {
+    let s = sys.scaling;
+    energy_ca(sys, x) * s.stiffness * s.length * s.length
+}
+
 /// ENERGIE's formula averaged over one period (column ENERGIE_MOYENNE, beyond Code_Aster):
 /// the mean of ½uᵀKu + ½vᵀMv (Parseval, exact) plus the mean over the contact sampler's
 /// instants of each shock's penalty energy, with the same penalty as [`energy_ca`]. On an

@@ -138,9 +138,14 @@ fn rows_kept(
         let motions = outcome
             .points
             .iter()
-            .map(|p| {
-                let off_the_family =
-                    floor.is_some_and(|f| f.off_the_family(p.frequency, p.energy).is_some());
+            .enumerate()
+            .map(|(i, p)| {
+                // Descending: below the row before (the cone is judged going down only).
+                let descending = i > 0 && p.energy < outcome.points[i - 1].energy;
+                let off_the_family = floor.is_some_and(|f| {
+                    f.off_the_family(p.frequency, p.energy, descending)
+                        .is_some()
+                });
                 let damped = gamma_max.is_some_and(|max| {
                     let ratio = nnm::relative_gamma(p);
                     ratio.is_nan() || ratio > max
@@ -678,8 +683,16 @@ fn row_alarms(
     }
     // The advice's estimate (a few small Newton solves) only when the alarm is shown.
     let advise = !ctx.ignored_alarms.iter().any(|a| a == "MODE_NON_LINE_1");
-    for w in nnm::resolution_warnings(problem, settings, points, first_order, advise) {
-        ctx.alarm("MODE_NON_LINE_1", &w)?;
+    let tails = nnm::resolution_warnings(problem, settings, points, first_order, advise);
+    // Resolved force series say nothing of the displacement's truncation: the estimate
+    // itself then decides (nnm/analysis/resolution.rs, ANNOUNCED_ERROR).
+    let estimated = if tails.is_empty() && advise {
+        nnm::accuracy_warning(problem, settings, points, first_order)
+    } else {
+        None
+    };
+    for w in tails.iter().chain(&estimated) {
+        ctx.alarm("MODE_NON_LINE_1", w)?;
     }
     // A reduction basis whose cut-off is below the harmonics the rows carry.
     if let Some(r) = &call.reduction {
