@@ -589,7 +589,15 @@ fn the_shipped_demo_reaches_far_into_contact_with_distinct_curves_and_no_alarm()
     let out = dir.path().join("wall.sweep");
     for entry in std::fs::read_dir(out.join("points")).unwrap() {
         let log = std::fs::read_to_string(entry.unwrap().path().join("run.log")).unwrap();
-        assert!(!log.contains("<A>"), "{log}");
+        // The only alarm: MODE_NON_LINE_1's estimate where every force is resolved, on the
+        // stiffer points' rows just past first contact (docs/sweeps.md: measured 1.3e-4
+        // from the exact period there, estimated 2.0e-4).
+        assert_eq!(
+            log.matches("<A>").count(),
+            log.matches("<A> <MODE_NON_LINE_1> the contact forces are resolved")
+                .count(),
+            "{log}"
+        );
     }
     let merged = open_ro(&out.join("sweep.db"));
     let per_point = rows(
