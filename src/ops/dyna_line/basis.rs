@@ -68,6 +68,10 @@ pub fn build(
         let call = Call::new("MODE_STATIQUE")
             .concept(ctx, "MATR_RIGI", &mats.rigi)?
             .concept(ctx, "MATR_MASS", &mats.mass)?;
+        let blame = match set {
+            StaticSet::Pseudo(_) => "DYNA_LINE/EXCIT/DIRECTION",
+            StaticSet::Shocks(_) => "DYNA_LINE/COMPORTEMENT",
+        };
         let call = match set {
             StaticSet::Pseudo(directions) => call.fact(
                 "PSEUDO_MODE",
@@ -88,7 +92,7 @@ pub fn build(
             ),
             StaticSet::Shocks(nodes) => call.fact("FORCE_NODALE", nodes.clone()),
         };
-        call.run(ctx, Some(&stat_name), "DYNA_LINE/ENRI_STAT", &[])?;
+        call.run(ctx, Some(&stat_name), blame, &[])?;
         let out = if i + 1 == steps {
             final_name.to_string()
         } else {
