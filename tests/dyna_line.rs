@@ -9,7 +9,7 @@ fn dyna_line_on_the_chain_with_a_stop_matches_the_exact_solution() {
     let dir = tempfile::tempdir().unwrap();
     let (code, out) = run_file(&case("dyna_line.comm"), &dir.path().join("case.db"));
     assert_eq!(code, Some(0), "{out}");
-    assert!(out.contains("tests: 41 OK, 0 NOOK"), "{out}");
+    assert!(out.contains("tests: 51 OK, 0 NOOK"), "{out}");
     // The bases DYNA_LINE built: 5 modes of the band + the static mode of the shock's
     // node; 2 modes + the static mode; ORTHO='OUI' diagonalises.
     assert!(
