@@ -1,7 +1,8 @@
 //! DYNA_LINE's modal basis (BASE_CALCUL='GENE'), as Code_Aster's macro builds it: the
 //! modes of BANDE_ANALYSE (CALC_MODES OPTION='BANDE'); with ENRI_STAT='OUI' the static
-//! modes after them, the pseudo-modes of the support accelerations (TYPE_APPUI='MONO')
-//! then the attachment modes of the shocks' nodes (MODE_STATIQUE), orthonormalised in the
+//! modes after them, the pseudo-modes of the support accelerations (TYPE_APPUI='MONO'),
+//! the static responses to the loads of EXCIT, then the attachment modes of the shocks'
+//! nodes (MODE_STATIQUE), orthonormalised in the
 //! stiffness (DEFI_BASE_MODALE); with ORTHO='OUI' the modes of the structure reduced on
 //! that basis (`linalg::ritz::rayleigh_ritz`). Each step is the operator's own run.
 
@@ -29,10 +30,11 @@ pub fn build(
     args: &Args,
     prefix: &str,
     mats: &Assembled,
+    load_fields: &[String],
     final_name: &str,
 ) -> Result<Basis> {
     let band = band(args)?;
-    let statics = static_sets(args);
+    let statics = static_sets(args, load_fields);
     let ortho = args.text("ORTHO") == Some("OUI");
     // The modes go straight to the final name when nothing follows them.
     let modes_name = if statics.is_empty() {
@@ -65,34 +67,41 @@ pub fn build(
     let steps = statics.len() + usize::from(ortho && !statics.is_empty());
     for (i, set) in statics.iter().enumerate() {
         let stat_name = format!("{prefix}.STAT{}", i + 1);
-        let call = Call::new("MODE_STATIQUE")
-            .concept(ctx, "MATR_RIGI", &mats.rigi)?
-            .concept(ctx, "MATR_MASS", &mats.mass)?;
-        let blame = match set {
-            StaticSet::Pseudo(_) => "DYNA_LINE/EXCIT/DIRECTION",
-            StaticSet::Shocks(_) => "DYNA_LINE/COMPORTEMENT",
-        };
-        let call = match set {
-            StaticSet::Pseudo(directions) => call.fact(
-                "PSEUDO_MODE",
-                directions
-                    .iter()
-                    .enumerate()
-                    .map(|(j, d)| {
-                        occurrence(
-                            "MODE_STATIQUE",
-                            "PSEUDO_MODE",
-                            vec![
-                                ("DIRECTION", reals(d)),
-                                ("NOM_DIR", Value::Str(format!("DIR{}", j + 1))),
-                            ],
-                        )
-                    })
-                    .collect(),
-            ),
-            StaticSet::Shocks(nodes) => call.fact("FORCE_NODALE", nodes.clone()),
-        };
-        call.run(ctx, Some(&stat_name), blame, &[])?;
+        match set {
+            StaticSet::Pseudo(directions) => Call::new("MODE_STATIQUE")
+                .concept(ctx, "MATR_RIGI", &mats.rigi)?
+                .concept(ctx, "MATR_MASS", &mats.mass)?
+                .fact(
+                    "PSEUDO_MODE",
+                    directions
+                        .iter()
+                        .enumerate()
+                        .map(|(j, d)| {
+                            occurrence(
+                                "MODE_STATIQUE",
+                                "PSEUDO_MODE",
+                                vec![
+                                    ("DIRECTION", reals(d)),
+                                    ("NOM_DIR", Value::Str(format!("DIR{}", j + 1))),
+                                ],
+                            )
+                        })
+                        .collect(),
+                )
+                .run(ctx, Some(&stat_name), "DYNA_LINE/EXCIT/DIRECTION", &[])?,
+            StaticSet::Loads(fields) => crate::ops::mode_statique::save_load_responses(
+                ctx,
+                &stat_name,
+                (&mats.rigi, &mats.mass),
+                fields,
+            )
+            .map_err(|e| e.keyword("DYNA_LINE/EXCIT/CHARGE"))?,
+            StaticSet::Shocks(nodes) => Call::new("MODE_STATIQUE")
+                .concept(ctx, "MATR_RIGI", &mats.rigi)?
+                .concept(ctx, "MATR_MASS", &mats.mass)?
+                .fact("FORCE_NODALE", nodes.clone())
+                .run(ctx, Some(&stat_name), "DYNA_LINE/COMPORTEMENT", &[])?,
+        }
         let out = if i + 1 == steps {
             final_name.to_string()
         } else {
@@ -200,11 +209,13 @@ fn empty_band(ctx: &mut OpContext<'_>, mats: &Assembled, prefix: &str, band: (f6
 enum StaticSet {
     /// Pseudo-modes along the TYPE_APPUI='MONO' directions.
     Pseudo(Vec<Vec<f64>>),
+    /// The static responses to the loads of EXCIT (their assembled fields).
+    Loads(Vec<String>),
     /// FORCE_NODALE occurrences at the shocks' nodes.
     Shocks(Vec<Args>),
 }
 
-fn static_sets(args: &Args) -> Vec<StaticSet> {
+fn static_sets(args: &Args, load_fields: &[String]) -> Vec<StaticSet> {
     if args.text("ENRI_STAT") != Some("OUI") {
         return Vec::new();
     }
@@ -217,6 +228,9 @@ fn static_sets(args: &Args) -> Vec<StaticSet> {
         .collect();
     if !directions.is_empty() {
         sets.push(StaticSet::Pseudo(directions));
+    }
+    if !load_fields.is_empty() {
+        sets.push(StaticSet::Loads(load_fields.to_vec()));
     }
     let shocks = shock_nodes(args);
     if !shocks.is_empty() {

@@ -28,6 +28,8 @@ struct Load {
     field: String,
     fonc: Option<Value>,
     coef: Option<f64>,
+    /// An EXCIT with CHARGE: ENRI_STAT adds its static response to the basis.
+    enriches: bool,
 }
 
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
@@ -41,7 +43,12 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let pas = step(args)?;
     if gene {
         let base_name = outputs.base.clone().unwrap_or(format!("{prefix}.BASE"));
-        let b = basis::build(ctx, args, &prefix, &mats, &base_name)?;
+        let enriching: Vec<String> = loads
+            .iter()
+            .filter(|l| l.enriches)
+            .map(|l| l.field.clone())
+            .collect();
+        let b = basis::build(ctx, args, &prefix, &mats, &enriching, &base_name)?;
         let projected = project(ctx, args, &prefix, &b, &mats, &loads)?;
         let tran = outputs.gene.clone().unwrap_or(format!("{prefix}.TRAN"));
         vibra(ctx, args, &projected, pas, "GENE", &tran)?;
@@ -164,13 +171,6 @@ fn refuse_unsupported(args: &Args) -> Result<()> {
                         return Err(Error::validation("this keyword goes with TYPE_APPUI")
                             .keyword(key(k)));
                     }
-                }
-                if gene && args.text("ENRI_STAT") == Some("OUI") {
-                    return Err(Error::validation(
-                        "ENRI_STAT='OUI' would add the static response to this load, which aster-nl does not compute",
-                    )
-                    .keyword(key("CHARGE"))
-                    .hint("ENRI_STAT='NON', or build the basis with DEFI_BASE_MODALE and run DYNA_VIBRA"));
                 }
             }
         }
@@ -313,12 +313,15 @@ fn loads(
                 field,
                 fonc: None,
                 coef: Some(1.0),
+                enriches: false,
             });
         }
     }
     for (i, occ) in args.facts_or_empty("EXCIT").iter().enumerate() {
         let field = format!("{prefix}.F{}", i + 1);
-        match occ.value("CHARGE").filter(|v| **v != Value::None) {
+        let charge = occ.value("CHARGE").filter(|v| **v != Value::None);
+        let enriches = charge.is_some();
+        match charge {
             Some(charge) => nodal_forces(
                 ctx,
                 args,
@@ -343,6 +346,7 @@ fn loads(
                 .cloned()
                 .filter(|v| *v != Value::None),
             coef: None,
+            enriches,
         });
     }
     Ok(out)
