@@ -504,8 +504,9 @@ fn vibra(
     if let Some(a) = &c.amor {
         call = call.concept(ctx, "MATR_AMOR", a)?;
     }
-    if let Some(i) = args.value("INFO").filter(|v| **v != Value::None) {
-        call = call.set("INFO", i.clone());
+    if let Some(level) = args.int("INFO") {
+        // DYNA_VIBRA's: 2 lists the contact changes located.
+        call = call.set("INFO", Value::Int(level));
     }
     if let Some(ratios) = args
         .fact("AMORTISSEMENT")
