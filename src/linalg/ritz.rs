@@ -244,6 +244,68 @@ pub fn rayleigh_frequency(k: f64, m: f64) -> (f64, f64) {
     )
 }
 
+/// The modes of a structure reduced on a basis (Rayleigh–Ritz): with Φ the vectors, the
+/// eigenpairs of (ΦᵀKΦ) y = ω² (ΦᵀMΦ) y, all of them, ω² ascending, restored as Φy and
+/// mass-normalised (yᵀΦᵀMΦy = 1). In the span of the basis they are what the structure's
+/// modes would be if it could move in that span only; a basis that holds exact modes
+/// returns them. DYNA_LINE's ORTHO='OUI'. The small problem is dense (src/linalg/eigen/dense.rs);
+/// vectors the mass does not see (infinite ω²) are dropped, as there.
+pub fn rayleigh_ritz(k: &Metric, m: &Metric, vectors: &[Vec<f64>]) -> Result<ReducedModes> {
+    let n = k.size();
+    if m.size() != n {
+        return Err(Error::internal(format!(
+            "stiffness of size {n} and mass of size {}",
+            m.size()
+        )));
+    }
+    let refs: Vec<&[f64]> = vectors.iter().map(Vec::as_slice).collect();
+    check_lengths(n, &refs)?;
+    let b = vectors.len();
+    let mut k_low = Vec::new();
+    let mut m_low = Vec::new();
+    for i in 0..b {
+        for j in 0..=i {
+            k_low.push((i, j, k.form(&vectors[i], &vectors[j])?));
+            m_low.push((i, j, m.form(&vectors[i], &vectors[j])?));
+        }
+    }
+    let kr = crate::linalg::eigen::sym::SymSparse::from_lower_triplets(b, &k_low);
+    let mr = crate::linalg::eigen::sym::SymSparse::from_lower_triplets(b, &m_low);
+    // δ only matters when the reduced stiffness is singular (a basis with rigid-body
+    // motion): a shift far below its scale.
+    let scale = k_low
+        .iter()
+        .filter(|e| e.0 == e.1)
+        .map(|e| e.2.abs())
+        .fold(0.0, f64::max);
+    let modes =
+        crate::linalg::eigen::dense::solve_dense(&kr, &mr, 1e-12 * scale.max(f64::MIN_POSITIVE))?;
+    let shapes = modes
+        .vectors
+        .iter()
+        .map(|y| {
+            let mut phi = vec![0.0; n];
+            for (c, v) in y.iter().zip(vectors) {
+                for (p, x) in phi.iter_mut().zip(v) {
+                    *p += c * x;
+                }
+            }
+            phi
+        })
+        .collect();
+    Ok(ReducedModes {
+        omega2: modes.omega2,
+        shapes,
+    })
+}
+
+/// What [`rayleigh_ritz`] gives: ω² ascending and the mass-normalised vectors.
+#[derive(Clone, Debug)]
+pub struct ReducedModes {
+    pub omega2: Vec<f64>,
+    pub shapes: Vec<Vec<f64>>,
+}
+
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
@@ -472,5 +534,30 @@ mod tests {
         assert!((f - 3.0).abs() < 1e-15, "{f}");
         assert_eq!(rayleigh_frequency(1.0, 0.0), (0.0, 0.0));
         assert_eq!(rayleigh_frequency(-1e-20, 1.0).1, 0.0);
+    }
+    /// Rayleigh–Ritz on a basis spanning the whole space gives the exact modes; on a
+    /// two-vector basis of a 2-DOF chain the reduced problem's closed form.
+    #[test]
+    fn rayleigh_ritz_gives_the_modes_of_the_span() {
+        // Two unit masses, springs k = 1 (wall–1) and 1 (1–2): ω² = (3 ∓ √5)/2.
+        let k = vec![(0, 0, 2.0), (0, 1, -1.0), (1, 0, -1.0), (1, 1, 1.0)];
+        let m = vec![(0, 0, 1.0), (1, 1, 1.0)];
+        let km = Metric::new(2, &k).unwrap();
+        let mm = Metric::new(2, &m).unwrap();
+        // A skewed basis of the whole plane.
+        let basis = vec![vec![1.0, 0.3], vec![0.2, 1.0]];
+        let r = rayleigh_ritz(&km, &mm, &basis).unwrap();
+        let exact = [(3.0 - 5f64.sqrt()) / 2.0, (3.0 + 5f64.sqrt()) / 2.0];
+        for (w, e) in r.omega2.iter().zip(exact) {
+            assert!((w - e).abs() < 1e-14, "{w} vs {e}");
+        }
+        for (phi, w) in r.shapes.iter().zip(&r.omega2) {
+            assert!((mm.form(phi, phi).unwrap() - 1.0).abs() < 1e-14);
+            assert!((km.form(phi, phi).unwrap() - w).abs() < 1e-14);
+        }
+        // One vector (1, 1): ω² = uᵀKu/uᵀMu = 1/2, the vector scaled to unit mass.
+        let r = rayleigh_ritz(&km, &mm, &[vec![1.0, 1.0]]).unwrap();
+        assert!((r.omega2[0] - 0.5).abs() < 1e-15);
+        assert!((r.shapes[0][0].abs() - 0.5f64.sqrt()).abs() < 1e-15);
     }
 }

@@ -86,6 +86,34 @@ pub fn static_shapes(
     for r in requests {
         rhs.push(right_hand_side(k, m, *r)?);
     }
+    let mut out = solve_on_free(k, rhs)?;
+    for (full, r) in out.iter_mut().zip(requests) {
+        if let StaticRequest::Imposed(s) = r {
+            if let Some(v) = full.get_mut(*s) {
+                *v = 1.0;
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The static responses K⁻¹f to the loads `loads` (nodal forces over the full numbering;
+/// their values on blocked DOFs are taken by the supports), each in the full numbering:
+/// DYNA_LINE's static enrichment by the loads of its EXCIT (Code_Aster's MACRO_ELAS_MULT).
+pub fn load_responses(
+    k: &AssembledMatrix,
+    loads: &[Vec<f64>],
+) -> Result<Vec<Vec<f64>>, StaticShapeError> {
+    let rhs = loads.iter().map(|f| k.row_on_free(f)).collect();
+    solve_on_free(k, rhs)
+}
+
+/// One factorisation of K_ff, a solve per right-hand side, the solutions expanded to the
+/// full numbering.
+fn solve_on_free(
+    k: &AssembledMatrix,
+    rhs: Vec<Vec<f64>>,
+) -> Result<Vec<Vec<f64>>, StaticShapeError> {
     let kr = k
         .reduced()
         .map_err(|e| StaticShapeError::Reduction(e.to_string()))?;
@@ -93,19 +121,13 @@ pub fn static_shapes(
         .map_err(|e| StaticShapeError::Reduction(e.to_string()))?;
     let mut solver = StaticSolver::new(&ks).map_err(StaticShapeError::Solver)?;
     let solutions = solver.solve_all(rhs).map_err(StaticShapeError::Solver)?;
-    let mut out = Vec::with_capacity(solutions.len());
-    for (x, r) in solutions.iter().zip(requests) {
-        let mut full = k
-            .expand(x)
-            .map_err(|e| StaticShapeError::Reduction(e.to_string()))?;
-        if let StaticRequest::Imposed(s) = r {
-            if let Some(v) = full.get_mut(*s) {
-                *v = 1.0;
-            }
-        }
-        out.push(full);
-    }
-    Ok(out)
+    solutions
+        .iter()
+        .map(|x| {
+            k.expand(x)
+                .map_err(|e| StaticShapeError::Reduction(e.to_string()))
+        })
+        .collect()
 }
 
 /// The right-hand side of one request over the free DOFs.

@@ -37,6 +37,7 @@ pub mod defi_list_reel;
 pub mod defi_materiau;
 pub mod defi_obstacle;
 pub mod detruire;
+pub mod dyna_line;
 pub mod dyna_tran_modal;
 pub mod dyna_vibra;
 pub mod extr_table;
@@ -358,6 +359,7 @@ pub const OPERATORS: &[(&str, OpFn)] = &[
     ("REST_GENE_PHYS", rest_gene_phys::run),
     ("DEFI_LIST_REEL", defi_list_reel::run),
     ("DYNA_TRAN_MODAL", dyna_tran_modal::run),
+    ("DYNA_LINE", dyna_line::run),
     ("CALC_VECT_ELEM", calc_vect_elem::run),
     ("ASSE_VECTEUR", asse_vecteur::run),
     ("MODE_STATIQUE", mode_statique::run),

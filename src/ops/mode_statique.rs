@@ -11,7 +11,9 @@ use crate::linalg::static_modes::StaticError;
 use crate::mesh::select::select_nodes;
 use crate::mesh::Mesh;
 use crate::model::modes::{Mode, ModeMeca, StaticKind, StaticTag};
-use crate::model::static_shapes::{form_full, static_shapes, StaticRequest, StaticShapeError};
+use crate::model::static_shapes::{
+    form_full, load_responses, static_shapes, StaticRequest, StaticShapeError,
+};
 use crate::model::{AssembledMatrix, Cmp};
 use crate::store::{matrix, model, modes as mode_store};
 
@@ -95,6 +97,62 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
         )?;
     }
     Ok(())
+}
+
+/// The static responses K⁻¹f to the assembled load fields `fields` (DYNA_LINE's
+/// enrichment by the loads of its EXCIT), saved as the mode_meca `name` as MODE_STATIQUE
+/// saves its deformations (FREQ 0, generalized mass and stiffness, the matrices named),
+/// without NOEUD_CMP: a response to a load is no DOF's.
+pub(crate) fn save_load_responses(
+    ctx: &mut OpContext<'_>,
+    name: &str,
+    (k_name, m_name): (&str, &str),
+    fields: &[String],
+) -> Result<()> {
+    let k = matrix::load_matrix(ctx.store, k_name)?;
+    let m = matrix::load_matrix(ctx.store, m_name)?;
+    let mut loads = Vec::with_capacity(fields.len());
+    for f in fields {
+        let field = crate::store::gene::load_field(ctx.store, f)?;
+        loads.push(super::proj_vect_base::field_on_numbering(
+            &field,
+            &k.numbering,
+            f,
+        )?);
+    }
+    let shapes = load_responses(&k, &loads).map_err(|e| shape_error(e, &k))?;
+    ctx.say(&format!(
+        "{OP} {name}: {} static response(s) to the loads",
+        shapes.len()
+    ))?;
+    let modes = shapes
+        .into_iter()
+        .enumerate()
+        .map(|(i, shape)| Mode {
+            nume_ordre: i + 1,
+            freq: 0.0,
+            omega2: 0.0,
+            mass_gene: form_full(&m, &shape, &shape),
+            rigi_gene: form_full(&k, &shape, &shape),
+            shape,
+            label: "DEPL".to_string(),
+        })
+        .collect();
+    let result = ModeMeca {
+        numbering: k.numbering.clone(),
+        numbering_name: matrix::matrix_numbering_name(ctx.store, k_name)?,
+        modes,
+    };
+    ctx.create(name, "mode_meca")?;
+    mode_store::save_modes(ctx.store, name, &result)?;
+    mode_store::save_matrices(
+        ctx.store,
+        name,
+        &mode_store::ModeMatrices {
+            rigi: k_name.to_string(),
+            mass: m_name.to_string(),
+        },
+    )
 }
 
 /// Every request of the call with its tag, numbered in order: MODE_STAT, FORCE_NODALE

@@ -8,6 +8,7 @@ use crate::error::{Error, Result};
 use crate::linalg::projection::{coordinates, project_vector};
 use crate::model::modes::ModeMeca;
 use crate::model::Cmp;
+use crate::model::DofNumbering;
 use crate::store::gene::{self, GeneMeta, GeneVector, NodalField};
 use crate::store::{matrix, modes as mode_store, Store};
 
@@ -77,18 +78,27 @@ pub(crate) fn project(
 /// eliminated are imposed zero and read as zero; a nonzero value of a component the
 /// numbering does not have is an error (without keyword: the caller names its own).
 pub(crate) fn on_numbering(field: &NodalField, modes: &ModeMeca, f_name: &str) -> Result<Vec<f64>> {
-    if field.mesh != modes.numbering.mesh {
+    field_on_numbering(field, &modes.numbering, f_name)
+}
+
+/// [`on_numbering`] for a DOF numbering of its own.
+pub(crate) fn field_on_numbering(
+    field: &NodalField,
+    numbering: &DofNumbering,
+    f_name: &str,
+) -> Result<Vec<f64>> {
+    if field.mesh != numbering.mesh {
         return Err(Error::input(format!(
             "{f_name} is a field of mesh {} and the basis's DOFs are on mesh {}",
-            field.mesh, modes.numbering.mesh
+            field.mesh, numbering.mesh
         )));
     }
-    let mut u = vec![0.0; modes.numbering.len()];
-    let index = modes.numbering.index_map();
+    let mut u = vec![0.0; numbering.len()];
+    let index = numbering.index_map();
     for (node, cmp, v) in &field.values {
         let at = Cmp::parse(cmp).and_then(|c| index.get(&(node.as_str(), c)).copied());
         match at {
-            Some(i) if !modes.numbering.eliminated[i] => u[i] = *v,
+            Some(i) if !numbering.eliminated[i] => u[i] = *v,
             Some(_) => {}
             None if *v == 0.0 => {}
             None => {
