@@ -2,6 +2,7 @@
 
 mod cercle_eq12;
 mod doors;
+mod forced;
 mod hard;
 mod reference;
 mod resonance;
