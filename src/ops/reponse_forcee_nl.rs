@@ -61,6 +61,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let start = nnm::start_forced(&problem, &settings, 2.0 * PI * f_min)?;
     let first = start.point.clone();
     let mut lines = Vec::new();
+    let mut left_band = false;
     let outcome = nnm::continue_controlled(&problem, &settings, control, start, &mut |rep, pts| {
         lines.push(format!(
             "  branch {:>4}: {:>3} pts  freq {:.6e} .. {:.6e} Hz  a_max {:.3e}  newton {:>2}{}",
@@ -77,8 +78,11 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             }
         ));
         // On until the curve leaves the band at either end.
-        pts.last()
-            .is_none_or(|p| p.frequency <= f_max && p.frequency >= f_min)
+        let inside = pts
+            .last()
+            .is_none_or(|p| p.frequency <= f_max && p.frequency >= f_min);
+        left_band |= !inside;
+        inside
     });
     let mut points = vec![first];
     points.extend(outcome.points);
@@ -98,16 +102,24 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
 
     let folds = fold_rows(&points);
     ctx.say(&format!(
-        "REPONSE_FORCEE_NL {name}: {} point(s) from {:.6e} to {:.6e} Hz, {} turning point(s){}",
+        "REPONSE_FORCEE_NL {name}: {} point(s) from {:.6e} to {:.6e} Hz, {} turning point(s)",
         points.len(),
         points.first().map_or(f64::NAN, |p| p.frequency),
         points.last().map_or(f64::NAN, |p| p.frequency),
         folds.iter().filter(|&&f| f).count(),
-        match points.last() {
-            Some(p) if p.frequency < f_max * (1.0 - 1e-12) => " (FREQ_MAX not reached)",
-            _ => "",
-        }
     ))?;
+    if !left_band && outcome.error.is_none() {
+        ctx.alarm(
+            "REPONSE_FORCEE_NL_1",
+            &format!(
+                "the curve ends at {:.6e} Hz, inside the band: NB_BRANCHE = {} branches were \
+                 not enough to reach FREQ_MAX = {f_max} Hz (or to leave the band below \
+                 FREQ_MIN); raise NB_BRANCHE, or NB_PAS_MAN and PREC_MAN for longer branches",
+                points.last().map_or(f64::NAN, |p| p.frequency),
+                settings.continuation.n_branches
+            ),
+        )?;
+    }
     if ctx.info >= 1 {
         for l in &lines {
             ctx.say(l)?;
