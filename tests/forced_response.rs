@@ -151,7 +151,7 @@ fn bad_input_names_its_keyword() {
         assert!(out.contains(want), "{c}: wanted '{want}' in\n{out}");
         assert!(!out.contains("panicked"), "{c}: {out}");
         // The failed operator left nothing: FRF is not a concept of the database.
-        let conn = rusqlite::Connection::open(&db).unwrap();
+        let conn = rusqlite::Connection::open(db.as_path()).unwrap();
         let frf: i64 = conn
             .query_row(
                 "SELECT count(*) FROM sqlite_master WHERE name = 'FRF'",
