@@ -36,6 +36,7 @@ fn settings(h_nonl: usize, n_branches: usize) -> Settings {
 
 fn sdnd122a(c: &mut Criterion) {
     let p = Problem {
+        forcing: None,
         k: sparse(1, &[(0, 0, 10.0)]),
         m: sparse(1, &[(0, 0, 1.0)]),
         shocks: vec![Shock {

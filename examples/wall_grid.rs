@@ -37,6 +37,7 @@ fn main() {
     let verbose = std::env::var("VERBOSE").is_ok();
     let (k, g) = (10.0, 0.01);
     let problem = Problem {
+        forcing: None,
         k: one(k),
         m: one(1.0),
         shocks: vec![Shock {

@@ -78,6 +78,7 @@ impl StudyCase {
             CaseKind::Wall => StudyCase {
                 kind,
                 problem: Problem {
+                    forcing: None,
                     k: sparse(1, &[(0, 0, WALL.k)]),
                     m: sparse(1, &[(0, 0, WALL.m)]),
                     shocks: vec![stop(ShockLaw::Plan, 0)],
@@ -96,6 +97,7 @@ impl StudyCase {
                 StudyCase {
                     kind,
                     problem: Problem {
+                        forcing: None,
                         k: sparse(2, &[(0, 0, 2.0 * k), (0, 1, -k), (1, 0, -k), (1, 1, k)]),
                         m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),
                         shocks: vec![stop(ShockLaw::BiPlan, 1)],

@@ -539,6 +539,7 @@ pub fn prepare(case: &Case, dir: &Path) -> Result<Prepared> {
         .ok_or_else(|| Error::internal("bench: a mode shorter than its numbering"))?;
     let omega = mode1.omega2.max(0.0).sqrt();
     let problem = Problem {
+        forcing: None,
         k: k.reduced()?,
         m: m.reduced()?,
         shocks,

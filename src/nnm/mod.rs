@@ -52,6 +52,7 @@ pub use analysis::{error_sources, exact_law, stability};
 pub use model::exact;
 pub use solve::budget;
 
+pub use analysis::amplitude::peak_amplitude;
 pub use analysis::below_contact::{regularisation_alarm, ClearRow};
 pub use analysis::law_check::LAW_DEFECT_ALARM;
 pub use analysis::orbit::{
@@ -64,6 +65,7 @@ pub use analysis::resonance::resonance_alarm;
 pub use analysis::route_timing::{contact_route_timings, RouteRow};
 pub use continuation::correction::relative_gamma;
 pub use continuation::driver::Outcome;
+pub use continuation::forced_start::start_forced;
 pub use continuation::frequency_floor::FrequencyFloor;
 pub use continuation::quadrature::{check_degenerate_pair, start_from_mode_pair, QUAD_FREQ_TOL};
 pub use continuation::report::BranchReport;
@@ -75,7 +77,9 @@ pub use continuation::step_control::{Approximation, StepControl, STALL_ENERGY, S
 pub use follow::{continue_branches, continue_controlled, continue_while};
 pub use model::linear_modes::{linear_modes, LinearMode};
 pub use model::point::Point;
-pub use model::problem::{CercleForm, Continuation, Harmonics, Problem, Settings, Shock, ShockLaw};
+pub use model::problem::{
+    CercleForm, Continuation, Forcing, Harmonics, Problem, Settings, Shock, ShockLaw,
+};
 pub use model::reduced::{reduced_problem, shock_basis, Reduced};
 pub use model::system::unknown_count;
 pub use solve::contact::Method as ContactMethod;

@@ -58,6 +58,7 @@ pub mod proj_base;
 pub mod proj_matr_base;
 pub mod proj_vect_base;
 pub mod recu_fonction;
+pub mod reponse_forcee_nl;
 pub mod rest_gene_phys;
 pub mod rest_mode_nonl;
 pub mod test_fonction;
@@ -338,6 +339,7 @@ pub const OPERATORS: &[(&str, OpFn)] = &[
     ("MODE_ITER_SIMULT", mode_iter_simult::run),
     ("CALC_STABILITE", calc_stabilite::run),
     ("MODE_NON_LINE", mode_non_line::run),
+    ("REPONSE_FORCEE_NL", reponse_forcee_nl::run),
     ("REST_MODE_NONL", rest_mode_nonl::run),
     ("TEST_RESU", test_resu::run),
     ("ASSE_MATRICE", asse_matrice::run),

@@ -208,6 +208,7 @@ mod tests {
         let (k, g, alpha, regul) = (10.0, 0.01, 1000.0, 1e-4);
         let eta = regul * k * g * g;
         let problem = Problem {
+            forcing: None,
             k: sparse(1, &[(0, 0, k)]),
             m: sparse(1, &[(0, 0, 1.0)]),
             shocks: vec![Shock {
@@ -259,6 +260,7 @@ mod tests {
         let (k, g, alpha, regul) = (10.0, 0.01, 1000.0, 1e-4);
         let c = [0.002, -0.001];
         let problem = Problem {
+            forcing: None,
             k: sparse(2, &[(0, 0, k), (1, 1, k)]),
             m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),
             shocks: vec![Shock {

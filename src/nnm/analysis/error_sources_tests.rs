@@ -36,6 +36,7 @@ impl Case {
         };
         if self.chain {
             Problem {
+                forcing: None,
                 k: sparse(
                     2,
                     &[(0, 0, K + KC), (0, 1, -KC), (1, 0, -KC), (1, 1, K + KC)],
@@ -45,6 +46,7 @@ impl Case {
             }
         } else {
             Problem {
+                forcing: None,
                 k: sparse(1, &[(0, 0, K)]),
                 m: sparse(1, &[(0, 0, 1.0)]),
                 shocks: vec![shock(0, ShockLaw::Plan)],

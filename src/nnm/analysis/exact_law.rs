@@ -833,6 +833,7 @@ mod tests {
             SparseColMat::try_new_from_triplets(2, 2, &t).unwrap()
         };
         Problem {
+            forcing: None,
             k: sp(&[(0, 0, 20.0), (0, 1, -10.0), (1, 0, -10.0), (1, 1, 10.0)]),
             m: sp(&[(0, 0, 1.0), (1, 1, 2.0)]),
             shocks: vec![Shock {

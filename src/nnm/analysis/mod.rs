@@ -4,6 +4,7 @@
 //! rows clear of every obstacle, the measured cost of the contact routes, and Floquet
 //! stability. Uses every other room; none uses it.
 
+pub(in crate::nnm) mod amplitude;
 pub(in crate::nnm) mod below_contact;
 pub(in crate::nnm) mod contact_work;
 pub mod error_sources;

@@ -39,6 +39,7 @@ fn diag(n: usize, v: f64) -> Result<SparseColMat<usize, f64>> {
 pub(in crate::nnm) fn system_and_point(law: ShockLaw, h_nonl: usize) -> Result<(System, Vec<f64>)> {
     let dofs: Vec<usize> = (0..law.n_comp()).collect();
     let p = Problem {
+        forcing: None,
         k: diag(2, 10.0)?,
         m: diag(2, 1.0)?,
         shocks: vec![Shock {

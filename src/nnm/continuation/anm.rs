@@ -116,11 +116,12 @@ pub fn compute(
     // sampled on half the instants, their sine parts (round-off) dropped from the
     // products. X_1 is checked too: at a symmetry-breaking bifurcation the branch leaves
     // a symmetric X0 along a direction that is not.
-    let grid = if sys.lay.is_time_symmetric(x0) && sys.lay.is_time_symmetric(&x1) {
-        Grid::Cosine
-    } else {
-        Grid::Full
-    };
+    let grid =
+        if sys.is_reversible() && sys.lay.is_time_symmetric(x0) && sys.lay.is_time_symmetric(&x1) {
+            Grid::Cosine
+        } else {
+            Grid::Full
+        };
     let sampled = |x: &[f64], ws: &mut Workspace| sys.samples_on(x, grid, ws);
     let mut samples = vec![sampled(&x1, ws)];
     let mut terms = vec![x1];

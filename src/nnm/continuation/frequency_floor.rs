@@ -312,6 +312,7 @@ mod tests {
 
     fn problem(law: ShockLaw) -> Problem {
         Problem {
+            forcing: None,
             k: diagonal(&[1.0, 9.0]),
             m: diagonal(&[1.0, 1.0]),
             shocks: vec![Shock {

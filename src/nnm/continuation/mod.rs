@@ -10,6 +10,7 @@ pub(in crate::nnm) mod correction;
 pub(in crate::nnm) mod driver;
 pub(in crate::nnm) mod end_check;
 pub(in crate::nnm) mod fold_guard;
+pub(in crate::nnm) mod forced_start;
 pub(in crate::nnm) mod frequency_floor;
 pub(in crate::nnm) mod newton;
 pub(in crate::nnm) mod pade;

@@ -158,6 +158,7 @@ mod tests {
 
     fn isotropic_with(k: f64, g: f64, alpha: f64, regul: f64, form: CercleForm) -> Problem {
         Problem {
+            forcing: None,
             k: sparse(2, &[(0, 0, k), (1, 1, k)]),
             m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),
             shocks: vec![Shock {

@@ -42,6 +42,20 @@ pub struct Problem {
     pub k: SparseColMat<usize, f64>,
     pub m: SparseColMat<usize, f64>,
     pub shocks: Vec<Shock>,
+    /// A damped structure under a harmonic force (REPONSE_FORCEE_NL): the forced response
+    /// replaces the autonomous problem's unfolding γ and phase condition (system.rs). None
+    /// for the conservative structure of MODE_NON_LINE.
+    pub forcing: Option<Forcing>,
+}
+
+/// The damping and the harmonic excitation of a forced response, on the DOFs of
+/// `Problem::k`: M Ü + C U̇ + K U + Pᵀ F = f cos ωt.
+#[derive(Clone, Debug)]
+pub struct Forcing {
+    /// The damping matrix C, n×n.
+    pub damping: SparseColMat<usize, f64>,
+    /// The amplitude f of the force (N), one value per DOF.
+    pub force: Vec<f64>,
 }
 
 impl Problem {

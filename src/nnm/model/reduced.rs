@@ -55,6 +55,7 @@ pub fn reduced_problem(full: &Problem, basis: &Reduction) -> Result<Problem> {
         })
         .collect::<Result<Vec<_>>>()?;
     Ok(Problem {
+        forcing: None,
         k: basis.project_stiffness(&full.k)?,
         m: basis.project_mass(&full.m)?,
         shocks,

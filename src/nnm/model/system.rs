@@ -5,6 +5,11 @@
 //! U), Ω M D V + K U + Pᵀ F + γ M V = 0 on 0..H_l (rows of V), each law's equations on
 //! 0..H_nl (rows of its unknowns), and the phase condition (row of Ω): the reference DOF has
 //! zero velocity at t = 0, Σ_k k·us_k = 0. One equation fewer than unknowns: a curve.
+//!
+//! A forced response (`Problem::forcing`, REPONSE_FORCEE_NL) is the same system with the
+//! damping C V added to and the force f cos(ωt) subtracted from the rows of V, and the row
+//! of Ω saying γ = 0: the force fixes the phase, so there is neither a time shift to remove
+//! nor a family of orbits to unfold, and Ω is the free unknown the curve is followed in.
 
 use crate::error::{Error, Result};
 use crate::nnm::model::cosine_sampler::CosineSampler;
@@ -138,7 +143,8 @@ fn inverse_diag(
     Ok((v > 0.0).then_some(v))
 }
 
-fn diag(a: &SparseColMat<usize, f64>, p: usize) -> f64 {
+/// The diagonal entry (p, p) of `a` (the sum of its stored entries there).
+pub(in crate::nnm) fn diag(a: &SparseColMat<usize, f64>, p: usize) -> f64 {
     ScaledEntries::from_faer(a, 1.0)
         .entries
         .iter()
@@ -350,6 +356,8 @@ pub struct System {
     pub lay: Layout,
     pub k: ScaledEntries,
     pub m: ScaledEntries,
+    /// The damping and force of a forced response (None: the autonomous problem).
+    pub forced: Option<ForcedTerms>,
     pub shocks: Vec<ShockSys>,
     pub ref_dof: usize,
     pub scaling: Scaling,
@@ -369,10 +377,22 @@ pub struct System {
     low_cosine: Option<LowSynth>,
 }
 
+/// The damping and the force of a forced response in scaled units (`Problem::forcing`). The
+/// velocity unknowns are dU/dτ with τ = ω_ref·t, so C·u̇ divided by k_ref·g_ref is
+/// (C·ω_ref/k_ref)·V.
+#[derive(Clone, Debug)]
+pub struct ForcedTerms {
+    /// C·ω_ref/k_ref.
+    pub c: ScaledEntries,
+    /// f/(k_ref·g_ref), one value per DOF: the cosine of harmonic 1 of the rows of V.
+    pub f: Vec<f64>,
+}
+
 /// Validate the problem and settings against each other (keyword-named errors).
 pub fn validate(problem: &Problem, settings: &Settings) -> Result<()> {
     // In this order: the matrices, the harmonics, the continuation's settings, the shocks.
     validate_matrices(problem)?;
+    validate_forcing(problem)?;
     validate_harmonics(problem, settings.into())?;
     validate_continuation(&settings.continuation)?;
     validate_shocks(problem)
@@ -409,6 +429,37 @@ fn validate_matrices(problem: &Problem) -> Result<()> {
             Error::input("the stiffness or mass matrix has non-finite entries")
                 .keyword("MATR_RIGI"),
         );
+    }
+    Ok(())
+}
+
+/// The damping and the force of a forced response: of the size of K, finite, a force not
+/// all zero.
+fn validate_forcing(problem: &Problem) -> Result<()> {
+    let Some(f) = &problem.forcing else {
+        return Ok(());
+    };
+    let n = problem.k.nrows();
+    if f.damping.nrows() != n
+        || f.damping.ncols() != n
+        || f.damping.val().iter().any(|v| !v.is_finite())
+    {
+        return Err(Error::input(format!(
+            "the damping matrix must be {n}×{n} (the size of the stiffness matrix) and finite, got {}×{}",
+            f.damping.nrows(),
+            f.damping.ncols()
+        ))
+        .keyword("MATR_AMOR"));
+    }
+    if f.force.len() != n
+        || f.force.iter().any(|v| !v.is_finite())
+        || f.force.iter().all(|&v| v == 0.0)
+    {
+        return Err(Error::input(format!(
+            "the force must have {n} finite values (one per free DOF), not all zero; got {}",
+            f.force.len()
+        ))
+        .keyword("EXCIT"));
     }
     Ok(())
 }
@@ -530,10 +581,18 @@ impl System {
             let n = cosine.n();
             LowSynth::cosines_only(n, hl, |j| PI * (2 * j + 1) as f64 / (2 * n) as f64)
         });
+        let forced = problem.forcing.as_ref().map(|f| ForcedTerms {
+            c: ScaledEntries::from_faer(&f.damping, scaling.omega / scaling.stiffness),
+            f: f.force
+                .iter()
+                .map(|v| v / (scaling.stiffness * scaling.length))
+                .collect(),
+        });
         Ok(System {
             lay,
             k: ScaledEntries::from_faer(&problem.k, 1.0 / scaling.stiffness),
             m: ScaledEntries::from_faer(&problem.m, 1.0 / scaling.mass),
+            forced,
             shocks,
             ref_dof,
             scaling,
@@ -563,6 +622,13 @@ impl System {
             },
             pool: Vec::new(),
         }
+    }
+
+    /// Whether t → −t maps a solution to a solution (U and the laws' unknowns kept, V
+    /// negated): the autonomous problem is, a damped forced response is not. Only then can
+    /// a time-symmetric point be followed on time-symmetric points (`Layout::is_time_symmetric`).
+    pub fn is_reversible(&self) -> bool {
+        self.forced.is_none()
     }
 
     pub fn sampler(&self) -> &Sampler {
@@ -834,9 +900,24 @@ impl System {
                 r[sh.offset + e * nn] += c;
             }
         }
-        r[lay.omega()] = (1..=hl)
-            .map(|k| k as f64 * x[lay.u(self.ref_dof) + fourier::is(hl, k)])
-            .sum();
+        match &self.forced {
+            None => {
+                r[lay.omega()] = (1..=hl)
+                    .map(|k| k as f64 * x[lay.u(self.ref_dof) + fourier::is(hl, k)])
+                    .sum();
+            }
+            Some(fc) => {
+                fc.c.mul_blocks(
+                    &x[lay.v(0)..lay.v(0) + n * nl],
+                    nl,
+                    &mut r[lay.v(0)..lay.v(0) + n * nl],
+                );
+                for (i, f) in fc.f.iter().enumerate() {
+                    r[lay.v(i) + fourier::ic(1)] -= f;
+                }
+                r[lay.omega()] = x[lay.gamma()];
+            }
+        }
     }
 
     /// Triplets of the square bordered tangent [dR/dX(x0); borderᵀ]. The pattern depends
@@ -946,12 +1027,24 @@ impl System {
                 }
             }
         }
-        for k in 1..=hl {
-            push(
-                lay.omega(),
-                lay.u(self.ref_dof) + fourier::is(hl, k),
-                k as f64,
-            );
+        match &self.forced {
+            None => {
+                for k in 1..=hl {
+                    push(
+                        lay.omega(),
+                        lay.u(self.ref_dof) + fourier::is(hl, k),
+                        k as f64,
+                    );
+                }
+            }
+            Some(fc) => {
+                for &(i, c, a) in &fc.c.entries {
+                    for j in 0..nl {
+                        push(lay.v(i) + j, lay.v(c) + j, a);
+                    }
+                }
+                push(lay.omega(), lay.gamma(), 1.0);
+            }
         }
         for (c, &b) in border.iter().enumerate() {
             push(lay.n_eq(), c, b);

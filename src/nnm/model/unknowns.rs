@@ -109,6 +109,7 @@ mod tests {
     fn problems() -> Vec<Problem> {
         let diag = |v: f64| sparse(3, &[(0, 0, v), (1, 1, v), (2, 2, v)]);
         let with = |shocks: Vec<Shock>| Problem {
+            forcing: None,
             k: diag(10.0),
             m: diag(1.0),
             shocks,

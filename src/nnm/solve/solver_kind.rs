@@ -27,6 +27,12 @@ pub(in crate::nnm) fn make_solver(
     kind: SolverKind,
 ) -> Result<Box<dyn TangentSolver>> {
     let solves = linear_solver::solves_per_factorisation(cont.order);
+    // The structured solver eliminates V through the autonomous problem's own rows (no
+    // damping, the phase row): a forced response is solved whole (the reference solver,
+    // which factorises `System::tangent` as it is).
+    if sys.forced.is_some() {
+        return Ok(Box::new(ReferenceSolver::default()));
+    }
     Ok(match kind {
         SolverKind::Structured => Box::new(StructuredSolver::new(sys, solves, None)?),
         SolverKind::StructuredWith(m) => Box::new(StructuredSolver::new(sys, solves, Some(m))?),

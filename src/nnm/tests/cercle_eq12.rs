@@ -137,6 +137,7 @@ fn eq12_residual(p: &Problem, s: &Settings, q: &Point, eta: f64) -> (f64, f64) {
 /// component, y), so η = 1e-4·10·JEU².
 fn ring(delta: f64, form: CercleForm) -> Problem {
     Problem {
+        forcing: None,
         k: sparse(2, &[(0, 0, 25.0), (1, 1, 10.0)]),
         m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),
         shocks: vec![Shock {

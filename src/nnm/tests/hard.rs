@@ -83,6 +83,7 @@ fn chain_problem(n: usize, k: f64, law: ShockLaw, stiffness: f64, regul: f64) ->
     }
     let me: Vec<(usize, usize, f64)> = (0..n).map(|i| (i, i, 1.0)).collect();
     Problem {
+        forcing: None,
         k: sparse(n, &ke),
         m: sparse(n, &me),
         shocks: vec![Shock {
@@ -279,6 +280,7 @@ fn hard_grazing_start_below_contact() {
 /// Two unit masses on springs k = 10 to the ground, coupled by kc.
 fn two_mass(kc: f64, shocks: Vec<Shock>) -> Problem {
     Problem {
+        forcing: None,
         k: sparse(
             2,
             &[
@@ -421,6 +423,7 @@ fn hard_cercle_whirl_around_the_ring() {
     let regul = 1e-4;
     let eps = regul * k;
     let p = Problem {
+        forcing: None,
         k: sparse(2, &[(0, 0, k), (1, 1, k)]),
         m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),
         shocks: vec![Shock {
@@ -482,6 +485,7 @@ fn hard_ring_through_its_centre_next_to_another_shock() {
     // through the centre twice a period): the continuation runs into contact with the ring
     // with every branch end converged and no NaN. (Equality with BI_PLAN: nnm/tests/mod.rs.)
     let p = Problem {
+        forcing: None,
         k: sparse(2, &[(0, 0, 10.0), (1, 1, 25.0)]),
         m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),
         shocks: vec![

@@ -2,6 +2,7 @@
 
 mod cercle_eq12;
 mod doors;
+mod forced;
 mod hard;
 mod reference;
 mod resonance;
@@ -48,6 +49,7 @@ pub fn settings(hl: usize, hn: usize, branches: usize, points: usize) -> Setting
 /// The sdnd122 oscillator: m = 1, k = 10, stop at JEU = 0.01 with RIGI_NOR = 50.
 pub fn one_dof(law: ShockLaw, regul: f64) -> Problem {
     Problem {
+        forcing: None,
         k: sparse(1, &[(0, 0, 10.0)]),
         m: sparse(1, &[(0, 0, 1.0)]),
         shocks: vec![Shock {
@@ -119,6 +121,7 @@ fn tangent_is_the_derivative_of_the_residual() {
             vec![1]
         };
         let p = Problem {
+            forcing: None,
             k: sparse(
                 2,
                 &[(0, 0, 20.0), (0, 1, -10.0), (1, 0, -10.0), (1, 1, 10.0)],
@@ -247,6 +250,7 @@ fn no_shock_gives_the_linear_frequency_at_every_amplitude() {
     // 2-DOF chain, k = m = 1: ω² = (3 − √5)/2 exactly, mode (φ − 1, 1) with φ the golden ratio.
     let (k, m) = chain(2, 1.0, 1.0);
     let p = Problem {
+        forcing: None,
         k,
         m,
         shocks: vec![],
@@ -326,6 +330,7 @@ fn biplan_follows_the_exact_period_and_converges_with_refinement() {
 /// the same law.
 fn ring(delta: f64, regul: f64) -> Problem {
     Problem {
+        forcing: None,
         k: sparse(2, &[(0, 0, 25.0), (1, 1, 10.0)]),
         m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),
         shocks: vec![Shock {
@@ -430,6 +435,7 @@ fn spring_chains_with_one_stop_run_to_high_energy_with_converged_points() {
         let (k, m) = chain(n, 10.0, 1.0);
         let (mode, w) = lowest_mode(&k, &m);
         let p = Problem {
+            forcing: None,
             k,
             m,
             shocks: vec![Shock {
@@ -729,6 +735,7 @@ fn reference_stiffness_is_taken_where_code_aster_takes_it() {
         regul: 1e-3,
     };
     let p = Problem {
+        forcing: None,
         k: sparse(
             3,
             &[
@@ -810,6 +817,7 @@ fn cercle_law_block_keeps_its_determinant_sign_along_branches() {
     let mut s = settings(3, 20, 20, 1);
     s.continuation.prec_man = 1e-8;
     let whirl = Problem {
+        forcing: None,
         k: sparse(2, &[(0, 0, 10.0), (1, 1, 10.0)]),
         ..ring(0.0, 1e-4)
     };

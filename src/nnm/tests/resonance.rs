@@ -26,6 +26,7 @@ fn two_modes(ratio: f64, law: ShockLaw) -> Problem {
         .collect();
     let m: Vec<Triplet<usize, usize, f64>> = vec![Triplet::new(0, 0, 1.0), Triplet::new(1, 1, 1.0)];
     Problem {
+        forcing: None,
         k: SparseColMat::try_new_from_triplets(2, 2, &t).unwrap(),
         m: SparseColMat::try_new_from_triplets(2, 2, &m).unwrap(),
         shocks: vec![Shock {

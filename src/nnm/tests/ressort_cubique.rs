@@ -58,6 +58,7 @@ impl Duffing {
 
     fn problem(&self) -> Problem {
         Problem {
+            forcing: None,
             k: sparse(1, &[(0, 0, self.k)]),
             m: sparse(1, &[(0, 0, self.m)]),
             shocks: vec![spring(0, self.k3)],
@@ -307,6 +308,7 @@ impl Chain {
     fn problem(&self) -> Problem {
         let k = &self.k;
         Problem {
+            forcing: None,
             k: sparse(
                 2,
                 &[

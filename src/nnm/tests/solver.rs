@@ -36,6 +36,7 @@ fn problem() -> Problem {
         }
     }
     Problem {
+        forcing: None,
         k: sparse(4, &k),
         m: sparse(
             4,

@@ -206,10 +206,12 @@ pub(super) fn check_restart_harmonics(setup: &MnlSetup, harmonics: &Harmonics) -
     Ok(())
 }
 
-pub(super) fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<StoredShock>> {
+/// CHOC and RESSORT_CUBIQUE (MODE_NON_LINE, REPONSE_FORCEE_NL: the same keywords), each
+/// error naming the calling operator.
+pub(crate) fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<StoredShock>> {
     let mut out = Vec::new();
     for (i, c) in args.facts_or_empty("CHOC").iter().enumerate() {
-        let kw = |k: &str| format!("MODE_NON_LINE/CHOC[{}]/{k}", i + 1);
+        let kw = |k: &str| format!("{}/CHOC[{}]/{k}", ctx.op, i + 1);
         let obstacle = c.req_text("OBSTACLE")?.to_string();
         // One component (PLAN, BI_PLAN) or two (CERCLE): the catalog's bounds.
         let cmps = c.req_texts("NOM_CMP")?;
@@ -254,7 +256,7 @@ pub(super) fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<S
                 i + 1,
                 j + 1
             ))
-            .keyword(format!("MODE_NON_LINE/CHOC[{}]", i + 1))
+            .keyword(format!("{}/CHOC[{}]", ctx.op, i + 1))
             .hint("give each shock once; two obstacles on one DOF are one BI_PLAN"));
         }
         out.push(StoredShock {
@@ -279,7 +281,7 @@ pub(super) fn shocks_from_args(ctx: &OpContext<'_>, args: &Args) -> Result<Vec<S
 fn cubic_springs(ctx: &OpContext<'_>, args: &Args, out: &mut Vec<StoredShock>) -> Result<()> {
     let first = out.len();
     for (i, c) in args.facts_or_empty(RESSORT_CUBIQUE).iter().enumerate() {
-        let kw = |k: &str| format!("MODE_NON_LINE/{RESSORT_CUBIQUE}[{}]/{k}", i + 1);
+        let kw = |k: &str| format!("{}/{RESSORT_CUBIQUE}[{}]/{k}", ctx.op, i + 1);
         let node = choc_node(ctx, args, c, &kw, "a cubic spring")?;
         let cmps = c.req_texts("NOM_CMP")?;
         if let Some(j) = out[first..]
@@ -293,7 +295,7 @@ fn cubic_springs(ctx: &OpContext<'_>, args: &Args, out: &mut Vec<StoredShock>) -
                 cmps.join(", "),
                 j + 1
             ))
-            .keyword(format!("MODE_NON_LINE/{RESSORT_CUBIQUE}[{}]", i + 1))
+            .keyword(format!("{}/{RESSORT_CUBIQUE}[{}]", ctx.op, i + 1))
             .hint(
                 "give each DOF one spring: two cubic springs on one DOF are one of RAIDEUR the sum",
             ));
@@ -315,7 +317,7 @@ fn cubic_springs(ctx: &OpContext<'_>, args: &Args, out: &mut Vec<StoredShock>) -
 
 /// The node of a CHOC or a RESSORT_CUBIQUE (`what`, "a shock" or "a cubic spring"): NOEUD,
 /// or a GROUP_NO holding exactly one node.
-pub(super) fn choc_node(
+pub(crate) fn choc_node(
     ctx: &OpContext<'_>,
     args: &Args,
     c: &Args,

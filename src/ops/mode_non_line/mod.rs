@@ -8,7 +8,7 @@
 
 mod end;
 mod exact_law;
-mod inputs;
+pub(crate) mod inputs;
 pub(crate) mod problem;
 mod reduction;
 mod restart;
@@ -260,6 +260,7 @@ fn read_call(ctx: &mut OpContext<'_>, args: &Args, name: &str) -> Result<(Call, 
     }
     let shocks = engine_shocks(&stored_shocks, &k)?;
     let full = Problem {
+        forcing: None,
         k: k.reduced()?,
         m: m.reduced()?,
         shocks,

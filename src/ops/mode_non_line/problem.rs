@@ -142,6 +142,7 @@ pub fn engine_problem(
     let free = k.free_dofs();
     let shocks = engine_shocks(&setup.shocks, k)?;
     let full = Problem {
+        forcing: None,
         k: k.reduced()?,
         m: m.reduced()?,
         shocks,

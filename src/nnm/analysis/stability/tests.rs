@@ -52,6 +52,7 @@ pub(super) fn shock(law: ShockLaw, dofs: Vec<usize>) -> Shock {
 /// sdnd122: m = 1, k = 10, stop at JEU = 0.01, RIGI_NOR = 50, PARA_REGUL = 5e-5.
 fn sdnd122() -> Problem {
     Problem {
+        forcing: None,
         k: sparse(1, &[(0, 0, 10.0)]),
         m: sparse(1, &[(0, 0, 1.0)]),
         shocks: vec![shock(ShockLaw::Plan, vec![0])],
@@ -62,6 +63,7 @@ fn sdnd122() -> Problem {
 pub(super) fn pair(kc: f64, shocks: Vec<Shock>) -> Problem {
     let k = 10.0;
     Problem {
+        forcing: None,
         k: sparse(
             2,
             &[(0, 0, k + kc), (0, 1, -kc), (1, 0, -kc), (1, 1, k + kc)],
@@ -147,6 +149,7 @@ fn discrete_multipliers(
 fn linear_chain_gives_the_discrete_closed_form_multipliers_on_the_unit_circle() {
     // Grounded chain k = 10 / m = 1: M⁻¹K = [[20, −10], [−10, 10]], ω² = 10(3 ∓ √5)/2.
     let p = Problem {
+        forcing: None,
         k: sparse(
             2,
             &[(0, 0, 20.0), (0, 1, -10.0), (1, 0, -10.0), (1, 1, 10.0)],
@@ -195,6 +198,7 @@ fn a_negative_stiffness_mode_gives_a_real_multiplier_above_one() {
     // e^{t}); over any period T the exact multipliers include e^{±T}. No shock: the orbit
     // only sets T, so it is built directly.
     let p = Problem {
+        forcing: None,
         k: sparse(2, &[(0, 0, 1.0), (0, 1, 2.0), (1, 0, 2.0), (1, 1, 1.0)]),
         m: sparse(2, &[(0, 0, 1.0), (1, 1, 1.0)]),
         shocks: vec![],
@@ -605,6 +609,7 @@ fn bad_input_gives_keyword_errors() {
     assert!(floquet(&p, &s, &x[1..], 100, Integrator::Rk4, 1e-2).is_err());
     // A DOF without mass: M is not positive definite, refused rather than inverted.
     let massless = Problem {
+        forcing: None,
         m: sparse(2, &[(0, 0, 1.0)]),
         ..pair(1.0, vec![])
     };
