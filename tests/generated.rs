@@ -696,10 +696,9 @@ fn a_branch_that_turns_back_where_its_law_came_apart_stops_at_the_turn() {
 /// resolves poorly. With the nonsmooth law the family there is the linear mode at f_1.
 /// Now the descent stops where the shift passes 1e-3 (BAISSE_FREQ_MAXI's floor, rings,
 /// frequency_floor.rs), saying why (MODE_NON_LINE_8 naming the regularised ring's force,
-/// PARA_REGUL and LOI_CERCLE='SECANTE'); the rows before still carry MODE_NON_LINE_9, and
-/// the last one agrees with shooting on the same law within its bound. With the floor
-/// turned off (BAISSE_FREQ_MAXI=1.0) the descent goes on into the cone as before: shooting
-/// there puts the last row's family more than 50 % above f_1.
+/// PARA_REGUL and LOI_CERCLE='SECANTE'); the rows before still carry MODE_NON_LINE_9, no
+/// stored row is more than 1e-3 above f_1, and every compared row is within its bound
+/// against shooting on the same law (the verdict; measured: 4.2e-8 against 1.2e-6).
 #[test]
 fn a_descent_into_a_centred_rings_cone_stops_and_says_why() {
     let (dir, case, out, text) = judge_generated(359);
@@ -724,59 +723,37 @@ fn a_descent_into_a_centred_rings_cone_stops_and_says_why() {
     let highest: f64 = c
         .query_row("SELECT MAX(FREQUENCE) FROM MNL", [], |r| r.get(0))
         .unwrap();
-    // Stopped at the first branch end past the shift (1e-3); the rows before are below it.
     assert!(
         highest / case.f_linear - 1.0 <= 1e-3,
         "a stored row {:e} above f_1",
         highest / case.f_linear - 1.0
     );
-
-    let off = gencases::write::comm(&case).replacen(
-        "NB_PAS_MAN=",
-        "BAISSE_FREQ_MAXI=1.0, NB_PAS_MAN=",
-        1,
-    );
-    let name = format!("{}_off", case.name());
-    let (code, log, db) = run_generated(dir.path(), &name, &case, &off);
-    assert_eq!(code, Some(0), "{log}");
-    let c = rusqlite::Connection::open(db).unwrap();
-    let highest: f64 = c
-        .query_row("SELECT MAX(FREQUENCE) FROM MNL", [], |r| r.get(0))
-        .unwrap();
-    assert!(
-        highest / case.f_linear - 1.0 > 0.5,
-        "the floor off: the highest row {highest} Hz, f_1 = {} Hz",
-        case.f_linear
-    );
 }
 
 /// A branch end that balances its truncated equations only with a fictitious damping is
-/// not a motion (RESOLUTION/AMOR_FICTIF_MAXI, default 1e-2 of the pulsation): seed 1, case
-/// 67 (a 2-mass chain with a centred ring, RIGI_NOR/k_ref 2.7e5, PARA_REGUL 4e-6, H 7/133).
-/// Its branch reaches its target, then goes down toward zero amplitude. With the frequency
-/// floor turned off (BAISSE_FREQ_MAXI=1.0, which also turns off the ring's cone check) the
-/// descent goes on until AMOR_FICTIF passes 1e-2 (it grew to 0.31 of the pulsation before
-/// that check, the last rows 4.0e-2 off shooting): the run stops there (MODE_NON_LINE_8
-/// naming the keyword) and no stored row is above it. By default the cone check stops
-/// the descent earlier, where the shift above f_1 passes 1e-3, every compared row within
-/// its bound (REACHED; measured on 2026-12-07: 2.6e-7 against 1.7e-6 at the last row, 91
-/// rows, where the fictitious damping's stop kept 103 rows, the last 7.1e-5 off).
+/// not a motion (RESOLUTION/AMOR_FICTIF_MAXI, default 1e-2 of the pulsation). Seed 2, case
+/// 92 (a 5-mass chain, 10 DOFs, a ring off its centre, RIGI_NOR/k_ref 3.4e3, H 6/28): its
+/// AMOR_FICTIF climbs from 1e-9 to 1e-2 of the pulsation over some 280 rows while ENERGIE
+/// goes back and forth; the run stops where it passes 1e-2 (MODE_NON_LINE_8 naming the
+/// keyword), and no stored row is above it. (Its rows before are not all motions either:
+/// the campaign judges it WRONG, docs/hard_cases.md; this test is about the check.) Seed 1,
+/// case 67 (a 2-mass chain with a centred ring, H 7/133), which this check used to stop
+/// on its way down toward zero amplitude (103 rows, the last 7.1e-5 off shooting), is now
+/// stopped earlier by the ring's cone check, every compared row within its bound (REACHED;
+/// measured on 2026-12-07: 2.6e-7 against 1.7e-6 at the last row, 91 rows).
 #[test]
 fn a_branch_end_held_by_its_fictitious_damping_is_not_a_motion() {
-    let (dir, case, out, text) = judge_generated(67);
+    let (_dir67, _, out, text) = judge_generated(67);
     assert!(matches!(out.verdict, Verdict::Reached), "{}", out.summary());
     assert!(
         text.contains("<MODE_NON_LINE_8>") && text.contains("[RESOLUTION/BAISSE_FREQ_MAXI]"),
         "{}",
         out.summary()
     );
-    let off = gencases::write::comm(&case).replacen(
-        "NB_PAS_MAN=",
-        "BAISSE_FREQ_MAXI=1.0, NB_PAS_MAN=",
-        1,
-    );
-    let name = format!("{}_off", case.name());
-    let (code, log, db) = run_generated(dir.path(), &name, &case, &off);
+    let dir = tempfile::tempdir().unwrap();
+    let case = sample::sample(2, 92);
+    let name = case.name();
+    let (code, log, db) = run_generated(dir.path(), &name, &case, &gencases::write::comm(&case));
     assert_eq!(code, Some(0), "{log}");
     assert!(
         log.contains("<MODE_NON_LINE_8>") && log.contains("[RESOLUTION/AMOR_FICTIF_MAXI]"),
