@@ -25,6 +25,23 @@ fn the_impact_oscillator_matches_its_exact_solution_with_every_scheme() {
     assert!(out.contains("23 contact change(s) located"), "{out}");
 }
 
+/// A ring (CERCLE) hit on both sides by a node moving across its centre on isotropic
+/// springs: the symmetric impact oscillator along the line of the start, exact in closed
+/// form (testcases/dyna_vibra_ring.comm), on the modal basis of a degenerate pair and on
+/// the physical DOFs.
+#[test]
+fn a_node_across_a_ring_matches_the_symmetric_impact_oscillator() {
+    let out = run_case("dyna_vibra_ring.comm", 26);
+    // Contacts begin at tA + j·T/2 (tA = 5.236e-3 s, T = 0.0269676 s) and last
+    // tB = 3.012e-3 s: 37 of them within 0.5 s (the last from 0.4907 to 0.4937 s), each an
+    // onset and a release, on each of the two runs.
+    assert_eq!(
+        out.matches("74 contact change(s) located").count(),
+        2,
+        "{out}"
+    );
+}
+
 #[test]
 fn the_coulomb_oscillator_loses_two_c_per_half_swing_then_sticks() {
     run_case("dyna_vibra_friction.comm", 23);
