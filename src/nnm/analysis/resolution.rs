@@ -27,10 +27,10 @@ pub const UNRESOLVED_RATIO: f64 = 0.2;
 /// where every force series is resolved ([`accuracy_warning`]): four digits. The
 /// regularisation's part is not counted: PARA_REGUL is part of the model MODE_NON_LINE
 /// solves, and near first contact it always moves the frequency most (measured on
-/// testcases/nnm_wall.comm: +1.7e-4 at grazing, the truncation's part 4e-6). The tail alone misses the
-/// displacement's truncation: measured on generated case s2_c0017 (a 5-DOF chain with a
-/// PLAN stop, NB_HARM_LINE 4, NB_HARM_NONL 924, force tail below 1 %), its last row was
-/// 9.4e-4 from shooting on the same law with no alarm at all.
+/// testcases/nnm_wall.comm: +1.7e-4 at grazing, the truncation's part 4e-6). The tail
+/// alone misses the displacement's truncation: measured on generated case s2_c0017 (a
+/// 5-DOF chain with a PLAN stop, NB_HARM_LINE 4, NB_HARM_NONL 924, force tail below 1 %),
+/// its last row was 9.4e-4 from shooting on the same law with no alarm at all.
 pub const ANNOUNCED_ERROR: f64 = 1e-4;
 
 /// Said when the error's sources were asked for and could not be estimated.

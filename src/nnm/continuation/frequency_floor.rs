@@ -95,8 +95,8 @@ pub struct FrequencyFloor {
     contact_energy: f64,
     /// The relative distance from f_j allowed far below contact ([`LINEAR_SAFETY`]).
     linear_band: f64,
-    /// The first-contact energy, J, when some stop is a ring (the cone check,
-    /// [`CONE_SHIFT`]); 0 otherwise.
+    /// The first-contact energy, J, when some stop is not a plane (a ring: the cone check,
+    /// [`CONE_SHIFT`]) and every law has an obstacle; 0 otherwise.
     cone_energy: f64,
 }
 
