@@ -380,13 +380,9 @@ mod tests {
         assert_eq!(floor.broken_by(2.9 * (1.0 - 1.5e-3)), None);
     }
 
-    #[test]
-    fn far_below_contact_the_family_is_the_linear_mode() {
-        // Mode 1 of a diagonal (K, M) = (1, 1): shape (1, 0), f_1 = 1/2π; the PLAN stop on
-        // DOF 0 with JEU 0.01 is reached at ENERGIE ½·ω²·JEU² = 5e-5.
-        let p = problem(ShockLaw::Plan);
-        let f1 = 1.0 / (2.0 * std::f64::consts::PI);
-        let m = vec![
+    /// The modes of (K, M) = (diag(1, 9), I): f_1 and 3·f_1, shapes along DOFs 0 and 1.
+    fn diagonal_modes(f1: f64) -> Vec<LinearMode> {
+        vec![
             LinearMode {
                 number: 1,
                 frequency: f1,
@@ -397,7 +393,16 @@ mod tests {
                 frequency: 3.0 * f1,
                 shape: vec![0.0, 1.0],
             },
-        ];
+        ]
+    }
+
+    #[test]
+    fn far_below_contact_the_family_is_the_linear_mode() {
+        // Mode 1 of a diagonal (K, M) = (1, 1): shape (1, 0), f_1 = 1/2π; the PLAN stop on
+        // DOF 0 with JEU 0.01 is reached at ENERGIE ½·ω²·JEU² = 5e-5.
+        let p = problem(ShockLaw::Plan);
+        let f1 = 1.0 / (2.0 * std::f64::consts::PI);
+        let m = diagonal_modes(f1);
         let floor = FrequencyFloor::new(&p, Some(&m), f1, 3, 1e-6).unwrap();
         assert!((floor.contact_energy - 5e-5).abs() < 1e-18);
         // At 1e-12 J a row 5 % above f_1 is on the trivial line; at f_1 it is the mode.
@@ -431,18 +436,7 @@ mod tests {
         // centred, JEU 0.01, is reached at ENERGIE ½·ω²·JEU² = 5e-5, so "far below contact"
         // is under LINEAR_ENERGY × 5e-5 = 5e-9 J.
         let f1 = 1.0 / (2.0 * std::f64::consts::PI);
-        let m = vec![
-            LinearMode {
-                number: 1,
-                frequency: f1,
-                shape: vec![1.0, 0.0],
-            },
-            LinearMode {
-                number: 2,
-                frequency: 3.0 * f1,
-                shape: vec![0.0, 1.0],
-            },
-        ];
+        let m = diagonal_modes(f1);
         let ring = ShockLaw::Cercle {
             origin: [0.0, 0.0],
             form: CercleForm::Radial,
