@@ -301,27 +301,8 @@ fn observed(ctx: &OpContext<'_>, args: &Args, k: &AssembledMatrix) -> Result<Vec
 /// marks the bifurcations of the autonomous family, and a forced curve's turning points are
 /// found from its rows).
 fn settings(args: &Args) -> Result<Settings> {
-    let r = args.req_fact("RESOLUTION")?;
-    let count = |key: &str| r.req_count(key);
-    Ok(Settings {
-        harmonics: nnm::Harmonics {
-            h_lin: count("NB_HARM_LINE")?,
-            h_nonl: count("NB_HARM_NONL")?,
-        },
-        continuation: nnm::Continuation {
-            n_branches: count("NB_BRANCHE")?,
-            n_points_per_branch: count("NB_PAS_MAN")?,
-            order: count("NB_ORDRE_MAN")?,
-            prec_man: r.req_real("PREC_MAN")?,
-            prec_newton: r.req_real("PREC_NEWTON")?,
-            iter_newton_max: count("ITER_NEWTON_MAXI")?,
-            bif_terms: count("CRIT_ORDR_BIFURCATION")?,
-            bif_tol: r.req_real("RESI_RELA_BIFURCATION")?,
-            det_test: false,
-            // Forward: from FREQ_MIN toward increasing frequency (the start's travel).
-            direction: -1,
-        },
-    })
+    // Forward: from FREQ_MIN toward increasing frequency (the start's travel).
+    crate::ops::mode_non_line::inputs::resolution_settings(args.req_fact("RESOLUTION")?, false, -1)
 }
 
 /// The retries and checks of a branch end that hold for a forced curve: the contact laws in

@@ -101,8 +101,21 @@ pub(super) fn settings(args: &Args) -> Result<Settings> {
         .hint("the contact forces need at least as many harmonics as the displacements"));
     }
     let direction = args.req_fact("ETAT_INIT")?.req_int("DIR_EVOLUTION")?;
+    let det_test = r.req_text("TEST_BIFURCATION")? != "SERIE";
+    resolution_settings(r, det_test, if direction >= 0 { 1 } else { -1 })
+}
+
+/// The harmonics and continuation settings of a RESOLUTION block (MODE_NON_LINE's keywords,
+/// which REPONSE_FORCEE_NL shares), with the determinant test and the direction each
+/// operator decides.
+pub(crate) fn resolution_settings(r: &Args, det_test: bool, direction: i32) -> Result<Settings> {
+    // The bounds (at least 1, NB_ORDRE_MAN at least 2) are the catalog's.
+    let usize_of = |key: &str| r.req_count(key);
     Ok(Settings {
-        harmonics: Harmonics { h_lin, h_nonl },
+        harmonics: Harmonics {
+            h_lin: usize_of("NB_HARM_LINE")?,
+            h_nonl: usize_of("NB_HARM_NONL")?,
+        },
         continuation: Continuation {
             n_branches: usize_of("NB_BRANCHE")?,
             n_points_per_branch: usize_of("NB_PAS_MAN")?,
@@ -112,8 +125,8 @@ pub(super) fn settings(args: &Args) -> Result<Settings> {
             iter_newton_max: usize_of("ITER_NEWTON_MAXI")?,
             bif_terms: usize_of("CRIT_ORDR_BIFURCATION")?,
             bif_tol: r.req_real("RESI_RELA_BIFURCATION")?,
-            det_test: r.req_text("TEST_BIFURCATION")? != "SERIE",
-            direction: if direction >= 0 { 1 } else { -1 },
+            det_test,
+            direction,
         },
     })
 }
