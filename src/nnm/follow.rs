@@ -3,9 +3,9 @@
 //! the analysis room (which answers with the contact laws checked in time), so that neither
 //! room reaches into the other.
 
-use crate::error::Result;
 use crate::nnm::continuation::driver::{continue_checked, Outcome};
 use crate::nnm::continuation::end_check::EndCheck;
+use crate::nnm::error::Result;
 use crate::nnm::{BranchReport, Point, PostProcessor, Problem, Settings, StartState, StepControl};
 
 /// Continue `settings.n_branches` branches from `start`; `on_branch` is called after each.

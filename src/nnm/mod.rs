@@ -32,6 +32,9 @@
 // The shared `Error` (a contract of the crate) is large: `clippy::result_large_err` is
 // allowed once at the crate root (src/lib.rs), with the reason.
 
+// The engine's errors: typed, naming a setting, not a keyword (the operators name it).
+pub mod error;
+
 // The rooms, lowest first: a room uses itself and the rooms declared before it, never one
 // declared after it (`tests::doors` checks it; docs/nnm.md lists their files).
 mod model;

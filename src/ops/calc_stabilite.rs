@@ -78,7 +78,9 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
             .ok_or_else(|| Error::store(format!("{src}: row {order} has no stored point")))?;
         let f = analyser
             .floquet(&x, n_inst, integrator, tolerance)
-            .map_err(|e| e.keyword(format!("CALC_STABILITE (row NUME_ORDRE={order})")))?;
+            .map_err(|e| {
+                Error::from(e).keyword(format!("CALC_STABILITE (row NUME_ORDRE={order})"))
+            })?;
         mnl_store::save_multipliers(ctx.store, &name, order, &f.multipliers)?;
         let verdict = f.label();
         match f.verdict {

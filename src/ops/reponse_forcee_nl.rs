@@ -131,7 +131,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     ))?;
     // A failed branch keeps the rows before it; the run then stops, as MODE_NON_LINE's.
     if let Some(e) = outcome.error {
-        ctx.deferred_error = Some(e);
+        ctx.deferred_error = Some(e.into());
     }
     Ok(())
 }

@@ -164,7 +164,8 @@ fn coef_label(j: usize, h: usize) -> String {
 }
 
 /// An input error of the engine about the point itself names the row that chose it.
-fn stored_point(e: Error) -> Error {
+fn stored_point(e: crate::nnm::error::Error) -> Error {
+    let e = Error::from(e);
     if e.kind == ErrorKind::Input {
         e.keyword("NUME_ORDRE")
     } else {

@@ -33,7 +33,7 @@
 //! The ratio is (W + Σ η_floor)/⟨uᵀKu⟩ (⟨uᵀKu⟩ the elastic virial, positive): what
 //! StepControl::work_min (RESOLUTION/TRAVAIL_CHOC_MINI) compares.
 
-use crate::error::Result;
+use crate::nnm::error::Result;
 use crate::nnm::model::point_law::eta_phys;
 use crate::nnm::model::system::Layout;
 use crate::nnm::Problem;

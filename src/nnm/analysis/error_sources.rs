@@ -34,10 +34,10 @@
 //! [`WORTH`] of the |error| before; none is named where the error is below [`NEGLIGIBLE`]
 //! for every remainder.
 
-use crate::error::{Error, Result};
 use crate::nnm::analysis::exact_law::{
     self, correct_on_law, ExactLawSettings, HeldEnergy, Variant,
 };
+use crate::nnm::error::{Error, Result};
 use crate::nnm::model::fourier;
 use crate::nnm::model::point::Point;
 use crate::nnm::model::problem::Harmonics;

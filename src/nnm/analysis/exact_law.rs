@@ -35,7 +35,7 @@
 // the crate root: src/lib.rs.)
 #![allow(clippy::needless_range_loop)]
 
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result};
 use crate::nnm::model::fourier::{self, Sampler};
 use crate::nnm::model::point_law::{eta_phys, PointLaw};
 use crate::nnm::solve::dense_lu::DenseLu;

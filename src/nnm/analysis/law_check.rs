@@ -7,7 +7,7 @@
 //! the sampled displacement catches that: on a physical branch the gap is truncation error
 //! (measured ≤ 4e-3 of α·JEU on BI_PLAN, ≤ 2e-7 on PLAN), on a spurious root it is O(1).
 
-use crate::error::Result;
+use crate::nnm::error::Result;
 use crate::nnm::model::fourier::{FftScratch, Sampler};
 use crate::nnm::model::point_law::{eta_phys, PointLaw};
 use crate::nnm::model::system::Layout;

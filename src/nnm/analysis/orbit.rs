@@ -2,8 +2,8 @@
 //! and the Fourier coefficients of each unknown in physical units (for REST_MODE_NONL,
 //! CALC_STABILITE and the tables).
 
-use crate::error::{Error, Result};
 use crate::nnm::continuation::start::system_for_point;
+use crate::nnm::error::{Error, Result, Setting};
 use crate::nnm::model::point::to_scaled;
 use crate::nnm::model::unknowns::Unknowns;
 use crate::nnm::{model::fourier, Harmonics, Problem};
@@ -37,7 +37,8 @@ pub fn time_history(
     let omega = xs[lay.omega()] * scaling.omega;
     if !(omega.is_finite() && omega > 0.0) || n_inst < 2 {
         return Err(
-            Error::input("a time history needs ω > 0 and at least 2 instants").keyword("NB_INST"),
+            Error::input("a time history needs ω > 0 and at least 2 instants")
+                .setting(Setting::OrbitInstants),
         );
     }
     let th: Vec<f64> = (0..n_inst)

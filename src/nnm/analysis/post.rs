@@ -7,10 +7,10 @@
 //! check, the physical laws (η needs factorisations of K and M) and the FFT plan of the
 //! sampling (`PostProcessor`). A row then costs copies and a few FFTs.
 
-use crate::error::Result;
 use crate::nnm::analysis::contact_work::ContactWork;
 use crate::nnm::analysis::law_check::LawCheck;
 use crate::nnm::continuation::end_check::EndCheck;
+use crate::nnm::error::Result;
 use crate::nnm::model::unknowns::Unknowns;
 use crate::nnm::{Harmonics, Problem};
 
@@ -189,7 +189,7 @@ mod tests {
         let post = PostProcessor::new(&p, &s).unwrap();
         let n = Unknowns::new(&p, &s).unwrap().layout().n_unk;
         let e = post.row(&vec![0.0; n - 1]).unwrap_err();
-        assert_eq!(e.kind, crate::error::ErrorKind::Input);
+        assert_eq!(e.kind, crate::nnm::error::ErrorKind::Input);
         let mut x = vec![0.0; n];
         x[3] = f64::NAN;
         assert!(post.row(&x).is_err());

@@ -31,7 +31,7 @@
 //! - a pair met within [`BRANCH_POINT_ROWS`] rows of a row flagged BIFURCATION='OUI' is a
 //!   branch point between the two families and is said so.
 
-use crate::error::Result;
+use crate::nnm::error::Result;
 use crate::nnm::model::linear_modes::LinearMode;
 use crate::nnm::{contact_coefficients, displacement_coefficients, Harmonics, Point, Problem};
 use std::ops::Div;

@@ -2,7 +2,7 @@
 //! for `aster-nl bench`: where the cost model's choice lands against the measured
 //! crossover.
 
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result};
 use crate::nnm::model::contact_samples::init_contact;
 use crate::nnm::model::system::{Scaling, System};
 use crate::nnm::solve::contact::{self, ContactBlock, Method};

@@ -46,7 +46,7 @@ mod shooting_tests;
 #[cfg(test)]
 mod tests;
 
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result, Setting};
 use crate::nnm::model::point_law::{eta_phys, PointLaw};
 use crate::nnm::model::unknowns::Unknowns;
 use crate::nnm::{model::fourier, Harmonics, Problem};
@@ -308,13 +308,15 @@ impl FloquetAnalyser {
         tolerance: f64,
     ) -> Result<Floquet> {
         if n_steps == 0 {
-            return Err(Error::input("NB_INST must be at least 1").keyword("SCHEMA_TEMPS/NB_INST"));
+            return Err(
+                Error::input("NB_INST must be at least 1").setting(Setting::StabilityInstants)
+            );
         }
         if !(tolerance.is_finite() && tolerance >= 0.0) {
             return Err(Error::input(format!(
                 "TOLERANCE must be a non-negative number, got {tolerance}"
             ))
-            .keyword("TOLERANCE"));
+            .setting(Setting::StabilityTolerance));
         }
         let coefs = self.unknowns.displacement(x)?;
         // ω is the last-but-one unknown of a stored point (rad/s, module doc of nnm).
@@ -352,7 +354,7 @@ pub(crate) fn monodromy(
 ) -> Result<Mat<f64>> {
     let mass = lin.m.llt(Side::Lower).map_err(|_| {
         Error::input("the mass matrix is not symmetric positive definite: the Floquet analysis needs a mass on every DOF")
-            .keyword("MODE_NON_LINE")
+            .setting(Setting::StabilityRows)
     })?;
     let phi = match integrator {
         Integrator::Newmark => integrate::newmark(lin, &mass, n_steps)?,

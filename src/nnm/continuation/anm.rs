@@ -9,8 +9,8 @@
 //! the NB_BRANCHE of Code_Aster's command files covers the same energy range (sdnd122a:
 //! 105 branches reach past ENERGIE = 6.5e-3, which the classic estimate does not).
 
-use crate::error::{Error, Result};
 use crate::nnm::continuation::pade::Pade;
+use crate::nnm::error::{Error, Result};
 use crate::nnm::model::system::{Grid, Samples, System};
 use crate::nnm::model::workspace::Workspace;
 use crate::nnm::solve::linear_solver::TangentSolver;

@@ -5,8 +5,8 @@
 //! tangent at each of them. Why a determinant test beside the series one, and how the
 //! sign is obtained without a dense matrix: condensed_det.rs and linear_solver.rs.
 
-use crate::error::Result;
 use crate::nnm::continuation::anm::Series;
+use crate::nnm::error::Result;
 use crate::nnm::model::system::System;
 use crate::nnm::solve::linear_solver::TangentSolver;
 use crate::nnm::Point;

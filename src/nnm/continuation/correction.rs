@@ -2,13 +2,13 @@
 //! Newton-corrected (newton.rs), checked against its contact law in time, and retried from
 //! the same series with a shorter step when it fails (docs/nnm.md, "Failed corrections").
 
-use crate::error::{Error, Result};
 use crate::nnm::continuation::anm;
 use crate::nnm::continuation::end_check::EndCheck;
 use crate::nnm::continuation::frequency_floor::OffTheFamily;
 use crate::nnm::continuation::newton;
 use crate::nnm::continuation::report::in_branch;
 use crate::nnm::continuation::step_control::ROOT_JUMP_RATIO;
+use crate::nnm::error::{Error, Result, Setting};
 use crate::nnm::model::energy::energy_ca_joules;
 use crate::nnm::model::point::{finite, make_point};
 use crate::nnm::model::root_defect::frequency_defect;
@@ -43,7 +43,7 @@ pub(in crate::nnm) fn off_the_law(
                      that is not a motion of the system)",
                     end.energy, end.frequency
                 ))
-                .keyword("RESOLUTION/ECART_LOI_CHOC_MAXI")
+                .setting(Setting::LawDefectMax)
                 .hint(
                     "lower PREC_MAN (1e-9 or below: shorter series steps do not jump across to \
                      the other root of the law), raise PARA_REGUL, or raise NB_HARM_NONL",
@@ -62,7 +62,7 @@ pub(in crate::nnm) fn off_the_law(
                      system (its force series is too short for the contact it carries)",
                     end.energy, end.frequency
                 ))
-                .keyword("RESOLUTION/TRAVAIL_CHOC_MINI")
+                .setting(Setting::ContactWorkMin)
                 .hint(
                     "raise NB_HARM_NONL and NB_HARM_LINE (a stiff stop needs both), or raise \
                      PARA_REGUL or lower RIGI_NOR",
@@ -86,7 +86,7 @@ pub(in crate::nnm) fn off_the_law(
                     end.frequency,
                     2.0 * std::f64::consts::PI * ratio
                 ))
-                .keyword("RESOLUTION/AMOR_FICTIF_MAXI")
+                .setting(Setting::FictitiousDampingMax)
                 .hint(
                     "raise NB_HARM_NONL and NB_HARM_LINE (the truncated contact force is not \
                      conservative enough), or lower PREC_MAN",
@@ -153,7 +153,7 @@ pub(in crate::nnm) fn off_the_law(
         if let Some((why, hint)) = why {
             return Ok(Some(
                 Error::numerical(why)
-                    .keyword("RESOLUTION/BAISSE_FREQ_MAXI")
+                    .setting(Setting::FrequencyDropMax)
                     .hint(hint),
             ));
         }
@@ -169,7 +169,7 @@ pub(in crate::nnm) fn off_the_law(
                      accuracy",
                     end.energy, end.frequency
                 ))
-                .keyword("RESOLUTION/ECART_ENERGIE_MAXI")
+                .setting(Setting::EnergySpreadMax)
                 .hint(
                     "raise NB_HARM_LINE (a stiff stop needs many harmonics of the displacement), \
                      lower PREC_MAN, or raise PARA_REGUL",
@@ -272,7 +272,7 @@ fn branch_points_of(
                  family of periodic orbits",
                 p.frequency
             ))
-            .keyword("RESOLUTION/PREC_MAN")
+            .setting(Setting::SeriesPrecision)
             .hint(
                 "lower PREC_MAN (shorter, more accurate branches) or raise PARA_REGUL",
             )));

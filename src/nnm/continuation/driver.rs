@@ -3,7 +3,6 @@
 //! factorisation of the next branch's tangent and the determinant test (bifurcation.rs),
 //! the report (report.rs) — until NB_BRANCHE branches, the caller's bound, or an error.
 
-use crate::error::{Error, Result};
 use crate::nnm::continuation::anm::{self, AnmParams};
 use crate::nnm::continuation::bifurcation::DeterminantWatch;
 use crate::nnm::continuation::correction::{correct_branch, CorrectedBranch};
@@ -11,6 +10,7 @@ use crate::nnm::continuation::end_check::EndCheck;
 use crate::nnm::continuation::fold_guard::{BrokenTurn, EnergyTrend, CLEARANCE_DEFECT};
 use crate::nnm::continuation::report::{branch_report, in_branch, no_progress, stalled};
 use crate::nnm::continuation::series_step::{series_step, Orientation};
+use crate::nnm::error::{Error, Result, Setting};
 use crate::nnm::model::point::to_scaled;
 use crate::nnm::model::rescale;
 use crate::nnm::model::system::System;
@@ -244,7 +244,7 @@ fn turned_back(turn: &BrokenTurn) -> Error {
          at an internal resonance with its law held); the rows after the turn were not stored",
         turn.energy, turn.frequency, turn.defect, CLEARANCE_DEFECT
     ))
-    .keyword("RESOLUTION/NB_HARM_NONL")
+    .setting(Setting::HarmNonl)
     .hint(
         "raise NB_HARM_NONL (the rows near the turn are the least accurate: their contact law \
          is the least resolved), or stop the continuation below that ENERGIE",

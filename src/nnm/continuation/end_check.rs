@@ -3,7 +3,7 @@
 //! a motion. The continuation only asks; the analysis room answers (`PostProcessor`), so
 //! the driver never names a contact law.
 
-use crate::error::Result;
+use crate::nnm::error::Result;
 
 /// The checks of a branch end that need the problem's laws (StepControl::law_defect_max,
 /// StepControl::work_min).

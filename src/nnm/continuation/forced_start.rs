@@ -2,9 +2,9 @@
 //! the frequency band, Newton-corrected at that fixed frequency from rest, and the
 //! direction of increasing frequency the curve leaves along.
 
-use crate::error::{Error, Result};
 use crate::nnm::continuation::newton;
 use crate::nnm::continuation::start::StartState;
+use crate::nnm::error::{Error, Result, Setting};
 use crate::nnm::model::contact_samples::init_contact;
 use crate::nnm::model::point::make_point;
 use crate::nnm::model::system::{self, Scaling, System};
@@ -26,7 +26,7 @@ pub fn start_forced(problem: &Problem, settings: &Settings, omega: f64) -> Resul
     if !(omega.is_finite() && omega > 0.0) {
         return Err(
             Error::input(format!("the start pulsation must be positive, got {omega}"))
-                .keyword("FREQ_MIN"),
+                .setting(Setting::StartFrequency),
         );
     }
     system::validate(problem, settings)?;
@@ -69,7 +69,7 @@ pub fn start_forced(problem: &Problem, settings: &Settings, omega: f64) -> Resul
             message: format!("start point at FREQ_MIN: {}", e.message),
             ..e
         }
-        .keyword("FREQ_MIN")
+        .setting(Setting::StartFrequency)
         .hint(
             "the start is the steady state at FREQ_MIN, corrected from rest: choose FREQ_MIN \
              below the resonances, where the response is nearly linear",

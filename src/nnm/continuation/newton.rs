@@ -1,8 +1,8 @@
 //! Newton correction of a point: [L_t(X); tᵀ] δ = (−R(X), 0), the border t fixing the
 //! position along the branch (correction orthogonal to t).
 
-use crate::error::{Error, Result};
 use crate::nnm::continuation::anm::norm;
+use crate::nnm::error::{Error, Result, Setting};
 use crate::nnm::model::system::System;
 use crate::nnm::model::workspace::Workspace;
 use crate::nnm::solve::linear_solver::TangentSolver;
@@ -138,7 +138,7 @@ pub fn correct(
             return Err(Error::numerical(format!(
                 "Newton correction did not converge: ‖R‖ = {nr:.3e} > PREC_NEWTON = {tol:.1e} after {it} iterations"
             ))
-            .keyword("RESOLUTION/ITER_NEWTON_MAXI")
+            .setting(Setting::NewtonIterations)
             .hint("lower PREC_MAN (shorter branches), raise ITER_NEWTON_MAXI, or raise NB_HARM_NONL / PARA_REGUL"));
         }
         solver.factor(sys, x, border)?;

@@ -4,8 +4,8 @@
 //! stiffness in two directions, an axisymmetric shaft) the pair in quadrature is a whirl,
 //! the orbit that rolls around a CERCLE ring instead of crossing its centre.
 
-use crate::error::{Error, Result};
 use crate::nnm::continuation::start::{phase_dof, start, Guess};
+use crate::nnm::error::{Error, Result, Setting};
 use crate::nnm::model::contact_samples::init_contact;
 use crate::nnm::model::system::{Scaling, System};
 use crate::nnm::{model::fourier, Problem, Settings, StartState};
@@ -46,7 +46,7 @@ pub fn check_degenerate_pair(omega: f64, omega_quad: f64) -> Result<()> {
         hz(omega_quad),
         hz(omega)
     ))
-    .keyword("ETAT_INIT/NUME_ORDRE_QUAD")
+    .setting(Setting::StartQuadratureMode)
     .hint(
         "give in NUME_ORDRE_QUAD the other mode of the same frequency (isotropic or \
          axisymmetric support), or drop NUME_ORDRE_QUAD to start from one mode (planar orbit)",
@@ -72,7 +72,10 @@ pub fn start_from_mode_pair(
     let n = crate::nnm::check_start(
         problem,
         settings,
-        &[(mode, "NUME_ORDRE"), (quad, "NUME_ORDRE_QUAD")],
+        &[
+            (mode, Setting::StartMode),
+            (quad, Setting::StartQuadratureMode),
+        ],
         coef_ampl,
         omega_lin,
     )?;
@@ -84,7 +87,7 @@ pub fn start_from_mode_pair(
         return Err(Error::input(format!(
             "the linear mode has no positive modal mass (φᵀMφ = {mm:e})"
         ))
-        .keyword("ETAT_INIT/NUME_ORDRE"));
+        .setting(Setting::StartMode));
     }
     let proj = m_dot(&problem.m, mode, quad) / mm;
     let q: Vec<f64> = quad.iter().zip(mode).map(|(b, a)| b - proj * a).collect();
@@ -94,7 +97,7 @@ pub fn start_from_mode_pair(
         return Err(Error::input(
             "the mode in quadrature is collinear with the first mode: their combination is a planar orbit",
         )
-        .keyword("ETAT_INIT/NUME_ORDRE_QUAD")
+        .setting(Setting::StartQuadratureMode)
         .hint("give the other mode of the degenerate pair"));
     }
     let qs = (mm / qq).sqrt();
@@ -294,8 +297,8 @@ mod tests {
         // Frequencies 10 and 25 rad²/s²: error naming the keyword and both frequencies.
         let e = start_from_mode_pair(&p, &s, &[1.0, 0.0], &[0.0, 1.0], 0.9, w, 5.0).unwrap_err();
         assert_eq!(
-            e.keyword.as_deref(),
-            Some("ETAT_INIT/NUME_ORDRE_QUAD"),
+            e.setting,
+            Some(crate::nnm::error::Setting::StartQuadratureMode),
             "{e}"
         );
         assert!(e.message.contains("7.957747155e-1 Hz"), "{e}");
@@ -307,8 +310,8 @@ mod tests {
         // The same shape twice is a planar orbit, refused.
         let e = start_from_mode_pair(&p, &s, &[1.0, 0.5], &[-2.0, -1.0], 0.9, w, w).unwrap_err();
         assert_eq!(
-            e.keyword.as_deref(),
-            Some("ETAT_INIT/NUME_ORDRE_QUAD"),
+            e.setting,
+            Some(crate::nnm::error::Setting::StartQuadratureMode),
             "{e}"
         );
         assert!(e.message.contains("collinear"), "{e}");

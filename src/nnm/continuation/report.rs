@@ -2,8 +2,8 @@
 //! errors that name their branch), and the no-progress guard that ends a run whose steps
 //! have collapsed.
 
-use crate::error::Error;
 use crate::nnm::continuation::step_control::{STALL_ENERGY, STALL_FREQUENCY};
+use crate::nnm::error::{Error, Setting};
 use crate::nnm::Point;
 
 #[derive(Clone, Debug)]
@@ -83,7 +83,7 @@ pub(in crate::nnm) fn stalled(window: usize, energy: f64, frequency: f64, a_max:
         100.0 * STALL_ENERGY,
         100.0 * STALL_FREQUENCY,
     ))
-    .keyword("RESOLUTION/NB_BRANCHE_SANS_PROGRES")
+    .setting(Setting::BranchesWithoutProgress)
     .hint(
         "the series steps have collapsed (typically at the onset of a stiff contact, or far up a \
          nearly homogeneous branch where round-off dominates): if the branch has reached what you \

@@ -2,10 +2,10 @@
 //! oriented the way the user asked (DIR_EVOLUTION, module doc of nnm), and its length a_max
 //! reduced until the series is credible at its end.
 
-use crate::error::Result;
 use crate::nnm::continuation::anm::{self, AnmParams, Series};
 use crate::nnm::continuation::newton;
 use crate::nnm::continuation::pade::Pade;
+use crate::nnm::error::Result;
 use crate::nnm::model::energy;
 use crate::nnm::model::system::System;
 use crate::nnm::model::workspace::Workspace;

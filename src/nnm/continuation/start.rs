@@ -2,7 +2,7 @@
 //! COEF_AMPL or from a stored point (ETAT_INIT), Newton-corrected at fixed amplitude
 //! (docs/ehman.md §4). The start from a pair of modes in quadrature is quadrature.rs.
 
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result, Setting};
 use crate::nnm::model::contact_samples::init_contact;
 use crate::nnm::model::point::{finite, make_point, to_scaled};
 use crate::nnm::model::problem::Harmonics;
@@ -91,7 +91,7 @@ pub(in crate::nnm) fn start(
     if !finite(&border) {
         return Err(
             Error::input("the start point has no motion (all displacements are zero)")
-                .keyword("ETAT_INIT"),
+                .setting(Setting::Start),
         );
     }
     let mut solver = make_solver(&sys, &settings.continuation, kind)?;
@@ -169,7 +169,7 @@ fn start_error(e: Error, guess: Guess) -> Error {
     };
     if guess == Guess::LinearModes {
         let usual = err.hint.take();
-        err.keyword = Some("ETAT_INIT/COEF_AMPL".into());
+        err.setting = Some(Setting::StartAmplitude);
         err = err.hint(format!(
             "the start guess is the linear mode scaled by COEF_AMPL (approached from smaller \
              amplitudes too): start at a smaller COEF_AMPL, the continuation then climbs to \
@@ -294,7 +294,7 @@ pub(in crate::nnm) fn phase_dof(amplitudes: &[f64]) -> usize {
 pub(crate) fn check_start(
     problem: &Problem,
     settings: &Settings,
-    modes: &[(&[f64], &str)],
+    modes: &[(&[f64], Setting)],
     coef_ampl: f64,
     omega_lin: f64,
 ) -> Result<usize> {
@@ -306,13 +306,13 @@ pub(crate) fn check_start(
                 "the linear mode has {} finite components, {n} expected",
                 v.len()
             ))
-            .keyword(format!("ETAT_INIT/{key}")));
+            .setting(*key));
         }
     }
     if !(coef_ampl.is_finite() && coef_ampl > 0.0) {
         return Err(
             Error::input(format!("COEF_AMPL must be positive, got {coef_ampl}"))
-                .keyword("ETAT_INIT/COEF_AMPL"),
+                .setting(Setting::StartAmplitude),
         );
     }
     if !(omega_lin.is_finite() && omega_lin > 0.0) {
@@ -320,7 +320,7 @@ pub(crate) fn check_start(
             "the linear mode chosen has pulsation {omega_lin}: a rigid-body mode (or not a \
              vibration mode) has no periodic orbits to continue"
         ))
-        .keyword("ETAT_INIT/NUME_ORDRE")
+        .setting(Setting::StartMode)
         .hint(
             "start from an elastic mode (frequency above zero): the first NUME_ORDRE after \
              the rigid-body modes, or block the rigid-body motion (AFFE_CHAR_CINE, DDL_IMPO)",
@@ -363,7 +363,7 @@ pub fn start_from_mode_using(
     let n = check_start(
         problem,
         settings,
-        &[(mode, "NUME_ORDRE")],
+        &[(mode, Setting::StartMode)],
         coef_ampl,
         omega_lin,
     )?;
@@ -372,7 +372,7 @@ pub fn start_from_mode_using(
         .unwrap_or(0);
     let mp = mode[p].abs();
     if mp == 0.0 {
-        return Err(Error::input("the linear mode is zero").keyword("ETAT_INIT/NUME_ORDRE"));
+        return Err(Error::input("the linear mode is zero").setting(Setting::StartMode));
     }
     let scaling = Scaling::new(problem, coef_ampl * mp, p)?;
     let sys = System::new(problem, settings, scaling, phase_dof(mode))?;

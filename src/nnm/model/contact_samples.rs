@@ -3,7 +3,7 @@
 //! each law gives at those samples (a start guess, and the reference of the frequency
 //! defect, root_defect.rs).
 
-use crate::error::Result;
+use crate::nnm::error::Result;
 use crate::nnm::model::law;
 use crate::nnm::model::system::{ShockSys, System};
 

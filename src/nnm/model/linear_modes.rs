@@ -1,8 +1,8 @@
 //! The linear modes of the structure, (K, M) solved densely: what the frequency floor and
 //! the internal-resonance alarm compare a branch with.
 
-use crate::error::Result;
 use crate::linalg::eigen::{frequency, solve_modes, EigenOptions, Method, ModeRequest};
+use crate::nnm::error::Result;
 use crate::nnm::Problem;
 use faer::Side;
 

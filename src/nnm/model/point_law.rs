@@ -18,7 +18,7 @@
 //! Sign: the force enters M Ü + K U + Pᵀ F = 0 with a plus sign (as in the engine's
 //! residual), so a compressed stop (u > g for PLAN) has f > 0 and J adds to K.
 
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result};
 use crate::nnm::model::system::Scaling;
 use crate::nnm::{Problem, ShockLaw};
 

@@ -4,9 +4,9 @@
 //! then solves the reduced problem as any other; a full-model shape enters it through its
 //! reduced coordinates.
 
-use crate::error::{Error, Result};
 use crate::linalg::craig_bampton::{craig_bampton, rayleigh, ModeCut, Reduction};
 use crate::linalg::eigen::sym::SymSparse;
+use crate::nnm::error::{Error, Result};
 use crate::nnm::model::problem::{Problem, Shock};
 
 /// The DOFs the shocks act on, each once, in the order the shocks name them: the retained
@@ -24,7 +24,13 @@ pub fn shock_dofs(full: &Problem) -> Vec<usize> {
 /// The Craig–Bampton basis of `full` retaining its shock DOFs, with the modes `cut` asks
 /// for, in at most `max_columns` columns.
 pub fn shock_basis(full: &Problem, cut: ModeCut, max_columns: usize) -> Result<Reduction> {
-    craig_bampton(&full.k, &full.m, &shock_dofs(full), cut, max_columns)
+    Ok(craig_bampton(
+        &full.k,
+        &full.m,
+        &shock_dofs(full),
+        cut,
+        max_columns,
+    )?)
 }
 
 /// The problem on the coordinates of `basis`: Tᵀ K T, Tᵀ M T, and each shock on the

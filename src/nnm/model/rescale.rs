@@ -18,7 +18,7 @@
 //! by positive factors, and the new border is the old tangent scaled by the unknowns'
 //! factors, so the sign of the bordered tangent's determinant is unchanged (docs/nnm.md).
 
-use crate::error::Error;
+use crate::nnm::error::{Error, Setting};
 use crate::nnm::model::point::unit_factors;
 use crate::nnm::model::system::{Scaling, System};
 use crate::nnm::{Point, Problem};
@@ -93,7 +93,7 @@ pub(in crate::nnm) fn floor_far_up(
              up can be solved to PREC_NEWTON; that branch was not stored",
             end.energy, end.frequency, end.residual
         ))
-        .keyword("RESOLUTION/PREC_NEWTON")
+        .setting(Setting::NewtonPrecision)
         .hint(
             "the rows stored are solved to PREC_NEWTON; to go further up, raise PREC_NEWTON \
              (the rows beyond are then solved to it), or bound the run below this ENERGIE with \

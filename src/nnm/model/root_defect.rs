@@ -21,7 +21,7 @@
 //! the spurious one, and never large where contact barely matters (near grazing both
 //! families, and this measure, are close).
 
-use crate::error::Result;
+use crate::nnm::error::Result;
 use crate::nnm::model::contact_samples::shock_displacements;
 use crate::nnm::model::law;
 use crate::nnm::model::system::System;

@@ -11,7 +11,7 @@
 //! of Ω saying γ = 0: the force fixes the phase, so there is neither a time shift to remove
 //! nor a family of orbits to unfold, and Ω is the free unknown the curve is followed in.
 
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result, Setting};
 use crate::nnm::model::cosine_sampler::CosineSampler;
 use crate::nnm::model::fourier::{self, Sampler};
 use crate::nnm::model::law::{self, LawEqs, Var};
@@ -126,7 +126,7 @@ fn inverse_diag(
              (DOF {p}) to be computed in double precision: one step of iterative refinement \
              changes it by {change:.1e} (relative) from {v:.6e}"
         ))
-        .keyword("CHOC")
+        .setting(Setting::Shocks)
         .hint(format!(
             "the reference {what} {}_ref = 1/({symbol}⁻¹)pp (Code_Aster's scaling, \
              docs/mode_non_line.md) cannot be trusted: {}",
@@ -416,7 +416,7 @@ fn validate_matrices(problem: &Problem) -> Result<()> {
             problem.m.nrows(),
             problem.m.ncols()
         ))
-        .keyword("MATR_RIGI"));
+        .setting(Setting::Stiffness));
     }
     if problem
         .k
@@ -427,7 +427,7 @@ fn validate_matrices(problem: &Problem) -> Result<()> {
     {
         return Err(
             Error::input("the stiffness or mass matrix has non-finite entries")
-                .keyword("MATR_RIGI"),
+                .setting(Setting::Stiffness),
         );
     }
     Ok(())
@@ -449,7 +449,7 @@ fn validate_forcing(problem: &Problem) -> Result<()> {
             f.damping.nrows(),
             f.damping.ncols()
         ))
-        .keyword("MATR_AMOR"));
+        .setting(Setting::Damping));
     }
     if f.force.len() != n
         || f.force.iter().any(|v| !v.is_finite())
@@ -459,39 +459,35 @@ fn validate_forcing(problem: &Problem) -> Result<()> {
             "the force must have {n} finite values (one per free DOF), not all zero; got {}",
             f.force.len()
         ))
-        .keyword("EXCIT"));
+        .setting(Setting::Force));
     }
     Ok(())
 }
 
 fn validate_harmonics(problem: &Problem, settings: Harmonics) -> Result<()> {
     if settings.h_lin == 0 {
-        return Err(
-            Error::input("NB_HARM_LINE must be at least 1").keyword("RESOLUTION/NB_HARM_LINE")
-        );
+        return Err(Error::input("NB_HARM_LINE must be at least 1").setting(Setting::HarmLine));
     }
     if !problem.shocks.is_empty() && settings.h_nonl < settings.h_lin {
         return Err(Error::input(format!(
             "NB_HARM_NONL ({}) must be at least NB_HARM_LINE ({})",
             settings.h_nonl, settings.h_lin
         ))
-        .keyword("RESOLUTION/NB_HARM_NONL"));
+        .setting(Setting::HarmNonl));
     }
     Ok(())
 }
 
 fn validate_continuation(cont: &Continuation) -> Result<()> {
     if cont.order < 2 {
-        return Err(
-            Error::input("NB_ORDRE_MAN must be at least 2").keyword("RESOLUTION/NB_ORDRE_MAN")
-        );
+        return Err(Error::input("NB_ORDRE_MAN must be at least 2").setting(Setting::SeriesOrder));
     }
     if cont.n_points_per_branch == 0 {
-        return Err(Error::input("NB_PAS_MAN must be at least 1").keyword("RESOLUTION/NB_PAS_MAN"));
+        return Err(Error::input("NB_PAS_MAN must be at least 1").setting(Setting::StepsPerBranch));
     }
     if !(cont.prec_man > 0.0 && cont.prec_newton > 0.0) {
         return Err(Error::input("PREC_MAN and PREC_NEWTON must be positive")
-            .keyword("RESOLUTION/PREC_MAN"));
+            .setting(Setting::SeriesPrecision));
     }
     Ok(())
 }
@@ -506,7 +502,7 @@ fn validate_shocks(problem: &Problem) -> Result<()> {
                 "shock needs {want} component(s) among the {n} free DOFs, got {:?}",
                 s.dofs
             ))
-            .keyword("CHOC/NOM_CMP")));
+            .setting(Setting::ShockComponents)));
         }
         s.law
             .with(|l| l.validate(s.gap, s.stiffness, s.regul))

@@ -2,7 +2,7 @@
 //! problem and its harmonic counts, checked against a point read back from the store. Cheap
 //! to build (no scaling, matrices or FFT plan, unlike a `System`).
 
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result};
 use crate::nnm::model::point::finite;
 use crate::nnm::model::problem::Harmonics;
 use crate::nnm::model::system::{self, Layout};
@@ -202,8 +202,8 @@ mod tests {
         let n = Layout::of(&p, &s).0.n_unk;
         let e = unknowns.check(&vec![0.0; n - 1]).unwrap_err();
         // The engine does not know which keyword chose the point: the operator names it.
-        assert_eq!(e.kind, crate::error::ErrorKind::Input);
-        assert_eq!(e.keyword, None);
+        assert_eq!(e.kind, crate::nnm::error::ErrorKind::Input);
+        assert_eq!(e.setting, None);
         let mut x = vec![0.0; n];
         x[3] = f64::NAN;
         assert!(unknowns.check(&x).is_err());
@@ -225,7 +225,7 @@ mod tests {
         let n = Unknowns::new(&p, h).unwrap().layout().n_unk;
         assert_eq!(n, Layout::of(&p, &s).0.n_unk);
         let e = system::validate(&p, &s).unwrap_err();
-        assert_eq!(e.keyword.as_deref(), Some("RESOLUTION/NB_ORDRE_MAN"));
+        assert_eq!(e.setting, Some(crate::nnm::error::Setting::SeriesOrder));
         system::validate_problem(&p, h).unwrap();
         // Harmonics of their own are still checked.
         let bad = Harmonics {

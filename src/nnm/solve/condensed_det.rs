@@ -23,7 +23,7 @@
 //! hand and one dense LU of that size, independent of NB_HARM_NONL. (That is the reference
 //! solver's way; the engine's solver takes the sign from its own factors, linear_solver.rs.)
 
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result};
 use crate::nnm::model::system::System;
 use crate::nnm::solve::condensed_tangent::permutation_sign;
 use faer::Mat;

@@ -18,7 +18,7 @@
 //! LU with partial pivoting, whose factors are accessible: the sign of the determinant is
 //! the parities of the row and column permutations times the signs of U's diagonal.
 
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result};
 use crate::nnm::model::fourier;
 use crate::nnm::model::system::System;
 use crate::nnm::solve::dense_lu::out_of_memory;

@@ -31,7 +31,7 @@
 //! The structure sees the block only through W = A_ff⁻¹ A_fu (m = n_comp·(2H_l+1)
 //! columns: one solve each per factorisation) and one solve A_ff⁻¹ r_f per right-hand side.
 
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result};
 use crate::nnm::model::fourier::{self, FftScratch, Sampler};
 use crate::nnm::model::law::{LawEqs, Var};
 use crate::nnm::model::system::{is_cosine_series, Layout, ShockSys};

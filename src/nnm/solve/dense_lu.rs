@@ -2,7 +2,7 @@
 //! next (faer's in-place kernels, one thread: the blocks factorised here are at most a few
 //! thousand rows, where hand-offs between threads cost more than they save on 2 cores).
 
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::{factor, solve};
 use faer::perm::PermRef;

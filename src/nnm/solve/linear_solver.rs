@@ -16,7 +16,7 @@
 //!   the determinant sign from a minor of its inverse (condensed_det.rs): the dense reference
 //!   the tests compare the structured solver with.
 
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result};
 use crate::nnm::model::fourier;
 use crate::nnm::model::system::System;
 use crate::nnm::model::vector::dot_in_order as dot;

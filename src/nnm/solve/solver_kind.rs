@@ -1,7 +1,7 @@
 //! Which solver of the bordered tangent a run uses (linear_solver.rs), chosen once at the
 //! start and kept for the whole continuation.
 
-use crate::error::Result;
+use crate::nnm::error::Result;
 use crate::nnm::model::system::System;
 use crate::nnm::solve::linear_solver::{self, ReferenceSolver, StructuredSolver, TangentSolver};
 use crate::nnm::{ContactMethod, Continuation};

@@ -406,7 +406,10 @@ fn hard_failed_correction_keeps_the_points_before_it() {
         "{e}"
     );
     assert!(e.message.contains("PREC_NEWTON"), "{e}");
-    assert_eq!(e.keyword.as_deref(), Some("RESOLUTION/ITER_NEWTON_MAXI"));
+    assert_eq!(
+        e.setting,
+        Some(crate::nnm::error::Setting::NewtonIterations)
+    );
     assert!(e.hint.as_deref().unwrap_or("").contains("ITER_NEWTON_MAXI"));
 }
 
@@ -560,7 +563,7 @@ fn hard_non_physical_family_stops_on_the_law_check() {
     assert!(last.frequency < 0.9 * f_lin, "{}", last.frequency);
     let guarded = go(Some(0.5));
     let e = guarded.error.expect("the law check stops the run");
-    assert_eq!(e.keyword.as_deref(), Some("RESOLUTION/ECART_LOI_CHOC_MAXI"));
+    assert_eq!(e.setting, Some(crate::nnm::error::Setting::LawDefectMax));
     assert!(
         e.message.contains("left the physical root") && e.message.contains("halved 4 times"),
         "{}",

@@ -650,15 +650,15 @@ fn bad_input_gives_keyword_errors() {
     let mut p = one_dof(ShockLaw::Plan, 1e-4);
     p.shocks[0].gap = -1.0;
     let e = start_from_mode(&p, &settings(3, 30, 1, 1), &[1.0], 1.0, 3.0).unwrap_err();
-    assert_eq!(e.keyword.as_deref(), Some("CHOC/JEU"));
+    assert_eq!(e.setting, Some(crate::nnm::error::Setting::ShockGap));
     let p = one_dof(ShockLaw::Plan, 1e-4);
     let e = start_from_mode(&p, &settings(5, 3, 1, 1), &[1.0], 1.0, 3.0).unwrap_err();
-    assert_eq!(e.keyword.as_deref(), Some("RESOLUTION/NB_HARM_NONL"));
+    assert_eq!(e.setting, Some(crate::nnm::error::Setting::HarmNonl));
     // A stored point of the wrong size: an input error; which keyword chose the point
     // (ETAT_INIT/NUME_ORDRE, REST_MODE_NONL's NUME_ORDRE) is the operator's to say.
     let e = start_from_point(&p, &settings(3, 30, 1, 1), &[1.0; 5]).unwrap_err();
-    assert_eq!(e.kind, crate::error::ErrorKind::Input);
-    assert_eq!(e.keyword, None);
+    assert_eq!(e.kind, crate::nnm::error::ErrorKind::Input);
+    assert_eq!(e.setting, None);
 }
 
 /// Frequency at energy `e` by linear interpolation (INTERPOL='LIN').

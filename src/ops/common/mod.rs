@@ -6,6 +6,8 @@
 pub mod harness;
 // MODE_NON_LINE's live view: the rows of each branch in a side file while it runs.
 pub mod live;
+// The engine's errors in the user's words (the keyword of each setting).
+pub mod engine_errors;
 // One component of a dyna_trans by NOM_CHAM, NOEUD | GROUP_NO, NOM_CMP (TEST_RESU,
 // RECU_FONCTION).
 pub mod dyna_trans;

@@ -15,31 +15,23 @@
 //! the continuation cannot go on").
 
 use crate::error::{Error, ErrorKind, Result};
+use crate::nnm::error::Error as EngineError;
 use crate::nnm::Point;
 use crate::ops::OpContext;
 
 /// The alarm of a run that ended before NB_BRANCHE with its rows stored.
 pub const ALARM: &str = "MODE_NON_LINE_8";
 
-/// The checks whose failure says the branch has left the motions of the system (its end
-/// breaks its contact law, or its energy is not conserved) rather than that it cannot go
-/// on: the rows just before may be off the law too ([`rows_kept`]).
-const WRONG_BRANCH: &[&str] = &[
-    "ECART_LOI_CHOC_MAXI",
-    "ECART_ENERGIE_MAXI",
-    "TRAVAIL_CHOC_MINI",
-    "BAISSE_FREQ_MAXI",
-    "AMOR_FICTIF_MAXI",
-];
-
-fn is_wrong_branch(e: &Error) -> bool {
-    e.keyword
-        .as_deref()
-        .is_some_and(|k| WRONG_BRANCH.iter().any(|w| k.ends_with(w)))
+/// Whether the failure says the branch has left the motions of the system (a branch-end
+/// check: ECART_LOI_CHOC_MAXI, ECART_ENERGIE_MAXI, TRAVAIL_CHOC_MINI, BAISSE_FREQ_MAXI,
+/// AMOR_FICTIF_MAXI; `Setting::says_wrong_branch`) rather than that it cannot go on: the
+/// rows just before may be off the law too ([`rows_kept`]).
+fn is_wrong_branch(e: &EngineError) -> bool {
+    e.setting.is_some_and(|s| s.says_wrong_branch())
 }
 
 /// Whether `error` may cut rows off the end of the table ([`rows_kept`]).
-pub fn cuts_rows(error: Option<&Error>) -> bool {
+pub fn cuts_rows(error: Option<&EngineError>) -> bool {
     error.is_some_and(is_wrong_branch)
 }
 
@@ -49,7 +41,7 @@ pub fn cuts_rows(error: Option<&Error>) -> bool {
 /// `LAW_DEFECT_ALARM`, or contact forces that attract the structure on average,
 /// TRAVAIL_CHOC_MINI) are dropped: past the last row that is one, the branch is no longer a
 /// motion of the system.
-pub fn rows_kept(error: Option<&Error>, motions: &[bool]) -> usize {
+pub fn rows_kept(error: Option<&EngineError>, motions: &[bool]) -> usize {
     match error {
         Some(e) if is_wrong_branch(e) => motions.iter().rposition(|&ok| ok).map_or(0, |i| i + 1),
         _ => motions.len(),
@@ -144,10 +136,11 @@ mod tests {
 
     #[test]
     fn a_wrong_branch_drops_only_its_trailing_rows_that_are_not_motions() {
-        let law = Error::numerical("off the law").keyword("RESOLUTION/ECART_LOI_CHOC_MAXI");
-        let energy = Error::numerical("energy").keyword("RESOLUTION/ECART_ENERGIE_MAXI");
-        let work = Error::numerical("attracts").keyword("RESOLUTION/TRAVAIL_CHOC_MINI");
-        let newton = Error::numerical("no convergence").keyword("RESOLUTION/ITER_NEWTON_MAXI");
+        use crate::nnm::error::Setting;
+        let law = EngineError::numerical("off the law").setting(Setting::LawDefectMax);
+        let energy = EngineError::numerical("energy").setting(Setting::EnergySpreadMax);
+        let work = EngineError::numerical("attracts").setting(Setting::ContactWorkMin);
+        let newton = EngineError::numerical("no convergence").setting(Setting::NewtonIterations);
         let d = [true, false, true, false, false];
         // The suspect row 2 is followed by a motion: only rows 4 and 5 go.
         assert_eq!(rows_kept(Some(&law), &d), 3);

@@ -45,7 +45,7 @@ pub fn settings(args: &Args, s: &Settings) -> Result<Option<ExactLawSettings>> {
 pub fn check(problem: &Problem, set: &ExactLawSettings) -> Result<()> {
     let n = problem.k.nrows();
     exact_law::check_size(n, set.h_lin).map_err(|e| {
-        e.keyword(KEYWORD).hint(format!(
+        crate::error::Error::from(e).keyword(KEYWORD).hint(format!(
             "the correction is dense (at most {} unknowns): lower NB_HARM_LINE, or leave \
              CORR_LOI_EXACTE='NON' on a model of this size",
             exact_law::MAX_DENSE

@@ -96,7 +96,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
 
     end::report(
         ctx,
-        outcome.error,
+        outcome.error.map(Error::from),
         outcome.limit.as_deref(),
         points,
         outcome.points.len() - kept,
@@ -373,6 +373,7 @@ fn start_state(ctx: &mut OpContext<'_>, args: &Args, call: &Call) -> Result<Star
             })?;
             // A stored point that does not fit these settings is the start row's fault.
             let start_state = nnm::start_from_point(problem, settings, &x).map_err(|e| {
+                let e = Error::from(e);
                 if e.kind == ErrorKind::Input {
                     e.keyword("ETAT_INIT/NUME_ORDRE")
                 } else {
@@ -743,7 +744,7 @@ fn restart_direction(
                     tr.from, tr.to
                 ))?;
             }
-            start_state.travelling(tr.direction)
+            Ok(start_state.travelling(tr.direction)?)
         }
         None => {
             ctx.alarm(

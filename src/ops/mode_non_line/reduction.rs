@@ -62,7 +62,8 @@ pub(super) fn basis(full: &Problem, cut: ModeCut) -> Result<Reduction> {
     let bytes = crate::process::memory_limit().map_or(f64::INFINITY, |(b, _)| b);
     let in_memory = (bytes / (n * BYTES_PER_BASIS_ENTRY)).min(usize::MAX as f64) as usize;
     let max_columns = in_memory.min(MAX_BASIS_COLUMNS);
-    nnm::shock_basis(full, cut, max_columns).map_err(|e| e.keyword("MODE_NON_LINE/REDUCTION"))
+    nnm::shock_basis(full, cut, max_columns)
+        .map_err(|e| crate::error::Error::from(e).keyword("MODE_NON_LINE/REDUCTION"))
 }
 
 /// What the setup stores of a basis (its columns go to `mnl_basis`).

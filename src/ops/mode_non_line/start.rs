@@ -56,7 +56,7 @@ pub fn from_linear_modes(
     // A full-model shape and pulsation, as the problem's coordinates see them.
     let on_problem = |(shape, omega): (Vec<f64>, f64)| -> Result<(Vec<f64>, f64)> {
         match reduction {
-            Some(r) => r.start_mode(problem, &shape),
+            Some(r) => Ok(r.start_mode(problem, &shape)?),
             None => Ok((shape, omega)),
         }
     };
@@ -67,7 +67,9 @@ pub fn from_linear_modes(
     )?;
     let coef = etat.req_real("COEF_AMPL")?;
     let Some(quad_order) = etat.int("NUME_ORDRE_QUAD") else {
-        return nnm::start_from_mode(problem, settings, &shape, coef, omega);
+        return Ok(nnm::start_from_mode(
+            problem, settings, &shape, coef, omega,
+        )?);
     };
     let quad_kw = etat.key_path("NUME_ORDRE_QUAD");
     if quad_order == nume_ordre {
@@ -80,15 +82,20 @@ pub fn from_linear_modes(
     let (quad, omega_quad) = on_problem(
         pick(&modes, modes_name, quad_order, k).map_err(|e| e.keyword(quad_kw.clone()))?,
     )?;
-    nnm::check_degenerate_pair(omega, omega_quad).map_err(|e| Error {
-        message: format!(
-            "NUME_ORDRE_QUAD={quad_order} and NUME_ORDRE={nume_ordre}: {}",
-            e.message
-        ),
-        keyword: Some(quad_kw.clone()),
-        ..e
+    nnm::check_degenerate_pair(omega, omega_quad).map_err(|e| {
+        let e = Error::from(e);
+        Error {
+            message: format!(
+                "NUME_ORDRE_QUAD={quad_order} and NUME_ORDRE={nume_ordre}: {}",
+                e.message
+            ),
+            keyword: Some(quad_kw.clone()),
+            ..e
+        }
     })?;
-    nnm::start_from_mode_pair(problem, settings, &shape, &quad, coef, omega, omega_quad)
+    Ok(nnm::start_from_mode_pair(
+        problem, settings, &shape, &quad, coef, omega, omega_quad,
+    )?)
 }
 
 /// Alarm MODE_NON_LINE_11: the start from the linear mode could not be corrected at

@@ -3,7 +3,7 @@
 //! The result is the monodromy matrix Φ(T) = [[δU(T)], [δV(T)]] (2n × 2n).
 
 use super::Linearised;
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result};
 use faer::linalg::solvers::Llt;
 use faer::prelude::Solve;
 use faer::Mat;

@@ -18,7 +18,7 @@
 //! moves eig(R) by O(ε) instead of O(√ε) (except for a nontrivial multiplier itself at +1).
 //! Coordinates are (u, v/ω) so that both halves share units.
 
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result};
 use faer::Mat;
 
 /// eig(Wᵀ Φ W) for the monodromy `phi` (2n × 2n, state (u, v)), the mass `m` (n × n), the

@@ -597,14 +597,14 @@ fn bad_input_gives_keyword_errors() {
     let s = settings(5, 50, 1);
     let st = start_from_mode(&p, &s, &[1.0], 1.0, 10f64.sqrt()).unwrap();
     let x = &st.point.x;
-    let kw = |r: Result<Floquet>| r.unwrap_err().keyword;
+    let kw = |r: Result<Floquet>| r.unwrap_err().setting;
     assert_eq!(
-        kw(floquet(&p, &s, x, 0, Integrator::Newmark, 1e-2)).as_deref(),
-        Some("SCHEMA_TEMPS/NB_INST")
+        kw(floquet(&p, &s, x, 0, Integrator::Newmark, 1e-2)),
+        Some(crate::nnm::error::Setting::StabilityInstants)
     );
     assert_eq!(
-        kw(floquet(&p, &s, x, 100, Integrator::Newmark, -1.0)).as_deref(),
-        Some("TOLERANCE")
+        kw(floquet(&p, &s, x, 100, Integrator::Newmark, -1.0)),
+        Some(crate::nnm::error::Setting::StabilityTolerance)
     );
     assert!(floquet(&p, &s, &x[1..], 100, Integrator::Rk4, 1e-2).is_err());
     // A DOF without mass: M is not positive definite, refused rather than inverted.
@@ -616,7 +616,7 @@ fn bad_input_gives_keyword_errors() {
     let coefs = vec![vec![0.0, 0.02, 0.0, 0.0, 0.0]; 2];
     let lin = Linearised::new(&massless, Orbit::new(coefs, 2, 3.0).unwrap()).unwrap();
     let err = monodromy(&lin, 100, Integrator::Newmark).unwrap_err();
-    assert_eq!(err.keyword.as_deref(), Some("MODE_NON_LINE"));
+    assert_eq!(err.setting, Some(crate::nnm::error::Setting::StabilityRows));
 }
 
 #[test]

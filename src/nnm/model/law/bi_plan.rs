@@ -7,7 +7,7 @@
 //! not help the cancellation: BI_PLAN keeps Code_Aster's unit far up a branch.
 
 use super::{component as comp, lin_term, quad_term, samples, ContactLaw, LawEqs, Var};
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result, Setting};
 
 /// The two-sided stop.
 #[derive(Clone, Copy, Debug)]
@@ -48,7 +48,7 @@ pub(super) fn biplan_pointwise(u: f64, alpha: f64, g: f64, eta: f64) -> Result<(
             "BI_PLAN: PARA_REGUL is too large for RIGI_NOR (η/JEU² = {ep:e} ≥ RIGI_NOR = {alpha:e}); \
              the regularised law has no restoring branch"
         ))
-        .keyword("CHOC/PARA_REGUL"));
+        .setting(Setting::ShockRegularisation));
     }
     let (sign, ua) = if u < 0.0 { (-1.0, -u) } else { (1.0, u) };
     // The root is the engine's bisection (`biplan_force`, whose η is η/g²).

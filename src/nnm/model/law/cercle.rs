@@ -18,7 +18,7 @@
 use super::bi_plan::{biplan_force, biplan_pointwise};
 use super::plan::{plan_force, plan_pointwise};
 use super::{component as comp, lin_term, quad_term, samples, ContactLaw, LawEqs, Lin, Term, Var};
-use crate::error::Result;
+use crate::nnm::error::Result;
 
 /// Which regularisation of the ring law (CHOC/LOI_CERCLE).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -55,7 +55,7 @@
 //! the truncated series of z overshoots 1 and the harmonic-balance block changes sign
 //! (nnm/tests/mod.rs, cercle_law_block_keeps_its_determinant_sign_along_branches); λ avoids it.
 
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result, Setting};
 
 mod bi_plan;
 mod cercle;
@@ -165,20 +165,20 @@ pub trait ContactLaw {
     fn validate(&self, gap: f64, stiffness: f64, regul: f64) -> Result<()> {
         if !(gap.is_finite() && gap > 0.0) {
             return Err(
-                Error::input(format!("JEU must be positive, got {gap}")).keyword("CHOC/JEU")
+                Error::input(format!("JEU must be positive, got {gap}")).setting(Setting::ShockGap)
             );
         }
         if !(stiffness.is_finite() && stiffness > 0.0) {
             return Err(
                 Error::input(format!("RIGI_NOR must be positive, got {stiffness}"))
-                    .keyword("CHOC/RIGI_NOR"),
+                    .setting(Setting::ShockStiffness),
             );
         }
         if !(regul.is_finite() && regul > 0.0) {
             return Err(Error::input(format!(
                 "PARA_REGUL must be positive (the regularised law is singular at 0), got {regul}"
             ))
-            .keyword("CHOC/PARA_REGUL"));
+            .setting(Setting::ShockRegularisation));
         }
         Ok(())
     }

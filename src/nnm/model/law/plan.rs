@@ -7,7 +7,7 @@
 //! far up a branch the unknowns can be rescaled (rescale.rs).
 
 use super::{component as comp, lin_term, quad_term, samples, ContactLaw, LawEqs, Var};
-use crate::error::Result;
+use crate::nnm::error::Result;
 
 /// The unilateral stop.
 #[derive(Clone, Copy, Debug)]

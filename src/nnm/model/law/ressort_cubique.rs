@@ -16,7 +16,7 @@
 //! rescalable: in a length unit L′ its equations are the same with β′ = k₃L′²/k_ref.
 
 use super::{component as comp, lin_term, quad_term, samples, ContactLaw, LawEqs, Var};
-use crate::error::{Error, Result};
+use crate::nnm::error::{Error, Result, Setting};
 
 /// The cubic spring, in equations whose lengths are in units of `unit` metres (1 for the
 /// pointwise law in physical units).
@@ -40,7 +40,7 @@ impl ContactLaw for RessortCubique {
             return Err(Error::input(format!(
                 "RAIDEUR of a cubic spring must be finite and positive, got {stiffness}"
             ))
-            .keyword("RESSORT_CUBIQUE/RAIDEUR"));
+            .setting(Setting::CubicStiffness));
         }
         Ok(())
     }
