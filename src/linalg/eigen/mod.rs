@@ -202,6 +202,24 @@ pub fn solve_modes(
     solve_modes_sym(&ks, &ms, req, opts)
 }
 
+/// How many eigenvalues ω² of K φ = ω² M φ lie strictly below each value of `omega2s`
+/// (Sylvester's inertia of K − σM: one LDLᵀ per value, on one symbolic pattern), without
+/// computing any mode.
+pub fn counts_below(
+    k: &SparseColMat<usize, f64>,
+    m: &SparseColMat<usize, f64>,
+    omega2s: &[f64],
+) -> Result<Vec<usize>> {
+    let ks = SymSparse::from_faer(k, "stiffness")?;
+    let ms = SymSparse::from_faer(m, "mass")?;
+    let scale = spectral_scale(&ks, &ms)?;
+    let mut shared = Shared::default();
+    omega2s
+        .iter()
+        .map(|&sigma| count_below(&mut shared, &ks, &ms, sigma, scale, FactorKind::Auto))
+        .collect()
+}
+
 /// Same as [`solve_modes`] on matrices already in [`SymSparse`] form.
 pub fn solve_modes_sym(
     ks: &SymSparse,

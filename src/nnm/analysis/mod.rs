@@ -5,6 +5,7 @@
 //! stability. Uses every other room; none uses it.
 
 pub(in crate::nnm) mod amplitude;
+pub(in crate::nnm) mod band;
 pub(in crate::nnm) mod below_contact;
 pub(in crate::nnm) mod contact_work;
 pub mod error_sources;
