@@ -11,12 +11,12 @@ use crate::nnm::{
 use std::f64::consts::PI;
 
 /// m, k, c, F of the one-DOF oscillator (sdnd122's mass and spring, 1.6 % damping).
-const M: f64 = 1.0;
-const K: f64 = 10.0;
-const C: f64 = 0.1;
-const F: f64 = 0.01;
+pub(crate) const M: f64 = 1.0;
+pub(crate) const K: f64 = 10.0;
+pub(crate) const C: f64 = 0.1;
+pub(crate) const F: f64 = 0.01;
 
-fn forced(
+pub(crate) fn forced(
     k: &[(usize, usize, f64)],
     m: &[(usize, usize, f64)],
     c: &[(usize, usize, f64)],
@@ -35,7 +35,7 @@ fn forced(
     }
 }
 
-fn plan(gap: f64, stiffness: f64, regul: f64) -> Shock {
+pub(crate) fn plan(gap: f64, stiffness: f64, regul: f64) -> Shock {
     Shock {
         law: ShockLaw::Plan,
         dofs: vec![0],
@@ -46,7 +46,7 @@ fn plan(gap: f64, stiffness: f64, regul: f64) -> Shock {
 }
 
 /// The curve from `f_min` Hz until it passes `f_max` (the start point first).
-fn curve(p: &Problem, s: &Settings, f_min: f64, f_max: f64) -> Vec<Point> {
+pub(crate) fn curve(p: &Problem, s: &Settings, f_min: f64, f_max: f64) -> Vec<Point> {
     let start = start_forced(p, s, 2.0 * PI * f_min).unwrap();
     let mut points = vec![start.point.clone()];
     let out = continue_while(p, s, start, &mut |_, pts| {
@@ -213,7 +213,7 @@ fn a_stop_never_reached_leaves_the_linear_response() {
 
 /// The regularised PLAN force of the engine's law (docs/ehman.md §2) in physical units,
 /// its positive root written here: f² − α f (u − g) − α η = 0, η = PARA_REGUL·k·g².
-fn plan_force(u: f64, g: f64, alpha: f64, eta: f64) -> f64 {
+pub(crate) fn plan_force(u: f64, g: f64, alpha: f64, eta: f64) -> f64 {
     let b = alpha * (u - g);
     // The root without cancellation on either side of the stop.
     if b >= 0.0 {
@@ -224,7 +224,7 @@ fn plan_force(u: f64, g: f64, alpha: f64, eta: f64) -> f64 {
 }
 
 /// m ẍ + c ẋ + k x + f(x) = F cos ωt, one RK4 step of `dt` from (x, v) at time t.
-fn rk4(x: f64, v: f64, t: f64, dt: f64, w: f64, law: &dyn Fn(f64) -> f64) -> (f64, f64) {
+pub(crate) fn rk4(x: f64, v: f64, t: f64, dt: f64, w: f64, law: &dyn Fn(f64) -> f64) -> (f64, f64) {
     let acc = |x: f64, v: f64, t: f64| (F * (w * t).cos() - C * v - K * x - law(x)) / M;
     let (k1x, k1v) = (v, acc(x, v, t));
     let (k2x, k2v) = (
@@ -245,7 +245,13 @@ fn rk4(x: f64, v: f64, t: f64, dt: f64, w: f64, law: &dyn Fn(f64) -> f64) -> (f6
 /// One forcing period from (x0, v0) at t = 0 in `steps` RK4 steps: the end state and the
 /// largest |x| met (at the steps: (ωdt)²/8 relative at most below the true one, 1e-10
 /// at 20 000 steps).
-fn period(x0: f64, v0: f64, w: f64, steps: usize, law: &dyn Fn(f64) -> f64) -> ((f64, f64), f64) {
+pub(crate) fn period(
+    x0: f64,
+    v0: f64,
+    w: f64,
+    steps: usize,
+    law: &dyn Fn(f64) -> f64,
+) -> ((f64, f64), f64) {
     let dt = 2.0 * PI / w / steps as f64;
     let (mut x, mut v, mut big) = (x0, v0, x0.abs());
     for i in 0..steps {
@@ -256,8 +262,8 @@ fn period(x0: f64, v0: f64, w: f64, steps: usize, law: &dyn Fn(f64) -> f64) -> (
 }
 
 /// The periodic steady state at ω by shooting: Newton on (x(T) − x0, v(T) − v0) with a
-/// finite-difference Jacobian, from the guess (x0, v0); its largest |x|.
-fn shooting_amplitude(x0: f64, v0: f64, w: f64, law: &dyn Fn(f64) -> f64) -> f64 {
+/// finite-difference Jacobian, from the guess (x0, v0); its state at t = 0.
+pub(crate) fn shooting_state(x0: f64, v0: f64, w: f64, law: &dyn Fn(f64) -> f64) -> (f64, f64) {
     let steps = 20_000;
     let (mut x, mut v) = (x0, v0);
     for _ in 0..20 {
@@ -277,7 +283,13 @@ fn shooting_amplitude(x0: f64, v0: f64, w: f64, law: &dyn Fn(f64) -> f64) -> f64
         x -= (j[1][1] * rx - j[0][1] * rv) / det;
         v -= (-j[1][0] * rx + j[0][0] * rv) / det;
     }
-    period(x, v, w, steps, law).1
+    (x, v)
+}
+
+/// The largest |x| of the periodic steady state found by shooting from (x0, v0).
+fn shooting_amplitude(x0: f64, v0: f64, w: f64, law: &dyn Fn(f64) -> f64) -> f64 {
+    let (x, v) = shooting_state(x0, v0, w, law);
+    period(x, v, w, 20_000, law).1
 }
 
 /// The one-DOF impact oscillator (sdnd122's wall: JEU 0.01, RIGI_NOR 50, PARA_REGUL
