@@ -60,12 +60,23 @@ fn forced_plan_testcase_checks_itself() {
     );
     assert_eq!(code, Some(0), "{out}");
     // Three rows against shooting, their frequencies, the two folds, the linear start.
-    assert!(out.contains("tests: 13 OK, 0 NOOK"), "{out}");
+    // ... and the stability of four rows against the growth of a perturbation, two rows
+    // around the lower fold.
+    assert!(out.contains("tests: 27 OK, 0 NOOK"), "{out}");
     assert!(
         out.contains("443 point(s)") && out.contains("2 turning point(s)"),
         "{out}"
     );
-    assert!(!out.contains("<A>"), "{out}");
+    // Regression counts: the 18 INDETERMINE rows past the upper fold are the only alarm.
+    assert!(
+        out.contains("stability: 279 STABLE, 146 INSTABLE, 18 INDETERMINE"),
+        "{out}"
+    );
+    assert_eq!(out.matches("<A>").count(), 1, "{out}");
+    assert!(
+        out.contains("<A> <REPONSE_FORCEE_NL_2> 18 row(s) INDETERMINE"),
+        "{out}"
+    );
 }
 
 /// NB_BRANCHE too small for the band: the rows computed are stored and the alarm says the

@@ -1,4 +1,6 @@
-//! Floquet stability of a periodic solution of M Ü + K U + Pᵀ F(P U) = 0 (CALC_STABILITE).
+//! Floquet stability of a periodic solution of M Ü + K U + Pᵀ F(P U) = 0 (CALC_STABILITE),
+//! and of a forced one, M Ü + C U̇ + K U + Pᵀ F(P U) = f cos ωt (REPONSE_FORCEE_NL's rows:
+//! `forced.rs`, no trivial pair, the damping in the integrators).
 //!
 //! The orbit U(t) is rebuilt from the stored Fourier coefficients of a branch point; the
 //! variational equation M δÜ + (K + Pᵀ J(t) P) δU = 0, with J = ∂F/∂u the tangent of the
@@ -38,9 +40,12 @@
 //! at n = 100 in the test profile, and minutes at a few hundred DOFs; beyond that a reduced
 //! basis would be needed. M must be symmetric positive definite (a mass on every DOF).
 
+mod forced;
 mod integrate;
 mod reduce;
 
+#[cfg(test)]
+mod forced_tests;
 #[cfg(test)]
 mod shooting_tests;
 #[cfg(test)]
@@ -51,6 +56,7 @@ use crate::nnm::model::point_law::{eta_phys, PointLaw};
 use crate::nnm::model::unknowns::Unknowns;
 use crate::nnm::{model::fourier, Harmonics, Problem};
 use faer::{Mat, Side};
+use forced::ForcedTerms;
 
 /// Time integrator of the variational equation (SCHEMA_TEMPS/SCHEMA).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -183,6 +189,8 @@ struct Structure {
     m: Mat<f64>,
     k: Mat<f64>,
     shocks: Vec<(PointLaw, Vec<usize>)>,
+    /// A forced problem's damping and force: its points are analysed by `forced.rs`.
+    forced: Option<ForcedTerms>,
 }
 
 impl Structure {
@@ -207,6 +215,10 @@ impl Structure {
             m: problem.m.to_dense(),
             k: problem.k.to_dense(),
             shocks,
+            forced: problem.forcing.as_ref().map(|f| ForcedTerms {
+                c: f.damping.to_dense(),
+                f: f.force.clone(),
+            }),
         })
     }
 }
@@ -217,6 +229,7 @@ pub(crate) struct Linearised {
     pub m: Mat<f64>,
     pub k: Mat<f64>,
     shocks: Vec<(PointLaw, Vec<usize>)>,
+    forced: Option<ForcedTerms>,
     pub orbit: Orbit,
 }
 
@@ -238,6 +251,7 @@ impl Linearised {
             m: s.m,
             k: s.k,
             shocks: s.shocks,
+            forced: s.forced,
             orbit,
         })
     }
@@ -328,8 +342,11 @@ impl FloquetAnalyser {
             .ok_or_else(|| Error::internal("stored point without ω"))?;
         let orbit = Orbit::new(coefs, self.h_lin, omega)?;
         let lin = Linearised::along(&self.structure, orbit)?;
-        let phi = monodromy(&lin, n_steps, integrator)?;
-        analyse(&lin, &phi, tolerance)
+        let full = propagate(&lin, n_steps, integrator)?;
+        if lin.forced.is_some() {
+            return forced::analyse(&lin, &full, tolerance);
+        }
+        analyse(&lin, &full, tolerance)
     }
 }
 
@@ -346,12 +363,23 @@ pub fn floquet(
     FloquetAnalyser::new(problem, harmonics)?.floquet(x, n_steps, integrator, tolerance)
 }
 
-/// Φ(T) of the linearised system with the chosen integrator.
+/// Φ(T) of the linearised system with the chosen integrator (2n × 2n): for tests.
+#[cfg(test)]
 pub(crate) fn monodromy(
     lin: &Linearised,
     n_steps: usize,
     integrator: Integrator,
 ) -> Result<Mat<f64>> {
+    let full = propagate(lin, n_steps, integrator)?;
+    let n2 = 2 * lin.n;
+    if full.ncols() == n2 {
+        return Ok(full);
+    }
+    Ok(Mat::from_fn(n2, n2, |i, j| full[(i, j)]))
+}
+
+/// Φ(T), and for a forced system its extra column (the tangent's image, `integrate.rs`).
+fn propagate(lin: &Linearised, n_steps: usize, integrator: Integrator) -> Result<Mat<f64>> {
     let mass = lin.m.llt(Side::Lower).map_err(|_| {
         Error::input("the mass matrix is not symmetric positive definite: the Floquet analysis needs a mass on every DOF")
             .setting(Setting::StabilityRows)
@@ -402,14 +430,23 @@ pub(crate) fn analyse(lin: &Linearised, phi: &Mat<f64>, tolerance: f64) -> Resul
 
 /// ‖Φ ẏ(0) − ẏ(0)‖/‖ẏ(0)‖, ẏ = (U̇, Ü/ω) (velocities and accelerations/ω share units).
 fn orbit_defect(lin: &Linearised, phi: &Mat<f64>) -> f64 {
+    let n2 = 2 * lin.n;
+    let y = lin.orbit_tangent();
+    let image: Vec<f64> = (0..n2)
+        .map(|i| (0..n2).map(|j| phi[(i, j)] * y[j]).sum())
+        .collect();
+    orbit_defect_of(lin, &image)
+}
+
+/// ‖z − ẏ(0)‖/‖ẏ(0)‖ in (u, v/ω) units, z the image of the orbit's tangent after one period.
+fn orbit_defect_of(lin: &Linearised, image: &[f64]) -> f64 {
     let (n, w) = (lin.n, lin.orbit.omega);
     let y = lin.orbit_tangent();
     let scale = |i: usize| if i < n { 1.0 } else { 1.0 / w };
     let mut num = 0.0;
     let mut den = 0.0;
     for i in 0..2 * n {
-        let py: f64 = (0..2 * n).map(|j| phi[(i, j)] * y[j]).sum();
-        num += ((py - y[i]) * scale(i)).powi(2);
+        num += ((image[i] - y[i]) * scale(i)).powi(2);
         den += (y[i] * scale(i)).powi(2);
     }
     if den > 0.0 {

@@ -2,7 +2,7 @@
 
 mod cercle_eq12;
 mod doors;
-mod forced;
+pub(crate) mod forced;
 mod hard;
 mod reference;
 mod resonance;

@@ -5,12 +5,16 @@
 //! Glue only: reads the matrices, the damping (MATR_AMOR or AMOR_RAYLEIGH), the force
 //! (EXCIT), the band, the shocks (MODE_NON_LINE's CHOC and RESSORT_CUBIQUE readers) and the
 //! settings; runs the engine from the steady state at FREQ_MIN up to the first branch past
-//! FREQ_MAX; stores one table row per point, turning points flagged.
+//! FREQ_MAX; stores one table row per point, turning points flagged, with each row's
+//! Floquet stability unless STABILITE='NON' (`stability.rs`).
+
+mod stability;
 
 use crate::args::Args;
 use crate::error::{Error, Result};
 use crate::model::modes::ModeMeca;
 use crate::model::{AssembledMatrix, Cmp, DofNumbering};
+use crate::nnm::stability::Floquet;
 use crate::nnm::{self, Forcing, Point, Problem, Settings};
 use crate::ops::mode_non_line::inputs::{choc_node, shocks_from_args};
 use crate::ops::mode_non_line::problem::engine_shocks;
@@ -94,7 +98,8 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     points.truncate(kept);
 
     let post = nnm::PostProcessor::new(&problem, &settings)?;
-    let table = curve_table(&post, &settings, &observed, &points)?;
+    let floquet = stability::analyse(ctx, args, &problem, &settings, &points)?;
+    let table = curve_table(&post, &settings, &observed, &points, floquet.as_deref())?;
     ctx.create(&name, "table_sdaster")?;
     ctx.store.record_dependency(&name, &k_name)?;
     ctx.store.record_dependency(&name, &m_name)?;
@@ -336,12 +341,13 @@ fn fold_rows(points: &[Point]) -> Vec<bool> {
     folds
 }
 
-/// The result table: one row per point.
+/// The result table: one row per point, STABILITE and MODULE_MAX after PLI when computed.
 fn curve_table(
     post: &nnm::PostProcessor,
     settings: &Settings,
     observed: &[Observed],
     points: &[Point],
+    floquet: Option<&[Floquet]>,
 ) -> Result<Table> {
     let mut t = Table::new("REPONSE_FORCEE_NL");
     t.add_column("NUME_ORDRE", ColKind::I)?;
@@ -349,9 +355,13 @@ fn curve_table(
     for o in observed {
         t.add_column(&o.column, ColKind::R)?;
     }
+    t.add_column("ENERGIE", ColKind::R)?;
+    t.add_column("PLI", ColKind::K)?;
+    if floquet.is_some() {
+        t.add_column("STABILITE", ColKind::K)?;
+        t.add_column("MODULE_MAX", ColKind::R)?;
+    }
     for (name, kind) in [
-        ("ENERGIE", ColKind::R),
-        ("PLI", ColKind::K),
         ("RESIDU", ColKind::R),
         ("ECART_LOI_CHOC", ColKind::R),
         ("BRANCHE", ColKind::I),
@@ -372,6 +382,11 @@ fn curve_table(
         row.extend([
             Cell::R(p.energy_mean),
             Cell::K(if folds[j] { "OUI" } else { "NON" }.into()),
+        ]);
+        if let Some(f) = floquet.and_then(|f| f.get(j)) {
+            row.extend([Cell::K(f.label().into()), Cell::R(f.max_modulus)]);
+        }
+        row.extend([
             Cell::R(p.residual),
             Cell::R(defect),
             Cell::I(p.branch as i64),
