@@ -150,6 +150,13 @@ fn bad_input_names_its_keyword() {
             "REPONSE_FORCEE_NL/FREQ_MAX",
             "the band is empty",
         ),
+        // The structure's frequencies: 0.503 Hz open, 1.233 Hz against the stop; 5 to 6 Hz
+        // and its harmonics 2 and 3 (NB_HARM_LINE = 3) are far above both.
+        (
+            call(DAMPING, EXCIT, "FREQ_MIN=5., FREQ_MAX=6., "),
+            "REPONSE_FORCEE_NL/FREQ_MIN",
+            "the band 5 to 6 Hz holds no resonance",
+        ),
     ];
     let dir = tempfile::tempdir().unwrap();
     for (i, (c, key, want)) in cases.iter().enumerate() {

@@ -56,7 +56,7 @@ pub use model::exact;
 pub use solve::budget;
 
 pub use analysis::amplitude::peak_amplitude;
-pub use analysis::band::holds_no_resonance;
+pub use analysis::band::{holds_no_resonance, MARGIN as RESONANCE_MARGIN};
 pub use analysis::below_contact::{regularisation_alarm, ClearRow};
 pub use analysis::law_check::LAW_DEFECT_ALARM;
 pub use analysis::orbit::{

@@ -61,6 +61,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     };
     let settings = settings(args)?;
     let control = step_control(args)?;
+    refuse_a_band_without_resonance(&problem, settings.harmonics.h_lin, (f_min, f_max))?;
 
     let start = nnm::start_forced(&problem, &settings, 2.0 * PI * f_min)?;
     let first = start.point.clone();
@@ -152,6 +153,31 @@ fn band(args: &Args) -> Result<(f64, f64)> {
         .hint("give FREQ_MIN < FREQ_MAX, FREQ_MIN below the resonances of interest"));
     }
     Ok((lo, hi))
+}
+
+/// A band that no harmonic of the forcing (up to NB_HARM_LINE) can bring to a natural
+/// frequency of the structure, its shocks open or closed, is refused
+/// (nnm::holds_no_resonance): its curve would be a flat response that answers nothing, and
+/// is most often a band in the wrong unit (rad/s for Hz) or around the wrong mode.
+fn refuse_a_band_without_resonance(
+    problem: &Problem,
+    h_lin: usize,
+    (f_min, f_max): (f64, f64),
+) -> Result<()> {
+    if nnm::holds_no_resonance(problem, h_lin, f_min, f_max)? {
+        return Err(Error::input(format!(
+            "the band {f_min} to {f_max} Hz holds no resonance: no natural frequency of the \
+             structure, with its shocks open or closed (RIGI_NOR), is within {:.0} % of a \
+             harmonic 1 to NB_HARM_LINE = {h_lin} of a forcing frequency in it",
+            100.0 * nnm::RESONANCE_MARGIN
+        ))
+        .keyword("REPONSE_FORCEE_NL/FREQ_MIN")
+        .hint(
+            "compute the natural frequencies (CALC_MODES) and put the band around one: FREQ_MIN \
+             and FREQ_MAX are in Hz",
+        ));
+    }
+    Ok(())
 }
 
 /// The damping matrix on the free DOFs: MATR_AMOR, or AMOR_ALPHA·K + AMOR_BETA·M.
