@@ -150,12 +150,16 @@ pub fn run_case(
     measure::reset_peak();
     let t0 = measure::self_cpu();
     let f_lin = prep.omega / (2.0 * std::f64::consts::PI);
+    // ω² of the basis's modes, printed on a BASIS line: what a change of the eigensolver
+    // is compared on, side by side with an older binary.
+    let mut basis_omega2 = Vec::new();
     let (problem, mode, omega, coords) = match reduction {
         Some(spec) => {
             let cut = parse_reduction(spec, prep.settings.harmonics.h_lin, f_lin)?;
             let basis = nnm::shock_basis(&prep.problem, cut, usize::MAX)?;
             let problem = nnm::reduced_problem(&prep.problem, &basis)?;
             let coords = basis.size();
+            basis_omega2.clone_from(&basis.omega2);
             let (q, omega) =
                 nnm::Reduced::new(basis, &prep.problem)?.start_mode(&problem, &prep.mode)?;
             (problem, q, omega, coords)
@@ -205,7 +209,9 @@ pub fn run_case(
         f_lin
     )
     .map_err(io)?;
-    writeln!(out, "CURVE {curve}").map_err(io)
+    writeln!(out, "CURVE {curve}").map_err(io)?;
+    let omega2: Vec<String> = basis_omega2.iter().map(|w| format!("{w:.17e}")).collect();
+    writeln!(out, "BASIS {}", omega2.join(",")).map_err(io)
 }
 
 /// One engine measurement (parsed from a child's BENCH line).

@@ -2,14 +2,16 @@
 //! Op = (K − σM)⁻¹M, which is self-adjoint in the M inner product ⟨x, y⟩ = xᵀMy.
 //! Its eigenvalues θ = 1/(ω² − σ) are largest in modulus for the modes closest to σ.
 //!
-//! Every new Krylov vector is M-orthogonalised twice against the whole basis and against
-//! `locked` vectors (modes already found in an earlier pass: explicit deflation, which is
-//! how a second copy of a multiple eigenvalue gets found). Each basis vector is kept with
+//! Every new Krylov vector is M-orthogonalised to working precision against the whole
+//! basis and against `locked` vectors (modes already found in an earlier pass: explicit
+//! deflation, which is how a second copy of a multiple eigenvalue gets found): by the
+//! three-term recurrence and one full Gram–Schmidt pass, a second one when that pass
+//! removed much ([`orthogonalise_step`]), and by two full passes at a cycle's first column. Each basis vector is kept with
 //! its product by M, so that those inner products need no product by M, and neither does
 //! the operator (Op v = (K − σM)⁻¹ (M v) starts from the stored M v): one product by M per
 //! new vector, for its norm. The basis and its M-products are column-major blocks
-//! ([`LanczosWork`], reused from one run to the next), so that Gram–Schmidt is two
-//! matrix–vector products per pass and a restart or the final Ritz vectors one matrix
+//! ([`LanczosWork`], reused from one run to the next), so that a Gram–Schmidt pass is two
+//! matrix–vector products and a restart or the final Ritz vectors one matrix
 //! product (faer's kernels), instead of loops of dots and axpys over separate vectors.
 //! Memory: 2(ncv + 1) vectors of length n plus small ncv × ncv matrices.
 
@@ -166,6 +168,68 @@ fn orthogonalise(
     }
     m.mul(w, mw);
     dot(w, mw).max(0.0).sqrt()
+}
+
+/// One Lanczos step's orthogonalisation of `w` = Op v_j, j > the cycle's first column:
+/// the three-term recurrence first (w −= β_{j−1} v_{j−1}, then its component along v_j,
+/// both O(n)), which removes in exact arithmetic every component along the basis, then one
+/// classical Gram–Schmidt pass against the whole basis and the locked vectors, which removes
+/// what round-off left (of order ε‖Op v_j‖). The recurrence is the first of the "twice is
+/// enough" passes, so the basis keeps M-orthogonality to working precision, as with two
+/// full passes, at half their cost (the full passes read the n × j blocks V and M V, the
+/// whole of the step's cost on a large model). The guard of Daniel, Gragg, Kaufman and
+/// Stewart (η = 1/√2): if the full pass removed more than the remainder keeps (‖c‖ > β,
+/// the remainder under 1/√2 of what the pass started from, with ‖before‖² = ‖c‖² + β² for
+/// an M-orthonormal basis), the recurrence did not leave round-off only and a second full
+/// pass follows. Coefficients go to `h` (the recurrence's and the passes' summed), `mw`
+/// gets M w; returns the M-norm of the remainder.
+#[allow(clippy::too_many_arguments)]
+fn orthogonalise_step(
+    w: &mut [f64],
+    basis: Block,
+    locked: Block,
+    beta_prev: f64,
+    m: &SymSparse,
+    mw: &mut [f64],
+    h: &mut [f64],
+    c: &mut [f64],
+    c_locked: &mut [f64],
+) -> f64 {
+    let (n, j) = (basis.n, basis.k - 1);
+    h[..basis.k].iter_mut().for_each(|x| *x = 0.0);
+    if j > 0 {
+        let prev = &basis.v[(j - 1) * n..j * n];
+        w.iter_mut()
+            .zip(prev)
+            .for_each(|(x, p)| *x -= beta_prev * p);
+        h[j - 1] = beta_prev;
+    }
+    let alpha = dot(&basis.mv[j * n..(j + 1) * n], w);
+    w.iter_mut()
+        .zip(&basis.v[j * n..(j + 1) * n])
+        .for_each(|(x, v)| *x -= alpha * v);
+    h[j] = alpha;
+    let mut beta = 0.0;
+    for pass in 0..2 {
+        m_dots(basis, w, c);
+        m_dots(locked, w, c_locked);
+        subtract_combination(basis, c, w);
+        subtract_combination(locked, c_locked, w);
+        h.iter_mut()
+            .zip(&c[..basis.k])
+            .for_each(|(hi, ci)| *hi += ci);
+        m.mul(w, mw);
+        beta = dot(w, mw).max(0.0).sqrt();
+        let removed: f64 = c[..basis.k]
+            .iter()
+            .chain(&c_locked[..locked.k])
+            .map(|x| x * x)
+            .sum();
+        if pass == 0 && removed <= beta * beta {
+            break;
+        }
+    }
+    beta
 }
 
 /// Rows of a block per product of [`rotate`]: 512 rows of 100 kept vectors (400 KB) stay in
@@ -361,7 +425,14 @@ pub fn lanczos(
                 n,
                 k: j + 1,
             };
-            let mut beta = orthogonalise(w, cur, lock, m, mw, &mut hcol, c, c_locked);
+            // The cycle's first column couples with every kept Ritz vector (the restart's
+            // arrow): two full passes. Later ones follow the three-term recurrence.
+            let mut beta = if j == k0 {
+                orthogonalise(w, cur, lock, m, mw, &mut hcol, c, c_locked)
+            } else {
+                let beta_prev = h[j][j - 1];
+                orthogonalise_step(w, cur, lock, beta_prev, m, mw, &mut hcol, c, c_locked)
+            };
             for (i, ci) in hcol[..=j].iter().enumerate() {
                 h[i][j] = *ci;
             }
@@ -544,6 +615,43 @@ mod tests {
         assert!((nrm - m_dot(&w, &w).sqrt()).abs() <= 1e-14 * scale);
         for i in 0..n {
             assert!((mw[i] - diag[i] * w[i]).abs() <= 1e-15 * w[i].abs());
+        }
+
+        // The step's orthogonalisation: whatever coefficient the recurrence is given for
+        // v_{j−1} (the true one, a wrong one, or one 10⁶ off: one pass would then leave
+        // about ε·10⁶ along v_{j−1}, 100 times the bound below, so the second pass must
+        // run), the coefficients are the M inner products with the start vector (to
+        // round-off of the terms summed) and the remainder is M-orthogonal to the basis.
+        let exact_prev = m_dot(&v[(k - 2) * n..(k - 1) * n], &w0);
+        for beta_prev in [exact_prev, exact_prev + 3.0, 0.0, exact_prev + 1e6] {
+            let h_tol = 1e-13 * scale + 1e-15 * (beta_prev - exact_prev).abs();
+            let mut w = w0.clone();
+            let nrm = orthogonalise_step(
+                &mut w,
+                basis,
+                none,
+                beta_prev,
+                &m,
+                &mut mw,
+                &mut h,
+                &mut c,
+                &mut [],
+            );
+            for i in 0..k {
+                let vi = &v[i * n..(i + 1) * n];
+                assert!(
+                    (h[i] - m_dot(vi, &w0)).abs() <= h_tol,
+                    "β {beta_prev}: h[{i}]"
+                );
+                assert!(
+                    m_dot(vi, &w).abs() <= 1e-13 * scale,
+                    "β {beta_prev}: ⟨v{i}, w⟩"
+                );
+            }
+            assert!((nrm - m_dot(&w, &w).sqrt()).abs() <= 1e-14 * scale);
+            for i in 0..n {
+                assert!((mw[i] - diag[i] * w[i]).abs() <= 1e-15 * w[i].abs());
+            }
         }
     }
 }

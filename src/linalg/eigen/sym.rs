@@ -141,6 +141,22 @@ impl SymSparse {
         dot(x, &ay)
     }
 
+    /// xᵀ A x from the stored lower triangle, without forming A x: a read-only sweep (each
+    /// off-diagonal entry counted twice), cheaper than [`SymSparse::mul`]'s scatter and
+    /// allocation when only the form is wanted.
+    pub fn quadratic(&self, x: &[f64]) -> f64 {
+        let mut sum = 0.0;
+        for (j, &xj) in x.iter().enumerate().take(self.n) {
+            let r = self.col_ptr[j]..self.col_ptr[j + 1];
+            let mut col = 0.0;
+            for (&i, &a) in self.row_idx[r.clone()].iter().zip(&self.val[r]) {
+                col += if i == j { 0.5 * a * xj } else { a * x[i] };
+            }
+            sum += 2.0 * xj * col;
+        }
+        sum
+    }
+
     /// |x|ᵀ |A| |x| (entrywise absolute values): what bounds the rounding error of xᵀ A x
     /// computed from the stored entries.
     pub fn abs_form(&self, x: &[f64]) -> f64 {

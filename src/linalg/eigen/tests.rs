@@ -615,3 +615,33 @@ fn slices_find_both_copies_of_double_modes() {
     }
     assert!(orthonormality_error(&set, &mm) < 1e-9);
 }
+
+#[test]
+fn quadratic_form_matches_the_product_and_the_dense_form() {
+    // An irregular symmetric pattern (diagonal, neighbours, a far coupling), columns with
+    // and without a diagonal entry.
+    let n = 57;
+    let mut lower = Vec::new();
+    for j in 0..n {
+        if j % 5 != 3 {
+            lower.push((j, j, 2.0 + (j % 7) as f64));
+        }
+        if j + 1 < n {
+            lower.push((j + 1, j, -1.0 + 0.25 * (j % 3) as f64));
+        }
+        if j + 13 < n && j % 4 == 0 {
+            lower.push((j + 13, j, 0.25));
+        }
+    }
+    let a = SymSparse::from_lower_triplets(n, &lower);
+    let x: Vec<f64> = (0..n).map(|i| ((i * 7 % 11) as f64) - 5.0).collect();
+    let dense = a.to_dense();
+    let exact: f64 = (0..n)
+        .flat_map(|i| (0..n).map(move |j| (i, j)))
+        .map(|(i, j)| x[i] * dense[(i, j)] * x[j])
+        .sum();
+    // Integers and quarters times small integers: every partial sum is exact in binary, so
+    // the three sums agree to the last bit.
+    assert_eq!(a.quadratic(&x), exact);
+    assert_eq!(a.form(&x, &x), exact);
+}
