@@ -4,6 +4,7 @@
 
 use crate::args::Args;
 use crate::error::Result;
+use crate::nnm::error::Setting;
 use crate::nnm::stability::{Floquet, FloquetAnalyser, Integrator, Verdict};
 use crate::nnm::{Point, Problem, Settings};
 use crate::ops::common::resources::{check_memory, warn_long_work};
@@ -49,7 +50,11 @@ pub(super) fn analyse(
     for (j, p) in points.iter().enumerate() {
         let f = analyser
             .floquet(&p.x, n_inst, integrator, tolerance)
-            .map_err(|e| {
+            .map_err(|mut e| {
+                // The rows are this operator's, not a MODE_NON_LINE table's: named below.
+                if e.setting == Some(Setting::StabilityRows) {
+                    e.setting = None;
+                }
                 crate::error::Error::from(e).keyword(format!(
                     "REPONSE_FORCEE_NL/STABILITE (row NUME_ORDRE={})",
                     j + 1
