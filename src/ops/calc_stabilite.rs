@@ -13,6 +13,19 @@ use crate::store::{matrix, mnl as mnl_store, table as table_store};
 use crate::table::print::format_e;
 use crate::table::{Cell, Table};
 
+/// TOLERANCE and SCHEMA_TEMPS (SCHEMA, NB_INST): the Floquet analysis's settings, read the
+/// same way by CALC_STABILITE and REPONSE_FORCEE_NL (defaults are each catalog's, filled by
+/// the validation).
+pub fn floquet_settings(args: &Args) -> Result<(f64, Integrator, usize)> {
+    let tolerance = args.req_real("TOLERANCE")?;
+    let schema = args.req_fact("SCHEMA_TEMPS")?;
+    let integrator = match schema.req_text("SCHEMA")? {
+        "RUNGE_KUTTA_4" => Integrator::Rk4,
+        _ => Integrator::Newmark,
+    };
+    Ok((tolerance, integrator, schema.req_count("NB_INST")?))
+}
+
 pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     let src = args.req_concept("MODE_NON_LINE")?.name.clone();
     let name = match (ctx.reuse, ctx.result) {
@@ -26,14 +39,7 @@ pub fn run(ctx: &mut OpContext<'_>, args: &Args) -> Result<()> {
     // A reduced run's stability is that of the reduced model its rows solve.
     let run = engine_problem(ctx.store, &src, &setup, &k, &m)?;
     let (problem, harmonics) = (&run.problem, run.harmonics);
-    // Defaults are the catalog's (commands/CALC_STABILITE.toml), filled by the validation.
-    let tolerance = args.req_real("TOLERANCE")?;
-    let schema = args.req_fact("SCHEMA_TEMPS")?;
-    let integrator = match schema.req_text("SCHEMA")? {
-        "RUNGE_KUTTA_4" => Integrator::Rk4,
-        _ => Integrator::Newmark,
-    };
-    let n_inst = schema.req_count("NB_INST")?;
+    let (tolerance, integrator, n_inst) = floquet_settings(args)?;
     let rows = selected_rows(&table, args.req_fact("FILTRE")?)?;
     if rows.is_empty() {
         return Err(Error::validation("FILTRE selects no row of the table")

@@ -394,13 +394,19 @@ fn propagate(lin: &Linearised, n_steps: usize, integrator: Integrator) -> Result
     Ok(phi)
 }
 
-/// Multipliers, quality indicators and verdict from Φ(T).
-pub(crate) fn analyse(lin: &Linearised, phi: &Mat<f64>, tolerance: f64) -> Result<Floquet> {
+/// The eigenvalues of Φ(T) as (re, im), largest modulus first.
+fn sorted_multipliers(phi: &Mat<f64>) -> Result<Vec<(f64, f64)>> {
     let eig = phi
         .eigenvalues()
         .map_err(|e| Error::numerical(format!("eigenvalues of the monodromy matrix: {e:?}")))?;
     let mut multipliers: Vec<(f64, f64)> = eig.iter().map(|c| (c.re, c.im)).collect();
     multipliers.sort_by(|a, b| b.0.hypot(b.1).total_cmp(&a.0.hypot(a.1)));
+    Ok(multipliers)
+}
+
+/// Multipliers, quality indicators and verdict from Φ(T).
+pub(crate) fn analyse(lin: &Linearised, phi: &Mat<f64>, tolerance: f64) -> Result<Floquet> {
+    let multipliers = sorted_multipliers(phi)?;
     let max_modulus = multipliers.first().map(|m| m.0.hypot(m.1)).unwrap_or(0.0);
     let mut by_dist: Vec<f64> = multipliers.iter().map(|m| (m.0 - 1.0).hypot(m.1)).collect();
     by_dist.sort_by(|a, b| a.total_cmp(b));

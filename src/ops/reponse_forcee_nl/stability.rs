@@ -5,8 +5,9 @@
 use crate::args::Args;
 use crate::error::Result;
 use crate::nnm::error::Setting;
-use crate::nnm::stability::{Floquet, FloquetAnalyser, Integrator, Verdict};
+use crate::nnm::stability::{Floquet, FloquetAnalyser, Verdict};
 use crate::nnm::{Point, Problem, Settings};
+use crate::ops::calc_stabilite::floquet_settings;
 use crate::ops::common::resources::{check_memory, warn_long_work};
 use crate::ops::OpContext;
 use crate::table::print::format_e;
@@ -23,13 +24,7 @@ pub(super) fn analyse(
         return Ok(None);
     }
     // Defaults are the catalog's (commands/REPONSE_FORCEE_NL.toml).
-    let tolerance = args.req_real("TOLERANCE")?;
-    let schema = args.req_fact("SCHEMA_TEMPS")?;
-    let integrator = match schema.req_text("SCHEMA")? {
-        "RUNGE_KUTTA_4" => Integrator::Rk4,
-        _ => Integrator::Newmark,
-    };
-    let n_inst = schema.req_count("NB_INST")?;
+    let (tolerance, integrator, n_inst) = floquet_settings(args)?;
     let n = problem.k.nrows();
     check_memory(
         "REPONSE_FORCEE_NL/STABILITE",

@@ -24,7 +24,7 @@
 //! single simple multiplier crosses +1 and moves by O(defect) only, so the band is
 //! conservative here (it never calls INSTABLE a row it should not).
 
-use super::{orbit_defect_of, verdict, Floquet, Linearised, Verdict};
+use super::{orbit_defect_of, sorted_multipliers, verdict, Floquet, Linearised, Verdict};
 use crate::nnm::error::{Error, Result};
 use faer::Mat;
 
@@ -53,11 +53,7 @@ pub(super) fn analyse(lin: &Linearised, full: &Mat<f64>, tolerance: f64) -> Resu
         ));
     }
     let phi = Mat::from_fn(n2, n2, |i, j| full[(i, j)]);
-    let eig = phi
-        .eigenvalues()
-        .map_err(|e| Error::numerical(format!("eigenvalues of the monodromy matrix: {e:?}")))?;
-    let mut multipliers: Vec<(f64, f64)> = eig.iter().map(|c| (c.re, c.im)).collect();
-    multipliers.sort_by(|a, b| b.0.hypot(b.1).total_cmp(&a.0.hypot(a.1)));
+    let multipliers = sorted_multipliers(&phi)?;
     let max_modulus = multipliers.first().map(|m| m.0.hypot(m.1)).unwrap_or(0.0);
     let z: Vec<f64> = full.col_as_slice(n2).to_vec();
     let orbit_defect = orbit_defect_of(lin, &z);
