@@ -512,13 +512,47 @@ fn lanczos_modes(
     if let ModeRequest::Smallest { n } = *req {
         if n > 2 * SLICE_MODES {
             // A slice boundary inside a cluster of nearly equal frequencies can defeat the
-            // slices' counts; one shift with deflated passes then finds them, slowly.
-            if let Ok(set) = sliced::smallest(shared, k, m, n, opts, scale) {
-                return Ok(set);
+            // slices' counts; one shift with deflated passes then finds them, slowly, in a
+            // Krylov basis of about 2n vectors: refused when that basis alone would not fit
+            // (a 10⁶-DOF model asked for 364 modes needs 12 GB for it and was killed by the
+            // system instead of stopping with a reason).
+            match sliced::smallest(shared, k, m, n, opts, scale) {
+                Ok(set) => return Ok(set),
+                Err(e) => {
+                    let bytes = one_shift_basis_bytes(k.n, n, opts.ncv);
+                    if let Some((room, why)) = crate::process::memory_limit() {
+                        if bytes > FALLBACK_SHARE * room {
+                            return Err(Error::numerical(format!(
+                                "the {n} lowest modes: spectrum slicing failed ({}), and one \
+                                 Lanczos sequence for all of them would need {:.1} GB for its \
+                                 Krylov basis, more than half of the {:.1} GB available {why}",
+                                e.message,
+                                bytes / 1e9,
+                                room / 1e9
+                            ))
+                            .hint(
+                                "ask for fewer modes at once (CALC_MODES: NMAX_FREQ, or a \
+                                 BANDE; MODE_NON_LINE's REDUCTION: a lower COEF_COUPURE)",
+                            ));
+                        }
+                    }
+                }
             }
         }
     }
     one_shift_modes(shared, k, m, req, opts, scale, None)
+}
+
+/// The one-shift fallback of a failed spectrum slicing is refused above this share of the
+/// memory left: its Krylov blocks are most of what it allocates, and the rest of the run
+/// (the factor, the model) needs room too.
+const FALLBACK_SHARE: f64 = 0.5;
+
+/// Bytes of the Krylov basis and its M-products of one Lanczos sequence for `nev` modes of
+/// an `n`-DOF problem: 2(ncv + 1) vectors of n (lanczos.rs), ncv = `ncv` or max(2·nev + 20, 40).
+fn one_shift_basis_bytes(n: usize, nev: usize, ncv: usize) -> f64 {
+    let ncv = if ncv > 0 { ncv } else { (2 * nev + 20).max(40) };
+    2.0 * (ncv + 1) as f64 * n as f64 * std::mem::size_of::<f64>() as f64
 }
 
 /// The requested modes from one shift (and deflated passes at that shift). `band_counts`:

@@ -645,3 +645,20 @@ fn quadratic_form_matches_the_product_and_the_dense_form() {
     assert_eq!(a.quadratic(&x), exact);
     assert_eq!(a.form(&x, &x), exact);
 }
+
+/// The one-shift fallback's basis at the size that was killed: 10⁶ DOFs, 364 modes, 748
+/// vectors twice (the basis and its M-products), 12.0 GB; the automatic size is never below
+/// 40 vectors.
+#[test]
+fn the_one_shift_fallback_basis_is_sized_before_it_is_allocated() {
+    let big = super::one_shift_basis_bytes(1_000_000, 364, 0);
+    assert_eq!(big, 2.0 * 749.0 * 1e6 * 8.0);
+    assert_eq!(
+        super::one_shift_basis_bytes(10, 1, 0),
+        2.0 * 41.0 * 10.0 * 8.0
+    );
+    assert_eq!(
+        super::one_shift_basis_bytes(10, 1, 7),
+        2.0 * 8.0 * 10.0 * 8.0
+    );
+}
