@@ -158,16 +158,30 @@ fn orthogonalise(
 ) -> f64 {
     h[..basis.k].iter_mut().for_each(|x| *x = 0.0);
     for _pass in 0..2 {
-        m_dots(basis, w, c);
-        m_dots(locked, w, c_locked);
-        subtract_combination(basis, c, w);
-        subtract_combination(locked, c_locked, w);
-        h.iter_mut()
-            .zip(&c[..basis.k])
-            .for_each(|(hi, ci)| *hi += ci);
+        gram_schmidt_pass(w, basis, locked, h, c, c_locked);
     }
     m.mul(w, mw);
     dot(w, mw).max(0.0).sqrt()
+}
+
+/// One classical Gram–Schmidt pass of `w` against `basis` and `locked` (the M inner
+/// products from the stored M-products, into `c` and `c_locked`); the coefficients against
+/// `basis` are added to `h`.
+fn gram_schmidt_pass(
+    w: &mut [f64],
+    basis: Block,
+    locked: Block,
+    h: &mut [f64],
+    c: &mut [f64],
+    c_locked: &mut [f64],
+) {
+    m_dots(basis, w, c);
+    m_dots(locked, w, c_locked);
+    subtract_combination(basis, c, w);
+    subtract_combination(locked, c_locked, w);
+    h.iter_mut()
+        .zip(&c[..basis.k])
+        .for_each(|(hi, ci)| *hi += ci);
 }
 
 /// One Lanczos step's orthogonalisation of `w` = Op v_j, j > the cycle's first column:
@@ -211,13 +225,7 @@ fn orthogonalise_step(
     h[j] = alpha;
     let mut beta = 0.0;
     for pass in 0..2 {
-        m_dots(basis, w, c);
-        m_dots(locked, w, c_locked);
-        subtract_combination(basis, c, w);
-        subtract_combination(locked, c_locked, w);
-        h.iter_mut()
-            .zip(&c[..basis.k])
-            .for_each(|(hi, ci)| *hi += ci);
+        gram_schmidt_pass(w, basis, locked, h, c, c_locked);
         m.mul(w, mw);
         beta = dot(w, mw).max(0.0).sqrt();
         let removed: f64 = c[..basis.k]
